@@ -1,0 +1,135 @@
+"""Closed forms of the paper, each with its equation number.
+
+All quantities are dimensionless. The fitted formulas (Eqs. 28-31, 33) are the paper's
+cubic fits to Harik and Issa's numerical optimum; :mod:`stickslip.analysis.absorber`
+computes the optimum itself. Eqs. (34)-(36) are exact for the 1DOF Coulomb system
+(Nakano); Eqs. (37)-(39) are the paper's simplified boundary.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.optimize import brentq
+
+from stickslip.model._validate import non_negative, positive
+from stickslip.model.parameters import Foundation
+
+
+def _cubic(zeta: float, a3: float, a2: float, a1: float, a0: float) -> float:
+    z = non_negative("zeta", zeta)
+    return ((a3 * z + a2) * z + a1) * z + a0
+
+
+def optimal_mass_ratio_fit(zeta: float) -> float:
+    """Fitted optimal mass ratio ``M_opt = 330 z^3 - 43.6 z^2 + 14.5 z + 1.48``, Eq. (28)."""
+    return _cubic(zeta, 330.0, -43.6, 14.5, 1.48)
+
+
+def optimal_stiffness_ratio_fit(zeta: float) -> float:
+    """Fitted optimal stiffness ratio ``K_opt = 7.72 z^3 + 1.13 z^2 + 1.38 z + 0.934``, Eq. (29)."""
+    return _cubic(zeta, 7.72, 1.13, 1.38, 0.934)
+
+
+def optimal_damping_ratio_fit(zeta: float) -> float:
+    """Fitted optimal damping ratio ``zeta_a,opt = 61.1 z^3 - 4.40 z^2 + 3.91 z + 1.09``, Eq. (30)."""
+    return _cubic(zeta, 61.1, -4.40, 3.91, 1.09)
+
+
+def optimal_foundation_fit(zeta: float) -> Foundation:
+    """The paper's fitted optimal foundation ``(M_opt, K_opt, zeta_a,opt)``, Eqs. (28)-(30)."""
+    return Foundation(
+        optimal_mass_ratio_fit(zeta),
+        optimal_stiffness_ratio_fit(zeta),
+        optimal_damping_ratio_fit(zeta),
+    )
+
+
+def peak_response_fit(zeta: float) -> float:
+    """Fitted peak response at the optimum ``H_max = 2.31 z^3 + 0.70 z^2 - 3.08 z + 2.24``, Eq. (31)."""
+    return _cubic(zeta, 2.31, 0.70, -3.08, 2.24)
+
+
+def equivalent_damping_from_peak(peak: float) -> float:
+    """Equivalent damping ratio of a 1DOF system with the same peak, ``1 / (2 H_max)``, Eq. (32)."""
+    return 1.0 / (2.0 * positive("H_max", peak))
+
+
+def equivalent_damping_fit(zeta: float) -> float:
+    """``zeta_eq = 1 / (4.62 z^3 + 1.40 z^2 - 6.16 z + 4.48)``, Eq. (33) (Eqs. 31 and 32)."""
+    return 1.0 / _cubic(zeta, 4.62, 1.40, -6.16, 4.48)
+
+
+def stick_slip_frequency_ratio(lam: float) -> float:
+    """Undamped 1DOF stick-slip frequency ``f_ss / f_n = 1 / (1 + (lam - atan lam)/pi)``, Eq. (34)."""
+    lam = positive("lambda", lam)
+    return 1.0 / (1.0 + (lam - math.atan(lam)) / math.pi)
+
+
+def stick_slip_period(lam: float) -> float:
+    """Undamped 1DOF stick-slip period in dimensionless time, ``2 pi / (f_ss/f_n)`` from Eq. (34)."""
+    return 2.0 * math.pi / stick_slip_frequency_ratio(lam)
+
+
+def stick_slip_amplitude_ratio(lam: float) -> float:
+    """Undamped 1DOF stick-slip amplitude ``A_ss / A_n = sqrt(1 + lam^2)``, Eq. (35).
+
+    ``A_n = V / omega_n``, so this is also the dimensionless amplitude of ``xi``.
+    """
+    lam = positive("lambda", lam)
+    return math.sqrt(1.0 + lam * lam)
+
+
+def nakano_boundary_residual(lam: float, zeta: float) -> float:
+    """Left minus right side of Nakano's exact 1DOF boundary, Eq. (36).
+
+    ``ln(1 - 2 z lam + lam^2) - z/sqrt(1-z^2) (3 pi + 2 atan((1 - z lam)/(lam sqrt(1-z^2))))``.
+    Positive: stick-slip; negative: steady sliding. ``zeta`` is ``zeta_eq`` for the
+    equivalent 1DOF model (Fig. 9) or ``zeta`` for the rigid base. Requires ``0 <= zeta < 1``.
+    """
+    lam = positive("lambda", lam)
+    zeta = non_negative("zeta", zeta)
+    if zeta >= 1.0:
+        raise ValueError(f"zeta={zeta!r} must be below 1 for Eq. (36) (no oscillation otherwise)")
+    wd = math.sqrt(1.0 - zeta * zeta)
+    lhs = math.log(1.0 - 2.0 * zeta * lam + lam * lam)
+    rhs = zeta / wd * (3.0 * math.pi + 2.0 * math.atan((1.0 - zeta * lam) / (lam * wd)))
+    return lhs - rhs
+
+
+def critical_lambda_exact(zeta: float) -> float:
+    """Critical ``lambda`` of the 1DOF Coulomb system: the root of Eq. (36).
+
+    Stick-slip occurs for ``lambda`` above it. Returns 0 for ``zeta = 0`` (always
+    stick-slip) and ``inf`` for ``zeta >= 1`` (an overdamped slider never returns to the
+    belt speed).
+    """
+    zeta = non_negative("zeta", zeta)
+    if zeta == 0.0:
+        return 0.0
+    if zeta >= 1.0:
+        return math.inf
+    lo, hi = 1e-12, 1.0
+    while nakano_boundary_residual(hi, zeta) <= 0.0:
+        hi *= 2.0
+    return float(brentq(nakano_boundary_residual, lo, hi, args=(zeta,), xtol=1e-15, rtol=1e-15))
+
+
+def critical_lambda_approx(zeta: float) -> float:
+    """Boundary of the simplified criterion ``(1 - z)^5 lam^2 / z = 4 pi``, Eqs. (37) and (39).
+
+    Pass ``zeta_eq`` for Eq. (37) (foundation) or ``zeta`` for Eq. (39) (rigid base).
+    """
+    zeta = non_negative("zeta", zeta)
+    if zeta >= 1.0:
+        return math.inf
+    return math.sqrt(4.0 * math.pi * zeta / (1.0 - zeta) ** 5)
+
+
+def stick_slip_predicted(lam: float, zeta: float) -> bool:
+    """True when the criterion of Eq. (38) fails, i.e. ``(1 - z)^5 lam^2 / z >= 4 pi``."""
+    return positive("lambda", lam) >= critical_lambda_approx(zeta)
+
+
+

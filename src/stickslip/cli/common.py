@@ -1,0 +1,119 @@
+"""Shared pieces of the command line: input parsing, errors and JSON output.
+
+The command line is a public contract (DESIGN.md section 5): invalid input prints one line
+on stderr naming the value and why, exits with code 2, and writes no file.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from pathlib import Path
+from typing import Any, NoReturn
+
+import numpy as np
+
+from stickslip.model.parameters import Foundation
+
+EXIT_BAD_INPUT = 2
+
+
+class BadInput(ValueError):
+    """Raised by the command layer for input it rejects; printed as one line, exit code 2."""
+
+
+def fail(message: str) -> NoReturn:
+    """Print ``error: message`` on stderr as one line and exit with code 2."""
+    line = " ".join(str(message).split())
+    print(f"stickslip: error: {line}", file=sys.stderr)
+    raise SystemExit(EXIT_BAD_INPUT)
+
+
+def parse_dva(text: str, zeta: float, k_scale: float = 1.0) -> Foundation | None:
+    """Resolve the ``--dva`` option.
+
+    ``none`` is the rigid base (1DOF); ``optimal`` the paper's fitted optimum, Eqs. (28)-(30);
+    ``optimal-exact`` the numerical optimum of the absorber; ``M,K,ZETA_A`` explicit values.
+    ``k_scale`` multiplies ``K`` (paper Figs. 11-15); it requires a foundation.
+    """
+    from stickslip.model._validate import positive
+
+    key = text.strip().lower()
+    k_scale = positive("--k-scale", k_scale)
+    foundation: Foundation | None
+    if key == "none":
+        foundation = None
+    elif key == "optimal":
+        from stickslip.analysis.theory import optimal_foundation_fit
+
+        foundation = optimal_foundation_fit(zeta)
+    elif key == "optimal-exact":
+        from stickslip.analysis.absorber import optimal_foundation_exact
+
+        foundation = optimal_foundation_exact(zeta)
+    else:
+        parts = text.split(",")
+        if len(parts) != 3:
+            raise BadInput(
+                f"--dva {text!r} is not 'none', 'optimal', 'optimal-exact' or three numbers M,K,ZETA_A"
+            )
+        try:
+            values = [float(p) for p in parts]
+        except ValueError:
+            raise BadInput(f"--dva {text!r}: M,K,ZETA_A must be numbers") from None
+        foundation = Foundation(*values)
+    if foundation is None:
+        if k_scale != 1.0:
+            raise BadInput(f"--k-scale {k_scale!r} needs a foundation, but --dva is 'none'")
+        return None
+    return foundation.scaled(k_scale) if k_scale != 1.0 else foundation
+
+
+def _jsonable(value: Any) -> Any:
+    if isinstance(value, dict):
+        return {str(k): _jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_jsonable(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return _jsonable(value.tolist())
+    if isinstance(value, (np.floating, float)):
+        x = float(value)
+        return x if math.isfinite(x) else None
+    if isinstance(value, np.integer):
+        return int(value)
+    if isinstance(value, np.bool_):
+        return bool(value)
+    return value
+
+
+def print_json(payload: dict[str, Any]) -> None:
+    """Print exactly one JSON object on stdout (non-finite numbers become null)."""
+    sys.stdout.write(json.dumps(_jsonable(payload), allow_nan=False) + "\n")
+
+
+def check_output_path(path: Path, *, overwrite: bool = True) -> Path:
+    """Check that ``path`` can be written before any work starts.
+
+    Rejects a directory, a missing parent folder that cannot be created, or an existing
+    file when ``overwrite`` is false.
+    """
+    path = Path(path)
+    if path.exists() and path.is_dir():
+        raise BadInput(f"output path {str(path)!r} is a directory")
+    if path.exists() and not overwrite:
+        raise BadInput(f"output file {str(path)!r} exists; pass --overwrite to replace it")
+    parent = path.parent
+    try:
+        parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise BadInput(f"cannot create folder {str(parent)!r}: {exc.strerror}") from None
+    if not _writable(parent):
+        raise BadInput(f"folder {str(parent)!r} is not writable")
+    return path
+
+
+def _writable(folder: Path) -> bool:
+    import os
+
+    return os.access(folder, os.W_OK)

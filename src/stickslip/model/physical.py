@@ -1,0 +1,184 @@
+"""Physical parameters (SI) and their dimensionless groups, both ways (paper Eqs. 15-18).
+
+Everything here is in SI units: kg, N/m, N s/m, N, m/s. Units given as text ("2 kg",
+"50 kN/m") are parsed at the outer boundary (command line, configuration files), not here.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from stickslip.model._validate import non_negative, positive
+from stickslip.model.parameters import Foundation, Slider
+
+
+@dataclass(frozen=True)
+class PhysicalFoundation:
+    """An elastic foundation in SI units.
+
+    Parameters
+    ----------
+    m_a : float
+        Foundation mass, kg (> 0).
+    k_a : float
+        Foundation stiffness to the rigid base, N/m (> 0).
+    c_a : float
+        Foundation damping coefficient, N s/m (>= 0).
+    """
+
+    m_a: float
+    k_a: float
+    c_a: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "m_a", positive("m_a", self.m_a))
+        object.__setattr__(self, "k_a", positive("k_a", self.k_a))
+        object.__setattr__(self, "c_a", non_negative("c_a", self.c_a))
+
+
+@dataclass(frozen=True)
+class PhysicalSystem:
+    """The sliding system of the paper's Fig. 1 in SI units.
+
+    Parameters
+    ----------
+    m : float
+        Slider mass, kg (> 0).
+    k : float
+        Stiffness of the spring holding the slider, N/m (> 0).
+    c : float
+        Damping coefficient of the slider's dashpot, N s/m (>= 0).
+    mu_s, mu_k : float
+        Static and kinetic friction coefficients, ``mu_s > mu_k >= 0``.
+    load : float
+        Normal load ``W``, N (> 0).
+    speed : float
+        Belt speed ``V``, m/s (> 0).
+    foundation : PhysicalFoundation or None
+        The elastic foundation; ``None`` is the rigid base.
+    """
+
+    m: float
+    k: float
+    c: float
+    mu_s: float
+    mu_k: float
+    load: float
+    speed: float
+    foundation: PhysicalFoundation | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "m", positive("m", self.m))
+        object.__setattr__(self, "k", positive("k", self.k))
+        object.__setattr__(self, "c", non_negative("c", self.c))
+        object.__setattr__(self, "mu_s", positive("mu_s", self.mu_s))
+        object.__setattr__(self, "mu_k", non_negative("mu_k", self.mu_k))
+        object.__setattr__(self, "load", positive("load W", self.load))
+        object.__setattr__(self, "speed", positive("speed V", self.speed))
+        if self.mu_k >= self.mu_s:
+            raise ValueError(
+                f"mu_k={self.mu_k!r} must be smaller than mu_s={self.mu_s!r} "
+                "(stick-slip needs static friction above kinetic friction)"
+            )
+
+    @property
+    def natural_frequency(self) -> float:
+        """``omega_n = sqrt(k / m)``, rad/s (Eq. 18)."""
+        return math.sqrt(self.k / self.m)
+
+    @property
+    def time_scale(self) -> float:
+        """Seconds per unit of dimensionless time, ``1 / omega_n`` (Eq. 17)."""
+        return 1.0 / self.natural_frequency
+
+    @property
+    def length_scale(self) -> float:
+        """Metres per unit of dimensionless displacement, ``V / omega_n`` (Eqs. 15-16)."""
+        return self.speed / self.natural_frequency
+
+    @property
+    def force_scale(self) -> float:
+        """Newtons per unit of dimensionless force, ``V sqrt(m k)``."""
+        return self.speed * math.sqrt(self.m * self.k)
+
+    def slider(self) -> Slider:
+        """Dimensionless ``lambda``, ``zeta``, ``gamma`` (definitions after Eq. 27)."""
+        root_mk = math.sqrt(self.m * self.k)
+        return Slider(
+            lam=(self.mu_s - self.mu_k) * self.load / (self.speed * root_mk),
+            zeta=self.c / (2.0 * root_mk),
+            gamma=self.mu_k / (self.mu_s - self.mu_k),
+        )
+
+    def dimensionless_foundation(self) -> Foundation | None:
+        """Dimensionless ``M``, ``K``, ``zeta_a`` of the foundation, or ``None`` (rigid base)."""
+        if self.foundation is None:
+            return None
+        return foundation_to_dimensionless(self.foundation, self.m, self.k)
+
+    def speed_for_lambda(self, lam: float) -> float:
+        """Belt speed ``V`` (m/s) at which ``lambda`` takes the value ``lam``."""
+        lam = positive("lambda", lam)
+        return (self.mu_s - self.mu_k) * self.load / (lam * math.sqrt(self.m * self.k))
+
+    def load_for_lambda(self, lam: float) -> float:
+        """Normal load ``W`` (N) at which ``lambda`` takes the value ``lam``."""
+        lam = positive("lambda", lam)
+        return lam * self.speed * math.sqrt(self.m * self.k) / (self.mu_s - self.mu_k)
+
+    @classmethod
+    def from_dimensionless(
+        cls,
+        slider: Slider,
+        *,
+        m: float,
+        k: float,
+        mu_s: float,
+        speed: float,
+        foundation: Foundation | None = None,
+    ) -> PhysicalSystem:
+        """Build the physical system with given ``m``, ``k``, ``mu_s``, ``V`` and groups.
+
+        The inverse of :meth:`slider` and :meth:`dimensionless_foundation`:
+        ``mu_k = mu_s gamma / (1 + gamma)``, ``W = lambda V sqrt(m k) / (mu_s - mu_k)``,
+        ``c = 2 zeta sqrt(m k)``.
+        """
+        m, k = positive("m", m), positive("k", k)
+        mu_s, speed = positive("mu_s", mu_s), positive("speed V", speed)
+        root_mk = math.sqrt(m * k)
+        mu_k = mu_s * slider.gamma / (1.0 + slider.gamma)
+        load = slider.lam * speed * root_mk / (mu_s - mu_k)
+        phys_foundation = None
+        if foundation is not None:
+            phys_foundation = foundation_to_physical(foundation, m, k)
+        return cls(
+            m=m,
+            k=k,
+            c=2.0 * slider.zeta * root_mk,
+            mu_s=mu_s,
+            mu_k=mu_k,
+            load=load,
+            speed=speed,
+            foundation=phys_foundation,
+        )
+
+
+def foundation_to_dimensionless(foundation: PhysicalFoundation, m: float, k: float) -> Foundation:
+    """``M = m_a/m``, ``K = sqrt(k_a/k)``, ``zeta_a = c_a/(2 sqrt(m k))`` (after Eq. 27)."""
+    m, k = positive("m", m), positive("k", k)
+    return Foundation(
+        mass_ratio=foundation.m_a / m,
+        stiffness_ratio=math.sqrt(foundation.k_a / k),
+        damping_ratio=foundation.c_a / (2.0 * math.sqrt(m * k)),
+    )
+
+
+def foundation_to_physical(foundation: Foundation, m: float, k: float) -> PhysicalFoundation:
+    """``m_a = M m``, ``k_a = K^2 k``, ``c_a = 2 zeta_a sqrt(m k)``: inverse of the above."""
+    m, k = positive("m", m), positive("k", k)
+    return PhysicalFoundation(
+        m_a=foundation.mass_ratio * m,
+        k_a=foundation.stiffness_ratio**2 * k,
+        c_a=2.0 * foundation.damping_ratio * math.sqrt(m * k),
+    )
