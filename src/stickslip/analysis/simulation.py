@@ -1,0 +1,404 @@
+"""One simulation with a certified verdict: does this system stick-slip?
+
+The engine (:mod:`stickslip.kernel.engine`) propagates each friction mode exactly (matrix
+exponential of the augmented affine system) and locates every mode switch, grazes
+included. A verdict is certified, never guessed from the tail of a time series:
+
+* ``steady-sliding``: in slip-I the structure is linear and stable; a quadratic Lyapunov
+  function bounds every future slider velocity. Once the bound is below the belt speed no
+  stick can ever happen again.
+* ``stick-slip``: the state at a breakaway (end of a stick phase) repeats, to
+  ``cycle_tol``, that of 1 to ``max_period`` breakaways before; the cycle's period and
+  amplitude are then those of the repeating stretch.
+* ``undetermined``: neither before ``t_max`` or ``max_events``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from enum import Enum, IntEnum
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from stickslip.kernel import engine
+from stickslip.model._validate import positive
+from stickslip.model.initial import InitialState, startup_state
+from stickslip.model.parameters import Slider
+from stickslip.model.structure import Structure
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.figure import Figure
+
+FloatArray = NDArray[np.float64]
+
+DEFAULT_T_MAX = 5000.0
+DEFAULT_MAX_EVENTS = 100_000
+DEFAULT_CYCLE_TOL = 1e-9
+DEFAULT_MAX_PERIOD = 8
+
+
+class Mode(IntEnum):
+    """Friction state of the slider (paper Eq. 2)."""
+
+    SLIP_I = engine.SLIP_I  # slower than the belt, xi' < 1
+    SLIP_II = engine.SLIP_II  # faster than the belt, xi' > 1
+    STICK = engine.STICK  # moving with the belt, xi' = 1
+
+    @property
+    def label(self) -> str:
+        """Name used in the paper: ``slip-I``, ``slip-II`` or ``stick``."""
+        return {0: "slip-I", 1: "slip-II", 2: "stick"}[int(self)]
+
+
+class Verdict(str, Enum):
+    """Certified answer to "does this system stick-slip?"."""
+
+    STICK_SLIP = "stick-slip"
+    STEADY_SLIDING = "steady-sliding"
+    UNDETERMINED = "undetermined"
+
+    @property
+    def code(self) -> int:
+        """Integer code used in datasets (``flag_values``)."""
+        return {"steady-sliding": 0, "stick-slip": 1, "undetermined": 2}[self.value]
+
+
+class RunStatus(Enum):
+    """How a run ended, with an actionable message."""
+
+    CERTIFIED_STEADY = (engine.STATUS_STEADY, "steady sliding certified by a Lyapunov bound")
+    CERTIFIED_CYCLE = (engine.STATUS_CYCLE, "stick-slip cycle certified by a repeating breakaway")
+    T_MAX = (
+        engine.STATUS_T_MAX,
+        "time horizon reached before a verdict could be certified; increase t_max",
+    )
+    MAX_EVENTS = (
+        engine.STATUS_MAX_EVENTS,
+        "maximum number of events reached before a verdict; increase max_events",
+    )
+
+    def __init__(self, code: int, message: str) -> None:
+        self.code = code
+        self.message = message
+
+    @classmethod
+    def from_code(cls, code: int) -> RunStatus:
+        for status in cls:
+            if status.code == code:
+                return status
+        raise ValueError(f"unknown run status code {code}")
+
+    @property
+    def label(self) -> str:
+        """Short machine-readable name, e.g. ``t-max``."""
+        return self.name.lower().replace("_", "-")
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """Outcome of :func:`simulate`: verdict, certificate, cycle data and the trajectory.
+
+    Times are dimensionless (``tau = omega_n t``), displacements in units of
+    ``V / omega_n``, velocities in units of the belt speed ``V``.
+
+    Attributes
+    ----------
+    verdict : Verdict
+        ``stick-slip``, ``steady-sliding`` or ``undetermined``.
+    status : RunStatus
+        How the run ended.
+    certificate : str
+        What proves the verdict (empty when undetermined).
+    n_stick : int
+        Number of stick phases in the run, including the initial one of the startup state.
+    period, amplitude, stick_ratio : float
+        Of the certified cycle: period in ``tau``, half the peak-to-peak of ``xi``, and the
+        fraction of the period spent stuck. NaN without a cycle.
+    max_velocity : float
+        Largest slider velocity ``xi'`` reached in the run.
+    """
+
+    structure: Structure
+    slider: Slider
+    initial: InitialState
+    t_max: float
+    verdict: Verdict
+    status: RunStatus
+    certificate: str
+    n_stick: int
+    n_breakaway: int
+    cycle_k: int
+    period: float
+    amplitude: float
+    xi_range: tuple[float, float]
+    stick_ratio: float
+    max_velocity: float
+    cycle_max_velocity: float
+    cycle_mismatch: float
+    lyapunov_bound: float
+    t_end: float
+    n_steps: int
+    segment_times: FloatArray = field(repr=False)
+    segment_modes: NDArray[np.int64] = field(repr=False)
+    segment_states: FloatArray = field(repr=False)
+    breakaway_times: FloatArray = field(repr=False)
+    final_state: FloatArray = field(repr=False)
+
+    @property
+    def event_times(self) -> FloatArray:
+        """Times of the mode switches after ``tau = 0``."""
+        return self.segment_times[1:]
+
+    @property
+    def event_modes(self) -> NDArray[np.int64]:
+        """Mode entered at each switch (codes of :class:`Mode`)."""
+        return self.segment_modes[1:]
+
+    @property
+    def initial_mode(self) -> Mode:
+        """Friction state at ``tau = 0``."""
+        return Mode(int(self.segment_modes[0]))
+
+    def state_at(self, times: ArrayLikeFloat) -> tuple[FloatArray, FloatArray, NDArray[np.int64]]:
+        """Exact positions, velocities and modes at the given times (dense output).
+
+        Parameters
+        ----------
+        times : array_like
+            Dimensionless times in ``[0, t_end]``, any order.
+
+        Returns
+        -------
+        positions, velocities : ndarray, shape (len(times), n_dof)
+        modes : ndarray of int, shape (len(times),)
+        """
+        t = np.asarray(times, dtype=np.float64).reshape(-1)
+        if t.size and (not np.all(np.isfinite(t)) or t.min() < 0.0 or t.max() > self.t_end):
+            raise ValueError(f"times must lie in [0, t_end={self.t_end:g}]")
+        order = np.argsort(t, kind="stable")
+        st = self.structure
+        states, modes = engine.evaluate(
+            st.mass,
+            st.damping,
+            st.stiffness,
+            self.slider.lam,
+            self.slider.gamma,
+            self.segment_times,
+            self.segment_modes,
+            self.segment_states,
+            t[order],
+        )
+        out = np.empty_like(states)
+        out[order] = states
+        out_modes = np.empty_like(modes)
+        out_modes[order] = modes
+        n = st.n_dof
+        return out[:, :n], out[:, n:], out_modes
+
+    def time_history(self, n_points: int = 4000, t_start: float = 0.0) -> TimeHistory:
+        """Trajectory sampled on a uniform grid plus every mode switch (for plotting)."""
+        if n_points < 2:
+            raise ValueError(f"n_points={n_points} must be at least 2")
+        t_start = min(max(0.0, t_start), self.t_end)
+        grid = np.linspace(t_start, self.t_end, n_points)
+        switches = self.segment_times[(self.segment_times >= t_start)]
+        t = np.unique(np.concatenate([grid, switches]))
+        q, v, modes = self.state_at(t)
+        return TimeHistory(t, q, v, modes)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready summary with the keys of DESIGN.md section 5."""
+        def num(x: float) -> float | None:
+            return None if not math.isfinite(x) else float(x)
+
+        foundation = None
+        st = self.structure
+        if st.n_dof >= 2:
+            foundation = {
+                "mass_matrix": st.mass.tolist(),
+                "damping_matrix": st.damping.tolist(),
+                "stiffness_matrix": st.stiffness.tolist(),
+            }
+        return {
+            "verdict": self.verdict.value,
+            "certificate": self.certificate,
+            "status": self.status.label,
+            "status_message": self.status.message,
+            "n_stick": self.n_stick,
+            "n_breakaway": self.n_breakaway,
+            "period": num(self.period),
+            "amplitude": num(self.amplitude),
+            "stick_ratio": num(self.stick_ratio),
+            "cycle_k": self.cycle_k if self.cycle_k > 0 else None,
+            "cycle_mismatch": num(self.cycle_mismatch),
+            "lyapunov_bound": num(self.lyapunov_bound),
+            "max_velocity": num(self.max_velocity),
+            "t_end": float(self.t_end),
+            "t_max": float(self.t_max),
+            "lambda": self.slider.lam,
+            "zeta": self.slider.zeta,
+            "gamma": self.slider.gamma,
+            "structure": st.name,
+            "n_dof": st.n_dof,
+            "structure_matrices": foundation,
+            "initial_condition": self.initial.description,
+            "initial_position": self.initial.position.tolist(),
+            "initial_velocity": self.initial.velocity.tolist(),
+            "n_events": int(self.event_times.size),
+            "events": [
+                {"t": float(t), "mode": Mode(int(md)).label}
+                for t, md in zip(self.event_times, self.event_modes, strict=True)
+            ],
+        }
+
+    def plot(self, **kwargs: Any) -> Figure:
+        """Time history and phase portrait; see :func:`stickslip.plot.simulation.simulation_plot`."""
+        from stickslip.plot.simulation import simulation_plot
+
+        return simulation_plot(self, **kwargs)
+
+
+ArrayLikeFloat = Any
+
+
+@dataclass(frozen=True)
+class TimeHistory:
+    """Sampled trajectory: ``t`` (n,), ``position``/``velocity`` (n, n_dof), ``mode`` (n,).
+
+    Unpacks as ``t, position, velocity, mode = history``.
+    """
+
+    t: FloatArray
+    position: FloatArray
+    velocity: FloatArray
+    mode: NDArray[np.int64]
+
+    def __iter__(self):  # type: ignore[no-untyped-def]
+        return iter((self.t, self.position, self.velocity, self.mode))
+
+    def to_xarray(self) -> xr.Dataset:
+        """As an ``xarray.Dataset`` with dimensions ``tau`` and ``dof``."""
+        import xarray as xr
+
+        dof = np.arange(self.position.shape[1])
+        return xr.Dataset(
+            {
+                "position": (("tau", "dof"), self.position, {"units": "V/omega_n"}),
+                "velocity": (("tau", "dof"), self.velocity, {"units": "V"}),
+                "mode": (
+                    ("tau",),
+                    self.mode,
+                    {"flag_values": [0, 1, 2], "flag_meanings": "slip-I slip-II stick"},
+                ),
+            },
+            coords={"tau": self.t, "dof": dof},
+        )
+
+
+def simulate(
+    structure: Structure,
+    slider: Slider,
+    *,
+    initial: InitialState | None = None,
+    t_max: float = DEFAULT_T_MAX,
+    max_events: int = DEFAULT_MAX_EVENTS,
+    cycle_tol: float = DEFAULT_CYCLE_TOL,
+    max_period: int = DEFAULT_MAX_PERIOD,
+    record: bool = True,
+) -> SimulationResult:
+    """Simulate the sliding system exactly and certify whether it stick-slips.
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless mass, damping and stiffness matrices, contact on DOF 0
+        (``rigid_base``, ``elastic_foundation`` or any chain).
+    slider : Slider
+        ``lambda``, ``zeta`` (already inside ``structure``'s damping) and ``gamma``.
+    initial : InitialState, optional
+        Defaults to the startup state (belt starts, springs relaxed, slider stuck,
+        foundation at rest); see :func:`stickslip.model.startup_state`.
+    t_max : float
+        Dimensionless time horizon (``tau``).
+    max_events : int
+        Bound on the number of mode switches (guards against chattering).
+    cycle_tol : float
+        Relative tolerance for a breakaway state to count as repeated.
+    max_period : int
+        Longest cycle, in stick phases, that is looked for (period-k cycles).
+    record : bool
+        Keep the phase list (needed for dense output and plots).
+
+    Returns
+    -------
+    SimulationResult
+    """
+    t_max = positive("t_max", t_max)
+    if int(max_events) < 1:
+        raise ValueError(f"max_events={max_events!r} must be at least 1")
+    cycle_tol = positive("cycle_tol", cycle_tol)
+    if int(max_period) < 1:
+        raise ValueError(f"max_period={max_period!r} must be at least 1")
+    if initial is None:
+        initial = startup_state(structure, slider)
+    z0 = initial.as_vector(structure.n_dof)
+    seg_t, seg_mode, seg_state, bk_t, fsum, isum, z_end = engine.run(
+        structure.mass,
+        structure.damping,
+        structure.stiffness,
+        float(slider.lam),
+        float(slider.gamma),
+        z0,
+        float(t_max),
+        int(max_events),
+        float(cycle_tol),
+        int(max_period),
+        bool(record),
+    )
+    status = RunStatus.from_code(int(isum[engine.I_STATUS]))
+    if status is RunStatus.CERTIFIED_STEADY:
+        verdict = Verdict.STEADY_SLIDING
+        certificate = (
+            f"Lyapunov bound: |xi'| <= {fsum[engine.F_LYAPUNOV_BOUND]:.6g} < 1 for all "
+            f"tau >= {fsum[engine.F_T_END]:.6g} in slip-I, so the slider never sticks again"
+        )
+    elif status is RunStatus.CERTIFIED_CYCLE:
+        verdict = Verdict.STICK_SLIP
+        certificate = (
+            f"breakaway state repeats after {int(isum[engine.I_CYCLE_K])} stick phase(s) "
+            f"to {fsum[engine.F_CYCLE_MISMATCH]:.1e} (relative)"
+        )
+    else:
+        verdict = Verdict.UNDETERMINED
+        certificate = ""
+    return SimulationResult(
+        structure=structure,
+        slider=slider,
+        initial=initial,
+        t_max=t_max,
+        verdict=verdict,
+        status=status,
+        certificate=certificate,
+        n_stick=int(isum[engine.I_N_STICK]),
+        n_breakaway=int(isum[engine.I_N_BREAKAWAY]),
+        cycle_k=int(isum[engine.I_CYCLE_K]),
+        period=float(fsum[engine.F_PERIOD]),
+        amplitude=float(fsum[engine.F_AMPLITUDE]),
+        xi_range=(float(fsum[engine.F_XI_MIN]), float(fsum[engine.F_XI_MAX])),
+        stick_ratio=float(fsum[engine.F_STICK_RATIO]),
+        max_velocity=float(fsum[engine.F_MAX_VELOCITY]),
+        cycle_max_velocity=float(fsum[engine.F_CYCLE_MAX_VELOCITY]),
+        cycle_mismatch=float(fsum[engine.F_CYCLE_MISMATCH]),
+        lyapunov_bound=float(fsum[engine.F_LYAPUNOV_BOUND]),
+        t_end=float(fsum[engine.F_T_END]),
+        n_steps=int(isum[engine.I_N_STEPS]),
+        segment_times=seg_t,
+        segment_modes=seg_mode,
+        segment_states=seg_state,
+        breakaway_times=bk_t,
+        final_state=z_end,
+    )

@@ -1,0 +1,387 @@
+"""The run loop: exact piecewise-linear propagation, graze-proof events, certified verdicts.
+
+Arrays in, arrays out; no Python objects. See :mod:`stickslip.kernel.system` for the state
+layout and :mod:`stickslip.kernel.polynomial` for the event location.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from stickslip.kernel.linalg import dot, matvec
+from stickslip.kernel.polynomial import (
+    MAX_BREAKPOINTS,
+    N_POLYNOMIALS,
+    TAYLOR_DEGREE,
+    functional_polynomials,
+    monotone_breakpoints,
+    monotone_root,
+    poly_value,
+    taylor_state,
+    taylor_vectors,
+)
+from stickslip.kernel.system import N_ROWS, SLIP_I, SLIP_II, STICK, prepare
+
+STATUS_RUNNING = 0
+STATUS_STEADY = 1
+STATUS_CYCLE = 2
+STATUS_T_MAX = 3
+STATUS_MAX_EVENTS = 4
+
+# layout of the float summary
+F_LYAPUNOV_BOUND = 0
+F_PERIOD = 1
+F_AMPLITUDE = 2
+F_XI_MIN = 3
+F_XI_MAX = 4
+F_STICK_RATIO = 5
+F_CYCLE_MAX_VELOCITY = 6
+F_MAX_VELOCITY = 7
+F_CYCLE_MISMATCH = 8
+F_T_END = 9
+F_T_LAST_STICK = 10
+N_FLOAT = 11
+# layout of the integer summary
+I_STATUS = 0
+I_N_STICK = 1
+I_CYCLE_K = 2
+I_N_BREAKAWAY = 3
+I_N_SEGMENTS = 4
+I_N_STEPS = 5
+N_INT = 6
+
+
+@njit(cache=True)
+def lyapunov_bound(w, lyap, kappa, n_lyap):
+    """Smallest certified bound on ``sup |v_0|`` over the future of slip-I."""
+    nz = lyap.shape[1]
+    best = np.inf
+    for p in range(n_lyap):
+        acc = 0.0
+        for i in range(nz):
+            row = 0.0
+            for j in range(nz):
+                row += lyap[p, i, j] * w[j]
+            acc += w[i] * row
+        best = min(best, np.sqrt(max(acc, 0.0) * kappa[p]))
+    return best
+
+
+@njit(cache=True)
+def _no_sign_change(rows, w0, w1):
+    """True when ``g'``, ``g''`` and ``g'''`` keep their sign between the two states."""
+    for j in range(1, N_ROWS):
+        if dot(rows[j], w0) * dot(rows[j], w1) < 0.0:
+            return False
+    return True
+
+
+@njit(cache=True)
+def first_reach(rows, w0, w1, h, ahat, u, have_u, coef, bp):
+    """First ``s`` in ``[0, h]`` where the event function ``g = rows[0] . w(s)`` reaches 0.
+
+    ``g <= 0`` is the safe side. Returns ``inf`` when ``g`` stays negative on the step.
+    The cheap test (endpoint signs of ``g`` to ``g'''``) proves most steps event-free; the
+    others are split into monotone pieces so that a graze (``g`` touching 0 between two
+    negative end values) is found at its extremum.
+    """
+    g0 = dot(rows[0], w0)
+    g1 = dot(rows[0], w1)
+    if g1 < 0.0 and g0 <= 0.0 and _no_sign_change(rows, w0, w1):
+        return np.inf
+    if have_u[0] == 0:
+        taylor_vectors(ahat, w0, u)
+        have_u[0] = 1
+    functional_polynomials(u, rows[0], coef)
+    npts = monotone_breakpoints(coef, 0.0, h, bp)
+    ga = poly_value(coef, 0, bp[0])
+    for i in range(npts - 1):
+        gb = poly_value(coef, 0, bp[i + 1])
+        if gb >= 0.0 and gb > ga:
+            if ga >= 0.0:
+                return bp[i]
+            return monotone_root(coef, 0, bp[i], bp[i + 1], ga, gb)
+        ga = gb
+    return np.inf
+
+
+@njit(cache=True)
+def value_range(rows, w0, w1, s_end, ahat, u, have_u, coef, bp):
+    """Exact minimum and maximum of ``rows[0] . w(s)`` over ``[0, s_end]``."""
+    g0 = dot(rows[0], w0)
+    g1 = dot(rows[0], w1)
+    lo = min(g0, g1)
+    hi = max(g0, g1)
+    if _no_sign_change(rows, w0, w1):
+        return lo, hi
+    if have_u[0] == 0:
+        taylor_vectors(ahat, w0, u)
+        have_u[0] = 1
+    functional_polynomials(u, rows[0], coef)
+    npts = monotone_breakpoints(coef, 0.0, s_end, bp)
+    for i in range(1, npts - 1):
+        g = poly_value(coef, 0, bp[i])
+        lo = min(lo, g)
+        hi = max(hi, g)
+    return lo, hi
+
+
+@njit(cache=True)
+def mode_at_belt_speed(w, stick_row, lam, gamma):
+    """Mode entered by a state whose slider moves exactly at the belt speed (Eq. 20)."""
+    s = dot(stick_row, w)
+    if s > lam:
+        return SLIP_I
+    if s < -lam * (1.0 + 2.0 * gamma):
+        return SLIP_II
+    return STICK
+
+
+@njit(cache=True)
+def initial_mode(w, n, stick_row, lam, gamma):
+    """Mode of the initial state: by the slider velocity, or by Eq. (20) at belt speed."""
+    if w[n] < 1.0:
+        return SLIP_I
+    if w[n] > 1.0:
+        return SLIP_II
+    return mode_at_belt_speed(w, stick_row, lam, gamma)
+
+
+@njit(cache=True)
+def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, max_period,
+        record):
+    """Simulate from ``z0 = (q, v)`` until a verdict is certified, ``t_max`` or ``max_events``.
+
+    Returns ``(seg_t, seg_mode, seg_state, bk_t, fsum, isum, z_end)``: the start time,
+    mode and state of every phase (only when ``record``), the breakaway times, the float
+    and integer summaries (layouts ``F_*`` and ``I_*``) and the final state.
+    """
+    n = mass.shape[0]
+    nz = 2 * n
+    m = nz + 1
+    ahat, phi, hstep, rows, n_events, xi_rows, vel_rows, stick_row, lyap, kappa, n_lyap = (
+        prepare(mass, damping, stiffness, lam, gamma)
+    )
+    cap = max_events + 1 if record else 1
+    seg_t = np.empty(cap)
+    seg_mode = np.empty(cap, dtype=np.int64)
+    seg_state = np.empty((cap, nz))
+    bk_cap = max_events + 1
+    bk_t = np.empty(bk_cap)
+    bk_z = np.empty((bk_cap, nz))
+    bk_dir = np.empty(bk_cap, dtype=np.int64)
+    interval = np.empty((bk_cap, 4))  # xi min, xi max, v max, stick time per breakaway interval
+    fsum = np.full(N_FLOAT, np.nan)
+    isum = np.zeros(N_INT, dtype=np.int64)
+
+    u = np.empty((TAYLOR_DEGREE + 1, m))
+    have_u = np.zeros(1, dtype=np.int64)
+    coef = np.empty((N_POLYNOMIALS, TAYLOR_DEGREE + 1))
+    bp = np.empty(MAX_BREAKPOINTS)
+    w = np.zeros(m)
+    w1 = np.empty(m)
+    w_end = np.empty(m)
+    w[:nz] = z0
+    w[m - 1] = 1.0
+
+    t = 0.0
+    mode = initial_mode(w, n, stick_row, lam, gamma)
+    n_seg = 0
+    if record:
+        seg_t[0] = 0.0
+        seg_mode[0] = mode
+        seg_state[0] = w[:nz]
+    n_seg = 1
+    n_stick = 1 if mode == STICK else 0
+    stick_start = 0.0
+    t_last_stick = 0.0 if mode == STICK else np.nan
+    cur_xmin = w[0]
+    cur_xmax = w[0]
+    cur_vmax = w[n]
+    cur_stick = 0.0
+    max_v = w[n]
+    n_bk = 0
+    n_ev = 0
+    n_steps = 0
+    status = STATUS_RUNNING
+    last_bound = np.nan
+
+    while True:
+        if mode == SLIP_I:
+            last_bound = lyapunov_bound(w, lyap, kappa, n_lyap)
+            if last_bound < 1.0:
+                status = STATUS_STEADY
+                break
+        if t >= t_max:
+            status = STATUS_T_MAX
+            break
+        h = hstep[mode]
+        have_u[0] = 0
+        if t + h > t_max:
+            h = t_max - t
+            taylor_vectors(ahat[mode], w, u)
+            have_u[0] = 1
+            taylor_state(u, h, w1)
+        else:
+            matvec(phi[mode], w, w1)
+        n_steps += 1
+
+        s_ev = np.inf
+        e_ev = -1
+        for e in range(n_events[mode]):
+            s = first_reach(rows[mode, e], w, w1, h, ahat[mode], u, have_u, coef, bp)
+            if s < s_ev:
+                s_ev = s
+                e_ev = e
+        if e_ev >= 0:
+            if have_u[0] == 0:
+                taylor_vectors(ahat[mode], w, u)
+                have_u[0] = 1
+            taylor_state(u, s_ev, w_end)
+            s_end = s_ev
+        else:
+            w_end[:] = w1
+            s_end = h
+
+        lo, hi = value_range(xi_rows[mode], w, w_end, s_end, ahat[mode], u, have_u, coef, bp)
+        cur_xmin = min(cur_xmin, lo)
+        cur_xmax = max(cur_xmax, hi)
+        lo, hi = value_range(vel_rows[mode], w, w_end, s_end, ahat[mode], u, have_u, coef, bp)
+        cur_vmax = max(cur_vmax, hi)
+        max_v = max(max_v, hi)
+
+        t += s_end
+        w[:] = w_end
+        if e_ev < 0:
+            continue
+
+        n_ev += 1
+        if mode == STICK:
+            new_mode = SLIP_I if e_ev == 0 else SLIP_II
+            cur_stick += t - stick_start
+            bk_t[n_bk] = t
+            bk_z[n_bk] = w[:nz]
+            bk_dir[n_bk] = e_ev
+            interval[n_bk, 0] = cur_xmin
+            interval[n_bk, 1] = cur_xmax
+            interval[n_bk, 2] = cur_vmax
+            interval[n_bk, 3] = cur_stick
+            j = n_bk
+            n_bk += 1
+            cur_xmin = w[0]
+            cur_xmax = w[0]
+            cur_vmax = w[n]
+            cur_stick = 0.0
+            scale = 1.0
+            for c in range(nz):
+                scale = max(scale, abs(w[c]))
+            for k in range(1, max_period + 1):
+                i = j - k
+                if i < 0:
+                    break
+                if bk_dir[i] != bk_dir[j]:
+                    continue
+                diff = 0.0
+                for c in range(nz):
+                    diff = max(diff, abs(bk_z[j, c] - bk_z[i, c]))
+                if diff <= cycle_tol * scale:
+                    status = STATUS_CYCLE
+                    period = bk_t[j] - bk_t[i]
+                    xmin = np.inf
+                    xmax = -np.inf
+                    vmax = -np.inf
+                    stick = 0.0
+                    for p in range(i + 1, j + 1):
+                        xmin = min(xmin, interval[p, 0])
+                        xmax = max(xmax, interval[p, 1])
+                        vmax = max(vmax, interval[p, 2])
+                        stick += interval[p, 3]
+                    fsum[F_PERIOD] = period
+                    fsum[F_AMPLITUDE] = 0.5 * (xmax - xmin)
+                    fsum[F_XI_MIN] = xmin
+                    fsum[F_XI_MAX] = xmax
+                    fsum[F_STICK_RATIO] = stick / period
+                    fsum[F_CYCLE_MAX_VELOCITY] = vmax
+                    fsum[F_CYCLE_MISMATCH] = diff / scale
+                    isum[I_CYCLE_K] = k
+                    break
+        else:
+            w[n] = 1.0
+            new_mode = mode_at_belt_speed(w, stick_row, lam, gamma)
+            if new_mode == STICK:
+                n_stick += 1
+                stick_start = t
+                t_last_stick = t
+        if new_mode != mode:
+            mode = new_mode
+            if record and n_seg < cap:
+                seg_t[n_seg] = t
+                seg_mode[n_seg] = mode
+                seg_state[n_seg] = w[:nz]
+            n_seg += 1
+        if status == STATUS_CYCLE:
+            break
+        if n_ev >= max_events:
+            status = STATUS_MAX_EVENTS
+            break
+
+    fsum[F_LYAPUNOV_BOUND] = last_bound
+    fsum[F_MAX_VELOCITY] = max_v
+    fsum[F_T_END] = t
+    fsum[F_T_LAST_STICK] = t_last_stick
+    isum[I_STATUS] = status
+    isum[I_N_STICK] = n_stick
+    isum[I_N_BREAKAWAY] = n_bk
+    isum[I_N_SEGMENTS] = n_seg
+    isum[I_N_STEPS] = n_steps
+    n_keep = min(n_seg, cap) if record else 0
+    return (
+        seg_t[:n_keep].copy(),
+        seg_mode[:n_keep].copy(),
+        seg_state[:n_keep].copy(),
+        bk_t[:n_bk].copy(),
+        fsum,
+        isum,
+        w[:nz].copy(),
+    )
+
+
+@njit(cache=True)
+def evaluate(mass, damping, stiffness, lam, gamma, seg_t, seg_mode, seg_state, times):
+    """Exact states at sorted ``times`` from the recorded phases (dense output).
+
+    Reproduces the run loop's own step grid: full steps with ``expm(A_hat h)`` from the
+    start of each phase, then the Taylor polynomial for the remainder.
+    """
+    n = mass.shape[0]
+    nz = 2 * n
+    m = nz + 1
+    ahat, phi, hstep, _, _, _, _, _, _, _, _ = prepare(mass, damping, stiffness, lam, gamma)
+    out = np.empty((times.shape[0], nz))
+    modes = np.empty(times.shape[0], dtype=np.int64)
+    u = np.empty((TAYLOR_DEGREE + 1, m))
+    w = np.empty(m)
+    tmp = np.empty(m)
+    res = np.empty(m)
+    n_seg = seg_t.shape[0]
+    p = -1
+    t_k = 0.0
+    for idx in range(times.shape[0]):
+        t = times[idx]
+        while p + 1 < n_seg and seg_t[p + 1] <= t:
+            p += 1
+            w[:nz] = seg_state[p]
+            w[m - 1] = 1.0
+            t_k = seg_t[p]
+        mode = seg_mode[p]
+        h = hstep[mode]
+        while t_k + h <= t:
+            matvec(phi[mode], w, tmp)
+            w[:] = tmp
+            t_k += h
+        taylor_vectors(ahat[mode], w, u)
+        taylor_state(u, t - t_k, res)
+        out[idx] = res[:nz]
+        modes[idx] = mode
+    return out, modes
