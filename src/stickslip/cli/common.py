@@ -113,7 +113,25 @@ def check_output_path(path: Path, *, overwrite: bool = True) -> Path:
     return path
 
 
-def _writable(folder: Path) -> bool:
-    import os
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg")
 
-    return os.access(folder, os.W_OK)
+
+def check_figure_path(path: Path) -> Path:
+    """Like :func:`check_output_path`, and the suffix must name a figure format."""
+    path = Path(path)
+    if path.suffix.lower() not in FIGURE_SUFFIXES:
+        raise BadInput(
+            f"figure file {str(path)!r} must end in one of {', '.join(FIGURE_SUFFIXES)}"
+        )
+    return check_output_path(path)
+
+
+def _writable(folder: Path) -> bool:
+    """Try to create (and remove) a file in ``folder``: permissions alone can lie (root, /proc)."""
+    import tempfile
+
+    try:
+        with tempfile.NamedTemporaryFile(dir=folder, prefix=".stickslip-write-test-"):
+            return True
+    except OSError:
+        return False

@@ -3,11 +3,16 @@
 from __future__ import annotations
 
 import sys
+from typing import Annotated
 
-import click
 import typer
 
-from stickslip.cli.common import EXIT_BAD_INPUT, BadInput, fail
+from stickslip.cli.common import BadInput, fail
+
+try:  # typer >= 0.25 ships its own copy of click
+    from typer._click import exceptions as click_exceptions
+except ImportError:  # pragma: no cover - older typer uses click itself
+    from click import exceptions as click_exceptions  # type: ignore[no-redef]
 
 app = typer.Typer(
     name="stickslip",
@@ -18,13 +23,30 @@ app = typer.Typer(
 )
 
 
+def _version(value: bool) -> None:
+    if value:
+        from stickslip import __version__
+
+        typer.echo(f"stickslip {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def main(
+    version: Annotated[
+        bool, typer.Option("--version", callback=_version, is_eager=True, help="print the version")
+    ] = False,
+) -> None:
+    """Predict and suppress stick-slip in sliding systems on elastic foundations."""
+
+
 def _register() -> None:
     from stickslip.cli import simulate_command
 
     simulate_command.register(app)
     try:
         from stickslip.cli import absorber_commands
-    except ImportError:  # the absorber commands are added by their own module
+    except ImportError:  # the absorber commands live in their own module
         return
     absorber_commands.register(app)
 
@@ -36,20 +58,21 @@ def run(argv: list[str] | None = None) -> None:
     """Console entry point: one line on stderr and exit code 2 for any bad input."""
     try:
         result = app(args=argv, standalone_mode=False)
-    except click.exceptions.NoArgsIsHelpError:
+    except click_exceptions.NoArgsIsHelpError:
         raise SystemExit(0) from None
-    except click.exceptions.UsageError as exc:
+    except click_exceptions.UsageError as exc:
         fail(exc.format_message())
-    except click.exceptions.Abort:
+    except typer.Abort:
         print("stickslip: aborted", file=sys.stderr)
         raise SystemExit(130) from None
     except (BadInput, ValueError) as exc:
         fail(str(exc))
-    except click.exceptions.Exit as exc:
+    except OSError as exc:
+        fail(f"{exc.filename or 'file'}: {exc.strerror or exc}")
+    except typer.Exit as exc:
         raise SystemExit(exc.exit_code) from None
-    if isinstance(result, int) and result not in (0,):
+    if isinstance(result, int) and result != 0:
         raise SystemExit(result)
-    _ = EXIT_BAD_INPUT
 
 
 if __name__ == "__main__":

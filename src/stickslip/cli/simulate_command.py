@@ -1,0 +1,120 @@
+"""``stickslip simulate``: one run, certified verdict, optional JSON and figure."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from stickslip.cli.common import BadInput, check_figure_path, parse_dva, print_json
+
+LAM = Annotated[float, typer.Option("--lam", help="lambda = (mu_s - mu_k) W / (V sqrt(m k)) > 0")]
+ZETA = Annotated[float, typer.Option("--zeta", help="damping ratio c / (2 sqrt(m k)) >= 0")]
+GAMMA = Annotated[float, typer.Option("--gamma", help="mu_k / (mu_s - mu_k) >= 0")]
+DVA = Annotated[
+    str,
+    typer.Option(
+        "--dva",
+        help="foundation: none (rigid base), optimal (fitted Eqs. 28-30), optimal-exact, "
+        "or M,K,ZETA_A",
+    ),
+]
+K_SCALE = Annotated[float, typer.Option("--k-scale", help="multiply the foundation's K (Figs. 11-15)")]
+T_MAX = Annotated[float, typer.Option("--t-max", help="dimensionless time horizon")]
+JSON = Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")]
+
+
+def parse_initial(text: str, n_dof: int):  # type: ignore[no-untyped-def]
+    """``startup`` or ``2 n`` comma-separated numbers: positions then velocities."""
+    from stickslip.model.initial import InitialState
+
+    if text.strip().lower() == "startup":
+        return None
+    try:
+        values = [float(x) for x in text.split(",")]
+    except ValueError:
+        raise BadInput(f"--initial {text!r} is not 'startup' or a list of numbers") from None
+    if len(values) != 2 * n_dof:
+        raise BadInput(
+            f"--initial {text!r} has {len(values)} numbers; expected {2 * n_dof} "
+            f"(positions then velocities of {n_dof} DOF)"
+        )
+    return InitialState(values[:n_dof], values[n_dof:], f"user-defined: {text}")
+
+
+def simulate(
+    lam: LAM,
+    zeta: ZETA,
+    gamma: GAMMA = 2.0,
+    dva: DVA = "none",
+    k_scale: K_SCALE = 1.0,
+    t_max: T_MAX = 5000.0,
+    initial: Annotated[
+        str,
+        typer.Option("--initial", help="startup (default) or q..., v... in shifted coordinates"),
+    ] = "startup",
+    max_events: Annotated[int, typer.Option("--max-events", help="bound on mode switches")] = 100_000,
+    plot: Annotated[
+        Path | None, typer.Option("--plot", help="write time history and phase portrait here")
+    ] = None,
+    t_plot_start: Annotated[
+        float, typer.Option("--plot-from", help="first time drawn in the figure")
+    ] = 0.0,
+    json: JSON = False,
+) -> None:
+    """One simulation: certified verdict, period, amplitude, events."""
+    from stickslip.analysis.simulation import simulate as run_simulation
+    from stickslip.model import Slider, chain_structure
+
+    slider = Slider(lam, zeta, gamma)
+    foundation = parse_dva(dva, slider.zeta, k_scale)
+    structure = chain_structure(slider.zeta, () if foundation is None else (foundation,))
+    init = parse_initial(initial, structure.n_dof)
+    if plot is not None:
+        check_figure_path(plot)
+    result = run_simulation(structure, slider, initial=init, t_max=t_max, max_events=max_events)
+    payload = result.to_dict()
+    if foundation is not None:
+        payload["foundation"] = {
+            "M": foundation.mass_ratio,
+            "K": foundation.stiffness_ratio,
+            "zeta_a": foundation.damping_ratio,
+        }
+    else:
+        payload["foundation"] = None
+    if plot is not None:
+        fig = result.plot(t_start=t_plot_start)
+        fig.savefig(plot, dpi=130)
+        payload["plot"] = str(plot)
+    if json:
+        print_json(payload)
+        return
+    _print_summary(payload)
+
+
+def _print_summary(p: dict) -> None:  # type: ignore[type-arg]
+    def fmt(x: object) -> str:
+        return "-" if x is None else (f"{x:.6g}" if isinstance(x, float) else str(x))
+
+    lines = [
+        f"system      {p['structure']} (lambda={fmt(p['lambda'])}, zeta={fmt(p['zeta'])}, "
+        f"gamma={fmt(p['gamma'])})",
+        f"verdict     {p['verdict']}",
+        f"certificate {p['certificate'] or '- (' + p['status_message'] + ')'}",
+        f"stick phases {p['n_stick']}   period {fmt(p['period'])}   amplitude {fmt(p['amplitude'])}"
+        f"   stick ratio {fmt(p['stick_ratio'])}",
+        f"max xi'     {fmt(p['max_velocity'])}   t_end {fmt(p['t_end'])}   events {p['n_events']}",
+        f"initial     {p['initial_condition']}",
+    ]
+    if p.get("foundation"):
+        f = p["foundation"]
+        lines.insert(1, f"foundation  M={fmt(f['M'])}, K={fmt(f['K'])}, zeta_a={fmt(f['zeta_a'])}")
+    if p.get("plot"):
+        lines.append(f"figure      {p['plot']}")
+    typer.echo("\n".join(lines))
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``simulate`` command to ``app``."""
+    app.command("simulate")(simulate)
