@@ -1,0 +1,53 @@
+"""Kernel linear algebra against SciPy: expm, Lyapunov equation, Taylor propagation."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.linalg import expm as scipy_expm
+from scipy.linalg import solve_continuous_lyapunov
+
+from stickslip.kernel.linalg import expm, solve_lyapunov
+from stickslip.kernel.polynomial import TAYLOR_DEGREE, taylor_state, taylor_vectors
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_expm_matches_scipy(seed: int) -> None:
+    # reference: scipy.linalg.expm (Al-Mohy and Higham), an independent implementation
+    rng = np.random.default_rng(seed)
+    a = rng.normal(size=(5, 5)) * (0.3 + 3 * seed)
+    ours = expm(a)
+    ref = scipy_expm(a)
+    assert np.allclose(ours, ref, rtol=1e-12, atol=1e-12 * np.abs(ref).max())
+
+
+def test_expm_of_nilpotent_jordan_block_is_exact() -> None:
+    # the stick mode has q0' = 1: a Jordan block, exp([[0, 1], [0, 0]] t) = [[1, t], [0, 1]]
+    a = np.array([[0.0, 1.0], [0.0, 0.0]]) * 7.5
+    assert np.array_equal(expm(a), np.array([[1.0, 7.5], [0.0, 1.0]]))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_lyapunov_matches_scipy(seed: int) -> None:
+    # reference: scipy.linalg.solve_continuous_lyapunov solves A X + X A^H = Q
+    rng = np.random.default_rng(seed)
+    a = rng.normal(size=(4, 4)) - 4.0 * np.eye(4)
+    q = np.eye(4)
+    ours = solve_lyapunov(a, q)
+    ref = solve_continuous_lyapunov(a.T, -q)
+    assert np.allclose(ours, ref, rtol=1e-11, atol=1e-13)
+    assert np.allclose(a.T @ ours + ours @ a, -q, atol=1e-11)
+
+
+@pytest.mark.parametrize("s", [0.0, 0.013, 0.2, 0.5])
+def test_taylor_polynomial_equals_matrix_exponential(s: float) -> None:
+    # w(s) = expm(A s) w0 within a sub-step (||A|| s <= 1/2): truncation error ~ 0.5^17/17!
+    rng = np.random.default_rng(42)
+    a = rng.normal(size=(5, 5))
+    a /= np.abs(a).sum(axis=1).max()
+    w0 = rng.normal(size=5)
+    u = np.empty((TAYLOR_DEGREE + 1, 5))
+    taylor_vectors(a, w0, u)
+    out = np.empty(5)
+    taylor_state(u, s, out)
+    assert np.allclose(out, scipy_expm(a * s) @ w0, rtol=1e-14, atol=1e-14)
