@@ -193,6 +193,7 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
         seg_mode[0] = mode
         seg_state[0] = w[:nz]
     n_seg = 1
+    seg_t_last = 0.0
     n_stick = 1 if mode == STICK else 0
     stick_start = 0.0
     t_last_stick = 0.0 if mode == STICK else np.nan
@@ -314,11 +315,17 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
                 stick_start = t
                 t_last_stick = t
         if new_mode != mode:
+            if mode == STICK and t == stick_start:
+                n_stick -= 1  # a stick phase of zero duration is a touch, not a phase
             mode = new_mode
+            if n_seg > 0 and t == seg_t_last:
+                # the phase just left lasted no time: overwrite it, keep times increasing
+                n_seg -= 1
             if record and n_seg < cap:
                 seg_t[n_seg] = t
                 seg_mode[n_seg] = mode
                 seg_state[n_seg] = w[:nz]
+            seg_t_last = t
             n_seg += 1
         if status == STATUS_CYCLE:
             break
