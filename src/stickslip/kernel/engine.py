@@ -167,11 +167,13 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
     seg_t = np.empty(cap)
     seg_mode = np.empty(cap, dtype=np.int64)
     seg_state = np.empty((cap, nz))
-    bk_cap = max_events + 1
-    bk_t = np.empty(bk_cap)
-    bk_z = np.empty((bk_cap, nz))
-    bk_dir = np.empty(bk_cap, dtype=np.int64)
-    interval = np.empty((bk_cap, 4))  # xi min, xi max, v max, stick time per breakaway interval
+    # the last max_period + 1 breakaways live in a ring buffer (slot = index % ring)
+    ring = max_period + 1
+    bk_t = np.empty(ring)
+    bk_z = np.empty((ring, nz))
+    bk_dir = np.empty(ring, dtype=np.int64)
+    interval = np.empty((ring, 4))  # xi min, xi max, v max, stick time per breakaway interval
+    all_bk_t = np.empty(cap)
     fsum = np.full(N_FLOAT, np.nan)
     isum = np.zeros(N_INT, dtype=np.int64)
 
@@ -261,14 +263,16 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
         if mode == STICK:
             new_mode = SLIP_I if e_ev == 0 else SLIP_II
             cur_stick += t - stick_start
-            bk_t[n_bk] = t
-            bk_z[n_bk] = w[:nz]
-            bk_dir[n_bk] = e_ev
-            interval[n_bk, 0] = cur_xmin
-            interval[n_bk, 1] = cur_xmax
-            interval[n_bk, 2] = cur_vmax
-            interval[n_bk, 3] = cur_stick
-            j = n_bk
+            j = n_bk % ring
+            bk_t[j] = t
+            bk_z[j] = w[:nz]
+            bk_dir[j] = e_ev
+            interval[j, 0] = cur_xmin
+            interval[j, 1] = cur_xmax
+            interval[j, 2] = cur_vmax
+            interval[j, 3] = cur_stick
+            if record and n_bk < cap:
+                all_bk_t[n_bk] = t
             n_bk += 1
             cur_xmin = w[0]
             cur_xmax = w[0]
@@ -278,9 +282,9 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
             for c in range(nz):
                 scale = max(scale, abs(w[c]))
             for k in range(1, max_period + 1):
-                i = j - k
-                if i < 0:
+                if n_bk - 1 - k < 0:
                     break
+                i = (n_bk - 1 - k) % ring
                 if bk_dir[i] != bk_dir[j]:
                     continue
                 diff = 0.0
@@ -293,7 +297,8 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
                     xmax = -np.inf
                     vmax = -np.inf
                     stick = 0.0
-                    for p in range(i + 1, j + 1):
+                    for back in range(k):
+                        p = (n_bk - 1 - back) % ring
                         xmin = min(xmin, interval[p, 0])
                         xmax = max(xmax, interval[p, 1])
                         vmax = max(vmax, interval[p, 2])
@@ -347,7 +352,7 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
         seg_t[:n_keep].copy(),
         seg_mode[:n_keep].copy(),
         seg_state[:n_keep].copy(),
-        bk_t[:n_bk].copy(),
+        all_bk_t[: min(n_bk, cap) if record else 0].copy(),
         fsum,
         isum,
         w[:nz].copy(),
