@@ -33,7 +33,8 @@ def test_lyapunov_matches_scipy(seed: int) -> None:
     rng = np.random.default_rng(seed)
     a = rng.normal(size=(4, 4)) - 4.0 * np.eye(4)
     q = np.eye(4)
-    ours = solve_lyapunov(a, q)
+    ours, ok = solve_lyapunov(a, q)
+    assert ok
     ref = solve_continuous_lyapunov(a.T, -q)
     assert np.allclose(ours, ref, rtol=1e-11, atol=1e-13)
     assert np.allclose(a.T @ ours + ours @ a, -q, atol=1e-11)
@@ -51,3 +52,10 @@ def test_taylor_polynomial_equals_matrix_exponential(s: float) -> None:
     out = np.empty(5)
     taylor_state(u, s, out)
     assert np.allclose(out, scipy_expm(a * s) @ w0, rtol=1e-14, atol=1e-14)
+
+
+def test_lyapunov_reports_a_singular_equation() -> None:
+    # an undamped oscillator has eigenvalues +-i, which sum to zero: no unique solution
+    a = np.array([[0.0, 1.0], [-1.0, 0.0]])
+    _, ok = solve_lyapunov(a, np.eye(2))
+    assert not ok

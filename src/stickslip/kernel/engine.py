@@ -21,7 +21,16 @@ from stickslip.kernel.polynomial import (
     taylor_state,
     taylor_vectors,
 )
-from stickslip.kernel.system import N_ROWS, SLIP_I, SLIP_II, STICK, prepare
+from stickslip.kernel.system import (
+    F_VEL,
+    F_XI,
+    N_ROWS,
+    N_SIGNATURE,
+    SLIP_I,
+    SLIP_II,
+    STICK,
+    prepare,
+)
 
 STATUS_RUNNING = 0
 STATUS_STEADY = 1
@@ -69,31 +78,70 @@ def lyapunov_bound(w, lyap, kappa, n_lyap):
 
 
 @njit(cache=True)
-def _no_sign_change(rows, w0, w1):
+def signature(sig_rows, w, out):
+    """Project the state on the mode's signature rows (once per state)."""
+    for b in range(N_SIGNATURE):
+        out[b] = dot(sig_rows[b], w)
+
+
+@njit(cache=True)
+def _no_sign_change(sig0, sig1, start):
     """True when ``g'``, ``g''`` and ``g'''`` keep their sign between the two states."""
     for j in range(1, N_ROWS):
-        if dot(rows[j], w0) * dot(rows[j], w1) < 0.0:
+        if sig0[start + j] * sig1[start + j] < 0.0:
             return False
     return True
 
 
 @njit(cache=True)
-def first_reach(rows, w0, w1, h, ahat, u, have_u, coef, bp):
-    """First ``s`` in ``[0, h]`` where the event function ``g = rows[0] . w(s)`` reaches 0.
+def _taylor_bounds(sig0, sig1, start, sign, offset, h):
+    """Lower and upper bounds of ``g`` on ``[0, h]`` from its derivatives at the left end.
 
-    ``g <= 0`` is the safe side. Returns ``inf`` when ``g`` stays negative on the step.
-    The cheap test (endpoint signs of ``g`` to ``g'''``) proves most steps event-free; the
-    others are split into monotone pieces so that a graze (``g`` touching 0 between two
-    negative end values) is found at its extremum.
+    Taylor's theorem with the third derivative between its end values (it is monotone on a step, the
+    standing assumption of the event search): ``g(s) <= g + g' s + g'' s^2/2 + G3 s^3/6``.
     """
-    g0 = dot(rows[0], w0)
-    g1 = dot(rows[0], w1)
-    if g1 < 0.0 and g0 <= 0.0 and _no_sign_change(rows, w0, w1):
+    g0 = sign * sig0[start] + offset
+    d1 = sign * sig0[start + 1]
+    d2 = sign * sig0[start + 2]
+    d3a = sign * sig0[start + 3]
+    d3b = sign * sig1[start + 3]
+    h2 = 0.5 * h * h
+    h3 = h * h2 / 3.0
+    hi = g0 + max(0.0, d1) * h + max(0.0, d2) * h2 + max(0.0, max(d3a, d3b)) * h3
+    lo = g0 + min(0.0, d1) * h + min(0.0, d2) * h2 + min(0.0, min(d3a, d3b)) * h3
+    return lo, hi
+
+
+@njit(cache=True)
+def _polynomials(sig_rows, start, sign, offset, u, row, coef):
+    """Taylor coefficients of the functional and its derivatives over the current step."""
+    m = row.shape[0]
+    for i in range(m):
+        row[i] = sign * sig_rows[start, i]
+    row[m - 1] += offset
+    functional_polynomials(u, row, coef)
+
+
+@njit(cache=True)
+def first_reach(sig_rows, start, sign, offset, sig0, sig1, w0, h, ahat, u, have_u, row, coef,
+                bp):
+    """First ``s`` in ``[0, h]`` where the event function ``g`` reaches 0.
+
+    ``g = sign * sig[start] + offset``; ``g <= 0`` is the safe side. Returns ``inf`` when
+    ``g`` stays negative on the step. The cheap test (endpoint signs of ``g`` to ``g'''``)
+    proves most steps event-free; the others are split into monotone pieces so that a
+    graze (``g`` touching 0 between two negative end values) is found at its extremum.
+    """
+    g0 = sign * sig0[start] + offset
+    g1 = sign * sig1[start] + offset
+    if g1 < 0.0 and g0 <= 0.0 and _no_sign_change(sig0, sig1, start):
+        return np.inf
+    if g0 <= 0.0 and _taylor_bounds(sig0, sig1, start, sign, offset, h)[1] < 0.0:
         return np.inf
     if have_u[0] == 0:
         taylor_vectors(ahat, w0, u)
         have_u[0] = 1
-    functional_polynomials(u, rows[0], coef)
+    _polynomials(sig_rows, start, sign, offset, u, row, coef)
     npts = monotone_breakpoints(coef, 0.0, h, bp)
     ga = poly_value(coef, 0, bp[0])
     for i in range(npts - 1):
@@ -107,18 +155,23 @@ def first_reach(rows, w0, w1, h, ahat, u, have_u, coef, bp):
 
 
 @njit(cache=True)
-def value_range(rows, w0, w1, s_end, ahat, u, have_u, coef, bp):
-    """Exact minimum and maximum of ``rows[0] . w(s)`` over ``[0, s_end]``."""
-    g0 = dot(rows[0], w0)
-    g1 = dot(rows[0], w1)
-    lo = min(g0, g1)
-    hi = max(g0, g1)
-    if _no_sign_change(rows, w0, w1):
+def value_range(sig_rows, start, sig0, sig1, w0, s_end, ahat, u, have_u, row, coef, bp,
+                known_lo, known_hi):
+    """Exact minimum and maximum of the signature functional ``sig[start]`` on ``[0, s_end]``.
+
+    Interior extrema are only located when they could extend ``[known_lo, known_hi]``.
+    """
+    lo = min(sig0[start], sig1[start])
+    hi = max(sig0[start], sig1[start])
+    if _no_sign_change(sig0, sig1, start):
+        return lo, hi
+    bound_lo, bound_hi = _taylor_bounds(sig0, sig1, start, 1.0, 0.0, s_end)
+    if bound_lo >= known_lo and bound_hi <= known_hi:
         return lo, hi
     if have_u[0] == 0:
         taylor_vectors(ahat, w0, u)
         have_u[0] = 1
-    functional_polynomials(u, rows[0], coef)
+    _polynomials(sig_rows, start, 1.0, 0.0, u, row, coef)
     npts = monotone_breakpoints(coef, 0.0, s_end, bp)
     for i in range(1, npts - 1):
         g = poly_value(coef, 0, bp[i])
@@ -160,9 +213,8 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
     n = mass.shape[0]
     nz = 2 * n
     m = nz + 1
-    ahat, phi, hstep, rows, n_events, xi_rows, vel_rows, stick_row, lyap, kappa, n_lyap = (
-        prepare(mass, damping, stiffness, lam, gamma)
-    )
+    (ahat, phi, hstep, sig_rows, f_start, f_sign, f_offset, stick_row, lyap, kappa,
+     n_lyap) = prepare(mass, damping, stiffness, lam, gamma)
     cap = max_events + 1 if record else 1
     seg_t = np.empty(cap)
     seg_mode = np.empty(cap, dtype=np.int64)
@@ -184,6 +236,9 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
     w = np.zeros(m)
     w1 = np.empty(m)
     w_end = np.empty(m)
+    row = np.empty(m)
+    sig0 = np.empty(N_SIGNATURE)
+    sig1 = np.empty(N_SIGNATURE)
     w[:nz] = z0
     w[m - 1] = 1.0
 
@@ -210,6 +265,7 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
     status = STATUS_RUNNING
     last_bound = np.nan
 
+    fresh = True  # the signature of w must be recomputed (at the start and after events)
     while True:
         if mode == SLIP_I:
             last_bound = lyapunov_bound(w, lyap, kappa, n_lyap)
@@ -219,6 +275,9 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
         if t >= t_max:
             status = STATUS_T_MAX
             break
+        if fresh:
+            signature(sig_rows[mode], w, sig0)
+            fresh = False
         h = hstep[mode]
         have_u[0] = 0
         if t + h > t_max:
@@ -228,12 +287,14 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
             taylor_state(u, h, w1)
         else:
             matvec(phi[mode], w, w1)
+        signature(sig_rows[mode], w1, sig1)
         n_steps += 1
 
         s_ev = np.inf
         e_ev = -1
-        for e in range(n_events[mode]):
-            s = first_reach(rows[mode, e], w, w1, h, ahat[mode], u, have_u, coef, bp)
+        for e in range(2 if mode == STICK else 1):
+            s = first_reach(sig_rows[mode], f_start[mode, e], f_sign[mode, e], f_offset[mode, e],
+                            sig0, sig1, w, h, ahat[mode], u, have_u, row, coef, bp)
             if s < s_ev:
                 s_ev = s
                 e_ev = e
@@ -242,22 +303,34 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
                 taylor_vectors(ahat[mode], w, u)
                 have_u[0] = 1
             taylor_state(u, s_ev, w_end)
+            signature(sig_rows[mode], w_end, sig1)
             s_end = s_ev
         else:
             w_end[:] = w1
             s_end = h
 
-        lo, hi = value_range(xi_rows[mode], w, w_end, s_end, ahat[mode], u, have_u, coef, bp)
-        cur_xmin = min(cur_xmin, lo)
-        cur_xmax = max(cur_xmax, hi)
-        lo, hi = value_range(vel_rows[mode], w, w_end, s_end, ahat[mode], u, have_u, coef, bp)
-        cur_vmax = max(cur_vmax, hi)
-        max_v = max(max_v, hi)
+        if mode == STICK:
+            # xi grows at the belt speed (xi' = 1): its extremes are the step's ends
+            cur_xmin = min(cur_xmin, w[0])
+            cur_xmax = max(cur_xmax, w_end[0])
+            cur_vmax = max(cur_vmax, 1.0)
+            max_v = max(max_v, 1.0)
+        else:
+            lo, hi = value_range(sig_rows[mode], f_start[mode, F_XI], sig0, sig1, w, s_end,
+                                 ahat[mode], u, have_u, row, coef, bp, cur_xmin, cur_xmax)
+            cur_xmin = min(cur_xmin, lo)
+            cur_xmax = max(cur_xmax, hi)
+            lo, hi = value_range(sig_rows[mode], f_start[mode, F_VEL], sig0, sig1, w, s_end,
+                                 ahat[mode], u, have_u, row, coef, bp, -np.inf, cur_vmax)
+            cur_vmax = max(cur_vmax, hi)
+            max_v = max(max_v, hi)
 
         t += s_end
         w[:] = w_end
+        sig0[:] = sig1
         if e_ev < 0:
             continue
+        fresh = True
 
         n_ev += 1
         if mode == STICK:
@@ -369,7 +442,7 @@ def evaluate(mass, damping, stiffness, lam, gamma, seg_t, seg_mode, seg_state, t
     n = mass.shape[0]
     nz = 2 * n
     m = nz + 1
-    ahat, phi, hstep, _, _, _, _, _, _, _, _ = prepare(mass, damping, stiffness, lam, gamma)
+    ahat, phi, hstep = prepare(mass, damping, stiffness, lam, gamma)[:3]
     out = np.empty((times.shape[0], nz))
     modes = np.empty(times.shape[0], dtype=np.int64)
     u = np.empty((TAYLOR_DEGREE + 1, m))

@@ -44,6 +44,18 @@ def inf_norm(a: np.ndarray) -> float:
 
 
 @njit(cache=True)
+def matmul(a: np.ndarray, b: np.ndarray, out: np.ndarray) -> None:
+    """``out = a @ b`` for small square matrices, without allocation (``out`` distinct)."""
+    n = a.shape[0]
+    for i in range(n):
+        for j in range(n):
+            acc = 0.0
+            for k in range(n):
+                acc += a[i, k] * b[k, j]
+            out[i, j] = acc
+
+
+@njit(cache=True)
 def expm(a: np.ndarray) -> np.ndarray:
     """Matrix exponential by scaling and squaring of a degree-18 Taylor polynomial.
 
@@ -60,17 +72,86 @@ def expm(a: np.ndarray) -> np.ndarray:
     b = a / (2.0**squarings)
     result = np.eye(n)
     term = np.eye(n)
+    tmp = np.empty((n, n))
     for k in range(1, TAYLOR_DEGREE_EXPM + 1):
-        term = (term @ b) / k
-        result += term
+        matmul(term, b, tmp)
+        for i in range(n):
+            for j in range(n):
+                term[i, j] = tmp[i, j] / k
+                result[i, j] += term[i, j]
     for _ in range(squarings):
-        result = result @ result
+        matmul(result, result, tmp)
+        result[:, :] = tmp
     return result
 
 
 @njit(cache=True)
-def solve_lyapunov(a: np.ndarray, q: np.ndarray) -> np.ndarray:
-    """Solve ``a.T @ p + p @ a = -q`` for ``p`` through the Kronecker form."""
+def gauss_solve(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, bool]:
+    """Solve ``a x = b`` by Gaussian elimination with partial pivoting.
+
+    Returns ``(x, ok)``; ``ok`` is false for a (numerically) singular matrix, so callers
+    inside compiled code can branch instead of raising.
+    """
+    n = a.shape[0]
+    m = a.copy()
+    x = b.copy()
+    scale = 0.0
+    for i in range(n):
+        for j in range(n):
+            scale = max(scale, abs(m[i, j]))
+    if scale == 0.0:
+        return x, False
+    for col in range(n):
+        piv = col
+        for r in range(col + 1, n):
+            if abs(m[r, col]) > abs(m[piv, col]):
+                piv = r
+        if abs(m[piv, col]) <= 1e-14 * scale:
+            return x, False
+        if piv != col:
+            for c in range(n):
+                m[col, c], m[piv, c] = m[piv, c], m[col, c]
+            x[col], x[piv] = x[piv], x[col]
+        for r in range(col + 1, n):
+            f = m[r, col] / m[col, col]
+            if f != 0.0:
+                for c in range(col, n):
+                    m[r, c] -= f * m[col, c]
+                x[r] -= f * x[col]
+    for r in range(n - 1, -1, -1):
+        acc = x[r]
+        for c in range(r + 1, n):
+            acc -= m[r, c] * x[c]
+        x[r] = acc / m[r, r]
+    return x, True
+
+
+@njit(cache=True)
+def is_positive_definite(p: np.ndarray) -> bool:
+    """Cholesky test of a symmetric matrix."""
+    n = p.shape[0]
+    low = np.zeros((n, n))
+    for i in range(n):
+        for j in range(i + 1):
+            acc = p[i, j]
+            for k in range(j):
+                acc -= low[i, k] * low[j, k]
+            if i == j:
+                if acc <= 0.0:
+                    return False
+                low[i, i] = np.sqrt(acc)
+            else:
+                low[i, j] = acc / low[j, j]
+    return True
+
+
+@njit(cache=True)
+def solve_lyapunov(a: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, bool]:
+    """Solve ``a.T @ p + p @ a = -q`` for ``p`` through the Kronecker form.
+
+    Returns ``(p, ok)``; ``ok`` is false when the Kronecker system is singular (``a`` has
+    two eigenvalues summing to zero, e.g. an undamped mode).
+    """
     n = a.shape[0]
     size = n * n
     lhs = np.zeros((size, size))
@@ -82,9 +163,9 @@ def solve_lyapunov(a: np.ndarray, q: np.ndarray) -> np.ndarray:
             for k in range(n):
                 lhs[row, k * n + j] += a[k, i]
                 lhs[row, i * n + k] += a[k, j]
-    vec = np.linalg.solve(lhs, rhs)
+    vec, ok = gauss_solve(lhs, rhs)
     p = np.empty((n, n))
     for i in range(n):
         for j in range(n):
-            p[i, j] = vec[i * n + j]
-    return 0.5 * (p + p.T)
+            p[i, j] = 0.5 * (vec[i * n + j] + vec[j * n + i])
+    return p, ok

@@ -9,8 +9,8 @@ shifted coordinates of Eqs. (15)-(16). Each mode is ``w' = A_hat w`` with consta
 * stick (``STICK``): ``q_0' = v_0 = 1`` held, the other DOFs driven (Eqs. 19-21).
 
 Event functions are affine in ``w`` and written so that the current mode is safe while
-they are negative. ``rows[mode, e, j]`` is the row of the ``j``-th time derivative of
-event ``e``, i.e. ``row_0 @ A_hat^j``.
+they are negative; they and their time derivatives are read off a per-mode "signature"
+of the state (see :func:`prepare`).
 """
 
 from __future__ import annotations
@@ -18,14 +18,24 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from stickslip.kernel.linalg import expm, inf_norm, solve_lyapunov
+from stickslip.kernel.linalg import (
+    expm,
+    gauss_solve,
+    inf_norm,
+    is_positive_definite,
+    solve_lyapunov,
+)
 
 SLIP_I = 0
 SLIP_II = 1
 STICK = 2
 N_MODES = 3
-MAX_EVENTS_PER_MODE = 2
 N_ROWS = 4
+N_SIGNATURE = N_ROWS + 1
+# functionals of each mode: events 0 and 1 (stick has two), then the monitors of xi and v_0
+N_FUNCTIONALS = 4
+F_XI = 2
+F_VEL = 3
 STEP_THETA = 0.5
 
 
@@ -96,9 +106,15 @@ def prepare(mass, damping, stiffness, lam, gamma):
     """Everything the run loop needs, computed once per parameter point.
 
     Returns ``ahat (3,m,m)``, ``phi (3,m,m) = expm(ahat h)``, ``hstep (3,)``,
-    ``rows (3, 2, 4, m)`` event rows, ``n_events (3,)``, ``xi_rows (3, 4, m)``,
-    ``vel_rows (3, 4, m)``, ``stick_row (m,)``, ``lyap (2, 2n, 2n)``, ``kappa (2,)`` and the
-    number of valid Lyapunov matrices.
+    ``sig_rows (3, N_SIGNATURE, m)``, the functional table ``f_start, f_sign, f_offset``
+    (each ``(3, N_FUNCTIONALS)``), ``stick_row (m,)``, ``lyap (2, 2n, 2n)``, ``kappa (2,)``
+    and the number of valid Lyapunov matrices.
+
+    Signature: the few scalars every event and monitor of a mode is made of, so that each
+    state is projected once per step. Slip modes: ``xi`` and ``v_0`` with its first three
+    derivatives; stick: ``xi`` and ``S`` with its first three derivatives. Functional ``f``
+    has derivative ``j`` equal to ``f_sign * sig[f_start + j]``, plus ``f_offset`` for
+    ``j = 0``.
     """
     n = mass.shape[0]
     m = 2 * n + 1
@@ -109,36 +125,34 @@ def prepare(mass, damping, stiffness, lam, gamma):
         norm = inf_norm(ahat[mode, : m - 1, : m - 1])
         hstep[mode] = STEP_THETA / max(norm, 1e-12)
         phi[mode] = expm(ahat[mode] * hstep[mode])
-    rows = np.zeros((N_MODES, MAX_EVENTS_PER_MODE, N_ROWS, m))
-    n_events = np.array([1, 1, 2])
+    sig_rows = np.zeros((N_MODES, N_SIGNATURE, m))
     row = np.zeros(m)
-    # slip-I ends when v_0 rises to 1
-    row[n] = 1.0
-    row[m - 1] = -1.0
-    derivative_rows(row, ahat[SLIP_I], rows[SLIP_I, 0])
-    # slip-II ends when v_0 falls to 1
-    row[:] = 0.0
-    row[n] = -1.0
-    row[m - 1] = 1.0
-    derivative_rows(row, ahat[SLIP_II], rows[SLIP_II, 0])
-    # stick ends when S rises to lambda or falls to -lambda (1 + 2 gamma)
-    row[:] = stick_row
-    row[m - 1] = -lam
-    derivative_rows(row, ahat[STICK], rows[STICK, 0])
-    row[:] = -stick_row
-    row[m - 1] = -lam * (1.0 + 2.0 * gamma)
-    derivative_rows(row, ahat[STICK], rows[STICK, 1])
-    xi_rows = np.zeros((N_MODES, N_ROWS, m))
-    vel_rows = np.zeros((N_MODES, N_ROWS, m))
+    deriv = np.zeros((N_ROWS, m))
     for mode in range(N_MODES):
+        sig_rows[mode, 0, 0] = 1.0
         row[:] = 0.0
-        row[0] = 1.0
-        derivative_rows(row, ahat[mode], xi_rows[mode])
-        row[:] = 0.0
-        row[n] = 1.0
-        derivative_rows(row, ahat[mode], vel_rows[mode])
+        if mode == STICK:
+            row[:] = stick_row
+        else:
+            row[n] = 1.0
+        derivative_rows(row, ahat[mode], deriv)
+        for j in range(N_ROWS):
+            sig_rows[mode, 1 + j] = deriv[j]
+    f_start = np.ones((N_MODES, N_FUNCTIONALS), dtype=np.int64)
+    f_sign = np.ones((N_MODES, N_FUNCTIONALS))
+    f_offset = np.zeros((N_MODES, N_FUNCTIONALS))
+    for mode in range(N_MODES):
+        f_start[mode, F_XI] = 0
+    # slip-I ends when v_0 rises to 1; slip-II when v_0 falls to 1
+    f_offset[SLIP_I, 0] = -1.0
+    f_sign[SLIP_II, 0] = -1.0
+    f_offset[SLIP_II, 0] = 1.0
+    # stick ends when S rises to lambda or falls to -lambda (1 + 2 gamma), Eq. (20)
+    f_offset[STICK, 0] = -lam
+    f_sign[STICK, 1] = -1.0
+    f_offset[STICK, 1] = -lam * (1.0 + 2.0 * gamma)
     lyap, kappa, n_lyap = lyapunov_data(mass, damping, stiffness, ahat[SLIP_I, : m - 1, : m - 1])
-    return ahat, phi, hstep, rows, n_events, xi_rows, vel_rows, stick_row, lyap, kappa, n_lyap
+    return ahat, phi, hstep, sig_rows, f_start, f_sign, f_offset, stick_row, lyap, kappa, n_lyap
 
 
 @njit(cache=True)
@@ -159,13 +173,17 @@ def lyapunov_data(mass, damping, stiffness, a):
         for j in range(n):
             lyap[0, i, j] = 0.5 * stiffness[i, j]
             lyap[0, n + i, n + j] = 0.5 * mass[i, j]
-    kappa[0] = 2.0 * np.linalg.inv(mass)[0, 0]
+    e_v = np.zeros(nz)
+    e_v[n] = 1.0
+    x, _ = gauss_solve(lyap[0], e_v)
+    kappa[0] = x[n]
     n_lyap = 1
-    eig = np.linalg.eigvals(a.astype(np.complex128))
-    if np.max(eig.real) < -1e-9:
-        p = solve_lyapunov(a, np.eye(nz))
-        if np.min(np.linalg.eigvalsh(p)) > 0.0:
+    # Lyapunov's theorem: a is Hurwitz iff a' P + P a = -I has a positive definite solution
+    p, ok = solve_lyapunov(a, np.eye(nz))
+    if ok and is_positive_definite(p):
+        x, ok = gauss_solve(p, e_v)
+        if ok and x[n] > 0.0:
             lyap[1] = p
-            kappa[1] = np.linalg.inv(p)[n, n]
+            kappa[1] = x[n]
             n_lyap = 2
     return lyap, kappa, n_lyap
