@@ -27,7 +27,7 @@ def _run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str,
 
 
 def test_json_is_one_object_with_the_contract_keys(capsys: pytest.CaptureFixture[str]) -> None:
-    code, out, err = _run(["simulate", "--lam", "1", "--zeta", "0", "--json"], capsys)
+    code, out, _ = _run(["simulate", "--lam", "1", "--zeta", "0", "--json"], capsys)
     assert code == 0
     payload = json.loads(out)  # exactly one JSON document on stdout
     assert JSON_KEYS <= payload.keys()

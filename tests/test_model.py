@@ -98,7 +98,7 @@ def test_physical_system_groups() -> None:
 
 
 def test_physical_rejects_mu_k_not_below_mu_s() -> None:
-    with pytest.raises(ValueError, match="mu_k=0.5 must be smaller than mu_s=0.5"):
+    with pytest.raises(ValueError, match=r"mu_k=0\.5 must be smaller than mu_s=0\.5"):
         PhysicalSystem(m=1, k=1, c=0, mu_s=0.5, mu_k=0.5, load=1, speed=1)
 
 

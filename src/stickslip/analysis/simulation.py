@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from enum import Enum, IntEnum
+from enum import Enum, IntEnum, StrEnum
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -54,7 +54,7 @@ class Mode(IntEnum):
         return {0: "slip-I", 1: "slip-II", 2: "stick"}[int(self)]
 
 
-class Verdict(str, Enum):
+class Verdict(StrEnum):
     """Certified answer to "does this system stick-slip?"."""
 
     STICK_SLIP = "stick-slip"
@@ -277,7 +277,7 @@ class TimeHistory:
     velocity: FloatArray
     mode: NDArray[np.int64]
 
-    def __iter__(self):  # type: ignore[no-untyped-def]
+    def __iter__(self):
         return iter((self.t, self.position, self.velocity, self.mode))
 
     def to_xarray(self) -> xr.Dataset:

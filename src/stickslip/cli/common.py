@@ -31,43 +31,15 @@ def fail(message: str) -> NoReturn:
 
 
 def parse_dva(text: str, zeta: float, k_scale: float = 1.0) -> Foundation | None:
-    """Resolve the ``--dva`` option.
+    """Resolve the ``--dva`` option at damping ratio ``zeta``.
 
     ``none`` is the rigid base (1DOF); ``optimal`` the paper's fitted optimum, Eqs. (28)-(30);
     ``optimal-exact`` the numerical optimum of the absorber; ``M,K,ZETA_A`` explicit values.
     ``k_scale`` multiplies ``K`` (paper Figs. 11-15); it requires a foundation.
     """
-    from stickslip.model._validate import positive
+    from stickslip.analysis.dva import DvaSpec
 
-    key = text.strip().lower()
-    k_scale = positive("--k-scale", k_scale)
-    foundation: Foundation | None
-    if key == "none":
-        foundation = None
-    elif key == "optimal":
-        from stickslip.analysis.theory import optimal_foundation_fit
-
-        foundation = optimal_foundation_fit(zeta)
-    elif key == "optimal-exact":
-        from stickslip.analysis.absorber import optimal_foundation_exact
-
-        foundation = optimal_foundation_exact(zeta)
-    else:
-        parts = text.split(",")
-        if len(parts) != 3:
-            raise BadInput(
-                f"--dva {text!r} is not 'none', 'optimal', 'optimal-exact' or three numbers M,K,ZETA_A"
-            )
-        try:
-            values = [float(p) for p in parts]
-        except ValueError:
-            raise BadInput(f"--dva {text!r}: M,K,ZETA_A must be numbers") from None
-        foundation = Foundation(*values)
-    if foundation is None:
-        if k_scale != 1.0:
-            raise BadInput(f"--k-scale {k_scale!r} needs a foundation, but --dva is 'none'")
-        return None
-    return foundation.scaled(k_scale) if k_scale != 1.0 else foundation
+    return DvaSpec.parse(text, k_scale).resolve(zeta)
 
 
 def _jsonable(value: Any) -> Any:

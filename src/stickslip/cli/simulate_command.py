@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
+import numpy as np
 import typer
 
 from stickslip.cli.common import BadInput, check_figure_path, parse_dva, print_json
+from stickslip.model.initial import InitialState
 
 LAM = Annotated[float, typer.Option("--lam", help="lambda = (mu_s - mu_k) W / (V sqrt(m k)) > 0")]
 ZETA = Annotated[float, typer.Option("--zeta", help="damping ratio c / (2 sqrt(m k)) >= 0")]
@@ -25,10 +27,8 @@ T_MAX = Annotated[float, typer.Option("--t-max", help="dimensionless time horizo
 JSON = Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")]
 
 
-def parse_initial(text: str, n_dof: int):  # type: ignore[no-untyped-def]
+def parse_initial(text: str, n_dof: int) -> InitialState | None:
     """``startup`` or ``2 n`` comma-separated numbers: positions then velocities."""
-    from stickslip.model.initial import InitialState
-
     if text.strip().lower() == "startup":
         return None
     try:
@@ -40,7 +40,7 @@ def parse_initial(text: str, n_dof: int):  # type: ignore[no-untyped-def]
             f"--initial {text!r} has {len(values)} numbers; expected {2 * n_dof} "
             f"(positions then velocities of {n_dof} DOF)"
         )
-    return InitialState(values[:n_dof], values[n_dof:], f"user-defined: {text}")
+    return InitialState(np.array(values[:n_dof]), np.array(values[n_dof:]), f"user-defined: {text}")
 
 
 def simulate(
@@ -93,7 +93,7 @@ def simulate(
     _print_summary(payload)
 
 
-def _print_summary(p: dict) -> None:  # type: ignore[type-arg]
+def _print_summary(p: dict[str, Any]) -> None:
     def fmt(x: object) -> str:
         return "-" if x is None else (f"{x:.6g}" if isinstance(x, float) else str(x))
 

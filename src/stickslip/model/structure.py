@@ -87,7 +87,7 @@ class Structure:
         """
         e0 = np.zeros(self.n_dof)
         e0[0] = 1.0
-        return np.linalg.solve(self.stiffness, e0)
+        return np.asarray(np.linalg.solve(self.stiffness, e0), dtype=np.float64)
 
 
 def chain_structure(zeta: float, foundations: Sequence[Foundation] = ()) -> Structure:

@@ -35,7 +35,7 @@ def _history(result: SimulationResult, t_start: float, n_points: int) -> TimeHis
 def _shade_stick(ax: Axes, result: SimulationResult, t_start: float) -> list[Any]:
     from stickslip.analysis.simulation import Mode
 
-    artists = []
+    artists: list[Any] = []
     times = np.append(result.segment_times, result.t_end)
     for i, mode in enumerate(result.segment_modes):
         if mode == Mode.STICK and times[i + 1] > t_start:
