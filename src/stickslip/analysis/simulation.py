@@ -141,6 +141,7 @@ class SimulationResult:
     cycle_mismatch: float
     lyapunov_bound: float
     t_end: float
+    t_certified: float
     n_steps: int
     segment_times: FloatArray = field(repr=False)
     segment_modes: NDArray[np.int64] = field(repr=False)
@@ -238,6 +239,7 @@ class SimulationResult:
             "lyapunov_bound": num(self.lyapunov_bound),
             "max_velocity": num(self.max_velocity),
             "t_end": float(self.t_end),
+            "t_certified": num(self.t_certified),
             "t_max": float(self.t_max),
             "lambda": self.slider.lam,
             "zeta": self.slider.zeta,
@@ -309,6 +311,7 @@ def simulate(
     cycle_tol: float = DEFAULT_CYCLE_TOL,
     max_period: int = DEFAULT_MAX_PERIOD,
     record: bool = True,
+    run_to_t_max: bool = False,
 ) -> SimulationResult:
     """Simulate the sliding system exactly and certify whether it stick-slips.
 
@@ -332,6 +335,9 @@ def simulate(
         Longest cycle, in stick phases, that is looked for (period-k cycles).
     record : bool
         Keep the phase list (needed for dense output and plots).
+    run_to_t_max : bool
+        Go on after the verdict is certified, up to ``t_max`` (for time-history figures).
+        The verdict, period and amplitude are those of the first certificate.
 
     Returns
     -------
@@ -358,13 +364,14 @@ def simulate(
         float(cycle_tol),
         int(max_period),
         bool(record),
+        bool(run_to_t_max),
     )
     status = RunStatus.from_code(int(isum[engine.I_STATUS]))
     if status is RunStatus.CERTIFIED_STEADY:
         verdict = Verdict.STEADY_SLIDING
         certificate = (
             f"Lyapunov bound: |xi'| <= {fsum[engine.F_LYAPUNOV_BOUND]:.6g} < 1 for all "
-            f"tau >= {fsum[engine.F_T_END]:.6g} in slip-I, so the slider never sticks again"
+            f"tau >= {fsum[engine.F_T_CERTIFIED]:.6g} in slip-I, so the slider never sticks again"
         )
     elif status is RunStatus.CERTIFIED_CYCLE:
         verdict = Verdict.STICK_SLIP
@@ -395,6 +402,7 @@ def simulate(
         cycle_mismatch=float(fsum[engine.F_CYCLE_MISMATCH]),
         lyapunov_bound=float(fsum[engine.F_LYAPUNOV_BOUND]),
         t_end=float(fsum[engine.F_T_END]),
+        t_certified=float(fsum[engine.F_T_CERTIFIED]),
         n_steps=int(isum[engine.I_N_STEPS]),
         segment_times=seg_t,
         segment_modes=seg_mode,

@@ -50,7 +50,8 @@ F_MAX_VELOCITY = 7
 F_CYCLE_MISMATCH = 8
 F_T_END = 9
 F_T_LAST_STICK = 10
-N_FLOAT = 11
+F_T_CERTIFIED = 11
+N_FLOAT = 12
 # layout of the integer summary
 I_STATUS = 0
 I_N_STICK = 1
@@ -203,8 +204,11 @@ def initial_mode(w, n, stick_row, lam, gamma):
 
 @njit(cache=True)
 def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, max_period,
-        record):
+        record, run_to_t_max):
     """Simulate from ``z0 = (q, v)`` until a verdict is certified, ``t_max`` or ``max_events``.
+
+    With ``run_to_t_max`` the run goes on after the verdict until ``t_max`` (for figures);
+    the verdict and its time ``F_T_CERTIFIED`` are those of the first certificate.
 
     Returns ``(seg_t, seg_mode, seg_state, bk_t, fsum, isum, z_end)``: the start time,
     mode and state of every phase (only when ``record``), the breakaway times, the float
@@ -267,13 +271,16 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
 
     fresh = True  # the signature of w must be recomputed (at the start and after events)
     while True:
-        if mode == SLIP_I:
+        if mode == SLIP_I and status == STATUS_RUNNING:
             last_bound = lyapunov_bound(w, lyap, kappa, n_lyap)
             if last_bound < 1.0:
                 status = STATUS_STEADY
-                break
+                fsum[F_T_CERTIFIED] = t
+                if not run_to_t_max:
+                    break
         if t >= t_max:
-            status = STATUS_T_MAX
+            if status == STATUS_RUNNING:
+                status = STATUS_T_MAX
             break
         if fresh:
             signature(sig_rows[mode], w, sig0)
@@ -355,7 +362,7 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
             for c in range(nz):
                 scale = max(scale, abs(w[c]))
             for k in range(1, max_period + 1):
-                if n_bk - 1 - k < 0:
+                if n_bk - 1 - k < 0 or status != STATUS_RUNNING:
                     break
                 i = (n_bk - 1 - k) % ring
                 if bk_dir[i] != bk_dir[j]:
@@ -384,6 +391,7 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
                     fsum[F_CYCLE_MAX_VELOCITY] = vmax
                     fsum[F_CYCLE_MISMATCH] = diff / scale
                     isum[I_CYCLE_K] = k
+                    fsum[F_T_CERTIFIED] = t
                     break
         else:
             w[n] = 1.0
@@ -405,10 +413,11 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
                 seg_state[n_seg] = w[:nz]
             seg_t_last = t
             n_seg += 1
-        if status == STATUS_CYCLE:
+        if status == STATUS_CYCLE and not run_to_t_max:
             break
         if n_ev >= max_events:
-            status = STATUS_MAX_EVENTS
+            if status == STATUS_RUNNING:
+                status = STATUS_MAX_EVENTS
             break
 
     fsum[F_LYAPUNOV_BOUND] = last_bound

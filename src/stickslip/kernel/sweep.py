@@ -37,7 +37,7 @@ def run_cells(masses, dampings, stiffnesses, structure_index, lams, gammas, t_ma
         s = structure_index[c]
         z0 = startup_vector(stiffnesses[s], lams[c], gammas[c])
         result = run(masses[s], dampings[s], stiffnesses[s], lams[c], gammas[c], z0, t_max,
-                     max_events, cycle_tol, max_period, False)
+                     max_events, cycle_tol, max_period, False, False)
         fout[c] = result[4]
         iout[c] = result[5]
     return fout, iout
