@@ -1,0 +1,179 @@
+"""The paper's design procedure (Fig. 16) in physical units, checked by simulation.
+
+Given a slider (mass, spring, damper, friction, load, belt speed) the procedure answers:
+does it stick-slip on a rigid base; what foundation (Eqs. 28-30) suppresses it; below
+which belt speed and above which normal load stick-slip starts, by the paper's closed forms
+(Eqs. 33, 37-39) and by certified simulation.
+
+``lambda = (mu_s - mu_k) W / (V sqrt(m k))`` grows with the load and falls with the speed,
+so stick-slip (``lambda`` above its critical value) happens for ``V < V_c`` and ``W > W_c``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+from stickslip.analysis.critical import critical_lambdas
+from stickslip.analysis.simulation import Verdict, simulate
+from stickslip.analysis.theory import (
+    critical_lambda_approx,
+    critical_lambda_exact,
+    equivalent_damping_fit,
+    optimal_foundation_fit,
+)
+from stickslip.model.parameters import Foundation
+from stickslip.model.physical import (
+    PhysicalFoundation,
+    PhysicalSystem,
+    foundation_to_dimensionless,
+    foundation_to_physical,
+)
+from stickslip.model.structure import elastic_foundation, rigid_base
+
+
+@dataclass(frozen=True)
+class CriticalValues:
+    """Critical ``lambda`` and what it means for the machine (SI units)."""
+
+    lam: float
+    speed: float  # m/s: stick-slip below this belt speed
+    load: float  # N: stick-slip above this normal load
+
+    def to_dict(self) -> dict[str, float | None]:
+        def num(x: float) -> float | None:
+            return x if math.isfinite(x) else None
+
+        return {"lambda": num(self.lam), "speed": num(self.speed), "load": num(self.load)}
+
+
+@dataclass(frozen=True)
+class DesignReport:
+    """Outcome of :func:`design_foundation` (all physical values in SI units).
+
+    ``critical`` maps ``rigid_theory`` (Eq. 39), ``rigid_exact`` (Eq. 36),
+    ``rigid_simulation``, ``foundation_theory`` (Eq. 37 with ``zeta_eq``) and
+    ``foundation_simulation`` to :class:`CriticalValues`.
+    """
+
+    system: PhysicalSystem
+    lam: float
+    zeta: float
+    gamma: float
+    zeta_eq: float
+    zeta_eq_source: str
+    foundation: PhysicalFoundation
+    foundation_dimensionless: Foundation
+    foundation_source: str
+    recommended: PhysicalFoundation
+    verdicts: dict[str, dict[str, str]]
+    critical: dict[str, CriticalValues]
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON keys of the ``design`` command (issue 6)."""
+        crit = self.critical
+
+        def pick(attr: str) -> dict[str, float | None]:
+            return {k: v.to_dict()[attr] for k, v in crit.items()}
+
+        f = self.foundation
+        r = self.recommended
+        fd = self.foundation_dimensionless
+        return {
+            "lambda": self.lam,
+            "zeta": self.zeta,
+            "gamma": self.gamma,
+            "zeta_eq": self.zeta_eq,
+            "zeta_eq_source": self.zeta_eq_source,
+            "verdict": self.verdicts,
+            "critical_lambda": pick("lambda"),
+            "critical_speed": pick("speed"),
+            "critical_load": pick("load"),
+            "foundation": {
+                "m_a": f.m_a, "k_a": f.k_a, "c_a": f.c_a,
+                "M": fd.mass_ratio, "K": fd.stiffness_ratio, "zeta_a": fd.damping_ratio,
+                "source": self.foundation_source,
+            },
+            "recommended_foundation": {"m_a": r.m_a, "k_a": r.k_a, "c_a": r.c_a,
+                                       "source": "Fig. 16 procedure: Eqs. (28)-(30)"},
+            "system": {
+                "m": self.system.m, "k": self.system.k, "c": self.system.c,
+                "mu_s": self.system.mu_s, "mu_k": self.system.mu_k,
+                "load": self.system.load, "speed": self.system.speed,
+                "natural_frequency_rad_s": self.system.natural_frequency,
+            },
+            "units": {"speed": "m/s", "load": "N", "m_a": "kg", "k_a": "N/m", "c_a": "N s/m"},
+        }
+
+
+def _critical(system: PhysicalSystem, lam: float) -> CriticalValues:
+    if not math.isfinite(lam) or lam <= 0.0:
+        return CriticalValues(lam, math.inf if lam <= 0 else 0.0,
+                              0.0 if lam <= 0 else math.inf)
+    return CriticalValues(lam, system.speed_for_lambda(lam), system.load_for_lambda(lam))
+
+
+def _label(stick_slip: bool) -> str:
+    return Verdict.STICK_SLIP.value if stick_slip else Verdict.STEADY_SLIDING.value
+
+
+def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
+                      rtol: float = 1e-6) -> DesignReport:
+    """Run the design procedure of the paper's Fig. 16 and check it by simulation.
+
+    Parameters
+    ----------
+    system : PhysicalSystem
+        The slider in SI units. When ``system.foundation`` is set, that existing foundation
+        is assessed (its ``zeta_eq = 1/(2 H_max)``, Eq. 32); otherwise the recommended
+        foundation of Eqs. (28)-(30) is assessed (``zeta_eq`` from Eq. 33).
+    lam_max : float
+        Upper end of the lambda range searched by simulation.
+    rtol : float
+        Relative tolerance of the simulated critical lambda.
+    """
+    slider = system.slider()
+    lam, zeta, gamma = slider.lam, slider.zeta, slider.gamma
+    recommended_dimless = optimal_foundation_fit(zeta)
+    recommended = foundation_to_physical(recommended_dimless, system.m, system.k)
+    if system.foundation is not None:
+        foundation = system.foundation
+        fd = foundation_to_dimensionless(foundation, system.m, system.k)
+        source = "existing foundation (given)"
+        from stickslip.analysis.absorber import equivalent_damping
+
+        zeta_eq = equivalent_damping(elastic_foundation(zeta, fd))
+        zeta_eq_source = "Eq. (32): 1 / (2 H_max) of this foundation"
+    else:
+        foundation, fd = recommended, recommended_dimless
+        source = "recommended: Fig. 16 procedure, Eqs. (28)-(30)"
+        zeta_eq = equivalent_damping_fit(zeta)
+        zeta_eq_source = "Eq. (33)"
+    rigid = rigid_base(zeta)
+    with_foundation = elastic_foundation(zeta, fd)
+    lam_hi = max(lam_max, 4.0 * lam)
+    crit = {
+        "rigid_theory": _critical(system, critical_lambda_approx(zeta)),
+        "rigid_exact": _critical(system, critical_lambda_exact(zeta)),
+        "rigid_simulation": _critical(
+            system, critical_lambdas(rigid, zeta, gamma, lam_max=lam_hi, rtol=rtol).lowest),
+        "foundation_theory": _critical(system, critical_lambda_approx(zeta_eq)),
+        "foundation_simulation": _critical(
+            system, critical_lambdas(with_foundation, zeta, gamma, lam_max=lam_hi, rtol=rtol).lowest),
+    }
+    sim_rigid = simulate(rigid, slider, record=False).verdict
+    sim_found = simulate(with_foundation, slider, record=False).verdict
+    verdicts = {
+        "rigid": {
+            "theory": _label(lam >= crit["rigid_theory"].lam),
+            "exact": _label(lam >= crit["rigid_exact"].lam),
+            "simulation": sim_rigid.value,
+        },
+        "foundation": {
+            "theory": _label(lam >= crit["foundation_theory"].lam),
+            "simulation": sim_found.value,
+        },
+    }
+    return DesignReport(system, lam, zeta, gamma, zeta_eq, zeta_eq_source, foundation, fd,
+                        source, recommended, verdicts, crit)
