@@ -213,7 +213,7 @@ class _System:
                         return -direction * max(abs(val), 1e-300)
                     return val
 
-                fn = g_masked
+                fn: Callable[..., float] = g_masked
             else:
                 fn = g
             fn.terminal = True  # type: ignore[attr-defined]
@@ -323,11 +323,7 @@ def oracle_simulate(
         t_e, k = min(hits)
         y_e = np.array(sol.y_events[k][0], dtype=np.float64)
         direction = system.events[mode][k][2]
-        if (
-            k not in masked
-            and t_e - t < RESTART_GUARD
-            and direction * system.event_rate(mode, k, y_e) <= 0.0
-        ):
+        if k not in masked and t_e - t < RESTART_GUARD and direction * system.event_rate(mode, k, y_e) <= 0.0:
             # spurious root at the restart time, crossing the wrong way: ignore it and
             # integrate again with this event held off during the guard window
             n_ignored += 1

@@ -41,9 +41,10 @@ def main(
 
 
 def _register() -> None:
-    from stickslip.cli import simulate_command
+    from stickslip.cli import design_command, simulate_command
 
     simulate_command.register(app)
+    design_command.register(app)
     try:
         from stickslip.cli import absorber_commands
     except ImportError:  # the absorber commands live in their own module

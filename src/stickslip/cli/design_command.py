@@ -1,0 +1,127 @@
+"""``stickslip design``: the paper's design procedure (Fig. 16) in physical units."""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from stickslip.cli.common import BadInput, print_json
+from stickslip.cli.units import QUANTITIES, to_si
+
+REQUIRED = ("m", "k", "mu_s", "mu_k", "load", "speed")
+FOUNDATION = ("m_a", "k_a", "c_a")
+
+
+def _opt(name: str) -> Any:
+    _, unit, what = QUANTITIES[name]
+    hint = f" [{unit}]" if unit else ""
+    return typer.Option(f"--{name.replace('_', '-')}", help=f"{what}{hint}; units allowed, e.g. '2 kg'")
+
+
+def read_config(path: Path) -> dict[str, Any]:
+    """Read a TOML file whose keys are the quantity names (``m``, ``k``, ``mu_s``, ...)."""
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise BadInput(f"--config {str(path)!r} does not exist") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise BadInput(f"--config {str(path)!r} is not valid TOML: {exc}") from None
+    section = data.get("system", data)
+    unknown = sorted(set(section) - set(QUANTITIES))
+    if unknown:
+        raise BadInput(f"--config {str(path)!r}: unknown keys {', '.join(unknown)}")
+    return dict(section)
+
+
+def collect_inputs(flags: dict[str, Any], config: Path | None) -> dict[str, float]:
+    """Merge the TOML file (if any) and the flags (flags win), convert to SI, check presence."""
+    merged: dict[str, Any] = read_config(config) if config is not None else {}
+    merged.update({k: v for k, v in flags.items() if v is not None})
+    missing = [f"--{k.replace('_', '-')}" for k in REQUIRED if k not in merged]
+    if missing:
+        raise BadInput(f"missing {', '.join(missing)} (give them as flags or in --config)")
+    given = [k for k in FOUNDATION if k in merged]
+    if given and len(given) != len(FOUNDATION):
+        raise BadInput("an existing foundation needs all of --m-a, --k-a and --c-a")
+    values = {k: to_si(k, v) for k, v in merged.items()}
+    values.setdefault("c", 0.0)
+    return values
+
+
+def design(
+    m: Annotated[str | None, _opt("m")] = None,
+    k: Annotated[str | None, _opt("k")] = None,
+    c: Annotated[str | None, _opt("c")] = None,
+    mu_s: Annotated[str | None, _opt("mu_s")] = None,
+    mu_k: Annotated[str | None, _opt("mu_k")] = None,
+    load: Annotated[str | None, _opt("load")] = None,
+    speed: Annotated[str | None, _opt("speed")] = None,
+    m_a: Annotated[str | None, _opt("m_a")] = None,
+    k_a: Annotated[str | None, _opt("k_a")] = None,
+    c_a: Annotated[str | None, _opt("c_a")] = None,
+    config: Annotated[
+        Path | None, typer.Option("--config", help="TOML file with the same keys (m, k, ...)")
+    ] = None,
+    json: Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")] = False,
+) -> None:
+    """Will it stick-slip, at which speed or load, and which foundation stops it (Fig. 16)."""
+    from stickslip.analysis.design import design_foundation
+    from stickslip.model.physical import PhysicalFoundation, PhysicalSystem
+
+    flags = {"m": m, "k": k, "c": c, "mu_s": mu_s, "mu_k": mu_k, "load": load, "speed": speed,
+             "m_a": m_a, "k_a": k_a, "c_a": c_a}
+    v = collect_inputs(flags, config)
+    foundation = None
+    if "m_a" in v:
+        foundation = PhysicalFoundation(v["m_a"], v["k_a"], v["c_a"])
+    system = PhysicalSystem(m=v["m"], k=v["k"], c=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"],
+                            load=v["load"], speed=v["speed"], foundation=foundation)
+    report = design_foundation(system)
+    payload = report.to_dict()
+    if json:
+        print_json(payload)
+        return
+    typer.echo(format_report(payload))
+
+
+def format_report(p: dict[str, Any]) -> str:
+    """Plain-text table of the design report."""
+    def g(x: float | None, unit: str = "") -> str:
+        return "-" if x is None else f"{x:.4g}{(' ' + unit) if unit else ''}"
+
+    f = p["foundation"]
+    r = p["recommended_foundation"]
+    lines = [
+        f"dimensionless groups  lambda={g(p['lambda'])}  zeta={g(p['zeta'])}  gamma={g(p['gamma'])}"
+        f"  zeta_eq={g(p['zeta_eq'])} ({p['zeta_eq_source']})",
+        "",
+        f"{'':24}{'theory':>16}{'exact Eq. 36':>16}{'simulation':>16}",
+        f"{'rigid base':24}{p['verdict']['rigid']['theory']:>16}{p['verdict']['rigid']['exact']:>16}"
+        f"{p['verdict']['rigid']['simulation']:>16}",
+        f"{'with foundation':24}{p['verdict']['foundation']['theory']:>16}{'':>16}"
+        f"{p['verdict']['foundation']['simulation']:>16}",
+        "",
+        "stick-slip below the critical belt speed / above the critical normal load:",
+    ]
+    for key in ("rigid_theory", "rigid_exact", "rigid_simulation", "foundation_theory",
+                "foundation_simulation"):
+        lines.append(
+            f"  {key:24} lambda_c={g(p['critical_lambda'][key]):>10}  "
+            f"V_c={g(p['critical_speed'][key], 'm/s'):>14}  W_c={g(p['critical_load'][key], 'N'):>12}"
+        )
+    lines += [
+        "",
+        f"foundation assessed ({f['source']}): m_a={g(f['m_a'], 'kg')}, k_a={g(f['k_a'], 'N/m')}, "
+        f"c_a={g(f['c_a'], 'N s/m')}  (M={g(f['M'])}, K={g(f['K'])}, zeta_a={g(f['zeta_a'])})",
+        f"recommended foundation (Eqs. 28-30): m_a={g(r['m_a'], 'kg')}, k_a={g(r['k_a'], 'N/m')}, "
+        f"c_a={g(r['c_a'], 'N s/m')}",
+    ]
+    return "\n".join(lines)
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``design`` command to ``app``."""
+    app.command("design")(design)
