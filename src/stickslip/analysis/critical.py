@@ -8,6 +8,7 @@ on the certified verdict to a relative tolerance.
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, field
 
@@ -115,7 +116,7 @@ def critical_lambdas(
         else:
             known.append((float(lam), state))
     crossings = []
-    for (lo, s_lo), (hi, s_hi) in zip(known, known[1:], strict=False):
+    for (lo, s_lo), (hi, s_hi) in itertools.pairwise(known):
         if s_lo == s_hi:
             continue
         while hi - lo > rtol * hi:
