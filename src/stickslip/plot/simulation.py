@@ -92,7 +92,7 @@ def time_history_plot(
     ax.set_xlabel(r"dimensionless time $\tau$")
     ax.set_ylabel(f"${symbol}$")
     ax.set_xlim(hist.t[0], hist.t[-1])
-    ax.legend(loc="upper right", fontsize="small", frameon=False)
+    ax.legend(loc="upper right", fontsize="small", framealpha=0.85)
     return artists
 
 

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 from matplotlib.figure import Figure
 
-from stickslip.analysis.simulation import SimulationResult, simulate
+from stickslip.analysis.simulation import SimulationResult, Verdict, simulate
 from stickslip.analysis.theory import optimal_foundation_fit
 from stickslip.model import Slider, elastic_foundation
 from stickslip.plot.simulation import phase_portrait_plot, time_history_plot
@@ -16,7 +16,7 @@ FIG7_ZETA = 0.1
 FIG7_LAMS = (1.0, 3.0, 6.0, 12.0)
 FIG7_T_MAX = 150.0
 FIG12_ZETA = 0.01
-FIG12_T_MAX = 100.0
+FIG12_T_MAX = 300.0
 
 
 @dataclass(frozen=True)
@@ -27,16 +27,18 @@ class Run:
     k_scale: float
     lam: float
     zeta: float
-    result: SimulationResult
+    result: SimulationResult  # the drawn window, simulated up to its end
+    verdict: Verdict  # certified verdict of the same case (default horizon)
 
 
 def run_case(lam: float, zeta: float, k_scale: float, t_max: float, gamma: float = 2.0) -> Run:
     """Simulate the fitted optimal foundation (Eqs. 28-30) with ``K`` scaled by ``k_scale``."""
-    foundation = optimal_foundation_fit(zeta).scaled(k_scale)
-    result = simulate(elastic_foundation(zeta, foundation), Slider(lam, zeta, gamma),
-                      t_max=t_max, run_to_t_max=True)
+    structure = elastic_foundation(zeta, optimal_foundation_fit(zeta).scaled(k_scale))
+    slider = Slider(lam, zeta, gamma)
+    result = simulate(structure, slider, t_max=t_max, run_to_t_max=True)
+    verdict = simulate(structure, slider, record=False).verdict
     tag = {1.0: "K_opt", 2.0: "2 K_opt", 0.5: "K_opt/2"}.get(k_scale, f"{k_scale:g} K_opt")
-    return Run(f"{tag}, lambda={lam:g}", k_scale, lam, zeta, result)
+    return Run(f"{tag}, lambda={lam:g}", k_scale, lam, zeta, result, verdict)
 
 
 def fig7_runs() -> list[Run]:
@@ -59,7 +61,7 @@ def fig7_figure(runs: list[Run], n_points: int) -> Figure:
             run = next(r for r in runs if r.lam == lam and r.k_scale == scale)
             ax = axes[row, col]
             time_history_plot(run.result, ax=ax, n_points=n_points, show_foundation=False)
-            ax.set_title(f"{run.label}: {run.result.verdict.value}", fontsize="small")
+            ax.set_title(f"{run.label}: {run.verdict.value}", fontsize="small")
     fig.suptitle(r"Fig. 7: $\xi(\tau)$ at $\zeta$ = 0.1, $\gamma$ = 2; "
                  r"(a) optimal foundation, (b) $K = 2K_{opt}$")
     return fig
@@ -73,7 +75,7 @@ def fig12_figure(runs: list[Run], lam: float, n_points: int) -> Figure:
         run = next(r for r in runs if r.lam == lam and r.k_scale == scale)
         time_history_plot(run.result, ax=axes[0, col], quantity="position", n_points=n_points)
         time_history_plot(run.result, ax=axes[1, col], quantity="velocity", n_points=n_points)
-        axes[0, col].set_title(f"({'ab'[col]}) {run.label}: {run.result.verdict.value}",
+        axes[0, col].set_title(f"({'ab'[col]}) {run.label}: {run.verdict.value}",
                                fontsize="small")
     number = 12 if lam == 1.0 else 13
     fig.suptitle(f"Fig. {number}: both masses at $\\lambda$ = {lam:g}, $\\zeta$ = 0.01")
@@ -87,7 +89,7 @@ def phase_figure(runs: list[Run], lam: float, n_points: int) -> Figure:
     for col, scale in enumerate((0.5, 2.0)):
         run = next(r for r in runs if r.lam == lam and r.k_scale == scale)
         phase_portrait_plot(run.result, ax=axes[col], n_points=n_points)
-        axes[col].set_title(f"({'ab'[col]}) {run.label}: {run.result.verdict.value}",
+        axes[col].set_title(f"({'ab'[col]}) {run.label}: {run.verdict.value}",
                             fontsize="small")
     number = 14 if lam == 1.0 else 15
     fig.suptitle(f"Fig. {number}: phase plane at $\\lambda$ = {lam:g}, $\\zeta$ = 0.01")
