@@ -93,9 +93,12 @@ def write_markdown(report: Report) -> Path:
         "| # | source | the paper says | we measure | verdict |",
         "| --- | --- | --- | --- | --- |",
     ]
+    def cell(text: str) -> str:
+        return text.replace("|", "\\|")
+
     for i, c in enumerate(report.claims, 1):
         lines.append(
-            f"| {i} | {c.source} | {c.statement} | {c.measured} | **{c.verdict}** |"
+            f"| {i} | {cell(c.source)} | {cell(c.statement)} | {cell(c.measured)} | **{c.verdict}** |"
         )
     lines += ["", "## Figures", ""]
     for fig in report.figures:

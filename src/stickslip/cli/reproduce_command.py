@@ -1,0 +1,56 @@
+"""``stickslip reproduce``: the paper end to end, figures and a report."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from stickslip.cli.common import BadInput, print_json
+
+
+def reproduce(
+    out: Annotated[Path, typer.Option("--out", help="folder for figures, data and the report")] = Path(
+        "results"),
+    quality: Annotated[
+        str, typer.Option("--quality", help="tiny (seconds), default (< 3 min) or high (dense maps)")
+    ] = "default",
+    json: Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")] = False,
+) -> None:
+    """Recompute every figure and claim of the paper; write report.md and report.html."""
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from stickslip.reproduction.quality import quality as get_quality
+    from stickslip.reproduction.run import reproduce as run_reproduction
+
+    get_quality(quality)
+    if out.exists() and not out.is_dir():
+        raise BadInput(f"--out {str(out)!r} exists and is not a folder")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise BadInput(f"--out {str(out)!r} cannot be created: {exc.strerror}") from None
+
+    columns = (TextColumn("{task.description}"), BarColumn(), TextColumn("{task.percentage:>3.0f}%"),
+               TimeElapsedColumn())
+    with Progress(*columns, transient=False, disable=json) as bar:
+        task = bar.add_task("starting (the first run compiles the engine, about a minute)", total=1)
+
+        def progress(step: str, done: int, total: int) -> None:
+            bar.update(task, description=step, completed=done, total=max(total, 1))
+
+        report = run_reproduction(out, quality, progress)
+    if json:
+        print_json(report.to_dict())
+        return
+    counts = ", ".join(f"{v} {k}" for k, v in sorted(report.counts().items()))
+    typer.echo(f"{len(report.figures)} figures and {len(report.claims)} claims ({counts}) "
+               f"in {report.seconds:.0f} s")
+    typer.echo(f"report: {report.html_path} (also {report.markdown_path.name}, report.json)")
+    typer.echo(f"figures: {out / 'figures'}   data: {out / 'data'}")
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``reproduce`` command to ``app``."""
+    app.command("reproduce")(reproduce)
