@@ -41,15 +41,18 @@ def main(
 
 
 def _register() -> None:
-    from stickslip.cli import design_command, simulate_command
+    from stickslip.cli import (
+        absorber_commands,
+        app_command,
+        design_command,
+        map_commands,
+        reproduce_command,
+        simulate_command,
+    )
 
-    simulate_command.register(app)
-    design_command.register(app)
-    try:
-        from stickslip.cli import absorber_commands
-    except ImportError:  # the absorber commands live in their own module
-        return
-    absorber_commands.register(app)
+    for module in (simulate_command, absorber_commands, map_commands, design_command,
+                   reproduce_command, app_command):
+        module.register(app)
 
 
 _register()

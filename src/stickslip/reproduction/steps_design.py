@@ -79,7 +79,7 @@ def stick_slip_optimum_claim(zetas: tuple[float, ...] = (0.01, 0.1), lam_max: fl
     for zeta in zetas:
         r = optimal_foundation_stick_slip(zeta, lam_max=lam_max)
         data[f"{zeta:g}"] = r.to_dict()
-        best = ">= %g (none found)" % lam_max if math.isinf(r.lambda_crit) else f"{r.lambda_crit:.3g}"
+        best = f">= {lam_max:g} (none found)" if math.isinf(r.lambda_crit) else f"{r.lambda_crit:.3g}"
         rows.append(
             f"zeta={zeta:g}: absorber optimum lambda_c = {r.reference_lambda_crit:.3g}; best "
             f"foundation (M={r.foundation.mass_ratio:.3g}, K={r.foundation.stiffness_ratio:.3g} = "
