@@ -1,0 +1,991 @@
+"""Absorber theory: frequency response, its exact peak, optimal tuning, equivalent damping.
+
+The elastic foundation of the paper's Fig. 1 acts as a dynamic vibration absorber (DVA).
+Harik and Issa (paper ref. [20], Fig. 3) drive the slider with a harmonic force
+``f sin(omega t)`` instead of friction; the dimensionless receptance of DOF 0 is
+
+    H(Omega) = k |X| / f = |[(Stiffness - Omega^2 Mass + i Omega Damping)^-1]_00|,
+
+with ``Omega = omega / omega_n`` (paper Fig. 5), for any :class:`~stickslip.model.Structure`.
+This module computes
+
+* ``H(Omega)`` and its peak ``H_max`` exactly: every local maximum is a root of
+  ``d|H|^2/dOmega``, bracketed and refined with Brent's method (never read off a grid);
+* the optimal foundation ``(M, K, zeta_a)`` minimising ``H_max`` (a minimax problem), to be
+  compared with the paper's fitted Eqs. (28)-(31);
+* the equivalent damping ratio ``zeta_eq = 1 / (2 H_max)`` of Eq. (32).
+
+All quantities are dimensionless (Section 2.3 definitions: ``M = m_a/m``,
+``K = sqrt(k_a/k)``, ``zeta = c/(2 sqrt(mk))``, ``zeta_a = c_a/(2 sqrt(mk))``).
+
+The optimiser searches over the logarithms of positive parameters with bounds. For the
+foundation the default mass-ratio bounds are ``0.01 <= M <= 100``
+(:data:`DEFAULT_MASS_BOUNDS`), ``1e-3 <= K <= 1e3`` and ``1e-4 <= zeta_a <= 1e3``; a result
+on a bound is flagged (``at_bound``). With ``M`` free the optimum is interior for
+``0 <= zeta <= 0.4``: ``H_max`` grows again for large ``M`` (the heavy foundation stops
+moving and the slider sees a rigid base) and for small ``M`` (the massless foundation is
+only a spring and a dashpot in series).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass, field
+from functools import lru_cache
+from typing import Any, ClassVar
+
+import numpy as np
+from numpy.polynomial import polynomial as P
+from numpy.typing import ArrayLike, NDArray
+from scipy.optimize import brentq, minimize
+
+from stickslip.analysis.theory import (
+    equivalent_damping_fit,
+    optimal_foundation_fit,
+    peak_response_fit,
+)
+from stickslip.model._validate import non_negative, positive
+from stickslip.model.parameters import Foundation
+from stickslip.model.structure import Structure, elastic_foundation, rigid_base
+
+FloatArray = NDArray[np.float64]
+
+DEFAULT_MASS_BOUNDS: tuple[float, float] = (0.01, 100.0)
+"""Default search interval of the mass ratio ``M = m_a/m`` (dimensionless)."""
+STIFFNESS_BOUNDS: tuple[float, float] = (1e-3, 1e3)
+"""Search interval of the stiffness ratio ``K = sqrt(k_a/k)`` (dimensionless)."""
+DAMPING_BOUNDS: tuple[float, float] = (1e-4, 1e3)
+"""Search interval of the foundation damping ratio ``zeta_a`` (dimensionless)."""
+MAX_TUNING_ZETA = 0.9
+"""Largest primary damping ratio accepted by the tuning (the FRF itself takes any zeta)."""
+
+# Poles with |Re p| below this fraction of |p| count as undamped (an infinite peak).
+_UNDAMPED = 1e-13
+
+
+# ---------------------------------------------------------------------------------------------
+# Frequency response
+# ---------------------------------------------------------------------------------------------
+
+
+def _dynamic_solution(
+    structure: Structure, omega: FloatArray
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+    """``H = [D^-1]_00`` and ``dH/dOmega`` at every ``omega`` (complex, vectorised)."""
+    w = omega[:, None, None]
+    dyn = structure.stiffness - w**2 * structure.mass + 1j * w * structure.damping
+    e0 = np.zeros((omega.size, structure.n_dof, 1), dtype=np.complex128)
+    e0[:, 0, 0] = 1.0
+    try:
+        x = np.linalg.solve(dyn, e0)[:, :, 0]
+    except np.linalg.LinAlgError:  # exactly at an undamped resonance: H is infinite there
+        x = np.empty((omega.size, structure.n_dof), dtype=np.complex128)
+        for k in range(omega.size):
+            try:
+                x[k] = np.linalg.solve(dyn[k], e0[k])[:, 0]
+            except np.linalg.LinAlgError:
+                x[k] = complex(math.inf, 0.0)
+    h = np.asarray(x[:, 0], dtype=np.complex128)
+    # D is complex symmetric, so e0^T D^-1 = x^T and dH/dOmega = -x^T D'(Omega) x.
+    d_dyn = -2.0 * w * structure.mass + 1j * structure.damping
+    with np.errstate(invalid="ignore"):  # inf * 0 at an undamped resonance
+        dh = np.asarray(-np.einsum("ki,kij,kj->k", x, d_dyn, x), dtype=np.complex128)
+    return h, dh
+
+
+def receptance(structure: Structure, omega: ArrayLike) -> NDArray[np.complex128]:
+    """Complex receptance of DOF 0, ``[(Stiffness - Omega^2 Mass + i Omega Damping)^-1]_00``.
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless matrices; the force acts on DOF 0 (the slider, paper Fig. 3).
+    omega : array_like
+        Forcing frequency ratio ``Omega = omega / omega_n``, dimensionless, >= 0.
+
+    Returns
+    -------
+    ndarray of complex
+        ``k X / f`` (dimensionless), same shape as ``omega``.
+    """
+    om = np.asarray(omega, dtype=np.float64)
+    h, _ = _dynamic_solution(structure, om.reshape(-1))
+    return h.reshape(om.shape)
+
+
+def frequency_response(structure: Structure, omega: ArrayLike) -> FloatArray:
+    """Amplitude ``H(Omega) = k|X|/f`` of the slider under a harmonic force (paper Fig. 5).
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless matrices; the force acts on DOF 0.
+    omega : array_like
+        Forcing frequency ratio ``Omega = omega / omega_n``, dimensionless.
+
+    Returns
+    -------
+    ndarray
+        ``H(Omega)``, dimensionless, same shape as ``omega``.
+    """
+    return np.abs(receptance(structure, omega))
+
+
+def _squared_slope(structure: Structure, omega: FloatArray) -> FloatArray:
+    """``d|H|^2/dOmega = 2 Re(conj(H) dH/dOmega)`` (vectorised, exact)."""
+    h, dh = _dynamic_solution(structure, omega)
+    return 2.0 * np.real(np.conj(h) * dh)
+
+
+def _state_eigenvalues(mass: FloatArray, damping: FloatArray, stiffness: FloatArray) -> Any:
+    n = mass.shape[0]
+    if n == 0:
+        return np.zeros(0, dtype=np.complex128)
+    m_inv = np.linalg.inv(mass)
+    a = np.block([[np.zeros((n, n)), np.eye(n)], [-m_inv @ stiffness, -m_inv @ damping]])
+    return np.linalg.eigvals(a)
+
+
+def _abs2_polynomial(roots: NDArray[np.complex128]) -> FloatArray:
+    """Coefficients (ascending in Omega) of ``prod |i Omega - r|^2``."""
+    coef = np.array([1.0])
+    for r in roots:
+        coef = P.polymul(coef, [abs(r) ** 2, -2.0 * r.imag, 1.0])
+    return np.asarray(coef, dtype=np.float64)
+
+
+@dataclass(frozen=True)
+class ResponsePeak:
+    """Peak of the frequency response ``H(Omega)`` (paper Fig. 5, ``H_max``).
+
+    Unpacks as ``h_max, omega_peak = peak``.
+
+    Attributes
+    ----------
+    h_max : float
+        ``max H(Omega)`` over ``Omega >= 0``, dimensionless; ``inf`` for an undamped
+        resonance.
+    omega_peak : float
+        Frequency ratio ``Omega`` of that maximum, dimensionless.
+    local_maxima : tuple of (float, float)
+        ``(Omega, H)`` of every local maximum, in increasing ``Omega`` (``Omega = 0``
+        included when the static response is a local maximum).
+    """
+
+    h_max: float
+    omega_peak: float
+    local_maxima: tuple[tuple[float, float], ...]
+
+    def __iter__(self) -> Iterator[float]:
+        return iter((self.h_max, self.omega_peak))
+
+    @property
+    def equivalent_damping(self) -> float:
+        """``zeta_eq = 1 / (2 H_max)``, Eq. (32); 0 for an infinite peak."""
+        return 0.0 if math.isinf(self.h_max) else 1.0 / (2.0 * self.h_max)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary with the command-line keys ``H_max`` and ``Omega_peak``."""
+        return {
+            "H_max": self.h_max,
+            "Omega_peak": self.omega_peak,
+            "zeta_eq": self.equivalent_damping,
+            "local_maxima": [{"Omega": w, "H": h} for w, h in self.local_maxima],
+        }
+
+
+def _bracketing_grid(
+    poles: NDArray[np.complex128], zeros: NDArray[np.complex128], candidates: FloatArray
+) -> FloatArray:
+    """Frequencies between which ``d|H|^2/dOmega`` changes sign at most once.
+
+    Three ingredients, each sufficient in the generic case and together robust:
+    the approximate stationary points (real roots of the critical-point polynomial) and
+    the midpoints between them; points around each pole and zero spaced by a fraction of
+    its half-power width ``|Re p|``; a uniform grid up to twice the largest ``|p|``.
+    """
+    scale = float(max(np.abs(poles).max(initial=0.0), np.abs(zeros).max(initial=0.0), 1e-300))
+    top = 2.0 * scale
+    pieces = [np.linspace(0.0, top, 65)]
+    t = np.arange(-4.0, 4.01, 0.5)
+    for r in np.concatenate([poles, zeros]):
+        if r.imag > 0.0:
+            pieces.append(r.imag + abs(r.real) * t)
+    stationary = np.sort(np.concatenate([[0.0], candidates, [top]]))
+    pieces.append(0.5 * (stationary[1:] + stationary[:-1]))
+    pieces.append(candidates * (1.0 + 1e-7))
+    pieces.append(candidates * (1.0 - 1e-7))
+    grid = np.unique(np.concatenate(pieces))
+    return grid[(grid >= 0.0) & (grid <= top)]
+
+
+@dataclass(frozen=True)
+class _Stationary:
+    """Poles, zeros and approximate stationary points of ``|H|^2`` of one structure."""
+
+    poles: NDArray[np.complex128]
+    zeros: NDArray[np.complex128]
+    candidates: FloatArray
+    undamped: float | None  # frequency of an uncancelled undamped resonance, if any
+
+
+def _stationary(structure: Structure) -> _Stationary:
+    """Candidate stationary points of ``|H(Omega)|^2`` from its poles and zeros.
+
+    ``H = [D^-1]_00 = det D_sub / det D``, so the poles ``p`` are the eigenvalues of the
+    structure and the zeros ``z`` those of the structure with DOF 0 held fixed, and
+    ``|H|^2 = c prod|i Omega - z|^2 / prod|i Omega - p|^2 = c A(Omega) / B(Omega)``. Its
+    stationary points are the real roots of the polynomial ``A' B - A B'``: all of them,
+    which is what makes the peak search complete.
+    """
+    poles = _state_eigenvalues(structure.mass, structure.damping, structure.stiffness)
+    zeros = _state_eigenvalues(
+        structure.mass[1:, 1:], structure.damping[1:, 1:], structure.stiffness[1:, 1:]
+    )
+    for p in poles:
+        if p.imag > 0.0 and abs(p.real) <= _UNDAMPED * abs(p):
+            cancelled = zeros.size > 0 and np.min(np.abs(zeros - p)) <= 1e-8 * abs(p)
+            if not cancelled:
+                return _Stationary(poles, zeros, np.zeros(0), float(p.imag))
+    numerator = _abs2_polynomial(zeros)
+    denominator = _abs2_polynomial(poles)
+    critical = P.polysub(
+        P.polymul(P.polyder(numerator), denominator), P.polymul(numerator, P.polyder(denominator))
+    )
+    roots = P.polyroots(critical) if np.count_nonzero(critical) > 1 else np.zeros(0)
+    scale = float(np.abs(poles).max())
+    # near-double roots (merging peaks) split into pairs with a small imaginary part
+    keep = (roots.real > 1e-6 * scale) & (np.abs(roots.imag) <= 1e-3 * np.abs(roots))
+    return _Stationary(poles, zeros, np.sort(roots.real[keep]), None)
+
+
+def _local_maxima_estimate(structure: Structure) -> tuple[FloatArray, FloatArray]:
+    """``(Omega_i, H_i)`` of every local maximum, from the polynomial stationary points.
+
+    Between consecutive stationary points ``H`` is monotone, so a stationary point is a
+    maximum when ``H`` there is at least ``H`` at its neighbours (``H -> 0`` as
+    ``Omega -> inf``). Cheap; :func:`response_peak` gives the bracketed, refined values.
+    """
+    st = _stationary(structure)
+    if st.undamped is not None:
+        return np.array([st.undamped]), np.array([math.inf])
+    om = np.concatenate([[0.0], st.candidates])
+    h = frequency_response(structure, om)
+    left = np.concatenate([[-math.inf], h[:-1]])
+    right = np.concatenate([h[1:], [0.0]])
+    is_max = (h >= left) & (h >= right)
+    return om[is_max], h[is_max]
+
+
+def _peak_estimate(structure: Structure) -> float:
+    """``H_max`` from :func:`_local_maxima_estimate`: the optimiser's objective.
+
+    An error ``d`` in a stationary point changes ``H`` there by ``O(d^2)``, so this agrees
+    with :func:`response_peak` to rounding.
+    """
+    return float(_local_maxima_estimate(structure)[1].max())
+
+
+def response_peak(structure: Structure) -> ResponsePeak:
+    """Exact peak ``H_max`` of the frequency response and where it occurs (paper Fig. 5).
+
+    Every local maximum of ``H(Omega)`` is a root of ``d|H|^2/dOmega``. Candidate stationary
+    points come from the poles ``p`` and zeros ``z`` of the receptance
+    (``|H|^2 = c prod|i Omega - z|^2 / prod|i Omega - p|^2``, a rational function whose
+    critical points are the real roots of a polynomial); together with points around
+    every pole and zero they bracket each sign change of the exact slope, computed from the
+    matrices, which Brent's method then refines to about ``1e-13`` in ``Omega``.
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless matrices; the harmonic force acts on DOF 0.
+
+    Returns
+    -------
+    ResponsePeak
+        ``H_max`` and ``Omega_peak`` (dimensionless) and every local maximum. For the 1DOF
+        system this gives ``Omega_peak = sqrt(1 - 2 zeta^2)``,
+        ``H_max = 1 / (2 zeta sqrt(1 - zeta^2))`` for ``zeta < 1/sqrt(2)``, else
+        ``Omega_peak = 0``, ``H_max = 1``.
+    """
+    st = _stationary(structure)
+    if st.undamped is not None:
+        return ResponsePeak(math.inf, st.undamped, ((st.undamped, math.inf),))
+    grid = _bracketing_grid(st.poles, st.zeros, st.candidates)
+    slope = _squared_slope(structure, grid)
+
+    def scalar_slope(om: float) -> float:
+        return float(_squared_slope(structure, np.array([om]))[0])
+
+    maxima: list[float] = []
+    if slope[1] < 0.0:
+        maxima.append(0.0)
+    sign = np.sign(slope[1:])
+    nonzero = np.flatnonzero(sign)
+    for a, b in itertools.pairwise(nonzero):
+        if sign[a] > 0.0 and sign[b] < 0.0:
+            if b > a + 1:  # the slope vanished exactly on a grid point in between
+                maxima.append(float(grid[2 + a]))
+                continue
+            lo, hi = grid[1 + a], grid[1 + b]
+            root = brentq(scalar_slope, lo, hi, xtol=1e-15, rtol=4.0 * np.finfo(float).eps)
+            maxima.append(float(root))
+    if not maxima:  # monotone decreasing from the static value
+        maxima.append(0.0)
+    om = np.array(maxima)
+    h = frequency_response(structure, om)
+    local = tuple((float(w), float(v)) for w, v in zip(om, h, strict=True))
+    best = int(np.argmax(h))
+    return ResponsePeak(float(h[best]), float(om[best]), local)
+
+
+def equivalent_damping(structure: Structure) -> float:
+    """Equivalent damping ratio ``zeta_eq = 1 / (2 H_max)``, Eq. (32), for any structure.
+
+    The damping ratio of the 1DOF system of the paper's Fig. 9 whose small-damping peak
+    ``1 / (2 zeta_eq)`` equals the exact ``H_max`` of ``structure`` (tuned or not). For the
+    fitted optimum the paper's Eq. (33) approximates it
+    (:func:`stickslip.analysis.theory.equivalent_damping_fit`).
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless matrices; the harmonic force acts on DOF 0.
+
+    Returns
+    -------
+    float
+        ``zeta_eq``, dimensionless; 0 for an undamped resonance (infinite peak).
+    """
+    return response_peak(structure).equivalent_damping
+
+
+# ---------------------------------------------------------------------------------------------
+# Minimax tuning
+# ---------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class PeakMinimum:
+    """Result of :func:`minimise_peak`.
+
+    Attributes
+    ----------
+    params : ndarray
+        The optimal parameters (the builder's arguments).
+    peak : ResponsePeak
+        The frequency-response peak of the optimal structure.
+    at_bound : tuple of bool
+        Whether each parameter ended within ``1e-6`` (relative, in log scale) of a bound.
+    n_evaluations : int
+        Number of structures built.
+    """
+
+    params: FloatArray
+    peak: ResponsePeak
+    at_bound: tuple[bool, ...]
+    n_evaluations: int
+
+
+class _PeakProblem:
+    """The minimax problem on ``y = log x``: peak values and their gradients, counted."""
+
+    def __init__(
+        self, build: Callable[[FloatArray], Structure], lo: FloatArray, hi: FloatArray
+    ) -> None:
+        self.build, self.lo, self.hi = build, lo, hi
+        self.count = 0
+
+    def structure(self, y: FloatArray) -> Structure | None:
+        self.count += 1
+        try:
+            return self.build(np.exp(np.clip(y, self.lo, self.hi)))
+        except ValueError:
+            return None
+
+    def objective(self, y: FloatArray) -> float:
+        st = self.structure(y)
+        return math.inf if st is None else _peak_estimate(st)
+
+    def peaks(self, y: FloatArray) -> tuple[FloatArray, FloatArray]:
+        st = self.structure(y)
+        if st is None:
+            return np.zeros(0), np.zeros(0)
+        return _local_maxima_estimate(st)
+
+    def peak_gradients(self, y: FloatArray, omegas: FloatArray, step: float = 1e-6) -> FloatArray:
+        """``d H_i / d y`` at fixed ``Omega_i`` (envelope theorem), central differences."""
+        grad = np.zeros((omegas.size, y.size))
+        for j in range(y.size):
+            e = np.zeros(y.size)
+            e[j] = step
+            plus, minus = self.structure(y + e), self.structure(y - e)
+            if plus is None or minus is None:
+                return np.full((omegas.size, y.size), np.nan)
+            grad[:, j] = (
+                frequency_response(plus, omegas) - frequency_response(minus, omegas)
+            ) / (2.0 * step)
+        return grad
+
+
+def _nelder_mead(
+    problem: _PeakProblem, y0: FloatArray, size: float, xatol: float, fatol: float
+) -> tuple[FloatArray, float]:
+    lo, hi = problem.lo, problem.hi
+    simplex = np.clip(np.vstack([y0, y0 + size * np.eye(y0.size)]), lo, hi)
+    # a start on an upper bound steps inwards instead of collapsing the simplex
+    simplex[1:] = np.where(simplex[1:] == y0, y0 - size, simplex[1:])
+    options = {"xatol": xatol, "fatol": fatol, "maxfev": 400 * y0.size, "initial_simplex": simplex}
+    res = minimize(
+        problem.objective,
+        y0,
+        method="Nelder-Mead",
+        bounds=list(zip(lo, hi, strict=True)),
+        options=options,
+    )
+    return np.asarray(res.x, dtype=np.float64), float(res.fun)
+
+
+def _equal_peak_polish(problem: _PeakProblem, y0: FloatArray) -> tuple[FloatArray, float]:
+    """Smooth reformulation: minimise ``t`` subject to ``t >= H_i(y)`` for every peak ``i``.
+
+    Each local maximum ``H_i`` is a smooth function of the parameters while it exists (its
+    gradient is that of ``H`` at fixed ``Omega_i``, by the envelope theorem), so SLSQP
+    converges to the equal-peak optimum where Nelder-Mead crawls along the ridge. Peaks are
+    matched by frequency order; their number is the one at ``y0``.
+    """
+    om0, h0 = problem.peaks(y0)
+    m = om0.size
+    if m == 0:
+        return y0, math.inf
+    cache: dict[bytes, tuple[FloatArray, FloatArray]] = {}
+
+    def peaks(y: FloatArray) -> tuple[FloatArray, FloatArray]:
+        key = y.tobytes()
+        if key not in cache:
+            om, h = problem.peaks(y)
+            if om.size == 0:
+                om, h = om0, np.full(m, math.inf)
+            elif om.size != m:  # a peak appeared or vanished: keep the m highest
+                keep = np.sort(np.argsort(h)[::-1][:m])
+                om, h = om[keep], h[keep]
+                if om.size < m:
+                    om = np.pad(om, (0, m - om.size), mode="edge")
+                    h = np.pad(h, (0, m - h.size), mode="edge")
+            cache[key] = (om, h)
+        return cache[key]
+
+    def cons(z: FloatArray) -> FloatArray:
+        return z[-1] - peaks(z[:-1])[1]
+
+    def cons_jac(z: FloatArray) -> FloatArray:
+        y = z[:-1]
+        grad = problem.peak_gradients(y, peaks(y)[0])
+        return np.hstack([-grad, np.ones((m, 1))])
+
+    z0 = np.append(y0, h0.max())
+    bounds = [*zip(problem.lo, problem.hi, strict=True), (None, None)]
+    e_t = np.zeros(z0.size)
+    e_t[-1] = 1.0
+    with np.errstate(invalid="ignore"):
+        res = minimize(
+            lambda z: z[-1],
+            z0,
+            jac=lambda z: e_t,
+            method="SLSQP",
+            bounds=bounds,
+            constraints=[{"type": "ineq", "fun": cons, "jac": cons_jac}],
+            options={"ftol": 1e-16, "maxiter": 200},
+        )
+    y = np.clip(np.asarray(res.x[:-1], dtype=np.float64), problem.lo, problem.hi)
+    return y, problem.objective(y)
+
+
+def minimise_peak(
+    build: Callable[[FloatArray], Structure],
+    x0s: Sequence[ArrayLike],
+    bounds: Sequence[tuple[float, float]],
+    *,
+    rtol: float = 1e-13,
+    max_rounds: int = 4,
+) -> PeakMinimum:
+    """Minimise ``H_max`` of ``build(x)`` over positive parameters ``x`` (minimax tuning).
+
+    The objective, the largest local maximum of ``H(Omega)``, is continuous but not smooth
+    where two peaks are equal, which is exactly where optimal absorbers sit (equal-peak
+    designs). The search runs on ``log x`` within ``bounds``:
+
+    1. Nelder-Mead (derivative-free, indifferent to the kinks) from every start in ``x0s``
+       to a loose tolerance, to find the basin;
+    2. from the best point, the smooth epigraph form ``min t`` subject to ``t >= H_i(x)`` for
+       every local maximum ``H_i`` (SLSQP, gradients by the envelope theorem): it lands on
+       the equal-peak optimum quickly and precisely;
+    3. a tight Nelder-Mead restart from the result; steps 2-3 repeat until a round improves
+       ``H_max`` by less than ``rtol`` (relative).
+
+    Parameters
+    ----------
+    build : callable
+        Maps a parameter vector (positive floats) to a :class:`Structure`. A ``ValueError``
+        from it (an invalid structure) counts as an infinite peak.
+    x0s : sequence of array_like
+        Starting points (clipped into ``bounds``).
+    bounds : sequence of (float, float)
+        Positive lower and upper bound of each parameter.
+    rtol : float
+        Relative tolerance on ``H_max`` between rounds.
+    max_rounds : int
+        Most polishing rounds (steps 2-3).
+
+    Returns
+    -------
+    PeakMinimum
+        Optimal parameters, the verified peak there (:func:`response_peak`), bound flags
+        and the number of structures built.
+    """
+    box = np.array(bounds, dtype=np.float64).reshape(-1, 2)
+    if not (np.all(np.isfinite(box)) and np.all(box > 0.0) and np.all(box[:, 0] < box[:, 1])):
+        raise ValueError(f"bounds {list(bounds)!r} must be positive, finite, increasing pairs")
+    lo, hi = np.log(box[:, 0]), np.log(box[:, 1])
+    raw = [np.asarray(x0, dtype=np.float64) for x0 in x0s]
+    if not raw or any(x.shape != lo.shape or not np.all(x > 0.0) for x in raw):
+        raise ValueError(f"need at least one start with {lo.size} positive entries")
+    starts = [np.clip(np.log(x), lo, hi) for x in raw]
+    problem = _PeakProblem(build, lo, hi)
+
+    explored = [_nelder_mead(problem, y0, 0.2, 1e-3, 1e-7) for y0 in starts]
+    best_y, best_f = min(explored, key=lambda r: r[1])
+    for _ in range(max_rounds):
+        before = best_f
+        for step in (_equal_peak_polish, _restart):
+            y, f = step(problem, best_y)
+            if f < best_f:
+                best_y, best_f = y, f
+        if before - best_f <= rtol * best_f:
+            break
+    x = np.exp(best_y)
+    peak = response_peak(build(x))
+    at_bound = tuple(
+        bool(min(b - lo_, hi_ - b) <= 1e-6 * (hi_ - lo_))
+        for b, lo_, hi_ in zip(best_y, lo, hi, strict=True)
+    )
+    return PeakMinimum(x, peak, at_bound, problem.count)
+
+
+def _restart(problem: _PeakProblem, y0: FloatArray) -> tuple[FloatArray, float]:
+    """A tight Nelder-Mead run from ``y0`` with a fresh simplex (checks the polish)."""
+    f0 = problem.objective(y0)
+    return _nelder_mead(problem, y0, 1e-3, 1e-9, 1e-14 * max(1.0, abs(f0)))
+
+
+@dataclass(frozen=True)
+class TuningResult:
+    """Optimal elastic foundation (DVA) for one primary damping ratio (paper Figs. 4 and 6).
+
+    Attributes
+    ----------
+    zeta : float
+        Primary damping ratio ``c / (2 sqrt(m k))``, dimensionless.
+    foundation : Foundation
+        The exact optimum ``(M, K, zeta_a)``, dimensionless.
+    h_max : float
+        Its peak response ``H_max``, dimensionless.
+    omega_peak : float
+        Where the peak is, ``Omega = omega/omega_n``.
+    local_maxima : tuple of (float, float)
+        ``(Omega, H)`` of every local maximum at the optimum (two equal peaks).
+    mass_ratio_fixed : bool
+        True when ``M`` was fixed by the user and only ``K``, ``zeta_a`` were optimised.
+    mass_bounds : (float, float)
+        Search interval of ``M`` (when free).
+    at_bound : tuple of bool
+        For each free parameter, whether the optimum lies on its search bound.
+    fitted : Foundation
+        The paper's fitted optimum, Eqs. (28)-(30).
+    fitted_h_max : float
+        The paper's fitted peak, Eq. (31).
+    fitted_h_max_exact : float
+        The exact ``H_max`` of the structure with the fitted parameters of Eqs. (28)-(30).
+    """
+
+    zeta: float
+    foundation: Foundation
+    h_max: float
+    omega_peak: float
+    local_maxima: tuple[tuple[float, float], ...]
+    mass_ratio_fixed: bool
+    mass_bounds: tuple[float, float]
+    at_bound: tuple[bool, ...]
+    fitted: Foundation = field(repr=False)
+    fitted_h_max: float = field(repr=False)
+    fitted_h_max_exact: float = field(repr=False)
+
+    @property
+    def zeta_eq(self) -> float:
+        """Equivalent damping ratio ``1 / (2 H_max)`` of the exact optimum, Eq. (32)."""
+        return 1.0 / (2.0 * self.h_max)
+
+    @property
+    def fitted_zeta_eq(self) -> float:
+        """The paper's fitted equivalent damping ratio, Eq. (33)."""
+        return equivalent_damping_fit(self.zeta)
+
+    def relative_differences(self) -> dict[str, float]:
+        """``fitted / exact - 1`` for ``M``, ``K``, ``zeta_a`` (Eqs. 28-30), ``H_max`` (Eq. 31)
+        and ``zeta_eq`` (Eq. 33)."""
+        f, e = self.fitted, self.foundation
+        return {
+            "M": f.mass_ratio / e.mass_ratio - 1.0,
+            "K": f.stiffness_ratio / e.stiffness_ratio - 1.0,
+            "zeta_a": f.damping_ratio / e.damping_ratio - 1.0,
+            "H_max": self.fitted_h_max / self.h_max - 1.0,
+            "zeta_eq": self.fitted_zeta_eq / self.zeta_eq - 1.0,
+        }
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary (keys of ``stickslip tune --json``)."""
+        f = self.fitted
+        return {
+            "zeta": self.zeta,
+            "M": self.foundation.mass_ratio,
+            "K": self.foundation.stiffness_ratio,
+            "zeta_a": self.foundation.damping_ratio,
+            "H_max": self.h_max,
+            "Omega_peak": self.omega_peak,
+            "zeta_eq": self.zeta_eq,
+            "local_maxima": [{"Omega": w, "H": h} for w, h in self.local_maxima],
+            "mass_ratio_fixed": self.mass_ratio_fixed,
+            "mass_bounds": list(self.mass_bounds),
+            "at_bound": list(self.at_bound),
+            "fitted": {
+                "M": f.mass_ratio,
+                "K": f.stiffness_ratio,
+                "zeta_a": f.damping_ratio,
+                "H_max": self.fitted_h_max,
+                "H_max_exact_at_fitted": self.fitted_h_max_exact,
+                "zeta_eq": self.fitted_zeta_eq,
+                "source": "Eqs. (28)-(31) and (33)",
+            },
+            "relative_difference": self.relative_differences(),
+        }
+
+
+def _check_tuning_zeta(zeta: float) -> float:
+    zeta = non_negative("zeta", zeta)
+    if zeta > MAX_TUNING_ZETA:
+        raise ValueError(
+            f"zeta={zeta!r} is above {MAX_TUNING_ZETA}: the tuning is not defined there "
+            "(the slider alone barely resonates)"
+        )
+    return zeta
+
+
+def _check_mass_bounds(bounds: tuple[float, float]) -> tuple[float, float]:
+    lo, hi = positive("lower mass bound", bounds[0]), positive("upper mass bound", bounds[1])
+    if lo >= hi:
+        raise ValueError(f"mass bounds {bounds!r} must be increasing")
+    return lo, hi
+
+
+def tune_foundation(
+    zeta: float,
+    *,
+    mass_ratio: float | None = None,
+    mass_bounds: tuple[float, float] = DEFAULT_MASS_BOUNDS,
+) -> TuningResult:
+    """Exact optimal foundation: ``(M, K, zeta_a)`` minimising ``H_max`` (paper Figs. 3-6).
+
+    The numerical counterpart of Harik and Issa's optimum that the paper fits with
+    Eqs. (28)-(31). Results are cached per argument set.
+
+    Parameters
+    ----------
+    zeta : float
+        Primary damping ratio ``c / (2 sqrt(m k))``, dimensionless, ``0 <= zeta <= 0.9``.
+    mass_ratio : float, optional
+        Fix ``M = m_a/m`` (dimensionless, > 0) and optimise only ``K`` and ``zeta_a``.
+    mass_bounds : (float, float)
+        Search interval of ``M`` when it is free; default ``(0.01, 100)``.
+
+    Returns
+    -------
+    TuningResult
+        The optimum, its peak and the paper's fitted values side by side.
+    """
+    zeta = _check_tuning_zeta(zeta)
+    if mass_ratio is not None:
+        mass_ratio = positive("mass ratio M", mass_ratio)
+    return _tune_cached(zeta, mass_ratio, _check_mass_bounds(mass_bounds))
+
+
+def _best_of_grid(
+    build: Callable[[FloatArray], Structure], axes: Sequence[FloatArray], n_best: int
+) -> list[FloatArray]:
+    """The ``n_best`` points of a coarse tensor grid with the lowest ``H_max`` (seeds)."""
+    points = np.stack([g.ravel() for g in np.meshgrid(*axes, indexing="ij")], axis=1)
+    values = np.array([_peak_estimate(build(x)) for x in points])
+    return [points[i] for i in np.argsort(values, kind="stable")[:n_best]]
+
+
+def _foundation_starts(
+    build: Callable[[FloatArray], Structure], zeta: float, mass_free: bool
+) -> list[FloatArray]:
+    """Starts: the paper's fitted optimum and the best points of a coarse log grid.
+
+    The landscape has several local minima (e.g. at fixed ``M`` far from ``M_opt``), so a
+    coarse scan of ``K`` (0.2 ... 10), ``zeta_a`` (0.03 ... 100) and, when free, ``M``
+    (0.01 ... 100) seeds the search.
+    """
+    fit = optimal_foundation_fit(min(zeta, 0.4))
+    k_axis = np.geomspace(0.2, 10.0, 9 if mass_free else 13)
+    z_axis = np.geomspace(0.03, 100.0, 9 if mass_free else 13)
+    if mass_free:
+        axes = [np.geomspace(0.01, 100.0, 9), k_axis, z_axis]
+        first = np.array([fit.mass_ratio, fit.stiffness_ratio, fit.damping_ratio])
+    else:
+        axes = [k_axis, z_axis]
+        first = np.array([fit.stiffness_ratio, fit.damping_ratio])
+    return [first, *_best_of_grid(build, axes, 3)]
+
+
+@lru_cache(maxsize=256)
+def _tune_cached(
+    zeta: float, mass_ratio: float | None, mass_bounds: tuple[float, float]
+) -> TuningResult:
+    if mass_ratio is None:
+
+        def build(x: FloatArray) -> Structure:
+            return elastic_foundation(zeta, Foundation(x[0], x[1], x[2]))
+
+        bounds = [mass_bounds, STIFFNESS_BOUNDS, DAMPING_BOUNDS]
+    else:
+        fixed = mass_ratio
+
+        def build(x: FloatArray) -> Structure:
+            return elastic_foundation(zeta, Foundation(fixed, x[0], x[1]))
+
+        bounds = [STIFFNESS_BOUNDS, DAMPING_BOUNDS]
+    starts = _foundation_starts(build, zeta, mass_ratio is None)
+    result = minimise_peak(build, starts, bounds)
+    x = [float(v) for v in result.params]
+    foundation = Foundation(*x) if mass_ratio is None else Foundation(mass_ratio, *x)
+    fitted = optimal_foundation_fit(zeta)
+    return TuningResult(
+        zeta=zeta,
+        foundation=foundation,
+        h_max=result.peak.h_max,
+        omega_peak=result.peak.omega_peak,
+        local_maxima=result.peak.local_maxima,
+        mass_ratio_fixed=mass_ratio is not None,
+        mass_bounds=mass_bounds,
+        at_bound=result.at_bound,
+        fitted=fitted,
+        fitted_h_max=peak_response_fit(zeta),
+        fitted_h_max_exact=response_peak(elastic_foundation(zeta, fitted)).h_max,
+    )
+
+
+def optimal_foundation_exact(zeta: float) -> Foundation:
+    """Exact optimal foundation ``(M, K, zeta_a)`` for primary damping ``zeta`` (cached).
+
+    The numerical optimum of :func:`tune_foundation` with ``M`` free in
+    :data:`DEFAULT_MASS_BOUNDS`; the exact counterpart of Eqs. (28)-(30). Used by
+    ``--dva optimal-exact``.
+
+    Parameters
+    ----------
+    zeta : float
+        Primary damping ratio, dimensionless, ``0 <= zeta <= 0.9``.
+    """
+    return tune_foundation(zeta).foundation
+
+
+# ---------------------------------------------------------------------------------------------
+# Data for the figures (the plot module only draws)
+# ---------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class TuningCurve:
+    """Exact optimum and the paper's fits over a grid of ``zeta`` (Figs. 4, 6 and 10).
+
+    Every array has the shape of ``zeta``; all values are dimensionless. ``*_fit`` arrays are
+    Eqs. (28)-(31) and (33).
+    """
+
+    zeta: FloatArray
+    mass_ratio: FloatArray
+    stiffness_ratio: FloatArray
+    damping_ratio: FloatArray
+    h_max: FloatArray
+    omega_peak: FloatArray
+    zeta_eq: FloatArray
+    mass_ratio_fit: FloatArray
+    stiffness_ratio_fit: FloatArray
+    damping_ratio_fit: FloatArray
+    h_max_fit: FloatArray
+    zeta_eq_fit: FloatArray
+    mass_ratio_fixed: bool = False
+
+    _NAMES: ClassVar[dict[str, tuple[str, str]]] = {
+        "mass_ratio": ("M_opt", "optimal mass ratio m_a/m, exact"),
+        "stiffness_ratio": ("K_opt", "optimal stiffness ratio sqrt(k_a/k), exact"),
+        "damping_ratio": ("zeta_a_opt", "optimal foundation damping ratio, exact"),
+        "h_max": ("H_max", "peak response k|X|/f at the optimum, exact"),
+        "omega_peak": ("Omega_peak", "frequency ratio of the peak, exact"),
+        "zeta_eq": ("zeta_eq", "equivalent damping ratio 1/(2 H_max), Eq. (32)"),
+        "mass_ratio_fit": ("M_opt_fit", "Eq. (28)"),
+        "stiffness_ratio_fit": ("K_opt_fit", "Eq. (29)"),
+        "damping_ratio_fit": ("zeta_a_opt_fit", "Eq. (30)"),
+        "h_max_fit": ("H_max_fit", "Eq. (31)"),
+        "zeta_eq_fit": ("zeta_eq_fit", "Eq. (33)"),
+    }
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary of lists keyed by the paper's symbols."""
+        out: dict[str, Any] = {"zeta": self.zeta.tolist()}
+        for attr, (key, _) in self._NAMES.items():
+            out[key] = getattr(self, attr).tolist()
+        out["mass_ratio_fixed"] = self.mass_ratio_fixed
+        return out
+
+    def to_xarray(self) -> Any:
+        """An ``xarray.Dataset`` with coordinate ``zeta`` and one variable per array."""
+        import xarray as xr
+
+        data = {
+            key: ("zeta", getattr(self, attr), {"long_name": text, "units": "1"})
+            for attr, (key, text) in self._NAMES.items()
+        }
+        return xr.Dataset(
+            data,
+            coords={"zeta": ("zeta", self.zeta, {"long_name": "primary damping ratio"})},
+            attrs={"mass_ratio_fixed": int(self.mass_ratio_fixed)},
+        )
+
+
+def tuning_curve(zetas: ArrayLike, *, mass_ratio: float | None = None) -> TuningCurve:
+    """Exact optimal tuning at every ``zeta`` of a grid, with Eqs. (28)-(31) and (33).
+
+    Parameters
+    ----------
+    zetas : array_like
+        Primary damping ratios, dimensionless, in ``[0, 0.9]``.
+    mass_ratio : float, optional
+        Fixed mass ratio ``M`` (only ``K`` and ``zeta_a`` optimised).
+
+    Returns
+    -------
+    TuningCurve
+        Arrays for the paper's Figs. 4 (parameters), 6 (``H_max``) and 10 (``zeta_eq``).
+    """
+    z = np.atleast_1d(np.asarray(zetas, dtype=np.float64))
+    if z.ndim != 1 or z.size == 0:
+        raise ValueError("zetas must be a non-empty one-dimensional sequence")
+    results = [tune_foundation(float(v), mass_ratio=mass_ratio) for v in z]
+
+    def arr(values: Sequence[float]) -> FloatArray:
+        return np.array(values, dtype=np.float64)
+
+    return TuningCurve(
+        zeta=z,
+        mass_ratio=arr([r.foundation.mass_ratio for r in results]),
+        stiffness_ratio=arr([r.foundation.stiffness_ratio for r in results]),
+        damping_ratio=arr([r.foundation.damping_ratio for r in results]),
+        h_max=arr([r.h_max for r in results]),
+        omega_peak=arr([r.omega_peak for r in results]),
+        zeta_eq=arr([r.zeta_eq for r in results]),
+        mass_ratio_fit=arr([r.fitted.mass_ratio for r in results]),
+        stiffness_ratio_fit=arr([r.fitted.stiffness_ratio for r in results]),
+        damping_ratio_fit=arr([r.fitted.damping_ratio for r in results]),
+        h_max_fit=arr([r.fitted_h_max for r in results]),
+        zeta_eq_fit=arr([r.fitted_zeta_eq for r in results]),
+        mass_ratio_fixed=mass_ratio is not None,
+    )
+
+
+@dataclass(frozen=True)
+class ResponseCurves:
+    """Frequency-response curves of the paper's Fig. 5 for one ``zeta`` and foundation.
+
+    Attributes
+    ----------
+    omega : ndarray
+        Frequency ratio ``Omega``, dimensionless.
+    rigid : ndarray
+        ``H`` of the slider on the rigid base (no foundation).
+    foundation : ndarray or None
+        ``H`` with the foundation (None without one).
+    equivalent : ndarray or None
+        ``H`` of the equivalent 1DOF system with ``zeta_eq`` (Fig. 9, dashed in Fig. 5).
+    zeta : float
+        Primary damping ratio.
+    dva : Foundation or None
+        The foundation drawn.
+    peak : ResponsePeak
+        Exact peak of the curve with the foundation (of the rigid base without one).
+    zeta_eq : float or None
+        ``1 / (2 H_max)``, Eq. (32), of the foundation curve.
+    """
+
+    omega: FloatArray
+    rigid: FloatArray
+    foundation: FloatArray | None
+    equivalent: FloatArray | None
+    zeta: float
+    dva: Foundation | None
+    peak: ResponsePeak
+    zeta_eq: float | None
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary of the curves."""
+        dva = self.dva
+        return {
+            "zeta": self.zeta,
+            "foundation": None
+            if dva is None
+            else {"M": dva.mass_ratio, "K": dva.stiffness_ratio, "zeta_a": dva.damping_ratio},
+            "Omega": self.omega.tolist(),
+            "H_rigid": self.rigid.tolist(),
+            "H_foundation": None if self.foundation is None else self.foundation.tolist(),
+            "H_equivalent": None if self.equivalent is None else self.equivalent.tolist(),
+            "zeta_eq": self.zeta_eq,
+            **{k: v for k, v in self.peak.to_dict().items() if k != "zeta_eq"},
+        }
+
+
+def response_curves(
+    zeta: float, foundation: Foundation | None, omega: ArrayLike | None = None
+) -> ResponseCurves:
+    """Data of the paper's Fig. 5: ``H(Omega)`` with and without the foundation and the
+    equivalent 1DOF curve with ``zeta_eq`` of Eq. (32).
+
+    Parameters
+    ----------
+    zeta : float
+        Primary damping ratio, dimensionless, >= 0.
+    foundation : Foundation or None
+        The elastic foundation; None draws the rigid base only.
+    omega : array_like, optional
+        Frequency ratios; default 2001 points on ``[0, 2]`` plus the exact peak frequency.
+    """
+    zeta = non_negative("zeta", zeta)
+    structure = rigid_base(zeta) if foundation is None else elastic_foundation(zeta, foundation)
+    peak = response_peak(structure)
+    if omega is None:
+        extra = [peak.omega_peak] if math.isfinite(peak.h_max) else []
+        om = np.unique(np.concatenate([np.linspace(0.0, 2.0, 2001), extra]))
+    else:
+        om = np.asarray(omega, dtype=np.float64).reshape(-1)
+        if om.size == 0 or not np.all(np.isfinite(om)) or np.any(om < 0.0):
+            raise ValueError("omega must be non-empty, finite and >= 0")
+    rigid = frequency_response(rigid_base(zeta), om)
+    if foundation is None:
+        return ResponseCurves(om, rigid, None, None, zeta, None, peak, None)
+    zeta_eq = peak.equivalent_damping
+    with_dva = frequency_response(structure, om)
+    equivalent = frequency_response(rigid_base(zeta_eq), om) if zeta_eq > 0.0 else None
+    return ResponseCurves(om, rigid, with_dva, equivalent, zeta, foundation, peak, zeta_eq)

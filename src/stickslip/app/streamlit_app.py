@@ -1,0 +1,505 @@
+"""The stickslip web app: the design procedure of the paper's Fig. 16 in a browser.
+
+Run it with ``stickslip app`` (or ``streamlit run`` on this file). Inputs are text with
+units ("2 kg", "50 kN/m"), parsed once by :func:`stickslip.cli.units.to_si`; everything
+after that is SI floats and dimensionless groups. Every number shown comes from the public
+Python API (:func:`~stickslip.analysis.design.design_foundation`, :func:`~stickslip.simulate`,
+:func:`~stickslip.sweep.occurrence.occurrence_map`,
+:func:`~stickslip.analysis.stick_slip_tuning.optimal_foundation_stick_slip`); this script
+only lays out inputs and results. Invalid input shows one line per problem and nothing is
+computed.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+import pandas as pd
+import streamlit as st
+from matplotlib.artist import Artist
+from matplotlib.colors import BoundaryNorm, ListedColormap
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
+from matplotlib.ticker import NullLocator
+from numpy.typing import NDArray
+
+from stickslip import (
+    STARTUP_DESCRIPTION,
+    Foundation,
+    Mode,
+    PhysicalFoundation,
+    PhysicalSystem,
+    SimulationResult,
+    Slider,
+    Verdict,
+    __version__,
+    elastic_foundation,
+    rigid_base,
+    simulate,
+)
+from stickslip.analysis.design import design_foundation
+from stickslip.analysis.dva import DvaSpec
+from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
+from stickslip.cli.units import QUANTITIES, to_si
+from stickslip.model.physical import foundation_to_physical
+from stickslip.plot.simulation import phase_portrait_plot, time_history_plot
+from stickslip.sweep.occurrence import occurrence_map
+
+#: Widget key -> (label, default text). The keys are the quantity names of ``to_si``.
+SYSTEM_INPUTS: dict[str, tuple[str, str]] = {
+    "m": ("Slider mass m", "2 kg"),
+    "k": ("Spring stiffness k", "50 kN/m"),
+    "c": ("Damping coefficient c", "20 N*s/m"),
+    "mu_s": ("Static friction coefficient μs", "0.5"),
+    "mu_k": ("Kinetic friction coefficient μk", "0.3"),
+    "load": ("Normal load W", "500 N"),
+    "speed": ("Belt speed V", "5 cm/s"),
+}
+FOUNDATION_INPUTS: dict[str, tuple[str, str]] = {
+    "m_a": ("Foundation mass m_a", ""),
+    "k_a": ("Foundation stiffness k_a", ""),
+    "c_a": ("Foundation damping c_a", ""),
+}
+DEFAULTS: dict[str, str] = {key: default for key, (_, default) in
+                            (SYSTEM_INPUTS | FOUNDATION_INPUTS).items()}
+
+#: Occurrence map around the operating point: lambda from lam/SPAN to lam*SPAN (log-spaced),
+#: zeta from 0 to twice the operating zeta.
+MAP_SHAPE = (30, 12)
+MAP_LAMBDA_SPAN = 10.0
+MAP_ZETA_FLOOR = 0.05  # zeta range used when the slider has no damping
+#: Time horizon of the time-history figures, dimensionless tau.
+PLOT_HORIZON = (40.0, 3000.0)
+#: Samples of the exact trajectory per figure (every mode switch is added to them).
+PLOT_POINTS = 1500
+#: Colours of the verdict codes 0 (steady sliding), 1 (stick-slip), 2 (undetermined).
+VERDICT_COLORS = ("#9ecae1", "#e6550d", "#bdbdbd")
+VERDICT_ORDER = (Verdict.STEADY_SLIDING, Verdict.STICK_SLIP, Verdict.UNDETERMINED)
+
+SiKey = tuple[tuple[str, float], ...]
+FoundationKey = tuple[float, float, float]
+
+
+# ---------------------------------------------------------------- inputs -----------------
+
+def _field_error(name: str, label: str, exc: ValueError) -> str:
+    """``to_si``'s message names the command-line flag; the app names the field instead."""
+    message = str(exc)
+    flag = f"--{name.replace('_', '-')}"
+    if message.startswith(flag):
+        message = message[len(flag):].strip()
+    return f"{label}: {message}"
+
+
+def parse_inputs(raw: Mapping[str, str]) -> tuple[PhysicalSystem | None, list[str]]:
+    """Turn the text inputs into a :class:`PhysicalSystem` (SI), or one error line per problem.
+
+    Parameters
+    ----------
+    raw : mapping
+        Text of every field of :data:`SYSTEM_INPUTS` and :data:`FOUNDATION_INPUTS` (the three
+        foundation fields all empty for no existing foundation).
+
+    Returns
+    -------
+    system : PhysicalSystem or None
+        ``None`` exactly when ``errors`` is not empty.
+    errors : list of str
+        One line per bad input (wrong unit, not a number, non-positive, ``mu_k >= mu_s``).
+    """
+    errors: list[str] = []
+    values: dict[str, float] = {}
+    labels = {key: label for key, (label, _) in (SYSTEM_INPUTS | FOUNDATION_INPUTS).items()}
+    given_foundation = [key for key in FOUNDATION_INPUTS if str(raw.get(key, "")).strip()]
+    if given_foundation and len(given_foundation) != len(FOUNDATION_INPUTS):
+        errors.append("An existing foundation needs all of m_a, k_a and c_a (leave all three "
+                      "empty to have one recommended)")
+    for key in [*SYSTEM_INPUTS, *given_foundation]:
+        text = str(raw.get(key, "")).strip()
+        if not text:
+            errors.append(f"{labels[key]} is empty")
+            continue
+        try:
+            values[key] = to_si(key, text)
+        except ValueError as exc:
+            errors.append(_field_error(key, labels[key], exc))
+    if errors:
+        return None, errors
+    try:
+        foundation = None
+        if given_foundation:
+            foundation = PhysicalFoundation(values["m_a"], values["k_a"], values["c_a"])
+        system = PhysicalSystem(m=values["m"], k=values["k"], c=values["c"], mu_s=values["mu_s"],
+                                mu_k=values["mu_k"], load=values["load"], speed=values["speed"],
+                                foundation=foundation)
+    except ValueError as exc:
+        return None, [f"Invalid input: {exc}"]
+    return system, []
+
+
+def si_key(system: PhysicalSystem) -> SiKey:
+    """The SI inputs as a hashable key for the caches."""
+    items = [("m", system.m), ("k", system.k), ("c", system.c), ("mu_s", system.mu_s),
+             ("mu_k", system.mu_k), ("load", system.load), ("speed", system.speed)]
+    if system.foundation is not None:
+        f = system.foundation
+        items += [("m_a", f.m_a), ("k_a", f.k_a), ("c_a", f.c_a)]
+    return tuple(items)
+
+
+def system_from_key(key: SiKey) -> PhysicalSystem:
+    """Inverse of :func:`si_key`."""
+    v = dict(key)
+    foundation = PhysicalFoundation(v["m_a"], v["k_a"], v["c_a"]) if "m_a" in v else None
+    return PhysicalSystem(m=v["m"], k=v["k"], c=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"],
+                          load=v["load"], speed=v["speed"], foundation=foundation)
+
+
+# ---------------------------------------------------------- computations (cached) --------
+
+@st.cache_data(show_spinner="Running the design procedure (Fig. 16)...", max_entries=128)
+def design_report(key: SiKey) -> dict[str, Any]:
+    """:func:`design_foundation` of the system, as its JSON dictionary (SI units)."""
+    return design_foundation(system_from_key(key)).to_dict()
+
+
+@st.cache_data(show_spinner="Simulating the operating point...", max_entries=64)
+def operating_point_runs(lam: float, zeta: float, gamma: float,
+                         foundation: FoundationKey) -> dict[str, SimulationResult]:
+    """Rigid base and foundation runs from the startup state, recorded for the figures.
+
+    Both run to a common horizon: one and a half times the longer of the two times needed
+    to certify the verdict (so a stick-slip cycle shows at least twice), within
+    :data:`PLOT_HORIZON`.
+    """
+    slider = Slider(lam, zeta, gamma)
+    structures = {"rigid base": rigid_base(zeta),
+                  "with foundation": elastic_foundation(zeta, Foundation(*foundation))}
+    certified = max(simulate(s, slider, record=False).t_end for s in structures.values())
+    horizon = min(max(PLOT_HORIZON[0], 1.5 * certified), PLOT_HORIZON[1])
+    return {name: simulate(s, slider, t_max=horizon, run_to_t_max=True)
+            for name, s in structures.items()}
+
+
+@st.cache_data(show_spinner="Computing the occurrence maps...", max_entries=64)
+def occurrence_maps(lam: float, zeta: float, gamma: float, foundation: FoundationKey | None
+                    ) -> dict[str, tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.int8]]]:
+    """Verdicts on a ``lambda x zeta`` grid around the operating point (paper Figs. 8, 11).
+
+    Two maps: the rigid base, and the foundation (the given one, fixed in SI units, or the
+    one of Eqs. 28-30 tuned at every ``zeta`` of the grid). Returns ``lambda``, ``zeta``
+    and the verdict codes (``Verdict.code``, shape ``(n_lambda, n_zeta)``) of each.
+    """
+    n_lam, n_zeta = MAP_SHAPE
+    lams = np.geomspace(lam / MAP_LAMBDA_SPAN, lam * MAP_LAMBDA_SPAN, n_lam)
+    top = 2.0 * zeta if zeta > 0.0 else MAP_ZETA_FLOOR
+    zetas = (np.arange(n_zeta) + 0.5) * (top / n_zeta)  # cell centres; edges 0 .. top
+    dva = DvaSpec("optimal") if foundation is None else DvaSpec("explicit", Foundation(*foundation))
+    out = {}
+    for name, spec in (("rigid base", DvaSpec("none")), ("with foundation", dva)):
+        result = occurrence_map(lams, zetas, spec, gamma, backend="serial")
+        out[name] = (result.lam, result.zeta, result.verdict)
+    return out
+
+
+@st.cache_data(show_spinner="Searching the stick-slip-optimal foundation...", max_entries=32)
+def stick_slip_optimum(zeta: float, gamma: float, lam_max: float) -> dict[str, Any]:
+    """:func:`optimal_foundation_stick_slip` at ``(zeta, gamma)``, as its dictionary."""
+    return optimal_foundation_stick_slip(zeta, gamma, lam_max=lam_max).to_dict()
+
+
+# ------------------------------------------------------------------ outputs --------------
+
+def _fmt(x: float | None, unit: str = "") -> str:
+    if x is None or not math.isfinite(x):
+        return "—"
+    return f"{x:.4g}" + (f" {unit}" if unit else "")
+
+
+def figure_of_run(result: SimulationResult, title: str) -> Figure:
+    """Time history of ``xi`` (stick phases shaded) next to the phase portrait."""
+    fig = Figure(figsize=(10.0, 3.0), layout="constrained")
+    ax_t, ax_p = fig.subplots(1, 2, width_ratios=(2.2, 1.0))
+    time_history_plot(result, ax=ax_t, quantity="position", n_points=PLOT_POINTS)
+    phase_portrait_plot(result, ax=ax_p, n_points=PLOT_POINTS)
+    fig.suptitle(title)
+    return fig
+
+
+def _edges(centres: NDArray[np.float64], log: bool) -> NDArray[np.float64]:
+    x = np.log(centres) if log else centres
+    mid = 0.5 * (x[1:] + x[:-1])
+    edges = np.concatenate([[2.0 * x[0] - mid[0]], mid, [2.0 * x[-1] - mid[-1]]])
+    return np.exp(edges) if log else edges
+
+
+def occurrence_figure(maps: Mapping[str, tuple[NDArray[np.float64], NDArray[np.float64],
+                                                NDArray[np.int8]]],
+                      system: PhysicalSystem, lam: float, zeta: float) -> Figure:
+    """The maps side by side with the operating point marked; belt speed and ``c`` on the
+    secondary axes (``V = lambda_op V_op / lambda``, ``c = 2 zeta sqrt(m k)``)."""
+    fig = Figure(figsize=(10.0, 3.8), layout="constrained")
+    axes = fig.subplots(1, len(maps), sharey=True, squeeze=False)[0]
+    cmap = ListedColormap(list(VERDICT_COLORS))
+    norm = BoundaryNorm([-0.5, 0.5, 1.5, 2.5], cmap.N)
+    speed_times_lam = lam * system.speed
+    root_mk = math.sqrt(system.m * system.k)
+
+    def reciprocal(x: NDArray[np.float64]) -> NDArray[np.float64]:
+        x = np.asarray(x, dtype=np.float64)
+        return np.divide(speed_times_lam, x, out=np.full_like(x, np.inf), where=x > 0)
+
+    for ax, (name, (lams, zetas, codes)) in zip(axes, maps.items(), strict=True):
+        ax.pcolormesh(_edges(lams, log=True), _edges(zetas, log=False), codes.T, cmap=cmap,
+                      norm=norm)
+        ax.set_xscale("log")
+        ax.plot([lam], [zeta], marker="*", ms=15, color="black", mec="white", ls="none")
+        ax.set_title(name)
+        ax.set_xlabel(r"$\lambda$")
+        top = ax.secondary_xaxis("top", functions=(reciprocal, reciprocal))
+        top.xaxis.set_minor_locator(NullLocator())  # unlabelled, and slow to lay out
+        top.set_xlabel("belt speed V [m/s]")
+    axes[0].set_ylabel(r"$\zeta$")
+    right = axes[-1].secondary_yaxis("right", functions=(lambda z: 2.0 * root_mk * z,
+                                                         lambda c: c / (2.0 * root_mk)))
+    right.set_ylabel("damping c [N s/m]")
+    handles: list[Artist] = [Patch(color=color, label=v.value) for color, v in
+               zip(VERDICT_COLORS, VERDICT_ORDER, strict=True)]
+    handles.append(Line2D([], [], marker="*", ms=12, color="black", ls="none",
+                          label="operating point"))
+    fig.legend(handles=handles, loc="outside lower center", ncols=len(handles), frameon=False)
+    return fig
+
+
+def report_json(raw: Mapping[str, str], report: Mapping[str, Any],
+                runs: Mapping[str, SimulationResult], optimum: Mapping[str, Any] | None) -> str:
+    """The downloadable design report: inputs as typed, the design report, the two runs."""
+    summaries = {}
+    for name, result in runs.items():
+        summary = result.to_dict()
+        summary.pop("events")  # thousands of entries; the CSV has the trajectory
+        summaries[name] = summary
+    payload = {
+        "stickslip_version": __version__,
+        "inputs": {key: raw.get(key, "") for key in DEFAULTS},
+        "initial_condition": STARTUP_DESCRIPTION,
+        "design": dict(report),
+        "operating_point": summaries,
+        "stick_slip_optimal_foundation": dict(optimum) if optimum is not None else None,
+    }
+    return json.dumps(payload, indent=2, allow_nan=False)
+
+
+def history_csv(runs: Mapping[str, SimulationResult], system: PhysicalSystem,
+                n_points: int = 2000) -> str:
+    """The trajectories of the runs, dimensionless and in SI, one row per sample.
+
+    Columns: ``structure``, ``tau``, ``t_s``, ``xi``, ``xi_dot``, ``xi_a``, ``xi_a_dot``
+    (empty on the rigid base), ``x_m`` (slider displacement from its kinetic-friction
+    equilibrium, m), ``v_m_s`` (slider velocity, m/s), ``mode``.
+    """
+    buffer = io.StringIO()
+    writer = csv.writer(buffer)
+    writer.writerow(["structure", "tau", "t_s", "xi", "xi_dot", "xi_a", "xi_a_dot", "x_m", "v_m_s",
+                     "mode"])
+    for name, result in runs.items():
+        t, q, v, modes = result.time_history(n_points=n_points)
+        has_foundation = q.shape[1] > 1
+        for i in range(t.size):
+            writer.writerow([
+                name, repr(float(t[i])), repr(float(t[i] * system.time_scale)),
+                repr(float(q[i, 0])), repr(float(v[i, 0])),
+                repr(float(q[i, 1])) if has_foundation else "",
+                repr(float(v[i, 1])) if has_foundation else "",
+                repr(float(q[i, 0] * system.length_scale)), repr(float(v[i, 0] * system.speed)),
+                Mode(int(modes[i])).label,
+            ])
+    return buffer.getvalue()
+
+
+# ---------------------------------------------------------------------- page -------------
+
+def _input_widgets() -> dict[str, str]:
+    side = st.sidebar
+    side.header("Sliding system")
+    side.caption("Values with units, e.g. '2 kg', '50 kN/m', '0.5 m/s'; a bare number is SI.")
+    raw = {}
+    for key, (label, default) in SYSTEM_INPUTS.items():
+        _, unit, what = QUANTITIES[key]
+        raw[key] = side.text_input(label, value=default, key=key,
+                                   help=f"{what}" + (f" [{unit}]" if unit else " (dimensionless)"))
+    side.header("Existing foundation (optional)")
+    side.caption("Leave empty to have the foundation of Eqs. (28)-(30) recommended and assessed.")
+    for key, (label, default) in FOUNDATION_INPUTS.items():
+        _, unit, what = QUANTITIES[key]
+        raw[key] = side.text_input(label, value=default, key=key, help=f"{what} [{unit}]")
+    return raw
+
+
+def _table(index: list[str], columns: dict[str, list[str]]) -> None:
+    st.table(pd.DataFrame(columns, index=index))
+
+
+def _show_verdicts(report: Mapping[str, Any]) -> None:
+    v = report["verdict"]
+    col1, col2 = st.columns(2)
+    col1.metric("Verdict on the rigid base", v["rigid"]["simulation"],
+                help="certified simulation from the startup state")
+    col2.metric("Verdict with foundation", v["foundation"]["simulation"],
+                help="certified simulation from the startup state")
+    _table(["rigid base", "with foundation"], {
+        "theory": [v["rigid"]["theory"], v["foundation"]["theory"]],
+        "exact (Eq. 36)": [v["rigid"]["exact"], "—"],
+        "simulation": [v["rigid"]["simulation"], v["foundation"]["simulation"]],
+    })
+
+
+def _show_critical(report: Mapping[str, Any], system: PhysicalSystem) -> None:
+    st.subheader("Critical belt speed and normal load")
+    rows = {
+        "rigid_theory": "rigid base, theory (Eq. 39)",
+        "rigid_exact": "rigid base, exact (Eq. 36)",
+        "rigid_simulation": "rigid base, simulation",
+        "foundation_theory": "with foundation, theory (Eq. 37 with ζ_eq)",
+        "foundation_simulation": "with foundation, simulation",
+    }
+    _table(list(rows.values()), {
+        "critical λ": [_fmt(report["critical_lambda"][k]) for k in rows],
+        "critical speed V_c [m/s]": [_fmt(report["critical_speed"][k]) for k in rows],
+        "critical load W_c [N]": [_fmt(report["critical_load"][k]) for k in rows],
+    })
+    speed = report["critical_speed"]["foundation_simulation"]
+    load = report["critical_load"]["foundation_simulation"]
+    st.markdown(
+        f"Stick-slip happens below the critical speed and above the critical load. With the "
+        f"foundation (simulation): stick-slip below V_c = {_fmt(speed, 'm/s')} (operating at "
+        f"{_fmt(system.speed, 'm/s')}) or above W_c = {_fmt(load, 'N')} (operating at "
+        f"{_fmt(system.load, 'N')})."
+    )
+
+
+def _show_foundation(report: Mapping[str, Any], system: PhysicalSystem) -> None:
+    st.subheader("Foundation")
+    r = report["recommended_foundation"]
+    f = report["foundation"]
+    rows = {"recommended (Eqs. 28-30)": r}
+    if system.foundation is not None:
+        rows["given (assessed above)"] = f
+    _table(list(rows), {
+        "m_a [kg]": [_fmt(x["m_a"]) for x in rows.values()],
+        "k_a [N/m]": [_fmt(x["k_a"]) for x in rows.values()],
+        "c_a [N s/m]": [_fmt(x["c_a"]) for x in rows.values()],
+    })
+    st.caption(f"Foundation assessed: {f['source']}; dimensionless M = {_fmt(f['M'])}, "
+               f"K = {_fmt(f['K'])}, ζ_a = {_fmt(f['zeta_a'])}; ζ_eq = {_fmt(report['zeta_eq'])} "
+               f"({report['zeta_eq_source']}).")
+
+
+def _show_stick_slip_optimum(report: Mapping[str, Any], system: PhysicalSystem
+                             ) -> Mapping[str, Any] | None:
+    with st.expander("Stick-slip-optimal foundation (beyond the paper)"):
+        st.markdown(
+            "The foundation of Eqs. (28)-(30) is tuned as a vibration absorber. This search "
+            "maximises the stick-slip onset itself over (M, K, ζ_a), with the mass ratio at most "
+            "that of Eq. (28), by certified simulation. It takes a few seconds."
+        )
+        lam_max = max(100.0, 2.0 * report["lambda"])
+        key = (report["zeta"], report["gamma"], lam_max)
+        if st.button("Find the stick-slip-optimal foundation", key="find_stick_slip_optimum"):
+            st.session_state["stick_slip_optimum"] = (key, stick_slip_optimum(*key))
+        stored = st.session_state.get("stick_slip_optimum")
+        if stored is None or stored[0] != key:
+            return None
+        opt = stored[1]
+        phys = foundation_to_physical(Foundation(opt["M"], opt["K"], opt["zeta_a"]), system.m,
+                                      system.k)
+        ref = opt["absorber_optimum"]
+
+        def onset(lam_c: float | None) -> str:
+            if lam_c is None:
+                return (f"no stick-slip up to λ = {_fmt(lam_max)} (belt speeds down to "
+                        f"{_fmt(system.speed_for_lambda(lam_max), 'm/s')})")
+            return (f"λ_c = {_fmt(lam_c)}: stick-slip below V_c = "
+                    f"{_fmt(system.speed_for_lambda(lam_c), 'm/s')}, above W_c = "
+                    f"{_fmt(system.load_for_lambda(lam_c), 'N')}")
+
+        st.markdown(
+            f"**Stick-slip-optimal foundation:** m_a = {_fmt(phys.m_a, 'kg')}, "
+            f"k_a = {_fmt(phys.k_a, 'N/m')}, c_a = {_fmt(phys.c_a, 'N s/m')} "
+            f"(M = {_fmt(opt['M'])}, K = {_fmt(opt['K'])}, ζ_a = {_fmt(opt['zeta_a'])}).\n\n"
+            f"- its onset: {onset(opt['lambda_crit'])}\n"
+            f"- absorber optimum of Eqs. (28)-(30): {onset(ref['lambda_crit'])}"
+        )
+        return opt
+
+
+def main() -> None:
+    """Lay out the page; the script body that Streamlit runs on every interaction."""
+    st.set_page_config(page_title="stickslip: stick-slip design", layout="wide")
+    st.title("Stick-slip on an elastic foundation")
+    st.caption("Will this sliding system stick-slip, at which belt speed or load, and which "
+               "foundation suppresses it? The design procedure of the paper's Fig. 16, checked "
+               f"by certified simulation. stickslip {__version__}; initial condition: "
+               f"{STARTUP_DESCRIPTION}.")
+    raw = _input_widgets()
+    system, errors = parse_inputs(raw)
+    if system is None:
+        for line in errors:
+            st.error(line)
+        st.info("Nothing is computed until every input is valid.")
+        return
+    report = design_report(si_key(system))
+    lam, zeta, gamma = report["lambda"], report["zeta"], report["gamma"]
+
+    st.subheader("Dimensionless groups")
+    cols = st.columns(5)
+    cols[0].metric("λ", _fmt(lam), help="(μs − μk) W / (V √(mk))")
+    cols[1].metric("ζ", _fmt(zeta), help="c / (2 √(mk))")
+    cols[2].metric("γ", _fmt(gamma), help="μk / (μs − μk)")
+    cols[3].metric("ζ_eq", _fmt(report["zeta_eq"]), help=report["zeta_eq_source"])
+    cols[4].metric("ω_n [rad/s]", _fmt(system.natural_frequency), help="√(k/m)")
+
+    st.subheader("Does it stick-slip?")
+    _show_verdicts(report)
+    _show_critical(report, system)
+    _show_foundation(report, system)
+    optimum = _show_stick_slip_optimum(report, system)
+
+    f = report["foundation"]
+    assessed: FoundationKey = (f["M"], f["K"], f["zeta_a"])
+    st.subheader("Operating point: time history and phase portrait")
+    st.caption(f"Dimensionless: τ = ω_n t (1 unit = {_fmt(system.time_scale, 's')}), ξ in units of "
+               f"V/ω_n = {_fmt(system.length_scale, 'm')} from the kinetic-friction equilibrium, "
+               f"ξ' in units of V. Stick phases shaded.")
+    runs = operating_point_runs(lam, zeta, gamma, assessed)
+    for name, result in runs.items():
+        side = "rigid" if name == "rigid base" else "foundation"
+        st.pyplot(figure_of_run(result, f"{name}: {report['verdict'][side]['simulation']}"))
+
+    st.subheader("Occurrence map around the operating point")
+    given = assessed if system.foundation is not None else None
+    maps = occurrence_maps(lam, zeta, gamma, given)
+    st.pyplot(occurrence_figure(maps, system, lam, zeta))
+    st.caption("Each cell is a certified simulation from the startup state at this γ. "
+               + ("Right: the given foundation (fixed in SI units)." if given else
+                  "Right: the foundation of Eqs. (28)-(30) tuned at each ζ of the grid."))
+
+    st.subheader("Download")
+    col1, col2 = st.columns(2)
+    col1.download_button("Design report (JSON)", report_json(raw, report, runs, optimum),
+                         file_name="stickslip-design.json", mime="application/json",
+                         key="download_json")
+    col2.download_button("Time histories (CSV)", history_csv(runs, system),
+                         file_name="stickslip-time-history.csv", mime="text/csv",
+                         key="download_csv")
+
+
+if __name__ == "__main__":
+    main()

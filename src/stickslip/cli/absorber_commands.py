@@ -1,0 +1,162 @@
+"""``stickslip frf`` and ``stickslip tune``: the foundation as a vibration absorber.
+
+Thin commands over :mod:`stickslip.analysis.absorber` (paper Figs. 3-6 and 10,
+Eqs. 28-33).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from stickslip.cli.common import BadInput, check_figure_path, parse_dva, print_json
+
+ZETA = Annotated[float, typer.Option("--zeta", help="damping ratio c / (2 sqrt(m k)) >= 0")]
+JSON = Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")]
+
+
+def _zeta(value: float) -> float:
+    from stickslip.model._validate import non_negative
+
+    try:
+        return non_negative("--zeta", value)
+    except ValueError as exc:
+        raise BadInput(str(exc)) from None
+
+
+def _fmt(x: object) -> str:
+    if x is None:
+        return "-"
+    return f"{x:.6g}" if isinstance(x, float) else str(x)
+
+
+def frf(
+    zeta: ZETA,
+    dva: Annotated[
+        str,
+        typer.Option(
+            "--dva",
+            help="foundation: none (rigid base), optimal (fitted Eqs. 28-30), optimal-exact, "
+            "or M,K,ZETA_A",
+        ),
+    ] = "optimal",
+    k_scale: Annotated[
+        float, typer.Option("--k-scale", help="multiply the foundation's K (Figs. 11-15)")
+    ] = 1.0,
+    plot: Annotated[
+        Path | None,
+        typer.Option("--plot", help="write the response curves (paper Fig. 5) to this file"),
+    ] = None,
+    json: JSON = False,
+) -> None:
+    """Frequency response H = k|X|/f of the slider under a harmonic force and its exact peak."""
+    from stickslip.analysis.absorber import response_curves, response_peak
+    from stickslip.model import rigid_base
+
+    zeta = _zeta(zeta)
+    if plot is not None:
+        check_figure_path(plot)
+    foundation = parse_dva(dva, zeta, k_scale)
+    curves = response_curves(zeta, foundation)
+    peak = curves.peak
+    rigid = response_peak(rigid_base(zeta))
+    payload: dict[str, Any] = {
+        "zeta": zeta,
+        "dva": dva,
+        "k_scale": k_scale,
+        "foundation": None
+        if foundation is None
+        else {
+            "M": foundation.mass_ratio,
+            "K": foundation.stiffness_ratio,
+            "zeta_a": foundation.damping_ratio,
+        },
+        **peak.to_dict(),
+        "rigid_base": {"H_max": rigid.h_max, "Omega_peak": rigid.omega_peak},
+    }
+    if plot is not None:
+        from matplotlib.figure import Figure
+
+        from stickslip.plot.absorber import frequency_response_plot
+
+        fig = Figure(figsize=(6.5, 4.2), layout="constrained")
+        frequency_response_plot(curves, ax=fig.add_subplot())
+        fig.savefig(plot, dpi=130)
+        payload["plot"] = str(plot)
+    if json:
+        print_json(payload)
+        return
+    lines = []
+    if foundation is None:
+        lines.append(f"system      rigid base (zeta={_fmt(zeta)})")
+    else:
+        lines.append(
+            f"system      elastic foundation M={_fmt(foundation.mass_ratio)}, "
+            f"K={_fmt(foundation.stiffness_ratio)}, zeta_a={_fmt(foundation.damping_ratio)} "
+            f"(zeta={_fmt(zeta)})"
+        )
+    lines += [
+        f"H_max       {_fmt(peak.h_max)} at Omega = {_fmt(peak.omega_peak)}",
+        f"zeta_eq     {_fmt(peak.equivalent_damping)}  (Eq. 32: 1 / (2 H_max))",
+        "peaks       " + ", ".join(f"H={_fmt(h)} at {_fmt(w)}" for w, h in peak.local_maxima),
+        f"rigid base  H_max {_fmt(rigid.h_max)} at Omega = {_fmt(rigid.omega_peak)}",
+    ]
+    if plot is not None:
+        lines.append(f"figure      {plot}")
+    typer.echo("\n".join(lines))
+
+
+def tune(
+    zeta: ZETA,
+    mass_ratio: Annotated[
+        float | None,
+        typer.Option("--mass-ratio", help="fix M = m_a/m and optimise only K and zeta_a"),
+    ] = None,
+    json: JSON = False,
+) -> None:
+    """Optimal foundation for a given zeta: exact numerical optimum next to Eqs. (28)-(31)."""
+    from stickslip.analysis.absorber import MAX_TUNING_ZETA, tune_foundation
+    from stickslip.model._validate import positive
+
+    zeta = _zeta(zeta)
+    if zeta > MAX_TUNING_ZETA:
+        raise BadInput(f"--zeta {zeta!r} is above {MAX_TUNING_ZETA}: no tuning is defined there")
+    if mass_ratio is not None:
+        try:
+            mass_ratio = positive("--mass-ratio", mass_ratio)
+        except ValueError as exc:
+            raise BadInput(str(exc)) from None
+    result = tune_foundation(zeta, mass_ratio=mass_ratio)
+    payload = result.to_dict()
+    if json:
+        print_json(payload)
+        return
+    fit, rel = payload["fitted"], payload["relative_difference"]
+    rows = [
+        ("M", payload["M"], fit["M"], rel["M"], "Eq. (28)"),
+        ("K", payload["K"], fit["K"], rel["K"], "Eq. (29)"),
+        ("zeta_a", payload["zeta_a"], fit["zeta_a"], rel["zeta_a"], "Eq. (30)"),
+        ("H_max", payload["H_max"], fit["H_max"], rel["H_max"], "Eq. (31)"),
+        ("zeta_eq", payload["zeta_eq"], fit["zeta_eq"], rel["zeta_eq"], "Eq. (33)"),
+    ]
+    mode = "M fixed" if result.mass_ratio_fixed else "M, K, zeta_a free"
+    lines = [
+        f"optimal foundation for zeta = {_fmt(zeta)} ({mode})",
+        f"{'':8s} {'exact':>12s} {'paper fit':>12s} {'fit/exact-1':>12s}",
+    ]
+    for name, exact, fitted, diff, eq in rows:
+        lines.append(f"{name:8s} {exact:12.6g} {fitted:12.6g} {diff:+12.2%}  {eq}")
+    lines.append(
+        f"H_max at the fitted parameters (exact FRF): {_fmt(fit['H_max_exact_at_fitted'])}"
+    )
+    if any(result.at_bound):
+        lines.append("note: the optimum lies on a search bound (see DEFAULT_MASS_BOUNDS)")
+    typer.echo("\n".join(lines))
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``frf`` and ``tune`` commands to ``app``."""
+    app.command("frf")(frf)
+    app.command("tune")(tune)

@@ -1,0 +1,323 @@
+"""``stickslip map`` and ``stickslip boundary``: where in (lambda, zeta) does it stick-slip?
+
+``map`` writes an occurrence map (netCDF, optionally CSV and a figure); while it runs,
+finished chunks are kept in ``OUT.parts/`` next to the output, so the same command run
+again after a crash or a kill resumes where it stopped. The folder is removed once the
+output is written. ``boundary`` finds every critical lambda at each zeta.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from stickslip.cli.common import BadInput, check_figure_path, check_output_path, print_json
+
+LAM_SPEC = Annotated[
+    str,
+    typer.Option("--lam", help="lambda grid: start:stop:n, log:start:stop:n or v1,v2,... (> 0)"),
+]
+ZETA_SPEC = Annotated[
+    str,
+    typer.Option("--zeta", help="zeta grid: start:stop:n, log:start:stop:n or v1,v2,... (>= 0)"),
+]
+LAM_SPACING = Annotated[
+    str | None, typer.Option("--lam-spacing", help="lin or log spacing of a start:stop:n lambda grid")
+]
+ZETA_SPACING = Annotated[
+    str | None, typer.Option("--zeta-spacing", help="lin or log spacing of a start:stop:n zeta grid")
+]
+GAMMA = Annotated[float, typer.Option("--gamma", help="mu_k / (mu_s - mu_k) >= 0")]
+DVA = Annotated[
+    str,
+    typer.Option(
+        "--dva",
+        help="foundation: none (rigid base), optimal (fitted Eqs. 28-30 at each zeta), "
+        "optimal-exact, or M,K,ZETA_A",
+    ),
+]
+K_SCALE = Annotated[float, typer.Option("--k-scale", help="multiply the foundation's K (Figs. 11-15)")]
+T_MAX = Annotated[
+    float | None, typer.Option("--t-max", help="dimensionless time horizon of each run (default 5000)")
+]
+WORKERS = Annotated[
+    int | None,
+    typer.Option("--workers", help="numba threads (threads backend) or worker processes (dask)"),
+]
+JSON = Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")]
+PLOT = Annotated[Path | None, typer.Option("--plot", help="write the figure here (.png, .pdf, .svg)")]
+
+
+def _parse_axes(lam: str | None, zeta: str, lam_spacing: str | None, zeta_spacing: str | None
+                ) -> tuple[Any, Any]:
+    from stickslip.sweep.grid import Axis
+
+    lam_axis = None if lam is None else Axis.parse(lam, "lambda", lam_spacing)
+    return lam_axis, Axis.parse(zeta, "zeta", zeta_spacing)
+
+
+def store_path(out: Path) -> Path:
+    """The resume store of an output file: ``OUT.parts`` next to it."""
+    return out.with_name(out.name + ".parts")
+
+
+class _ProgressBar:
+    """A rich progress bar on stderr with cells per second and time left."""
+
+    def __init__(self, enabled: bool, label: str) -> None:
+        self._bar: Any = None
+        self._task: Any = None
+        self._label = label
+        self._start_done = 0
+        self._started = 0.0
+        self.enabled = enabled
+
+    def __enter__(self) -> _ProgressBar:
+        if self.enabled:
+            from rich.console import Console
+            from rich.progress import (
+                BarColumn,
+                MofNCompleteColumn,
+                Progress,
+                TextColumn,
+                TimeRemainingColumn,
+            )
+
+            self._bar = Progress(
+                TextColumn("{task.description}"),
+                BarColumn(),
+                MofNCompleteColumn(),
+                TextColumn("cells  {task.fields[rate]} cells/s  left"),
+                TimeRemainingColumn(),
+                console=Console(stderr=True),
+            )
+            self._bar.__enter__()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self._bar is not None:
+            self._bar.__exit__(*exc)
+
+    def __call__(self, done: int, total: int) -> None:
+        if self._bar is None:
+            return
+        now = time.perf_counter()
+        if self._task is None:
+            self._task = self._bar.add_task(self._label, total=total, completed=done, rate="-")
+            self._start_done, self._started = done, now
+            return
+        rate = (done - self._start_done) / max(now - self._started, 1e-9)
+        self._bar.update(self._task, completed=done, rate=f"{rate:,.0f}")
+
+
+def _check_existing_output(out: Path, fingerprint: str, overwrite: bool) -> bool:
+    """True when ``out`` already holds this very map; error when it holds anything else."""
+    from stickslip.io.netcdf import read_fingerprint
+
+    if not out.exists() or overwrite:
+        return False
+    found = read_fingerprint(out)
+    if found == fingerprint:
+        return True
+    what = "a map of another configuration" if found else "something that is not a stickslip map"
+    raise BadInput(f"output file {str(out)!r} exists and holds {what}; pass --overwrite to replace it")
+
+
+def map_command(
+    lam: LAM_SPEC,
+    zeta: ZETA_SPEC,
+    out: Annotated[Path, typer.Option("--out", help="netCDF file to write (.nc)")],
+    lam_spacing: LAM_SPACING = None,
+    zeta_spacing: ZETA_SPACING = None,
+    dva: DVA = "none",
+    k_scale: K_SCALE = 1.0,
+    gamma: GAMMA = 2.0,
+    t_max: T_MAX = None,
+    csv: Annotated[Path | None, typer.Option("--csv", help="also write one CSV row per cell")] = None,
+    plot: PLOT = None,
+    backend: Annotated[
+        str | None,
+        typer.Option("--backend", help="serial, threads (default) or dask (default with --scheduler)"),
+    ] = None,
+    workers: WORKERS = None,
+    scheduler: Annotated[
+        str | None, typer.Option("--scheduler", help="address of a running Dask scheduler")
+    ] = None,
+    chunk_size: Annotated[
+        int | None, typer.Option("--chunk-size", help="cells per chunk (progress, tasks, resume)")
+    ] = None,
+    overwrite: Annotated[
+        bool, typer.Option("--overwrite", help="replace an output or resume store of another configuration")
+    ] = False,
+    json: JSON = False,
+) -> None:
+    """Occurrence map over a (lambda, zeta) grid (paper Figs. 8 and 11); resumable."""
+    from stickslip.analysis.dva import DvaSpec
+    from stickslip.io.netcdf import write_dataset
+    from stickslip.sweep.executors import EngineSettings, check_backend
+    from stickslip.sweep.occurrence import MapConfig, OccurrenceMap, compute_map
+    from stickslip.sweep.store import discard_store
+
+    lam_axis, zeta_axis = _parse_axes(lam, zeta, lam_spacing, zeta_spacing)
+    settings = EngineSettings() if t_max is None else EngineSettings(t_max=t_max)
+    config = MapConfig(lam_axis, zeta_axis, DvaSpec.parse(dva, k_scale), gamma, settings)
+    chosen = check_backend(backend or ("dask" if scheduler else "threads"), workers, scheduler)
+    if chunk_size is not None and chunk_size < 1:
+        raise BadInput(f"--chunk-size {chunk_size} must be at least 1")
+    if out.suffix.lower() != ".nc":
+        raise BadInput(f"output file {str(out)!r} must end in .nc (netCDF)")
+    check_output_path(out)
+    if csv is not None:
+        check_output_path(csv)
+    if plot is not None:
+        check_figure_path(plot)
+    fingerprint = config.fingerprint()
+    reused = _check_existing_output(out, fingerprint, overwrite)
+    store = store_path(out)
+    if reused:
+        result = OccurrenceMap.from_netcdf(out)
+    else:
+        enabled = not json and sys.stderr.isatty()
+        with _ProgressBar(enabled, f"map {config.shape[0]}x{config.shape[1]}") as bar:
+            result = compute_map(config, backend=chosen, workers=workers, scheduler=scheduler,
+                                 chunk_size=chunk_size, progress=bar, store=store,
+                                 overwrite=overwrite)
+        write_dataset(result.dataset, out, overwrite=True)
+        discard_store(store)
+    payload = result.to_dict()
+    payload.update({"out": str(out), "csv": None, "plot": None, "reused_output": reused,
+                    "store": str(store)})
+    if csv is not None:
+        result.to_csv(csv)
+        payload["csv"] = str(csv)
+    if plot is not None:
+        from matplotlib.figure import Figure
+
+        fig = Figure(figsize=(8.0, 5.5), layout="constrained")
+        result.plot(ax=fig.add_subplot())
+        fig.savefig(plot, dpi=130)
+        payload["plot"] = str(plot)
+    if json:
+        print_json(payload)
+        return
+    _print_map_summary(payload)
+
+
+def _print_map_summary(p: dict[str, Any]) -> None:
+    counts = p["counts"]
+    chunks = p["chunks"]
+    rate = p["cells_per_second"]
+    lines = [
+        f"map         {p['n_lambda']} lambda x {p['n_zeta']} zeta = {p['n_cells']} cells, "
+        f"{p['dva']}, gamma={p['gamma']:g}, t_max={p['t_max']:g}",
+        f"verdicts    stick-slip {counts['stick-slip']}, steady-sliding {counts['steady-sliding']}, "
+        f"undetermined {counts['undetermined']} (stick-slip fraction {p['stick_slip_fraction']:.4f})",
+    ]
+    if p["reused_output"]:
+        lines.append("computed    nothing: the output already holds this map")
+    else:
+        lines.append(
+            f"computed    {chunks['computed']} of {chunks['total']} chunks "
+            f"({chunks['loaded']} resumed) in {p['elapsed_s']:.2f} s"
+            + (f", {rate:,.0f} cells/s" if rate else "")
+            + f" [{p['backend']}]"
+        )
+    lines.append(f"output      {p['out']}")
+    for key in ("csv", "plot"):
+        if p[key]:
+            lines.append(f"{key:<11} {p[key]}")
+    typer.echo("\n".join(lines))
+
+
+def boundary_command(
+    zeta: ZETA_SPEC,
+    zeta_spacing: ZETA_SPACING = None,
+    dva: DVA = "none",
+    k_scale: K_SCALE = 1.0,
+    gamma: GAMMA = 2.0,
+    t_max: T_MAX = None,
+    lam_min: Annotated[float, typer.Option("--lam-min", help="lower end of the lambda scan")] = 0.01,
+    lam_max: Annotated[float, typer.Option("--lam-max", help="upper end of the lambda scan")] = 100.0,
+    scan: Annotated[int, typer.Option("--scan", help="log-spaced scan points along lambda")] = 48,
+    rtol: Annotated[float, typer.Option("--rtol", help="relative tolerance of each crossing")] = 1e-6,
+    workers: WORKERS = None,
+    out: Annotated[
+        Path | None, typer.Option("--out", help="also write the result as netCDF (.nc)")
+    ] = None,
+    overwrite: Annotated[bool, typer.Option("--overwrite", help="replace an existing --out file")] = False,
+    plot: PLOT = None,
+    json: JSON = False,
+) -> None:
+    """Critical lambda against zeta: every verdict change, bisected to --rtol (Fig. 11a)."""
+    from stickslip.analysis.dva import DvaSpec
+    from stickslip.io.netcdf import write_dataset
+    from stickslip.sweep.boundary import stick_slip_boundary
+    from stickslip.sweep.executors import check_backend
+
+    _, zeta_axis = _parse_axes(None, zeta, None, zeta_spacing)
+    spec = DvaSpec.parse(dva, k_scale)
+    check_backend("threads", workers, None)
+    if out is not None:
+        if out.suffix.lower() != ".nc":
+            raise BadInput(f"output file {str(out)!r} must end in .nc (netCDF)")
+        check_output_path(out, overwrite=overwrite)
+    if plot is not None:
+        check_figure_path(plot)
+    result = stick_slip_boundary(zeta_axis, spec, gamma, lam_min=lam_min, lam_max=lam_max,
+                                 n_scan=scan, rtol=rtol, t_max=t_max, workers=workers)
+    payload = result.to_dict()
+    payload.update({"out": None, "plot": None})
+    if out is not None:
+        write_dataset(result.to_xarray(), out, overwrite=True)
+        payload["out"] = str(out)
+    if plot is not None:
+        from matplotlib.figure import Figure
+
+        fig = Figure(figsize=(8.0, 5.0), layout="constrained")
+        result.plot(ax=fig.add_subplot())
+        fig.savefig(plot, dpi=130)
+        payload["plot"] = str(plot)
+    if json:
+        print_json(payload)
+        return
+    _print_boundary_table(payload)
+
+
+def _print_boundary_table(p: dict[str, Any]) -> None:
+    def fmt(x: float | None) -> str:
+        return "-" if x is None else f"{x:.7g}"
+
+    analytic = [k for k in ("eq36", "eq39", "eq37") if p["rows"] and k in p["rows"][0]]
+    header = f"{'zeta':>10}  {'critical':>12}  " + "".join(
+        f"{'Eq. (' + k[2:] + ')':>12}  " for k in analytic) + "all crossings (lambda, kind)"
+    lines = [
+        f"boundary    {p['dva']}, gamma={p['gamma']:g}, lambda in [{p['lam_min']:g}, "
+        f"{p['lam_max']:g}], {p['n_scan']} scan points, rtol={p['rtol']:g}, t_max={p['t_max']:g}",
+        header,
+    ]
+    for row in p["rows"]:
+        crossings = ", ".join(
+            f"{c['lambda']:.7g} {c['kind']}" + ("" if c["converged"] else " (not converged)")
+            for c in row["crossings"]
+        )
+        line = f"{row['zeta']:>10.5g}  {fmt(row['critical_lambda']):>12}  " + "".join(
+            f"{fmt(row[k]):>12}  " for k in analytic) + (crossings or "-")
+        if row["note"]:
+            line += f"  [{row['note']}]"
+        lines.append(line)
+    lines.append(f"runs        {p['n_runs']} simulations in {p['elapsed_s']:.2f} s")
+    if p.get("out"):
+        lines.append(f"output      {p['out']}")
+    if p.get("plot"):
+        lines.append(f"figure      {p['plot']}")
+    typer.echo("\n".join(lines))
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``map`` and ``boundary`` commands to ``app``."""
+    app.command("map")(map_command)
+    app.command("boundary")(boundary_command)

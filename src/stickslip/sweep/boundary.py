@@ -1,0 +1,409 @@
+"""Critical lambda as a function of zeta, every verdict change included (paper Fig. 11a).
+
+For the rigid base stick-slip occurs above one critical value, the root of Eq. (36). With a
+detuned foundation the stick-slip set along ``lambda`` need not be an interval, so a single
+bisection would find only part of the boundary. Here, for every ``zeta``:
+
+1. ``lambda`` is scanned on a log grid of ``n_scan`` points in ``[lam_min, lam_max]``;
+2. each pair of consecutive certified scan points with different verdicts brackets a
+   crossing (undetermined scan points are skipped, their neighbours bracket across them);
+3. each bracket is bisected (geometric midpoints) on the certified verdict until
+   ``hi - lo <= rtol * lo``; the crossing is reported at ``sqrt(lo hi)``, within ``rtol / 2``
+   relative. A bisection run that ends undetermined stops its bracket, which is then
+   reported as not converged rather than guessed.
+
+All scan points of all ``zeta`` run as one parallel batch, and each bisection round runs the
+midpoints of every open bracket as one batch. Features narrower than the scan spacing can
+be missed (two crossings inside one scan interval cancel); refine with a larger ``n_scan``.
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import math
+import time
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from stickslip.analysis.dva import DvaSpec
+from stickslip.analysis.simulation import Verdict
+from stickslip.kernel import engine
+from stickslip.model._validate import non_negative, positive
+from stickslip.model.parameters import Foundation
+from stickslip.sweep.analytic import analytic_boundaries
+from stickslip.sweep.executors import CellBatch, EngineSettings, StructureSet, run_batch
+from stickslip.sweep.grid import Axis, as_axis
+from stickslip.sweep.occurrence import VERDICTS, verdict_codes
+from stickslip.sweep.provenance import git_revision, library_versions, package_version, utc_now
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+FloatArray = NDArray[np.float64]
+
+_STEADY = Verdict.STEADY_SLIDING.code
+_STICK_SLIP = Verdict.STICK_SLIP.code
+_UNDETERMINED = Verdict.UNDETERMINED.code
+
+
+@dataclass(frozen=True)
+class Crossing:
+    """A change of verdict along ``lambda`` at fixed ``zeta``.
+
+    Attributes
+    ----------
+    lam : float
+        Location, the geometric midpoint of the final bracket (dimensionless).
+    lo, hi : float
+        Final bracket: the verdict below ``lo`` side differs from the ``hi`` side.
+    onset : bool
+        True when stick-slip lies above (steady sliding below), False for the reverse.
+    converged : bool
+        True when ``hi - lo <= rtol * lo``; False when a bisection run was undetermined.
+    """
+
+    lam: float
+    lo: float
+    hi: float
+    onset: bool
+    converged: bool
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready."""
+        return {"lambda": self.lam, "lo": self.lo, "hi": self.hi,
+                "kind": "onset" if self.onset else "end", "converged": self.converged}
+
+
+@dataclass(frozen=True)
+class BoundaryResult:
+    """Result of :func:`stick_slip_boundary`.
+
+    Attributes
+    ----------
+    zeta : Axis
+        The damping ratios (dimensionless).
+    dva : DvaSpec
+        The foundation choice.
+    gamma, lam_min, lam_max, rtol : float
+    n_scan : int
+    settings : EngineSettings
+    scan_lambda : ndarray, shape (n_scan,)
+        The log-spaced scan points.
+    scan_verdict : ndarray, shape (n_zeta, n_scan)
+        Verdict codes at the scan points (0 steady, 1 stick-slip, 2 undetermined).
+    crossings : tuple of tuple of Crossing
+        Per ``zeta``, every verdict change found, sorted by ``lambda``.
+    foundations : tuple of Foundation or None
+        ``dva`` resolved at each ``zeta`` (``None`` for the rigid base).
+    n_runs : int
+        Simulations run in total.
+    elapsed : float
+        Wall-clock seconds.
+    """
+
+    zeta: Axis
+    dva: DvaSpec
+    gamma: float
+    lam_min: float
+    lam_max: float
+    n_scan: int
+    rtol: float
+    settings: EngineSettings
+    scan_lambda: FloatArray = field(repr=False)
+    scan_verdict: NDArray[np.int8] = field(repr=False)
+    crossings: tuple[tuple[Crossing, ...], ...] = field(repr=False)
+    foundations: tuple[Foundation | None, ...] = field(default=(), repr=False)
+    n_runs: int = 0
+    elapsed: float = 0.0
+
+    @property
+    def critical_lambda(self) -> FloatArray:
+        """Lowest ``lambda`` at which stick-slip starts, per ``zeta`` (the design value).
+
+        NaN when the lowest certified scan point already stick-slips (the critical value is
+        below ``lam_min``) or no scan point was certified; ``inf`` when no stick-slip was
+        found in the range. Equals the root of Eq. (36) for the rigid base.
+        """
+        out = np.full(len(self.zeta), np.nan)
+        for j, row in enumerate(self.scan_verdict):
+            known = row[row != _UNDETERMINED]
+            if known.size == 0 or known[0] == _STICK_SLIP:
+                continue
+            onsets = [c.lam for c in self.crossings[j] if c.onset]
+            out[j] = onsets[0] if onsets else math.inf
+        return out
+
+    def notes(self) -> list[str]:
+        """Per ``zeta``, why :attr:`critical_lambda` is not a plain number (else ``""``)."""
+        out = []
+        for j, row in enumerate(self.scan_verdict):
+            known = row[row != _UNDETERMINED]
+            if known.size == 0:
+                out.append("every scan run was undetermined; increase t_max")
+            elif known[0] == _STICK_SLIP:
+                out.append(f"stick-slip already at lam_min={self.lam_min:g}")
+            elif not any(c.onset for c in self.crossings[j]):
+                out.append(f"no stick-slip in [{self.lam_min:g}, {self.lam_max:g}]")
+            elif not all(c.converged for c in self.crossings[j]):
+                out.append("a bisection stopped on an undetermined run")
+            else:
+                out.append("")
+        return out
+
+    def analytic(self) -> dict[str, FloatArray]:
+        """Closed-form critical lambda at each ``zeta``: ``eq36``/``eq39`` or ``eq37``."""
+        found = self.foundations if len(self.foundations) == len(self.zeta) else None
+        return {c.key: c.lam for c in analytic_boundaries(self.dva, self.zeta.values, found)}
+
+    def configuration(self) -> dict[str, Any]:
+        """The resolved configuration, JSON-ready."""
+        return {
+            "zeta": {"spec": self.zeta.spec, "spacing": self.zeta.spacing,
+                     "values": [float(v) for v in self.zeta.values]},
+            "dva": {"text": self.dva.as_text(), "kind": self.dva.kind,
+                    "k_scale": self.dva.k_scale, "description": self.dva.describe()},
+            "gamma": self.gamma,
+            "lam_min": self.lam_min,
+            "lam_max": self.lam_max,
+            "n_scan": self.n_scan,
+            "rtol": self.rtol,
+            "engine": self.settings.to_dict(),
+            "package_version": package_version(),
+        }
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready: one row per ``zeta`` with all crossings and the analytic values."""
+        def num(x: float) -> float | None:
+            return float(x) if math.isfinite(x) else None
+
+        analytic = {key: [num(v) for v in values] for key, values in self.analytic().items()}
+        critical = self.critical_lambda
+        notes = self.notes()
+        rows = []
+        for j, z in enumerate(self.zeta.values):
+            row: dict[str, Any] = {
+                "zeta": float(z),
+                "critical_lambda": num(critical[j]),
+                "note": notes[j],
+                "crossings": [c.to_dict() for c in self.crossings[j]],
+                "undetermined_scan_points": [
+                    float(v) for v, code in zip(self.scan_lambda, self.scan_verdict[j], strict=True)
+                    if code == _UNDETERMINED
+                ],
+            }
+            row.update({key: values[j] for key, values in analytic.items()})
+            rows.append(row)
+        return {
+            "dva": self.dva.describe(),
+            "gamma": self.gamma,
+            "lam_min": self.lam_min,
+            "lam_max": self.lam_max,
+            "n_scan": self.n_scan,
+            "rtol": self.rtol,
+            "t_max": self.settings.t_max,
+            "n_runs": self.n_runs,
+            "elapsed_s": self.elapsed,
+            "rows": rows,
+        }
+
+    def to_xarray(self) -> xr.Dataset:
+        """As an ``xarray.Dataset`` over ``zeta`` (CF flag attributes, provenance)."""
+        import xarray as xr
+
+        n_cross = max([len(c) for c in self.crossings] + [1])
+        shape = (len(self.zeta), n_cross)
+        lam = np.full(shape, np.nan)
+        lo = np.full(shape, np.nan)
+        hi = np.full(shape, np.nan)
+        kind = np.full(shape, -1, dtype=np.int8)
+        converged = np.zeros(shape, dtype=np.int8)
+        for j, row in enumerate(self.crossings):
+            for k, c in enumerate(row):
+                lam[j, k], lo[j, k], hi[j, k] = c.lam, c.lo, c.hi
+                kind[j, k] = 1 if c.onset else 0
+                converged[j, k] = int(c.converged)
+        nan_note = "NaN (the _FillValue) where this zeta has fewer crossings"
+        data: dict[str, Any] = {
+            "critical_lambda": (("zeta",), self.critical_lambda, {
+                "long_name": "lowest lambda at which stick-slip starts (simulated)",
+                "units": "1",
+                "comment": "NaN: stick-slip already at lam_min or no certified scan point; "
+                           "inf: no stick-slip in the scanned range",
+            }),
+            "crossing_lambda": (("zeta", "crossing"), lam, {
+                "long_name": "lambda of each verdict change", "units": "1", "comment": nan_note}),
+            "crossing_lo": (("zeta", "crossing"), lo, {"long_name": "lower end of the final bracket",
+                                                       "units": "1", "comment": nan_note}),
+            "crossing_hi": (("zeta", "crossing"), hi, {"long_name": "upper end of the final bracket",
+                                                       "units": "1", "comment": nan_note}),
+            "crossing_kind": (("zeta", "crossing"), kind, {
+                "long_name": "direction of the verdict change with increasing lambda",
+                "flag_values": np.array([-1, 0, 1], dtype=np.int8),
+                "flag_meanings": "none end-of-stick-slip onset-of-stick-slip",
+            }),
+            "crossing_converged": (("zeta", "crossing"), converged, {
+                "long_name": "1 when the bracket reached rtol, 0 when an undetermined run stopped it",
+                "flag_values": np.array([0, 1], dtype=np.int8),
+                "flag_meanings": "not-converged converged",
+            }),
+            "scan_verdict": (("zeta", "scan_lambda"), self.scan_verdict, {
+                "long_name": "certified verdict at the scan points",
+                "flag_values": np.array([v.code for v in VERDICTS], dtype=np.int8),
+                "flag_meanings": " ".join(v.value for v in VERDICTS),
+            }),
+        }
+        for key, values in self.analytic().items():
+            data[f"critical_lambda_{key}"] = (("zeta",), values, {
+                "long_name": f"critical lambda of the closed form {key.replace('eq', 'Eq. ')}",
+                "units": "1",
+            })
+        attrs = {
+            "title": f"critical lambda against zeta, {self.dva.describe()}, gamma = {self.gamma:g}",
+            "Conventions": "CF-1.10",
+            "stickslip_version": package_version(),
+            "git_revision": git_revision(),
+            "library_versions": json.dumps(library_versions(), sort_keys=True),
+            "date_created": utc_now(),
+            "configuration": json.dumps(self.configuration(), sort_keys=True),
+            "rtol": self.rtol,
+            "t_max": self.settings.t_max,
+        }
+        return xr.Dataset(
+            data,
+            coords={
+                "zeta": ("zeta", np.array(self.zeta.values), {"long_name": "damping ratio", "units": "1"}),
+                "crossing": ("crossing", np.arange(n_cross)),
+                "scan_lambda": ("scan_lambda", self.scan_lambda, {"units": "1"}),
+            },
+            attrs=attrs,
+        )
+
+    def plot(self, **kwargs: Any) -> list[Any]:
+        """Draw the boundary; see :func:`stickslip.plot.maps.boundary_plot`."""
+        from stickslip.plot.maps import boundary_plot
+
+        return boundary_plot(self, **kwargs)
+
+
+def stick_slip_boundary(
+    zetas: Axis | ArrayLike,
+    dva: DvaSpec | str = "none",
+    gamma: float = 2.0,
+    *,
+    lam_min: float = 0.01,
+    lam_max: float = 100.0,
+    n_scan: int = 48,
+    rtol: float = 1e-6,
+    t_max: float | None = None,
+    settings: EngineSettings | None = None,
+    workers: int | None = None,
+) -> BoundaryResult:
+    """Every critical ``lambda`` in ``[lam_min, lam_max]`` at each ``zeta``, by scan and bisection.
+
+    Parameters
+    ----------
+    zetas : Axis or array_like or str
+        Primary damping ratios (dimensionless, >= 0), or an axis spec (``"0.01:0.4:20"``).
+    dva : DvaSpec or str
+        Foundation (``none`` = rigid base, ``optimal``, ``optimal-exact``, ``M,K,ZETA_A``).
+    gamma : float
+        ``mu_k / (mu_s - mu_k)``, dimensionless.
+    lam_min, lam_max : float
+        Scan range of ``lambda`` (dimensionless), ``0 < lam_min < lam_max``.
+    n_scan : int
+        Log-spaced scan points (at least 2).
+    rtol : float
+        Relative width of the final brackets, ``0 < rtol < 1`` (default ``1e-6``).
+    t_max : float, optional
+        Time horizon of each simulation (dimensionless); overrides ``settings.t_max``.
+    settings : EngineSettings, optional
+        Engine limits (defaults of :func:`stickslip.simulate`).
+    workers : int, optional
+        Numba threads (all cores when None).
+
+    Returns
+    -------
+    BoundaryResult
+    """
+    started = time.perf_counter()
+    spec = DvaSpec.parse(dva) if isinstance(dva, str) else dva
+    axis = as_axis(zetas, "zeta")
+    for value in axis.values.tolist():
+        non_negative("zeta", value)
+    gamma = non_negative("gamma", gamma)
+    lam_min, lam_max = positive("lam_min", lam_min), positive("lam_max", lam_max)
+    if lam_max <= lam_min:
+        raise ValueError(f"lam_max={lam_max!r} must exceed lam_min={lam_min!r}")
+    if isinstance(n_scan, bool) or int(n_scan) != n_scan or n_scan < 2:
+        raise ValueError(f"n_scan={n_scan!r} must be a whole number of at least 2")
+    rtol = positive("rtol", rtol)
+    if rtol >= 1.0:
+        raise ValueError(f"rtol={rtol!r} must be below 1")
+    engine_settings = settings or EngineSettings()
+    if t_max is not None:
+        engine_settings = EngineSettings(t_max, engine_settings.max_events,
+                                         engine_settings.cycle_tol, engine_settings.max_period)
+    structures = StructureSet.resolve(spec, axis.values)
+    n_zeta = len(axis)
+
+    def verdicts(index: NDArray[np.int64], lams: FloatArray) -> NDArray[np.int8]:
+        if index.size == 0:
+            return np.zeros(0, dtype=np.int8)
+        _, iout = run_batch(structures, CellBatch(index, lams, gamma), engine_settings, workers)
+        return verdict_codes(iout[:, engine.I_STATUS])
+
+    scan = np.geomspace(lam_min, lam_max, int(n_scan))
+    scan[0], scan[-1] = lam_min, lam_max
+    index = np.repeat(np.arange(n_zeta, dtype=np.int64), scan.size)
+    scan_verdict = verdicts(index, np.tile(scan, n_zeta)).reshape(n_zeta, scan.size)
+    n_runs = index.size
+
+    # open brackets: zeta index, lo, hi, verdict at lo
+    brackets: list[list[Any]] = []
+    for j in range(n_zeta):
+        known = [(float(scan[i]), int(c)) for i, c in enumerate(scan_verdict[j]) if c != _UNDETERMINED]
+        for (lo, v_lo), (hi, v_hi) in itertools.pairwise(known):
+            if v_lo != v_hi:
+                brackets.append([j, lo, hi, v_lo, True])
+    active = [b for b in brackets if not _narrow(b[1], b[2], rtol)]
+    while active:
+        mids = np.array([math.sqrt(b[1] * b[2]) for b in active])
+        codes = verdicts(np.array([b[0] for b in active], dtype=np.int64), mids)
+        n_runs += mids.size
+        for b, mid, code in zip(active, mids, codes, strict=True):
+            if code == _UNDETERMINED:
+                b[4] = False
+            elif code == b[3]:
+                b[1] = float(mid)
+            else:
+                b[2] = float(mid)
+        active = [b for b in active if b[4] and not _narrow(b[1], b[2], rtol)]
+    per_zeta: list[list[Crossing]] = [[] for _ in range(n_zeta)]
+    for j, lo, hi, v_lo, ok in brackets:
+        per_zeta[j].append(Crossing(math.sqrt(lo * hi), lo, hi, onset=v_lo == _STEADY, converged=ok))
+    return BoundaryResult(
+        zeta=axis,
+        dva=spec,
+        gamma=gamma,
+        lam_min=lam_min,
+        lam_max=lam_max,
+        n_scan=int(n_scan),
+        rtol=rtol,
+        settings=engine_settings,
+        scan_lambda=scan,
+        scan_verdict=scan_verdict,
+        crossings=tuple(tuple(sorted(c, key=lambda x: x.lam)) for c in per_zeta),
+        foundations=structures.foundations,
+        n_runs=n_runs,
+        elapsed=time.perf_counter() - started,
+    )
+
+
+def _narrow(lo: float, hi: float, rtol: float) -> bool:
+    """Bracket reached the tolerance, or no float lies strictly between its ends."""
+    mid = math.sqrt(lo * hi)
+    return hi - lo <= rtol * lo or not lo < mid < hi

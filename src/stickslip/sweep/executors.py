@@ -1,0 +1,342 @@
+"""Running the cells of a sweep: serially, over numba threads, or on a Dask cluster.
+
+Every cell is one certified simulation from the startup state (``run_cells`` of
+:mod:`stickslip.kernel.sweep`). Cells are independent and the engine is deterministic, so
+the float and integer summaries of a cell do not depend on the backend, the number of
+threads or the chunking: the backends return bit-identical arrays.
+
+The grid is cut into chunks of consecutive cells. A backend yields each chunk as soon as
+it is finished (in completion order for Dask), which is what lets the caller report
+progress and write the chunk to a resume store.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from stickslip.analysis.dva import DvaSpec
+from stickslip.analysis.simulation import (
+    DEFAULT_CYCLE_TOL,
+    DEFAULT_MAX_EVENTS,
+    DEFAULT_MAX_PERIOD,
+    DEFAULT_T_MAX,
+)
+from stickslip.model._validate import non_negative, positive
+from stickslip.model.parameters import Foundation
+from stickslip.model.structure import chain_structure
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+Backend = Literal["serial", "threads", "dask"]
+BACKENDS: tuple[Backend, ...] = ("serial", "threads", "dask")
+
+#: Cells handed to one numba thread at a time: the cost of a cell varies by orders of
+#: magnitude (a certified steady state can come after one phase, a cycle near the boundary
+#: after thousands), so threads take small batches instead of one fixed slice each.
+THREAD_BATCH = 4
+
+
+@dataclass(frozen=True)
+class EngineSettings:
+    """Engine limits of every cell (defaults of :func:`stickslip.simulate`).
+
+    Parameters
+    ----------
+    t_max : float
+        Dimensionless time horizon ``tau`` of each run.
+    max_events : int
+        Bound on the number of mode switches per run.
+    cycle_tol : float
+        Relative tolerance for a repeating breakaway state.
+    max_period : int
+        Longest cycle looked for, in stick phases.
+    """
+
+    t_max: float = DEFAULT_T_MAX
+    max_events: int = DEFAULT_MAX_EVENTS
+    cycle_tol: float = DEFAULT_CYCLE_TOL
+    max_period: int = DEFAULT_MAX_PERIOD
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "t_max", positive("t_max", self.t_max))
+        object.__setattr__(self, "cycle_tol", positive("cycle_tol", self.cycle_tol))
+        for name in ("max_events", "max_period"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or int(value) != value or int(value) < 1:
+                raise ValueError(f"{name}={value!r} must be a whole number of at least 1")
+            object.__setattr__(self, name, int(value))
+
+    def to_dict(self) -> dict[str, float | int]:
+        """The settings as a JSON-ready dictionary (recorded in datasets)."""
+        return {
+            "t_max": self.t_max,
+            "max_events": self.max_events,
+            "cycle_tol": self.cycle_tol,
+            "max_period": self.max_period,
+        }
+
+
+@dataclass(frozen=True)
+class StructureSet:
+    """The structure of every ``zeta`` of a sweep, stacked for the kernel.
+
+    ``masses[j]``, ``dampings[j]`` and ``stiffnesses[j]`` are the dimensionless matrices at
+    ``zetas[j]``; ``foundations[j]`` the resolved foundation (``None`` for the rigid base).
+    """
+
+    zetas: FloatArray
+    foundations: tuple[Foundation | None, ...]
+    masses: FloatArray
+    dampings: FloatArray
+    stiffnesses: FloatArray
+
+    @classmethod
+    def resolve(cls, dva: DvaSpec, zetas: Sequence[float] | FloatArray) -> StructureSet:
+        """Resolve ``dva`` at each ``zeta`` and build the chain structure (DESIGN.md section 1)."""
+        z = np.asarray(zetas, dtype=np.float64).reshape(-1)
+        for value in z.tolist():
+            non_negative("zeta", value)
+        try:
+            foundations = tuple(dva.resolve(float(value)) for value in z)
+        except ImportError as exc:
+            raise ValueError(f"--dva {dva.as_text()} is not available in this build: {exc}") from None
+        structures = [
+            chain_structure(float(value), () if f is None else (f,))
+            for value, f in zip(z, foundations, strict=True)
+        ]
+        return cls(
+            zetas=z,
+            foundations=foundations,
+            masses=np.stack([s.mass for s in structures]),
+            dampings=np.stack([s.damping for s in structures]),
+            stiffnesses=np.stack([s.stiffness for s in structures]),
+        )
+
+    @property
+    def n_dof(self) -> int:
+        """Degrees of freedom of every structure (1 rigid base, 2 with a foundation)."""
+        return int(self.masses.shape[1])
+
+
+@dataclass(frozen=True)
+class CellBatch:
+    """Cells to run: structure index and ``lambda`` of each, and ``gamma``."""
+
+    structure_index: IntArray
+    lams: FloatArray
+    gamma: float
+
+
+def run_batch(
+    structures: StructureSet, batch: CellBatch, settings: EngineSettings, n_threads: int | None = None
+) -> tuple[FloatArray, IntArray]:
+    """Run ``batch`` with ``run_cells`` on ``n_threads`` numba threads (all when None).
+
+    Returns the float and integer summaries, shapes ``(n, N_FLOAT)`` and ``(n, N_INT)``,
+    with the layouts ``F_*`` and ``I_*`` of :mod:`stickslip.kernel.engine`. This is also the
+    task that Dask workers run, so it only takes plain, picklable data.
+    """
+    from stickslip.kernel.sweep import run_cells
+
+    gammas = np.full(batch.lams.shape, float(batch.gamma))
+    with numba_threads(n_threads):
+        fout, iout = run_cells(
+            structures.masses,
+            structures.dampings,
+            structures.stiffnesses,
+            np.ascontiguousarray(batch.structure_index, dtype=np.int64),
+            np.ascontiguousarray(batch.lams, dtype=np.float64),
+            gammas,
+            float(settings.t_max),
+            int(settings.max_events),
+            float(settings.cycle_tol),
+            int(settings.max_period),
+        )
+    return fout, iout
+
+
+@contextmanager
+def numba_threads(n_threads: int | None) -> Iterator[int]:
+    """Run the enclosed parallel kernels on ``n_threads`` threads (all when None), then restore."""
+    import numba
+
+    available = int(numba.config.NUMBA_NUM_THREADS)  # type: ignore[attr-defined]
+    n = available if n_threads is None else max(1, min(int(n_threads), available))
+    previous = numba.get_num_threads()
+    previous_chunk = numba.get_parallel_chunksize()
+    numba.set_num_threads(n)
+    numba.set_parallel_chunksize(THREAD_BATCH)
+    try:
+        yield n
+    finally:
+        numba.set_num_threads(previous)
+        numba.set_parallel_chunksize(previous_chunk)
+
+
+def max_threads() -> int:
+    """Number of numba threads available in this process (all cores by default)."""
+    import numba
+
+    return int(numba.config.NUMBA_NUM_THREADS)  # type: ignore[attr-defined]
+
+
+@dataclass(frozen=True)
+class Chunk:
+    """Cells ``start`` to ``stop - 1`` (flat, lambda-major order) of a sweep; ``index`` numbers it."""
+
+    index: int
+    start: int
+    stop: int
+
+    @property
+    def size(self) -> int:
+        """Number of cells."""
+        return self.stop - self.start
+
+
+def make_chunks(n_cells: int, chunk_size: int) -> list[Chunk]:
+    """Consecutive chunks of ``chunk_size`` cells (the last one may be smaller)."""
+    if chunk_size < 1:
+        raise ValueError(f"chunk_size={chunk_size!r} must be at least 1")
+    n_chunks = math.ceil(n_cells / chunk_size)
+    return [
+        Chunk(k, k * chunk_size, min(n_cells, (k + 1) * chunk_size)) for k in range(n_chunks)
+    ]
+
+
+def default_chunk_size(n_cells: int) -> int:
+    """About a hundred chunks, each of 64 to 4096 cells: progress and resume granularity.
+
+    At several thousand cells per second a chunk takes well under a second, which keeps the
+    progress bar live and loses little work when a run is killed.
+    """
+    return int(min(4096, max(64, math.ceil(n_cells / 100)), max(1, n_cells)))
+
+
+def check_backend(backend: str, workers: int | None, scheduler: str | None) -> Backend:
+    """Validate the backend choice; ``scheduler`` needs ``dask`` and excludes ``workers``."""
+    if backend not in BACKENDS:
+        raise ValueError(f"backend {backend!r} is not one of {', '.join(BACKENDS)}")
+    if workers is not None and (isinstance(workers, bool) or int(workers) != workers or workers < 1):
+        raise ValueError(f"workers={workers!r} must be a whole number of at least 1")
+    if scheduler is not None and backend != "dask":
+        raise ValueError(f"a scheduler address needs the dask backend, not {backend!r}")
+    if scheduler is not None and workers is not None:
+        raise ValueError("give either a scheduler address or a number of workers, not both")
+    if backend == "serial" and workers not in (None, 1):
+        raise ValueError(f"the serial backend runs on one thread; workers={workers!r}")
+    return backend
+
+
+def execute(
+    structures: StructureSet,
+    batches: Sequence[tuple[Chunk, CellBatch]],
+    settings: EngineSettings,
+    *,
+    backend: Backend = "threads",
+    workers: int | None = None,
+    scheduler: str | None = None,
+) -> Iterator[tuple[Chunk, FloatArray, IntArray]]:
+    """Run every batch and yield ``(chunk, fout, iout)`` as each one finishes.
+
+    Parameters
+    ----------
+    structures : StructureSet
+        The structures the batches index into.
+    batches : sequence of (Chunk, CellBatch)
+        The work, one batch per chunk.
+    settings : EngineSettings
+        Engine limits.
+    backend : {"serial", "threads", "dask"}
+        ``serial``: one numba thread. ``threads``: ``workers`` numba threads (all cores
+        when None). ``dask``: a ``dask.distributed`` client connected to ``scheduler``, or a
+        ``LocalCluster`` of ``workers`` single-threaded worker processes on 127.0.0.1.
+    """
+    if not batches:
+        return
+    if backend == "dask":
+        yield from _execute_dask(structures, batches, settings, workers, scheduler)
+        return
+    n_threads = 1 if backend == "serial" else workers
+    for chunk, batch in batches:
+        fout, iout = run_batch(structures, batch, settings, n_threads)
+        yield chunk, fout, iout
+
+
+def _execute_dask(
+    structures: StructureSet,
+    batches: Sequence[tuple[Chunk, CellBatch]],
+    settings: EngineSettings,
+    workers: int | None,
+    scheduler: str | None,
+) -> Iterator[tuple[Chunk, FloatArray, IntArray]]:
+    try:
+        from distributed import Client, LocalCluster, as_completed
+    except ImportError:
+        raise ValueError(
+            "the dask backend needs dask.distributed: pip install 'stickslip[dask]'"
+        ) from None
+    with _dask_client(Client, LocalCluster, workers, scheduler) as client:
+        [shared] = client.scatter([structures], broadcast=True)
+        futures: dict[Any, Chunk] = {}
+        for chunk, batch in batches:
+            future = client.submit(run_batch, shared, batch, settings, 1, pure=False)
+            futures[future] = chunk
+        try:
+            for future in as_completed(futures):
+                fout, iout = future.result()
+                yield futures[future], fout, iout
+        finally:
+            client.cancel(list(futures))
+
+
+@contextmanager
+def _dask_client(client_cls: Any, cluster_cls: Any, workers: int | None,
+                 scheduler: str | None) -> Iterator[Any]:
+    if scheduler is not None:
+        _probe_tcp(scheduler)
+        try:
+            client = client_cls(scheduler, timeout="20s")
+        except (OSError, TimeoutError, ValueError) as exc:
+            reason = " ".join(str(exc).split()) or type(exc).__name__
+            raise ValueError(f"cannot reach the dask scheduler at {scheduler!r}: {reason}") from None
+        with client:
+            yield client
+        return
+    n_workers = workers if workers is not None else max_threads()
+    with (
+        cluster_cls(
+            n_workers=n_workers,
+            threads_per_worker=1,
+            processes=True,
+            host="127.0.0.1",
+            dashboard_address=None,
+        ) as cluster,
+        client_cls(cluster) as client,
+    ):
+        yield client
+
+
+def _probe_tcp(address: str) -> None:
+    """Fail at once on a refused TCP scheduler address (the client would retry for 20 s)."""
+    import socket
+
+    from distributed.comm import parse_address, parse_host_port
+
+    try:
+        protocol, location = parse_address(address)
+        if protocol != "tcp":
+            return
+        host, port = parse_host_port(location)
+        with socket.create_connection((host, port), timeout=5.0):
+            pass
+    except (OSError, ValueError, TypeError) as exc:
+        reason = " ".join(str(exc).split()) or type(exc).__name__
+        raise ValueError(f"cannot reach the dask scheduler at {address!r}: {reason}") from None

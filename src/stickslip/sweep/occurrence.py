@@ -1,0 +1,561 @@
+"""Occurrence maps: where in the (lambda, zeta) plane does the system stick-slip?
+
+The paper's Figs. 8 and 11 classify a grid of ``(lambda, zeta)`` by simulation, for the
+rigid base and for a foundation that depends on ``zeta`` (the fitted optimum of Eqs. 28-30,
+possibly with ``K`` scaled). Here each cell is a certified simulation from the startup
+state (DESIGN.md section 2), so a cell is ``stick-slip``, ``steady-sliding`` or, when
+neither could be certified before the time horizon, explicitly ``undetermined``.
+
+The result is an ``xarray.Dataset`` laid out as DESIGN.md section 6 asks (coordinates
+``lambda`` and ``zeta``, CF flag attributes for the integer codes, provenance in the
+attributes) inside an :class:`OccurrenceMap`.
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import json
+import time
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from stickslip.analysis.dva import DvaSpec
+from stickslip.analysis.simulation import RunStatus, Verdict
+from stickslip.kernel import engine
+from stickslip.model._validate import non_negative, positive
+from stickslip.model.initial import STARTUP_DESCRIPTION
+from stickslip.model.parameters import Foundation
+from stickslip.sweep.executors import (
+    Backend,
+    CellBatch,
+    Chunk,
+    EngineSettings,
+    StructureSet,
+    check_backend,
+    default_chunk_size,
+    execute,
+    make_chunks,
+)
+from stickslip.sweep.grid import Axis, as_axis
+from stickslip.sweep.provenance import git_revision, library_versions, package_version, utc_now
+from stickslip.sweep.store import ChunkStore
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.artist import Artist
+
+Progress = Callable[[int, int], None]
+
+#: Verdict codes in the order of their integer values (``Verdict.code``).
+VERDICTS: tuple[Verdict, ...] = tuple(sorted(Verdict, key=lambda v: v.code))
+#: Run statuses (the certificate of a cell) in the order of their integer codes.
+STATUSES: tuple[RunStatus, ...] = tuple(sorted(RunStatus, key=lambda s: s.code))
+
+_NAN_COMMENT = "NaN (the _FillValue) where no stick-slip cycle was certified (verdict is not stick-slip)"
+_FLOAT_VARIABLES: dict[str, tuple[int, dict[str, str]]] = {
+    "period": (engine.F_PERIOD, {
+        "long_name": "period of the certified stick-slip cycle",
+        "units": "1 (dimensionless time tau = omega_n t)",
+        "comment": _NAN_COMMENT,
+    }),
+    "amplitude": (engine.F_AMPLITUDE, {
+        "long_name": "half the peak-to-peak of xi over the certified cycle",
+        "units": "1 (V / omega_n)",
+        "comment": _NAN_COMMENT,
+    }),
+    "stick_ratio": (engine.F_STICK_RATIO, {
+        "long_name": "fraction of the cycle period spent stuck",
+        "units": "1",
+        "comment": _NAN_COMMENT,
+    }),
+    "max_velocity": (engine.F_MAX_VELOCITY, {
+        "long_name": "largest slider velocity xi' reached in the run",
+        "units": "1 (belt speed V)",
+    }),
+    "t_end": (engine.F_T_END, {
+        "long_name": "dimensionless time at which the run stopped (certificate or horizon)",
+        "units": "1 (dimensionless time tau)",
+    }),
+}
+
+
+@dataclass(frozen=True)
+class MapConfig:
+    """Everything that determines an occurrence map (its fingerprint is a hash of it).
+
+    Parameters
+    ----------
+    lam, zeta : Axis
+        Grid axes, dimensionless (``lambda > 0``, ``zeta >= 0``).
+    dva : DvaSpec
+        The foundation, resolved at each ``zeta`` (``none`` is the rigid base).
+    gamma : float
+        ``mu_k / (mu_s - mu_k)``, dimensionless (the paper uses 2).
+    settings : EngineSettings
+        Engine limits of every cell.
+    """
+
+    lam: Axis
+    zeta: Axis
+    dva: DvaSpec = field(default_factory=DvaSpec)
+    gamma: float = 2.0
+    settings: EngineSettings = field(default_factory=EngineSettings)
+
+    def __post_init__(self) -> None:
+        for value in self.lam.values.tolist():
+            positive("lambda", value)
+        for value in self.zeta.values.tolist():
+            non_negative("zeta", value)
+        object.__setattr__(self, "gamma", non_negative("gamma", self.gamma))
+
+    @functools.cached_property
+    def structures(self) -> StructureSet:
+        """The structure at every ``zeta`` of the grid."""
+        return StructureSet.resolve(self.dva, self.zeta.values)
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """``(n_lambda, n_zeta)``."""
+        return len(self.lam), len(self.zeta)
+
+    @property
+    def n_cells(self) -> int:
+        """Number of grid cells."""
+        return len(self.lam) * len(self.zeta)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The full resolved configuration, JSON-ready (floats kept to full precision)."""
+        return {
+            "lambda": _axis_dict(self.lam),
+            "zeta": _axis_dict(self.zeta),
+            "dva": {
+                "text": self.dva.as_text(),
+                "kind": self.dva.kind,
+                "k_scale": self.dva.k_scale,
+                "description": self.dva.describe(),
+            },
+            "foundations": [
+                None if f is None else [f.mass_ratio, f.stiffness_ratio, f.damping_ratio]
+                for f in self.structures.foundations
+            ],
+            "gamma": self.gamma,
+            "engine": self.settings.to_dict(),
+            "initial_condition": STARTUP_DESCRIPTION,
+            "package_version": package_version(),
+        }
+
+    def fingerprint(self) -> str:
+        """SHA-256 of the resolved configuration: grids, foundations, gamma, engine, version."""
+        text = json.dumps(self.to_dict(), sort_keys=True, allow_nan=False)
+        return hashlib.sha256(text.encode()).hexdigest()
+
+    def batch(self, chunk: Chunk) -> CellBatch:
+        """The cells of ``chunk``: flat index ``c = i_lambda * n_zeta + j_zeta``."""
+        cells = np.arange(chunk.start, chunk.stop, dtype=np.int64)
+        n_zeta = len(self.zeta)
+        return CellBatch(
+            structure_index=cells % n_zeta,
+            lams=np.array(self.lam.values[cells // n_zeta]),
+            gamma=self.gamma,
+        )
+
+
+def _axis_dict(axis: Axis) -> dict[str, Any]:
+    return {"spec": axis.spec, "spacing": axis.spacing, "values": [float(v) for v in axis.values]}
+
+
+def stored_foundations(dataset: xr.Dataset) -> list[Foundation | None]:
+    """The foundation at each ``zeta`` of a map dataset (``None`` everywhere for the rigid base)."""
+    if "foundation_mass_ratio" not in dataset:
+        return [None] * int(dataset.sizes["zeta"])
+    return [
+        Foundation(float(m), float(k), float(c))
+        for m, k, c in zip(dataset["foundation_mass_ratio"].values,
+                           dataset["foundation_stiffness_ratio"].values,
+                           dataset["foundation_damping_ratio"].values, strict=True)
+    ]
+
+
+def dva_from_config(configuration: dict[str, Any]) -> DvaSpec:
+    """The :class:`DvaSpec` recorded in a map's configuration (``MapConfig.to_dict``)."""
+    dva = configuration["dva"]
+    return DvaSpec.parse(str(dva["text"]), float(dva["k_scale"]))
+
+
+@dataclass
+class OccurrenceMap:
+    """Result of :func:`occurrence_map`: the dataset and how it was computed.
+
+    Unpacks as ``lam, zeta, verdict = result`` (``verdict`` has shape
+    ``(n_lambda, n_zeta)`` and holds :attr:`Verdict.code` values).
+
+    Attributes
+    ----------
+    dataset : xarray.Dataset
+        Coordinates ``lambda`` and ``zeta``; variables ``verdict``, ``certificate``,
+        ``n_stick``, ``cycle_k``, ``period``, ``amplitude``, ``stick_ratio``,
+        ``max_velocity``, ``t_end`` (DESIGN.md section 6).
+    chunks_total, chunks_loaded, chunks_computed : int
+        Chunks of the grid, those read from the resume store and those simulated now.
+    cells_computed : int
+        Cells simulated now (not read from the store).
+    elapsed : float
+        Wall-clock seconds spent loading and computing the cells (the assembly of the
+        dataset excluded).
+    backend : str
+        The backend that computed the missing chunks.
+    """
+
+    dataset: xr.Dataset
+    chunks_total: int = 0
+    chunks_loaded: int = 0
+    chunks_computed: int = 0
+    cells_computed: int = 0
+    elapsed: float = 0.0
+    backend: str = ""
+
+    def __iter__(self) -> Iterator[NDArray[Any]]:
+        return iter((self.lam, self.zeta, self.verdict))
+
+    @property
+    def lam(self) -> NDArray[np.float64]:
+        """The ``lambda`` axis (dimensionless)."""
+        return np.asarray(self.dataset["lambda"].values)
+
+    @property
+    def zeta(self) -> NDArray[np.float64]:
+        """The ``zeta`` axis (dimensionless)."""
+        return np.asarray(self.dataset["zeta"].values)
+
+    @property
+    def verdict(self) -> NDArray[np.int8]:
+        """Verdict codes, shape ``(n_lambda, n_zeta)``: 0 steady, 1 stick-slip, 2 undetermined."""
+        return np.asarray(self.dataset["verdict"].values)
+
+    @property
+    def configuration(self) -> dict[str, Any]:
+        """The resolved configuration recorded in the dataset."""
+        return dict(json.loads(self.dataset.attrs["configuration"]))
+
+    @property
+    def fingerprint(self) -> str:
+        """Hash of the configuration (equal for maps of the same configuration)."""
+        return str(self.dataset.attrs["config_fingerprint"])
+
+    @property
+    def dva(self) -> DvaSpec:
+        """The foundation choice of the map."""
+        return dva_from_config(self.configuration)
+
+    @property
+    def cells_per_second(self) -> float | None:
+        """Throughput of the cells simulated in this call (None when none was)."""
+        if self.cells_computed == 0 or self.elapsed <= 0.0:
+            return None
+        return self.cells_computed / self.elapsed
+
+    @property
+    def counts(self) -> dict[str, int]:
+        """Number of cells of each verdict."""
+        codes = self.verdict
+        return {v.value: int(np.count_nonzero(codes == v.code)) for v in VERDICTS}
+
+    @property
+    def stick_slip_fraction(self) -> float:
+        """Fraction of all cells that stick-slip (undetermined cells count as not)."""
+        return self.counts[Verdict.STICK_SLIP.value] / max(1, self.verdict.size)
+
+    @property
+    def undetermined_fraction(self) -> float:
+        """Fraction of cells without a certified verdict (increase ``t_max`` if large)."""
+        return self.counts[Verdict.UNDETERMINED.value] / max(1, self.verdict.size)
+
+    def verdict_at(self, lam: float, zeta: float) -> Verdict:
+        """Verdict of the grid cell nearest to ``(lam, zeta)``."""
+        i = int(np.argmin(np.abs(self.lam - lam)))
+        j = int(np.argmin(np.abs(self.zeta - zeta)))
+        return VERDICTS[int(self.verdict[i, j])]
+
+    def to_netcdf(self, path: str | Path, *, overwrite: bool = True) -> Path:
+        """Write the dataset to netCDF-4 atomically; see :func:`stickslip.io.netcdf.write_dataset`."""
+        from stickslip.io.netcdf import write_dataset
+
+        return write_dataset(self.dataset, path, overwrite=overwrite)
+
+    def to_csv(self, path: str | Path) -> Path:
+        """One row per cell for spreadsheets; see :func:`stickslip.io.csv.write_map_csv`."""
+        from stickslip.io.csv import write_map_csv
+
+        return write_map_csv(self.dataset, path)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready summary (counts, fractions, grid shape, chunks, fingerprint)."""
+        return {
+            "n_lambda": int(self.lam.size),
+            "n_zeta": int(self.zeta.size),
+            "n_cells": int(self.verdict.size),
+            "counts": self.counts,
+            "stick_slip_fraction": self.stick_slip_fraction,
+            "undetermined_fraction": self.undetermined_fraction,
+            "chunks": {
+                "total": self.chunks_total,
+                "loaded": self.chunks_loaded,
+                "computed": self.chunks_computed,
+            },
+            "backend": self.backend,
+            "elapsed_s": self.elapsed,
+            "cells_computed": self.cells_computed,
+            "cells_per_second": self.cells_per_second,
+            "fingerprint": self.fingerprint,
+            "dva": self.dva.describe(),
+            "gamma": self.configuration["gamma"],
+            "t_max": self.configuration["engine"]["t_max"],
+        }
+
+    def plot(self, **kwargs: Any) -> list[Artist]:
+        """Draw the map; see :func:`stickslip.plot.maps.occurrence_map_plot`."""
+        from stickslip.plot.maps import occurrence_map_plot
+
+        return occurrence_map_plot(self, **kwargs)
+
+    @classmethod
+    def from_netcdf(cls, path: str | Path) -> OccurrenceMap:
+        """Read a map written by :meth:`to_netcdf` (loaded into memory)."""
+        from stickslip.io.netcdf import read_dataset
+
+        return cls(read_dataset(path))
+
+
+def occurrence_map(
+    lams: Axis | ArrayLike,
+    zetas: Axis | ArrayLike,
+    dva: DvaSpec | str = "none",
+    gamma: float = 2.0,
+    *,
+    t_max: float | None = None,
+    settings: EngineSettings | None = None,
+    backend: Backend = "threads",
+    workers: int | None = None,
+    scheduler: str | None = None,
+    chunk_size: int | None = None,
+    progress: Progress | None = None,
+    store: str | Path | None = None,
+    overwrite: bool = False,
+) -> OccurrenceMap:
+    """Classify every ``(lambda, zeta)`` cell of a grid by certified simulation (Figs. 8, 11).
+
+    Parameters
+    ----------
+    lams : Axis or array_like or str
+        ``lambda`` values (dimensionless, > 0), or an axis spec such as
+        ``"log:0.1:50:200"`` (see :mod:`stickslip.sweep.grid`).
+    zetas : Axis or array_like or str
+        ``zeta`` values (dimensionless damping ratio, >= 0).
+    dva : DvaSpec or str
+        Foundation: ``"none"`` (rigid base, 1DOF), ``"optimal"`` (Eqs. 28-30 at each
+        ``zeta``), ``"optimal-exact"``, ``"M,K,ZETA_A"`` or a :class:`DvaSpec` (which
+        carries ``k_scale``).
+    gamma : float
+        ``mu_k / (mu_s - mu_k)``, dimensionless, default 2 as in the paper.
+    t_max : float, optional
+        Time horizon of each cell (dimensionless ``tau``); overrides ``settings.t_max``.
+    settings : EngineSettings, optional
+        Engine limits (defaults of :func:`stickslip.simulate`).
+    backend : {"threads", "serial", "dask"}
+        ``threads``: numba threads (``workers`` of them, all cores when None);
+        ``serial``: one thread; ``dask``: a ``dask.distributed`` cluster at ``scheduler``
+        or a ``LocalCluster`` of ``workers`` processes on 127.0.0.1. The results are
+        bit-identical across backends.
+    workers : int, optional
+        Threads (``threads``) or worker processes (``dask`` without ``scheduler``).
+    scheduler : str, optional
+        Address of a running Dask scheduler (``dask`` backend only).
+    chunk_size : int, optional
+        Cells per chunk (unit of progress, of Dask tasks and of the resume store). An
+        existing store keeps its own chunk size.
+    progress : callable, optional
+        ``progress(done_cells, total_cells)``, called once at the start and after every chunk.
+    store : path, optional
+        Resume store folder: finished chunks are written there as they complete, and a
+        later call with the same configuration computes only the missing ones.
+    overwrite : bool
+        Discard a store of another configuration instead of raising ``StoreMismatch``.
+
+    Returns
+    -------
+    OccurrenceMap
+    """
+    spec = DvaSpec.parse(dva) if isinstance(dva, str) else dva
+    engine_settings = settings or EngineSettings()
+    if t_max is not None:
+        engine_settings = EngineSettings(t_max, engine_settings.max_events,
+                                         engine_settings.cycle_tol, engine_settings.max_period)
+    config = MapConfig(as_axis(lams, "lambda"), as_axis(zetas, "zeta"), spec, gamma, engine_settings)
+    backend = check_backend(backend, workers, scheduler)
+    if chunk_size is not None and (isinstance(chunk_size, bool) or int(chunk_size) != chunk_size
+                                   or chunk_size < 1):
+        raise ValueError(f"chunk_size={chunk_size!r} must be a whole number of at least 1")
+    return compute_map(config, backend=backend, workers=workers, scheduler=scheduler,
+                       chunk_size=chunk_size, progress=progress, store=store, overwrite=overwrite)
+
+
+def compute_map(
+    config: MapConfig,
+    *,
+    backend: Backend = "threads",
+    workers: int | None = None,
+    scheduler: str | None = None,
+    chunk_size: int | None = None,
+    progress: Progress | None = None,
+    store: str | Path | None = None,
+    overwrite: bool = False,
+) -> OccurrenceMap:
+    """Compute the map of an already validated :class:`MapConfig` (see :func:`occurrence_map`)."""
+    started = time.perf_counter()
+    n_cells = config.n_cells
+    size = int(chunk_size) if chunk_size is not None else default_chunk_size(n_cells)
+    fingerprint = config.fingerprint()
+    chunk_store = None
+    if store is not None:
+        chunk_store = ChunkStore(store, fingerprint, config.to_dict(), n_cells, size,
+                                 overwrite=overwrite)
+        size = chunk_store.chunk_size
+    chunks = make_chunks(n_cells, size)
+    fout = np.full((n_cells, engine.N_FLOAT), np.nan)
+    iout = np.zeros((n_cells, engine.N_INT), dtype=np.int64)
+    missing: list[Chunk] = []
+    for chunk in chunks:
+        stored = chunk_store.load(chunk.index, chunk.size) if chunk_store is not None else None
+        if stored is None:
+            missing.append(chunk)
+        else:
+            fout[chunk.start:chunk.stop], iout[chunk.start:chunk.stop] = stored
+    done = n_cells - sum(c.size for c in missing)
+    if progress is not None:
+        progress(done, n_cells)
+    batches: Sequence[tuple[Chunk, CellBatch]] = [(c, config.batch(c)) for c in missing]
+    for chunk, f_chunk, i_chunk in execute(config.structures, batches, config.settings,
+                                           backend=backend, workers=workers, scheduler=scheduler):
+        fout[chunk.start:chunk.stop] = f_chunk
+        iout[chunk.start:chunk.stop] = i_chunk
+        if chunk_store is not None:
+            chunk_store.save(chunk.index, f_chunk, i_chunk)
+        done += chunk.size
+        if progress is not None:
+            progress(done, n_cells)
+    elapsed = time.perf_counter() - started
+    if chunk_store is not None:
+        chunk_store.record_run(len(chunks) - len(missing), len(missing), backend)
+    dataset = map_dataset(config, fout, iout, fingerprint)
+    return OccurrenceMap(
+        dataset,
+        chunks_total=len(chunks),
+        chunks_loaded=len(chunks) - len(missing),
+        chunks_computed=len(missing),
+        cells_computed=sum(c.size for c in missing),
+        elapsed=elapsed,
+        backend=backend,
+    )
+
+
+def verdict_codes(status: NDArray[np.integer[Any]]) -> NDArray[np.int8]:
+    """Verdict code of each run status: certified steady 0, certified cycle 1, else 2.
+
+    Anything that is not a certificate (time horizon, event budget, an unknown status) is
+    ``undetermined``: never rounded to a verdict.
+    """
+    codes = np.full(np.shape(status), Verdict.UNDETERMINED.code, dtype=np.int8)
+    codes[status == RunStatus.CERTIFIED_STEADY.code] = Verdict.STEADY_SLIDING.code
+    codes[status == RunStatus.CERTIFIED_CYCLE.code] = Verdict.STICK_SLIP.code
+    return codes
+
+
+def map_dataset(
+    config: MapConfig, fout: NDArray[np.float64], iout: NDArray[np.int64], fingerprint: str
+) -> xr.Dataset:
+    """Assemble the dataset of DESIGN.md section 6 from the engine's per-cell summaries.
+
+    Parameters
+    ----------
+    config : MapConfig
+    fout, iout : ndarray, shapes ``(n_cells, N_FLOAT)`` and ``(n_cells, N_INT)``
+        Summaries in flat lambda-major order (``c = i_lambda * n_zeta + j_zeta``).
+    fingerprint : str
+        :meth:`MapConfig.fingerprint`, stored in the attributes.
+    """
+    import xarray as xr
+
+    shape = config.shape
+    dims = ("lambda", "zeta")
+    status = iout[:, engine.I_STATUS].reshape(shape)
+    data_vars: dict[str, Any] = {
+        "verdict": (dims, verdict_codes(status), {
+            "long_name": "certified stick-slip verdict from the startup state",
+            "flag_values": np.array([v.code for v in VERDICTS], dtype=np.int8),
+            "flag_meanings": " ".join(v.value for v in VERDICTS),
+            "comment": "undetermined: no certificate before t_max or max_events (see certificate)",
+        }),
+        "certificate": (dims, status.astype(np.int8), {
+            "long_name": "how the run ended: the certificate of the verdict, or why there is none",
+            "flag_values": np.array([s.code for s in STATUSES], dtype=np.int8),
+            "flag_meanings": " ".join(s.label for s in STATUSES),
+            "comment": "; ".join(f"{s.label}: {s.message}" for s in STATUSES),
+        }),
+        "n_stick": (dims, iout[:, engine.I_N_STICK].reshape(shape).astype(np.int32), {
+            "long_name": "number of stick phases in the run, the initial one included",
+            "units": "1",
+        }),
+        "cycle_k": (dims, iout[:, engine.I_CYCLE_K].reshape(shape).astype(np.int16), {
+            "long_name": "stick phases per certified cycle (period-k cycle); 0 without a cycle",
+            "units": "1",
+        }),
+    }
+    for name, (column, var_attrs) in _FLOAT_VARIABLES.items():
+        data_vars[name] = (dims, fout[:, column].reshape(shape).astype(np.float64), var_attrs)
+    foundations = config.structures.foundations
+    if foundations and foundations[0] is not None:
+        for name, attr, long_name in (
+            ("foundation_mass_ratio", "mass_ratio", "foundation mass ratio M = m_a / m"),
+            ("foundation_stiffness_ratio", "stiffness_ratio", "foundation stiffness ratio K = sqrt(k_a/k)"),
+            ("foundation_damping_ratio", "damping_ratio", "foundation damping zeta_a = c_a / (2 sqrt(m k))"),
+        ):
+            values = np.array([getattr(f, attr) for f in foundations], dtype=np.float64)
+            data_vars[name] = (("zeta",), values, {"long_name": long_name, "units": "1"})
+    coords = {
+        "lambda": ("lambda", np.array(config.lam.values), {
+            "long_name": "lambda = (mu_s - mu_k) W / (V sqrt(m k))",
+            "units": "1",
+            "spacing": config.lam.spacing,
+        }),
+        "zeta": ("zeta", np.array(config.zeta.values), {
+            "long_name": "damping ratio zeta = c / (2 sqrt(m k))",
+            "units": "1",
+            "spacing": config.zeta.spacing,
+        }),
+    }
+    configuration = config.to_dict()
+    attrs: dict[str, Any] = {
+        "title": f"stick-slip occurrence map, {config.dva.describe()}, gamma = {config.gamma:g}",
+        "Conventions": "CF-1.10",
+        "source": f"stickslip {package_version()}: exact piecewise-linear engine, certified verdicts",
+        "references": "Discussion of Stick-Slip Dynamics of 2DOF Sliding Systems Based on Dynamic "
+                      "Vibration Absorbers Analysis (Figs. 8 and 11)",
+        "stickslip_version": package_version(),
+        "git_revision": git_revision(),
+        "library_versions": json.dumps(library_versions(), sort_keys=True),
+        "date_created": utc_now(),
+        "initial_condition": STARTUP_DESCRIPTION,
+        "t_max": config.settings.t_max,
+        "gamma": config.gamma,
+        "dva": config.dva.describe(),
+        "configuration": json.dumps(configuration, sort_keys=True, allow_nan=False),
+        "config_fingerprint": fingerprint,
+    }
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+

@@ -1,0 +1,240 @@
+"""Resume store: finished chunks of a sweep on disk, so that a killed run loses nothing.
+
+A store is a folder holding ``manifest.json`` (format, configuration fingerprint, the
+configuration itself, chunk size, and a log of the runs that used it) and one
+``chunk-NNNNNN.npz`` file per finished chunk (the engine's float and integer summaries of
+its cells, tagged with the fingerprint). Every file is written to a temporary name and
+renamed over the target (``os.replace``), so a run killed at any instant leaves either the
+whole chunk or none of it.
+
+A store made for another configuration is never mixed into a run: opening it raises
+:class:`StoreMismatch` unless ``overwrite=True``, which empties it first.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import IO, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from stickslip.kernel.engine import N_FLOAT, N_INT
+
+STORE_FORMAT = "stickslip-map-store"
+STORE_VERSION = 1
+MANIFEST = "manifest.json"
+_CHUNK_PREFIX = "chunk-"
+_TMP_MARK = ".tmp-"
+
+
+class StoreMismatch(ValueError):
+    """A resume store or output file holds results of a different configuration."""
+
+
+class ChunkStore:
+    """Finished chunks of one sweep configuration in a folder.
+
+    Parameters
+    ----------
+    path : path-like
+        The folder (created if missing).
+    fingerprint : str
+        Hash of the resolved configuration (:meth:`MapConfig.fingerprint`).
+    configuration : dict
+        The resolved configuration, recorded in the manifest for humans.
+    n_cells : int
+        Number of cells of the sweep.
+    chunk_size : int
+        Cells per chunk for a new store. An existing store keeps the chunk size it was
+        made with (the result does not depend on it), see :attr:`chunk_size`.
+    overwrite : bool
+        Empty a store of another configuration instead of raising :class:`StoreMismatch`.
+    """
+
+    def __init__(
+        self,
+        path: str | os.PathLike[str],
+        fingerprint: str,
+        configuration: dict[str, Any],
+        n_cells: int,
+        chunk_size: int,
+        *,
+        overwrite: bool = False,
+    ) -> None:
+        self.path = Path(path)
+        self.fingerprint = fingerprint
+        if self.path.exists() and not self.path.is_dir():
+            raise ValueError(f"resume store {str(self.path)!r} exists and is not a folder")
+        self.path.mkdir(parents=True, exist_ok=True)
+        self._remove_temporaries()
+        manifest = self._read_manifest()
+        if manifest is not None and manifest.get("fingerprint") != fingerprint:
+            if not overwrite:
+                raise StoreMismatch(
+                    f"resume store {str(self.path)!r} belongs to another configuration "
+                    f"(fingerprint {str(manifest.get('fingerprint'))[:12]}, this run "
+                    f"{fingerprint[:12]}); pass --overwrite (overwrite=True) to discard it"
+                )
+            self.clear()
+            manifest = None
+        if manifest is None:
+            if self.chunk_files() and not overwrite:
+                raise StoreMismatch(
+                    f"folder {str(self.path)!r} holds chunk files but no manifest; "
+                    "pass --overwrite (overwrite=True) to discard them"
+                )
+            self.clear()
+            manifest = {
+                "format": STORE_FORMAT,
+                "version": STORE_VERSION,
+                "fingerprint": fingerprint,
+                "n_cells": int(n_cells),
+                "chunk_size": int(chunk_size),
+                "created": _now(),
+                "configuration": configuration,
+                "runs": [],
+            }
+            self._write_manifest(manifest)
+        if int(manifest["n_cells"]) != int(n_cells):
+            raise StoreMismatch(f"resume store {str(self.path)!r} has a different number of cells")
+        self._manifest = manifest
+
+    @property
+    def chunk_size(self) -> int:
+        """Cells per chunk of this store."""
+        return int(self._manifest["chunk_size"])
+
+    @property
+    def runs(self) -> list[dict[str, Any]]:
+        """Log of the runs that used this store: start time, chunks loaded and computed."""
+        return list(self._manifest["runs"])
+
+    def chunk_path(self, index: int) -> Path:
+        """File of chunk ``index``."""
+        return self.path / f"{_CHUNK_PREFIX}{index:06d}.npz"
+
+    def chunk_files(self) -> list[Path]:
+        """Chunk files present in the folder."""
+        return sorted(
+            p for p in self.path.glob(f"{_CHUNK_PREFIX}*.npz") if _TMP_MARK not in p.name
+        )
+
+    def load(self, index: int, size: int) -> tuple[NDArray[np.float64], NDArray[np.int64]] | None:
+        """The summaries of a finished chunk, or None when it is missing or unusable."""
+        path = self.chunk_path(index)
+        if not path.exists():
+            return None
+        try:
+            with np.load(path, allow_pickle=False) as data:
+                fingerprint = str(data["fingerprint"])
+                fout = np.array(data["fout"], dtype=np.float64)
+                iout = np.array(data["iout"], dtype=np.int64)
+        except (OSError, ValueError, KeyError):
+            return None  # unreadable: computed again
+        if fingerprint != self.fingerprint:
+            raise StoreMismatch(f"chunk file {str(path)!r} belongs to another configuration")
+        if fout.shape != (size, N_FLOAT) or iout.shape != (size, N_INT):
+            return None
+        return fout, iout
+
+    def save(self, index: int, fout: NDArray[np.float64], iout: NDArray[np.int64]) -> None:
+        """Write a finished chunk atomically."""
+        _atomic_write(
+            self.chunk_path(index),
+            lambda fh: np.savez(fh, fingerprint=np.array(self.fingerprint), fout=fout, iout=iout),
+        )
+
+    def record_run(self, loaded: int, computed: int, backend: str) -> None:
+        """Append a line to the manifest's run log (chunks loaded from disk and computed)."""
+        self._manifest["runs"].append(
+            {"finished": _now(), "chunks_loaded": int(loaded), "chunks_computed": int(computed),
+             "backend": backend}
+        )
+        self._write_manifest(self._manifest)
+
+    def clear(self) -> None:
+        """Remove the manifest and every chunk file (only files this store writes)."""
+        for p in self.chunk_files():
+            p.unlink()
+        manifest = self.path / MANIFEST
+        if manifest.exists():
+            manifest.unlink()
+
+    def remove(self) -> None:
+        """Delete the store: its files, then the folder if nothing else is in it."""
+        discard_store(self.path)
+
+    def _read_manifest(self) -> dict[str, Any] | None:
+        path = self.path / MANIFEST
+        if not path.exists():
+            return None
+        try:
+            manifest = json.loads(path.read_text())
+        except (OSError, ValueError):
+            raise StoreMismatch(f"resume store manifest {str(path)!r} is unreadable") from None
+        if not isinstance(manifest, dict) or manifest.get("format") != STORE_FORMAT:
+            raise StoreMismatch(f"{str(path)!r} is not a stickslip resume store manifest")
+        return manifest
+
+    def _write_manifest(self, manifest: dict[str, Any]) -> None:
+        text = json.dumps(manifest, indent=1)
+        _atomic_write(self.path / MANIFEST, lambda fh: fh.write(text.encode()))
+
+    def _remove_temporaries(self) -> None:
+        for p in self.path.glob(f"*{_TMP_MARK}*"):
+            p.unlink(missing_ok=True)
+
+
+def discard_store(path: str | os.PathLike[str]) -> None:
+    """Delete a store folder's manifest, chunk and temporary files, then the folder if empty.
+
+    Files that a store does not write are left alone (and so is the folder holding them).
+    """
+    folder = Path(path)
+    if not folder.is_dir():
+        return
+    for p in [*folder.glob(f"{_CHUNK_PREFIX}*.npz"), *folder.glob(f"*{_TMP_MARK}*"),
+              folder / MANIFEST]:
+        p.unlink(missing_ok=True)
+    try:
+        folder.rmdir()
+    except OSError:
+        pass  # the folder holds files that are not ours
+
+
+@contextmanager
+def atomic_output(target: str | os.PathLike[str]) -> Iterator[Path]:
+    """Yield a temporary path next to ``target``; rename it over ``target`` on success.
+
+    Readers never see a half-written file, and a run killed while writing leaves the old
+    ``target`` (or none) plus a temporary file that the next run of a store removes.
+    """
+    target = Path(target)
+    fd, name = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}{_TMP_MARK}",
+                                suffix=target.suffix)
+    os.close(fd)
+    tmp = Path(name)
+    try:
+        yield tmp
+        os.replace(tmp, target)
+    finally:
+        tmp.unlink(missing_ok=True)
+
+
+def _atomic_write(target: Path, write: Callable[[IO[bytes]], object]) -> None:
+    """Write through ``write(fileobj)`` to a temporary file, flush to disk, then rename."""
+    with atomic_output(target) as tmp, open(tmp, "wb") as fh:
+        write(fh)
+        fh.flush()
+        os.fsync(fh.fileno())
+
+
+def _now() -> str:
+    return datetime.now(UTC).isoformat(timespec="seconds")

@@ -1,0 +1,237 @@
+"""The web app (``stickslip app``) under Streamlit's AppTest, and the command that starts it.
+
+AppTest runs the real script in-process: every widget, table and figure is built, and any
+uncaught exception is recorded in ``at.exception``. The operating points below come from
+``design_foundation`` for the defaults (m = 2 kg, k = 50 kN/m, c = 20 N s/m, mu_s = 0.5,
+mu_k = 0.3, W = 500 N): lambda = 0.2 * 500 / (V sqrt(2 * 5e4)), so lambda = 6.32 at
+5 cm/s; the simulated critical speeds are 0.459 m/s on the rigid base and 0.0619 m/s with
+the recommended foundation (Eqs. 28-30).
+"""
+
+from __future__ import annotations
+
+import csv
+import importlib.util
+import io
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+pytest.importorskip("streamlit", reason="the app extra (streamlit) is not installed")
+
+from streamlit.testing.v1 import AppTest
+
+from stickslip.cli import app_command
+from stickslip.cli.main import run
+
+APP = Path(app_command.APP_SCRIPT)
+# The first run may JIT-compile the engine (numba) when its cache is cold.
+TIMEOUT = 120.0
+
+
+def _started() -> AppTest:
+    at = AppTest.from_file(str(APP), default_timeout=TIMEOUT)
+    at.run()
+    return at
+
+
+def _metric(at: AppTest, label: str) -> str:
+    values = [m.value for m in at.metric if m.label == label]
+    assert len(values) == 1, f"no single metric {label!r} on the page"
+    return str(values[0])
+
+
+def _verdicts(at: AppTest) -> tuple[str, str]:
+    return _metric(at, "Verdict on the rigid base"), _metric(at, "Verdict with foundation")
+
+
+def test_default_inputs_render_and_show_the_verdicts() -> None:
+    at = _started()
+    assert not at.exception
+    assert not at.error
+    assert _verdicts(at) == ("stick-slip", "stick-slip")
+    assert float(_metric(at, "λ")) == pytest.approx(0.2 * 500 / (0.05 * math.sqrt(2 * 5e4)),
+                                                    rel=1e-3)
+    assert float(_metric(at, "γ")) == pytest.approx(1.5)
+    # verdict table, critical speed/load table, foundation table
+    assert len(at.table) == 3
+    critical = at.table[1].value
+    assert critical.loc["with foundation, simulation", "critical speed V_c [m/s]"] == "0.06188"
+    assert critical.loc["rigid base, exact (Eq. 36)", "critical speed V_c [m/s]"] == "0.4588"
+    # two time-history figures and the occurrence map
+    assert len(at.get("image")) == 3
+    assert len(at.get("download_button")) == 2
+
+
+def test_changing_the_speed_changes_the_verdict() -> None:
+    at = _started()
+    for speed, verdicts in (
+        ("10 cm/s", ("stick-slip", "steady-sliding")),  # between the two critical speeds
+        ("2 m/s", ("steady-sliding", "steady-sliding")),  # above both
+        ("1 cm/s", ("stick-slip", "stick-slip")),  # lambda = 31.6: below both
+    ):
+        at.text_input(key="speed").set_value(speed).run()
+        assert not at.exception and not at.error
+        assert _verdicts(at) == verdicts, speed
+
+
+def test_bad_input_replaces_the_results_and_a_fix_restores_them() -> None:
+    at = _started()
+    at.text_input(key="k").set_value("5 kg").run()
+    assert not at.exception
+    assert [e.value for e in at.error] == [
+        "Spring stiffness k: '5 kg' has the wrong unit for the slider stiffness: expected N/m "
+        "(dimension [force] / [length]), got kg"
+    ]
+    assert not at.metric and not at.table and not at.get("image")
+    at.text_input(key="k").set_value("50000").run()  # a bare number is SI
+    assert not at.exception and not at.error
+    assert _verdicts(at) == ("stick-slip", "stick-slip")
+
+
+@pytest.mark.parametrize(
+    ("key", "text", "expected"),
+    [
+        ("k", "5 kg", "wrong unit"),
+        ("speed", "3 N", "wrong unit"),
+        ("mu_s", "0.5 m", "must be dimensionless"),
+        ("m", "-2 kg", "must be positive"),
+        ("m", "0 kg", "must be positive"),
+        ("load", "-500 N", "must be positive"),
+        ("speed", "0 m/s", "must be positive"),
+        ("c", "-1 N*s/m", "must not be negative"),
+        ("mu_k", "0.5", "must be smaller than mu_s"),
+        ("mu_k", "0.7", "must be smaller than mu_s"),
+        ("speed", "fast", "not a quantity"),
+        ("load", "", "is empty"),
+        ("m_a", "3 kg", "needs all of m_a, k_a and c_a"),
+    ],
+)
+def test_bad_input_is_one_clear_line_and_nothing_is_computed(key: str, text: str,
+                                                             expected: str) -> None:
+    at = AppTest.from_file(str(APP), default_timeout=TIMEOUT)
+    at.session_state[key] = text  # as if typed before the first run: nothing to compute
+    at.run()
+    assert not at.exception
+    messages = [e.value for e in at.error]
+    assert len(messages) == 1
+    assert expected in messages[0] and "\n" not in messages[0]
+    assert not at.metric and not at.table and not at.get("image")
+
+
+def test_existing_foundation_is_assessed() -> None:
+    pytest.importorskip("stickslip.analysis.absorber",
+                        reason="assessing a given foundation needs stickslip.analysis.absorber")
+    at = _started()
+    for key, text in (("m_a", "3.81 kg"), ("k_a", "47.9 kN/m"), ("c_a", "766 N*s/m")):
+        at.text_input(key=key).set_value(text)
+    at.run()
+    assert not at.exception and not at.error
+    # close to the recommended foundation: same verdicts as the default
+    assert _verdicts(at) == ("stick-slip", "stick-slip")
+    assert "given (assessed above)" in list(at.table[2].value.index)
+
+
+def test_stick_slip_optimal_foundation_on_demand() -> None:
+    at = _started()
+    assert not any("Stick-slip-optimal foundation:" in m.value for m in at.markdown)
+    at.button(key="find_stick_slip_optimum").click().run()
+    assert not at.exception
+    found = [m.value for m in at.markdown if "Stick-slip-optimal foundation:" in m.value]
+    assert len(found) == 1
+    assert "m_a =" in found[0] and "kg" in found[0]
+    # it depends on zeta: a result for another damping is never shown
+    at.text_input(key="c").set_value("30 N*s/m").run()
+    assert not any("Stick-slip-optimal foundation:" in m.value for m in at.markdown)
+
+
+# ---- the download contents (pure functions of the script) ---------------------------------
+
+@pytest.fixture(scope="module")
+def computed() -> dict[str, Any]:
+    from stickslip.app import streamlit_app as web
+
+    raw = dict(web.DEFAULTS)
+    system, errors = web.parse_inputs(raw)
+    assert system is not None and not errors
+    report = web.design_report(web.si_key(system))
+    f = report["foundation"]
+    runs = web.operating_point_runs(report["lambda"], report["zeta"], report["gamma"],
+                                    (f["M"], f["K"], f["zeta_a"]))
+    return {"web": web, "raw": raw, "system": system, "report": report, "runs": runs}
+
+
+def test_report_json_has_the_design_report_and_the_initial_condition(computed: dict[str, Any]) -> None:
+    web = computed["web"]
+    payload = json.loads(web.report_json(computed["raw"], computed["report"], computed["runs"], None))
+    assert payload["inputs"]["speed"] == "5 cm/s"
+    assert payload["initial_condition"].startswith("startup")
+    design = payload["design"]
+    assert design["verdict"]["foundation"]["simulation"] == "stick-slip"
+    assert design["critical_speed"]["foundation_simulation"] == pytest.approx(0.06188, rel=1e-3)
+    assert set(design["recommended_foundation"]) >= {"m_a", "k_a", "c_a"}
+    assert set(payload["operating_point"]) == {"rigid base", "with foundation"}
+    assert payload["operating_point"]["with foundation"]["verdict"] == "stick-slip"
+
+
+def test_history_csv_is_in_si_and_dimensionless(computed: dict[str, Any]) -> None:
+    web, system = computed["web"], computed["system"]
+    rows = list(csv.DictReader(io.StringIO(web.history_csv(computed["runs"], system, n_points=50))))
+    assert {r["structure"] for r in rows} == {"rigid base", "with foundation"}
+    first = rows[0]
+    assert float(first["t_s"]) == pytest.approx(float(first["tau"]) * system.time_scale)
+    assert float(first["v_m_s"]) == pytest.approx(float(first["xi_dot"]) * system.speed)
+    assert first["xi_a"] == "" and first["mode"] == "stick"  # rigid base, startup state
+    assert next(r for r in rows if r["structure"] == "with foundation")["xi_a"] != ""
+
+
+# ---- the command ------------------------------------------------------------------------
+
+def _run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
+    try:
+        run(args)
+        code = 0
+    except SystemExit as exc:
+        code = int(exc.code or 0)
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_app_command_without_streamlit_is_one_line(monkeypatch: pytest.MonkeyPatch,
+                                                   capsys: pytest.CaptureFixture[str]) -> None:
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec",
+                        lambda name, *a: None if name == "streamlit" else real(name, *a))
+    code, out, err = _run(["app"], capsys)
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and "pip install stickslip[app]" in err
+
+
+def test_app_command_runs_streamlit_on_the_script(monkeypatch: pytest.MonkeyPatch,
+                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    calls: list[list[str]] = []
+
+    class FakeProcess:
+        def __init__(self, command: list[str]) -> None:
+            calls.append(command)
+
+        def wait(self, timeout: float | None = None) -> int:
+            return 0
+
+    monkeypatch.setattr(app_command.subprocess, "Popen", FakeProcess)
+    monkeypatch.setattr(app_command.signal, "signal", lambda *a: None)
+    code, _, _ = _run(["app", "--port", "8600", "--headless"], capsys)
+    assert code == 0
+    (command,) = calls
+    assert command[1:4] == ["-m", "streamlit", "run"]
+    assert Path(command[4]) == APP and APP.is_file()
+    assert command[command.index("--server.port") + 1] == "8600"
+    assert command[command.index("--server.headless") + 1] == "true"
+
+
+def test_app_command_rejects_a_bad_port(capsys: pytest.CaptureFixture[str]) -> None:
+    code, _, err = _run(["app", "--port", "0"], capsys)
+    assert code == 2 and err.count("\n") == 1
