@@ -112,8 +112,8 @@ def test_map_with_a_local_dask_cluster(tmp_path: Path, capsys: pytest.CaptureFix
 def test_sigkill_then_rerun_resumes_and_equals_an_uninterrupted_run(tmp_path: Path) -> None:
     out = tmp_path / "big.nc"
     parts = tmp_path / "big.nc.parts"
-    args = ["map", "--lam", "log:0.1:50:150", "--zeta", "0.005:0.4:80", "--dva", "optimal",
-            "--out", str(out), "--backend", "serial", "--chunk-size", "100"]
+    args = ["map", "--lam", "log:0.1:50:100", "--zeta", "0.005:0.4:60", "--dva", "optimal",
+            "--out", str(out), "--backend", "serial", "--chunk-size", "50"]
     command = [sys.executable, "-m", "stickslip.cli.main", *args]
     proc = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     deadline = time.monotonic() + 120.0
@@ -132,7 +132,7 @@ def test_sigkill_then_rerun_resumes_and_equals_an_uninterrupted_run(tmp_path: Pa
     chunks = json.loads(resumed.stdout)["chunks"]
     assert chunks == {"total": 120, "loaded": written, "computed": 120 - written}
     assert not parts.exists()
-    uninterrupted = occurrence_map("log:0.1:50:150", "0.005:0.4:80", "optimal")
+    uninterrupted = occurrence_map("log:0.1:50:100", "0.005:0.4:60", "optimal")
     assert_same_map(OccurrenceMap.from_netcdf(out).dataset, uninterrupted.dataset)
 
 

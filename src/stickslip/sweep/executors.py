@@ -317,7 +317,9 @@ def _dask_client(client_cls: Any, cluster_cls: Any, workers: int | None,
             threads_per_worker=1,
             processes=True,
             host="127.0.0.1",
-            dashboard_address=None,
+            # loopback and a free port: the scheduler's HTTP server runs even without a
+            # dashboard, and the default port 8787 may belong to another cluster
+            dashboard_address="127.0.0.1:0",
         ) as cluster,
         client_cls(cluster) as client,
     ):
