@@ -6,7 +6,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: run test lint bench clean
+.PHONY: run test lint bench clean clean-cache
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -15,9 +15,8 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 run: $(STAMP)
-	$(BIN)/stickslip simulate --lam 3 --zeta 0.1 --dva none --plot results/simulate-rigid.png
-	$(BIN)/stickslip simulate --lam 3 --zeta 0.1 --dva optimal --plot results/simulate-optimal.png
-	@echo "Figures written to results/"
+	$(BIN)/stickslip reproduce --out results
+	@echo "Open results/report.html (or results/report.md); figures in results/figures, data in results/data"
 
 test: $(STAMP)
 	$(BIN)/python -m pytest
@@ -27,7 +26,11 @@ lint: $(STAMP)
 	$(BIN)/mypy
 
 bench: $(STAMP)
-	$(BIN)/python benchmarks/bench_engine.py
+	$(BIN)/python benchmarks/bench_engine.py --quick
+	$(BIN)/python benchmarks/bench_map.py
 
-clean:
+clean-cache:
+	find src -name '*.nbi' -delete -o -name '*.nbc' -delete
+
+clean: clean-cache
 	rm -rf $(VENV) build dist .pytest_cache

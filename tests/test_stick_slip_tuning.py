@@ -57,3 +57,22 @@ def test_explicit_reference_is_used() -> None:
     result = optimal_foundation_stick_slip(0.2, reference=ref, lam_max=20.0, maxiter=5)
     assert result.reference == ref
     assert result.mass_ratio_bounds == (1.0 / 20.0, 1.0)
+
+
+def test_tune_cli_stick_slip_objective(capsys: pytest.CaptureFixture[str]) -> None:
+    import json
+
+    from stickslip.cli.main import run
+
+    try:
+        run(["tune", "--zeta", "0.2", "--objective", "stick-slip", "--lam-max", "30", "--json"])
+    except SystemExit as exc:
+        assert not exc.code
+    payload = json.loads(capsys.readouterr().out)
+    assert {"M", "K", "zeta_a", "lambda_crit", "absorber_optimum"} <= payload.keys()
+    assert {"M", "K", "zeta_a", "lambda_crit"} <= payload["absorber_optimum"].keys()
+    # default mass bound: M_opt of Eq. (28) at zeta = 0.2 (5.276)
+    assert payload["M"] <= 5.276 + 1e-9
+    with pytest.raises(SystemExit) as err:
+        run(["tune", "--zeta", "0.2", "--objective", "nonsense"])
+    assert err.value.code == 2

@@ -114,9 +114,23 @@ def tune(
         float | None,
         typer.Option("--mass-ratio", help="fix M = m_a/m and optimise only K and zeta_a"),
     ] = None,
+    objective: Annotated[
+        str,
+        typer.Option("--objective", help="absorber (minimum H_max, the paper's criterion) or "
+                     "stick-slip (maximum simulated stick-slip onset)"),
+    ] = "absorber",
+    gamma: Annotated[float, typer.Option("--gamma", help="mu_k/(mu_s - mu_k), stick-slip objective")] = 2.0,
+    lam_max: Annotated[
+        float, typer.Option("--lam-max", help="stick-slip objective: onsets above count as none")
+    ] = 100.0,
     json: JSON = False,
 ) -> None:
-    """Optimal foundation for a given zeta: exact numerical optimum next to Eqs. (28)-(31)."""
+    """Optimal foundation for a given zeta: exact numerical optimum next to Eqs. (28)-(31).
+
+    With ``--objective stick-slip`` the foundation maximises the simulated stick-slip onset
+    instead, with ``M`` bounded by the absorber optimum's ``M_opt`` (Eq. 28) unless
+    ``--mass-ratio`` sets the bound.
+    """
     from stickslip.analysis.absorber import MAX_TUNING_ZETA, tune_foundation
     from stickslip.model._validate import positive
 
@@ -128,6 +142,11 @@ def tune(
             mass_ratio = positive("--mass-ratio", mass_ratio)
         except ValueError as exc:
             raise BadInput(str(exc)) from None
+    if objective not in ("absorber", "stick-slip"):
+        raise BadInput(f"--objective {objective!r} must be 'absorber' or 'stick-slip'")
+    if objective == "stick-slip":
+        _tune_stick_slip(zeta, gamma, mass_ratio, lam_max, json)
+        return
     result = tune_foundation(zeta, mass_ratio=mass_ratio)
     payload = result.to_dict()
     if json:
@@ -154,6 +173,35 @@ def tune(
     if any(result.at_bound):
         lines.append("note: the optimum lies on a search bound (see DEFAULT_MASS_BOUNDS)")
     typer.echo("\n".join(lines))
+
+
+def _tune_stick_slip(zeta: float, gamma: float, mass_ratio: float | None, lam_max: float,
+                     json: bool) -> None:
+    from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
+    from stickslip.analysis.theory import optimal_mass_ratio_fit
+
+    bounds = None if mass_ratio is None else (mass_ratio / 20.0, mass_ratio)
+    if bounds is None:
+        bounds = (optimal_mass_ratio_fit(zeta) / 20.0, optimal_mass_ratio_fit(zeta))
+    result = optimal_foundation_stick_slip(zeta, gamma, mass_ratio_bounds=bounds, lam_max=lam_max)
+    payload = result.to_dict()
+    if json:
+        print_json(payload)
+        return
+    ref = payload["absorber_optimum"]
+
+    def onset(value: float | None) -> str:
+        return f">= {lam_max:g} (none found)" if value is None else f"{value:.6g}"
+
+    typer.echo("\n".join([
+        f"stick-slip-optimal foundation for zeta = {_fmt(zeta)}, gamma = {_fmt(gamma)} "
+        f"(M in [{bounds[0]:.4g}, {bounds[1]:.4g}])",
+        f"{'':22s} {'M':>9s} {'K':>9s} {'zeta_a':>9s}  stick-slip onset lambda_c",
+        f"{'stick-slip optimum':22s} {payload['M']:9.4g} {payload['K']:9.4g} "
+        f"{payload['zeta_a']:9.4g}  {onset(payload['lambda_crit'])}",
+        f"{'absorber optimum':22s} {ref['M']:9.4g} {ref['K']:9.4g} {ref['zeta_a']:9.4g}  "
+        f"{onset(ref['lambda_crit'])}  (Eqs. 28-30)",
+    ]))
 
 
 def register(app: typer.Typer) -> None:
