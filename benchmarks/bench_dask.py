@@ -47,7 +47,7 @@ def main(argv: list[str] | None = None) -> int:
     for n_workers in (1, 2):
         t0 = time.perf_counter()
         with LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
-                          host="127.0.0.1", dashboard_address=None) as cluster:
+                          host="127.0.0.1", dashboard_address="127.0.0.1:0") as cluster:
             with Client(cluster) as client:
                 client.wait_for_workers(n_workers)
             t_start = time.perf_counter() - t0

@@ -22,11 +22,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 import streamlit as st
-from matplotlib.artist import Artist
-from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.figure import Figure
-from matplotlib.lines import Line2D
-from matplotlib.patches import Patch
 from matplotlib.ticker import NullLocator
 from numpy.typing import NDArray
 
@@ -38,7 +34,6 @@ from stickslip import (
     PhysicalSystem,
     SimulationResult,
     Slider,
-    Verdict,
     __version__,
     elastic_foundation,
     rigid_base,
@@ -49,8 +44,9 @@ from stickslip.analysis.dva import DvaSpec
 from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
 from stickslip.cli.units import QUANTITIES, to_si
 from stickslip.model.physical import foundation_to_physical
+from stickslip.plot.maps import occurrence_map_plot
 from stickslip.plot.simulation import phase_portrait_plot, time_history_plot
-from stickslip.sweep.occurrence import occurrence_map
+from stickslip.sweep import OccurrenceMap, occurrence_map
 
 #: Widget key -> (label, default text). The keys are the quantity names of ``to_si``.
 SYSTEM_INPUTS: dict[str, tuple[str, str]] = {
@@ -79,9 +75,6 @@ MAP_ZETA_FLOOR = 0.05  # zeta range used when the slider has no damping
 PLOT_HORIZON = (40.0, 3000.0)
 #: Samples of the exact trajectory per figure (every mode switch is added to them).
 PLOT_POINTS = 1500
-#: Colours of the verdict codes 0 (steady sliding), 1 (stick-slip), 2 (undetermined).
-VERDICT_COLORS = ("#9ecae1", "#e6550d", "#bdbdbd")
-VERDICT_ORDER = (Verdict.STEADY_SLIDING, Verdict.STICK_SLIP, Verdict.UNDETERMINED)
 
 SiKey = tuple[tuple[str, float], ...]
 FoundationKey = tuple[float, float, float]
@@ -189,24 +182,20 @@ def operating_point_runs(lam: float, zeta: float, gamma: float,
 
 
 @st.cache_data(show_spinner="Computing the occurrence maps...", max_entries=64)
-def occurrence_maps(lam: float, zeta: float, gamma: float, foundation: FoundationKey | None
-                    ) -> dict[str, tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.int8]]]:
+def occurrence_maps(lam: float, zeta: float, gamma: float,
+                    foundation: FoundationKey | None) -> dict[str, OccurrenceMap]:
     """Verdicts on a ``lambda x zeta`` grid around the operating point (paper Figs. 8, 11).
 
     Two maps: the rigid base, and the foundation (the given one, fixed in SI units, or the
-    one of Eqs. 28-30 tuned at every ``zeta`` of the grid). Returns ``lambda``, ``zeta``
-    and the verdict codes (``Verdict.code``, shape ``(n_lambda, n_zeta)``) of each.
+    one of Eqs. 28-30 tuned at every ``zeta`` of the grid).
     """
     n_lam, n_zeta = MAP_SHAPE
     lams = np.geomspace(lam / MAP_LAMBDA_SPAN, lam * MAP_LAMBDA_SPAN, n_lam)
     top = 2.0 * zeta if zeta > 0.0 else MAP_ZETA_FLOOR
     zetas = (np.arange(n_zeta) + 0.5) * (top / n_zeta)  # cell centres; edges 0 .. top
     dva = DvaSpec("optimal") if foundation is None else DvaSpec("explicit", Foundation(*foundation))
-    out = {}
-    for name, spec in (("rigid base", DvaSpec("none")), ("with foundation", dva)):
-        result = occurrence_map(lams, zetas, spec, gamma, backend="serial")
-        out[name] = (result.lam, result.zeta, result.verdict)
-    return out
+    return {name: occurrence_map(lams, zetas, spec, gamma, backend="serial")
+            for name, spec in (("rigid base", DvaSpec("none")), ("with foundation", dva))}
 
 
 @st.cache_data(show_spinner="Searching the stick-slip-optimal foundation...", max_entries=32)
@@ -233,22 +222,16 @@ def figure_of_run(result: SimulationResult, title: str) -> Figure:
     return fig
 
 
-def _edges(centres: NDArray[np.float64], log: bool) -> NDArray[np.float64]:
-    x = np.log(centres) if log else centres
-    mid = 0.5 * (x[1:] + x[:-1])
-    edges = np.concatenate([[2.0 * x[0] - mid[0]], mid, [2.0 * x[-1] - mid[-1]]])
-    return np.exp(edges) if log else edges
+def occurrence_figure(maps: Mapping[str, OccurrenceMap], system: PhysicalSystem, lam: float,
+                      zeta: float) -> Figure:
+    """The maps side by side (closed-form boundaries overlaid), the operating point marked.
 
-
-def occurrence_figure(maps: Mapping[str, tuple[NDArray[np.float64], NDArray[np.float64],
-                                                NDArray[np.int8]]],
-                      system: PhysicalSystem, lam: float, zeta: float) -> Figure:
-    """The maps side by side with the operating point marked; belt speed and ``c`` on the
-    secondary axes (``V = lambda_op V_op / lambda``, ``c = 2 zeta sqrt(m k)``)."""
-    fig = Figure(figsize=(10.0, 3.8), layout="constrained")
+    Secondary axes in SI: the damping coefficient ``c = 2 zeta sqrt(m k)`` on top, the belt
+    speed ``V = lambda_op V_op / lambda`` (at the same load) on the right. One legend below
+    collects the entries of both panels.
+    """
+    fig = Figure(figsize=(11.0, 4.6), layout="constrained")
     axes = fig.subplots(1, len(maps), sharey=True, squeeze=False)[0]
-    cmap = ListedColormap(list(VERDICT_COLORS))
-    norm = BoundaryNorm([-0.5, 0.5, 1.5, 2.5], cmap.N)
     speed_times_lam = lam * system.speed
     root_mk = math.sqrt(system.m * system.k)
 
@@ -256,25 +239,23 @@ def occurrence_figure(maps: Mapping[str, tuple[NDArray[np.float64], NDArray[np.f
         x = np.asarray(x, dtype=np.float64)
         return np.divide(speed_times_lam, x, out=np.full_like(x, np.inf), where=x > 0)
 
-    for ax, (name, (lams, zetas, codes)) in zip(axes, maps.items(), strict=True):
-        ax.pcolormesh(_edges(lams, log=True), _edges(zetas, log=False), codes.T, cmap=cmap,
-                      norm=norm)
-        ax.set_xscale("log")
-        ax.plot([lam], [zeta], marker="*", ms=15, color="black", mec="white", ls="none")
-        ax.set_title(name)
-        ax.set_xlabel(r"$\lambda$")
-        top = ax.secondary_xaxis("top", functions=(reciprocal, reciprocal))
-        top.xaxis.set_minor_locator(NullLocator())  # unlabelled, and slow to lay out
-        top.set_xlabel("belt speed V [m/s]")
-    axes[0].set_ylabel(r"$\zeta$")
-    right = axes[-1].secondary_yaxis("right", functions=(lambda z: 2.0 * root_mk * z,
-                                                         lambda c: c / (2.0 * root_mk)))
-    right.set_ylabel("damping c [N s/m]")
-    handles: list[Artist] = [Patch(color=color, label=v.value) for color, v in
-               zip(VERDICT_COLORS, VERDICT_ORDER, strict=True)]
-    handles.append(Line2D([], [], marker="*", ms=12, color="black", ls="none",
-                          label="operating point"))
-    fig.legend(handles=handles, loc="outside lower center", ncols=len(handles), frameon=False)
+    entries: dict[str, Any] = {}
+    for ax, (name, result) in zip(axes, maps.items(), strict=True):
+        occurrence_map_plot(result, ax=ax, style="image", legend=True, title=name)
+        legend = ax.get_legend()
+        entries |= {text.get_text(): handle for text, handle in
+                    zip(legend.get_texts(), legend.legend_handles, strict=True)}
+        legend.remove()
+        (star,) = ax.plot([zeta], [lam], marker="*", ms=16, color="gold", mec="black", ls="none")
+        top = ax.secondary_xaxis("top", functions=(lambda z: 2.0 * root_mk * z,
+                                                   lambda c: c / (2.0 * root_mk)))
+        top.set_xlabel("damping c [N s/m]")
+    speed = axes[-1].secondary_yaxis("right", functions=(reciprocal, reciprocal))
+    speed.yaxis.set_minor_locator(NullLocator())  # unlabelled, and slow to lay out
+    speed.set_ylabel("belt speed V [m/s]")
+    entries["operating point"] = star
+    fig.legend(list(entries.values()), list(entries), loc="outside lower center",
+               ncols=min(len(entries), 4), frameon=False, fontsize="small")
     return fig
 
 
