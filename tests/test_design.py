@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from stickslip import PhysicalSystem
-from stickslip.analysis.critical import critical_lambdas
+from stickslip.analysis.critical import lowest_onset
 from stickslip.analysis.design import design_foundation
 from stickslip.analysis.theory import (
     critical_lambda_approx,
@@ -74,11 +74,10 @@ def test_design_report_matches_closed_forms_and_simulation() -> None:
                                      "simulation": "stick-slip"}
 
 
-def test_critical_lambdas_of_rigid_base_is_eq_36() -> None:
-    # reference: Eq. (36); the only crossing is an onset
-    found = critical_lambdas(rigid_base(0.2), 0.2, rtol=1e-8)
-    assert len(found.crossings) == 1 and found.crossings[0].onset
-    assert found.lowest == pytest.approx(critical_lambda_exact(0.2), rel=1e-7)
+def test_lowest_onset_of_rigid_base_is_eq_36() -> None:
+    # reference: root of Eq. (36)
+    found = lowest_onset(rigid_base(0.2), 0.2, rtol=1e-8)
+    assert found == pytest.approx(critical_lambda_exact(0.2), rel=1e-7)
 
 
 def _cli(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:

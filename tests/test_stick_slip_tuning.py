@@ -7,18 +7,22 @@ import math
 import pytest
 
 from stickslip import Foundation, Slider, Verdict, elastic_foundation, simulate
-from stickslip.analysis.critical import critical_lambdas, lowest_onset
+from stickslip.analysis.critical import lowest_onset
+from stickslip.analysis.dva import DvaSpec
 from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
 from stickslip.analysis.theory import optimal_foundation_fit
+from stickslip.sweep import stick_slip_boundary
 
 
 def test_lowest_onset_agrees_with_full_scan() -> None:
-    # two independent searches of the same structure: upward scan vs full bracketing
+    # two independent searches of the same structure: upward scan (analysis) vs the
+    # batched bracketing of every verdict change (sweep)
     zeta = 0.1
     st = elastic_foundation(zeta, optimal_foundation_fit(zeta).scaled(2.0))
     fast = lowest_onset(st, zeta, rtol=1e-7)
-    full = critical_lambdas(st, zeta, rtol=1e-7).lowest
-    assert fast == pytest.approx(full, rel=1e-6)
+    full = stick_slip_boundary([zeta], DvaSpec("optimal", k_scale=2.0), rtol=1e-7)
+    onsets = [c.lam for c in full.crossings[0] if c.onset]
+    assert fast == pytest.approx(onsets[0], rel=1e-6)
 
 
 def test_tuned_foundation_beats_absorber_optimum_and_is_checked_by_simulation() -> None:

@@ -15,7 +15,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from stickslip.analysis.critical import critical_lambdas
+from stickslip.analysis.critical import lowest_onset
 from stickslip.analysis.simulation import Verdict, simulate
 from stickslip.analysis.theory import (
     critical_lambda_approx,
@@ -157,10 +157,10 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
         "rigid_theory": _critical(system, critical_lambda_approx(zeta)),
         "rigid_exact": _critical(system, critical_lambda_exact(zeta)),
         "rigid_simulation": _critical(
-            system, critical_lambdas(rigid, zeta, gamma, lam_max=lam_hi, rtol=rtol).lowest),
+            system, lowest_onset(rigid, zeta, gamma, lam_min=1e-3, lam_max=lam_hi, rtol=rtol)),
         "foundation_theory": _critical(system, critical_lambda_approx(zeta_eq)),
         "foundation_simulation": _critical(
-            system, critical_lambdas(with_foundation, zeta, gamma, lam_max=lam_hi, rtol=rtol).lowest),
+            system, lowest_onset(with_foundation, zeta, gamma, lam_min=1e-3, lam_max=lam_hi, rtol=rtol)),
     }
     sim_rigid = simulate(rigid, slider, record=False).verdict
     sim_found = simulate(with_foundation, slider, record=False).verdict
