@@ -4,7 +4,7 @@ Run it with ``stickslip app`` (or ``streamlit run`` on this file). Inputs are te
 units ("2 kg", "50 kN/m"), parsed once by :func:`stickslip.cli.units.to_si`; everything
 after that is SI floats and dimensionless groups. Every number shown comes from the public
 Python API (:func:`~stickslip.analysis.design.design_foundation`, :func:`~stickslip.simulate`,
-:func:`~stickslip.sweep.occurrence.occurrence_map`,
+:func:`~stickslip.sweep.occurrence_map`,
 :func:`~stickslip.analysis.stick_slip_tuning.optimal_foundation_stick_slip`); this script
 only lays out inputs and results. Invalid input shows one line per problem and nothing is
 computed.

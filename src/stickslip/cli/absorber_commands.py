@@ -12,9 +12,9 @@ from typing import Annotated, Any
 import typer
 
 from stickslip.cli.common import BadInput, check_figure_path, parse_dva, print_json
+from stickslip.cli.options import JSON
 
 ZETA = Annotated[float, typer.Option("--zeta", help="damping ratio c / (2 sqrt(m k)) >= 0")]
-JSON = Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")]
 
 
 def _zeta(value: float) -> float:

@@ -16,6 +16,7 @@ from typing import Annotated, Any
 import typer
 
 from stickslip.cli.common import BadInput, check_figure_path, check_output_path, print_json
+from stickslip.cli.options import DVA, GAMMA, JSON, K_SCALE, PLOT
 
 LAM_SPEC = Annotated[
     str,
@@ -31,16 +32,6 @@ LAM_SPACING = Annotated[
 ZETA_SPACING = Annotated[
     str | None, typer.Option("--zeta-spacing", help="lin or log spacing of a start:stop:n zeta grid")
 ]
-GAMMA = Annotated[float, typer.Option("--gamma", help="mu_k / (mu_s - mu_k) >= 0")]
-DVA = Annotated[
-    str,
-    typer.Option(
-        "--dva",
-        help="foundation: none (rigid base), optimal (fitted Eqs. 28-30 at each zeta), "
-        "optimal-exact, or M,K,ZETA_A",
-    ),
-]
-K_SCALE = Annotated[float, typer.Option("--k-scale", help="multiply the foundation's K (Figs. 11-15)")]
 T_MAX = Annotated[
     float | None, typer.Option("--t-max", help="dimensionless time horizon of each run (default 5000)")
 ]
@@ -48,8 +39,6 @@ WORKERS = Annotated[
     int | None,
     typer.Option("--workers", help="numba threads (threads backend) or worker processes (dask)"),
 ]
-JSON = Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")]
-PLOT = Annotated[Path | None, typer.Option("--plot", help="write the figure here (.png, .pdf, .svg)")]
 
 
 def _parse_axes(lam: str | None, zeta: str, lam_spacing: str | None, zeta_spacing: str | None

@@ -9,22 +9,12 @@ import numpy as np
 import typer
 
 from stickslip.cli.common import BadInput, check_figure_path, parse_dva, print_json
+from stickslip.cli.options import DVA, GAMMA, JSON, K_SCALE
 from stickslip.model.initial import InitialState
 
 LAM = Annotated[float, typer.Option("--lam", help="lambda = (mu_s - mu_k) W / (V sqrt(m k)) > 0")]
 ZETA = Annotated[float, typer.Option("--zeta", help="damping ratio c / (2 sqrt(m k)) >= 0")]
-GAMMA = Annotated[float, typer.Option("--gamma", help="mu_k / (mu_s - mu_k) >= 0")]
-DVA = Annotated[
-    str,
-    typer.Option(
-        "--dva",
-        help="foundation: none (rigid base), optimal (fitted Eqs. 28-30), optimal-exact, "
-        "or M,K,ZETA_A",
-    ),
-]
-K_SCALE = Annotated[float, typer.Option("--k-scale", help="multiply the foundation's K (Figs. 11-15)")]
 T_MAX = Annotated[float, typer.Option("--t-max", help="dimensionless time horizon")]
-JSON = Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")]
 
 
 def parse_initial(text: str, n_dof: int) -> InitialState | None:

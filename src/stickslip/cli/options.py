@@ -1,0 +1,21 @@
+"""Command-line options shared by several commands (one definition, one help text)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+GAMMA = Annotated[float, typer.Option("--gamma", help="mu_k / (mu_s - mu_k) >= 0 (paper: 2)")]
+DVA = Annotated[
+    str,
+    typer.Option(
+        "--dva",
+        help="foundation: none (rigid base), optimal (fitted Eqs. 28-30 at each zeta), "
+        "optimal-exact (numerical optimum), or M,K,ZETA_A",
+    ),
+]
+K_SCALE = Annotated[float, typer.Option("--k-scale", help="multiply the foundation's K (Figs. 11-15)")]
+JSON = Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")]
+PLOT = Annotated[Path | None, typer.Option("--plot", help="write the figure here (.png, .pdf, .svg)")]
