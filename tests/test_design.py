@@ -128,3 +128,27 @@ def test_design_cli_bad_input(extra: list[str], needle: str,
     code, out, err = _cli(["design", *ARGS, *extra], capsys)
     assert code == 2 and out == ""
     assert len(err.strip().splitlines()) == 1 and needle in err
+
+
+def test_design_refuses_an_overdamped_slider(capsys: pytest.CaptureFixture[str]) -> None:
+    # k = 1e-3 N/m with c = 20 N s/m gives zeta = 224: Eqs. (28)-(33) do not apply
+    code, out, err = _cli(["design", *ARGS, "--k", "1e-3 N/m"], capsys)
+    assert code == 2 and out == ""
+    assert "is above 0.9" in err and len(err.strip().splitlines()) == 1
+
+
+def test_design_warns_outside_the_fitted_range() -> None:
+    # zeta = 0.6 lies outside 0 <= zeta <= 0.4, where Eqs. (28)-(33) were fitted
+    system = PhysicalSystem(m=2.0, k=50e3, c=2 * 0.6 * math.sqrt(2.0 * 50e3), mu_s=0.5,
+                            mu_k=0.3, load=500.0, speed=0.05)
+    report = design_foundation(system)
+    assert report.warnings and "outside the range" in report.warnings[0]
+
+
+def test_step_budget_is_a_reported_status() -> None:
+    from stickslip import Foundation, RunStatus, Slider, elastic_foundation, simulate
+
+    # zeta_a = 1000 forces steps of ~2.5e-4: the budget ends the run, it never hangs
+    result = simulate(elastic_foundation(0.1, Foundation(1.0, 1.0, 1000.0)), Slider(3.0, 0.1))
+    assert result.status is RunStatus.MAX_STEPS
+    assert result.verdict.value == "undetermined"

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 
-from stickslip.analysis.simulation import DEFAULT_T_MAX, Verdict, simulate
+from stickslip.analysis.simulation import DEFAULT_T_MAX, RunStatus, Verdict, simulate
 from stickslip.model._validate import positive
 from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
@@ -17,10 +17,12 @@ from stickslip.model.structure import Structure
 
 def _is_stick_slip(structure: Structure, lam: float, zeta: float, gamma: float,
                    t_max: float) -> bool | None:
-    verdict = simulate(structure, Slider(lam, zeta, gamma), t_max=t_max, record=False).verdict
-    if verdict is Verdict.UNDETERMINED:
+    result = simulate(structure, Slider(lam, zeta, gamma), t_max=t_max, record=False)
+    if result.status is RunStatus.MAX_STEPS:
+        raise ValueError(f"lambda={lam:g}: {result.status.message}")
+    if result.verdict is Verdict.UNDETERMINED:
         return None
-    return verdict is Verdict.STICK_SLIP
+    return result.verdict is Verdict.STICK_SLIP
 
 
 def lowest_onset(

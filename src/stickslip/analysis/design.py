@@ -32,6 +32,11 @@ from stickslip.model.physical import (
 )
 from stickslip.model.structure import elastic_foundation, rigid_base
 
+#: Largest primary damping ratio the design procedure accepts; Eqs. (28)-(33) are fitted on
+#: ``0 <= zeta <= 0.4`` and results between 0.4 and this bound carry a warning.
+MAX_DESIGN_ZETA = 0.9
+FITTED_ZETA_RANGE = 0.4
+
 
 @dataclass(frozen=True)
 class CriticalValues:
@@ -69,6 +74,7 @@ class DesignReport:
     recommended: PhysicalFoundation
     verdicts: dict[str, dict[str, str]]
     critical: dict[str, CriticalValues]
+    warnings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON keys of the ``design`` command (issue 6)."""
@@ -104,6 +110,7 @@ class DesignReport:
                 "natural_frequency_rad_s": self.system.natural_frequency,
             },
             "units": {"speed": "m/s", "load": "N", "m_a": "kg", "k_a": "N/m", "c_a": "N s/m"},
+            "warnings": list(self.warnings),
         }
 
 
@@ -135,6 +142,11 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
     """
     slider = system.slider()
     lam, zeta, gamma = slider.lam, slider.zeta, slider.gamma
+    if zeta > MAX_DESIGN_ZETA:
+        raise ValueError(
+            f"zeta={zeta:.4g} (c={system.c:g} N s/m) is above {MAX_DESIGN_ZETA}: the slider is "
+            "so damped that the design procedure (Eqs. 28-33, fitted for zeta <= 0.4) does not apply"
+        )
     recommended_dimless = optimal_foundation_fit(zeta)
     recommended = foundation_to_physical(recommended_dimless, system.m, system.k)
     if system.foundation is not None:
@@ -175,5 +187,11 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
             "simulation": sim_found.value,
         },
     }
+    warnings = []
+    if zeta > FITTED_ZETA_RANGE:
+        warnings.append(
+            f"zeta={zeta:.3g} is outside the range 0 <= zeta <= 0.4 on which Eqs. (28)-(33) are "
+            "fitted: trust the simulated verdicts, not the theory column"
+        )
     return DesignReport(system, lam, zeta, gamma, zeta_eq, zeta_eq_source, foundation, fd,
-                        source, recommended, verdicts, crit)
+                        source, recommended, verdicts, crit, tuple(warnings))

@@ -80,6 +80,11 @@ class RunStatus(Enum):
         engine.STATUS_MAX_EVENTS,
         "maximum number of events reached before a verdict; increase max_events",
     )
+    MAX_STEPS = (
+        engine.STATUS_MAX_STEPS,
+        f"step budget ({engine.MAX_STEPS} sub-steps) used up before a verdict: the structure "
+        "is so stiff or so heavily damped that its time steps are tiny; check the parameters",
+    )
 
     def __init__(self, code: int, message: str) -> None:
         self.code = code

@@ -436,6 +436,13 @@ def main() -> None:
             st.error(line)
         st.info("Nothing is computed until every input is valid.")
         return
+    try:
+        _show_results(raw, system)
+    except ValueError as exc:  # valid inputs whose dimensionless groups leave the model's range
+        st.error("Cannot analyse these inputs: " + " ".join(str(exc).split()))
+
+
+def _show_results(raw: Mapping[str, str], system: PhysicalSystem) -> None:
     report = design_report(si_key(system))
     lam, zeta, gamma = report["lambda"], report["zeta"], report["gamma"]
 

@@ -119,6 +119,7 @@ def format_report(p: dict[str, Any]) -> str:
         f"recommended foundation (Eqs. 28-30): m_a={g(r['m_a'], 'kg')}, k_a={g(r['k_a'], 'N/m')}, "
         f"c_a={g(r['c_a'], 'N s/m')}",
     ]
+    lines += [f"warning: {w}" for w in p.get("warnings", [])]
     return "\n".join(lines)
 
 

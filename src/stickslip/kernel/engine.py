@@ -37,6 +37,11 @@ STATUS_STEADY = 1
 STATUS_CYCLE = 2
 STATUS_T_MAX = 3
 STATUS_MAX_EVENTS = 4
+STATUS_MAX_STEPS = 5
+
+#: Bound on sub-steps per run. A very stiff or heavily damped structure needs tiny steps
+#: (h ||A|| <= 1/2); this keeps such a run to seconds, ending with a reported status.
+MAX_STEPS = 1_000_000
 
 # layout of the float summary
 F_LYAPUNOV_BOUND = 0
@@ -281,6 +286,10 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
         if t >= t_max:
             if status == STATUS_RUNNING:
                 status = STATUS_T_MAX
+            break
+        if n_steps >= MAX_STEPS:
+            if status == STATUS_RUNNING:
+                status = STATUS_MAX_STEPS
             break
         if fresh:
             signature(sig_rows[mode], w, sig0)
