@@ -34,7 +34,7 @@ class Quality:
 
 
 QUALITIES = {
-    "tiny": Quality("tiny", 8, 5, 3, 6, 4, 600),
+    "tiny": Quality("tiny", 8, 5, 2, 6, 4, 600),
     "default": Quality("default", 80, 40, 7, 40, 20, 3000),
     "high": Quality("high", 400, 200, 41, 120, 60, 8000),
 }
