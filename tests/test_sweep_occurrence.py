@@ -11,7 +11,7 @@ import pytest
 import xarray as xr
 from matplotlib.figure import Figure
 
-from stickslip import Slider, Verdict, chain_structure, simulate
+from stickslip import RunStatus, Slider, Verdict, chain_structure, simulate
 from stickslip.analysis.dva import DvaSpec
 from stickslip.analysis.theory import critical_lambda_exact
 from stickslip.model import STARTUP_DESCRIPTION
@@ -51,8 +51,11 @@ def test_dataset_layout_and_cf_attributes(optimal_serial: OccurrenceMap) -> None
     assert ds["verdict"].dtype == np.int8
     assert list(ds["verdict"].attrs["flag_values"]) == [0, 1, 2]
     assert ds["verdict"].attrs["flag_meanings"] == "steady-sliding stick-slip undetermined"
-    assert ds["certificate"].attrs["flag_meanings"].split() == [
-        "certified-steady", "certified-cycle", "t-max", "max-events"]
+    # every run status of the engine, in code order (RunStatus)
+    meanings = ds["certificate"].attrs["flag_meanings"].split()
+    assert meanings[:4] == ["certified-steady", "certified-cycle", "t-max", "max-events"]
+    assert meanings == [s.label for s in sorted(RunStatus, key=lambda s: s.code)]
+    assert list(ds["certificate"].attrs["flag_values"]) == sorted(s.code for s in RunStatus)
     for name in ("n_stick", "period", "amplitude", "stick_ratio", "max_velocity", "t_end"):
         assert ds[name].dims == ("lambda", "zeta")
     # NaN only where there is no cycle, and the attribute says so

@@ -211,13 +211,20 @@ def make_chunks(n_cells: int, chunk_size: int) -> list[Chunk]:
     ]
 
 
-def default_chunk_size(n_cells: int) -> int:
-    """About a hundred chunks, each of 64 to 4096 cells: progress and resume granularity.
+def default_chunk_size(n_cells: int, backend: Backend = "threads") -> int:
+    """Cells per chunk when none is given: progress, resume and task granularity.
 
-    At several thousand cells per second a chunk takes well under a second, which keeps the
-    progress bar live and loses little work when a run is killed.
+    In-process backends: about a hundred chunks of 64 to 4096 cells; at several thousand
+    cells per second a chunk takes well under a second, which keeps the progress bar live
+    and loses little work when a run is killed. Dask: about 32 chunks of 256 to 8192 cells,
+    since every task costs the scheduler a few milliseconds (measured on 2 cores: 100 tasks
+    of 100 cells ran 1.3x faster on 2 workers than on 1, 20 tasks of 500 cells 1.4x).
     """
-    return int(min(4096, max(64, math.ceil(n_cells / 100)), max(1, n_cells)))
+    if backend == "dask":
+        size = min(8192, max(256, math.ceil(n_cells / 32)))
+    else:
+        size = min(4096, max(64, math.ceil(n_cells / 100)))
+    return int(min(size, max(1, n_cells)))
 
 
 def check_backend(backend: str, workers: int | None, scheduler: str | None) -> Backend:

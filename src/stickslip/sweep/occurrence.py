@@ -419,7 +419,7 @@ def compute_map(
     """Compute the map of an already validated :class:`MapConfig` (see :func:`occurrence_map`)."""
     started = time.perf_counter()
     n_cells = config.n_cells
-    size = int(chunk_size) if chunk_size is not None else default_chunk_size(n_cells)
+    size = int(chunk_size) if chunk_size is not None else default_chunk_size(n_cells, backend)
     fingerprint = config.fingerprint()
     chunk_store = None
     if store is not None:
