@@ -104,6 +104,10 @@ def test_design_cli_json_keys(capsys: pytest.CaptureFixture[str]) -> None:
     for key in ("rigid_theory", "rigid_simulation", "foundation_theory", "foundation_simulation"):
         assert d["critical_speed"][key] > 0 and d["critical_load"][key] > 0
     assert set(d["foundation"]) >= {"m_a", "k_a", "c_a"}
+    best = d["stick_slip_optimal_foundation"]
+    assert set(best) >= {"m_a", "k_a", "c_a", "lambda_crit"}
+    # bounded by the recommended (absorber-optimal) mass, Eq. (28)
+    assert best["m_a"] <= d["recommended_foundation"]["m_a"] * (1 + 1e-12)
 
 
 def test_design_cli_reads_toml(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

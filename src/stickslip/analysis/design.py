@@ -75,6 +75,7 @@ class DesignReport:
     verdicts: dict[str, dict[str, str]]
     critical: dict[str, CriticalValues]
     warnings: tuple[str, ...] = ()
+    stick_slip_optimum: dict[str, Any] | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """JSON keys of the ``design`` command (issue 6)."""
@@ -111,6 +112,7 @@ class DesignReport:
             },
             "units": {"speed": "m/s", "load": "N", "m_a": "kg", "k_a": "N/m", "c_a": "N s/m"},
             "warnings": list(self.warnings),
+            "stick_slip_optimal_foundation": self.stick_slip_optimum,
         }
 
 
@@ -126,7 +128,7 @@ def _label(stick_slip: bool) -> str:
 
 
 def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
-                      rtol: float = 1e-6) -> DesignReport:
+                      rtol: float = 1e-6, stick_slip_optimum: bool = False) -> DesignReport:
     """Run the design procedure of the paper's Fig. 16 and check it by simulation.
 
     Parameters
@@ -139,6 +141,10 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
         Upper end of the lambda range searched by simulation.
     rtol : float
         Relative tolerance of the simulated critical lambda.
+    stick_slip_optimum : bool
+        Also search the foundation that maximises the simulated stick-slip onset (with the
+        mass bounded by the recommended ``m_a``) and report it in SI units, with its critical
+        speed and load (a few seconds more).
     """
     slider = system.slider()
     lam, zeta, gamma = slider.lam, slider.zeta, slider.gamma
@@ -193,5 +199,27 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
             f"zeta={zeta:.3g} is outside the range 0 <= zeta <= 0.4 on which Eqs. (28)-(33) are "
             "fitted: trust the simulated verdicts, not the theory column"
         )
+    optimum = _stick_slip_optimum(system, zeta, gamma, lam) if stick_slip_optimum else None
     return DesignReport(system, lam, zeta, gamma, zeta_eq, zeta_eq_source, foundation, fd,
-                        source, recommended, verdicts, crit, tuple(warnings))
+                        source, recommended, verdicts, crit, tuple(warnings), optimum)
+
+
+def _stick_slip_optimum(system: PhysicalSystem, zeta: float, gamma: float,
+                        lam: float) -> dict[str, Any]:
+    """The stick-slip-optimal foundation in SI units, beside the absorber optimum."""
+    from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
+
+    result = optimal_foundation_stick_slip(zeta, gamma, lam_max=max(100.0, 4.0 * lam))
+    phys = foundation_to_physical(result.foundation, system.m, system.k)
+    crit = _critical(system, result.lambda_crit)
+    return {
+        "m_a": phys.m_a, "k_a": phys.k_a, "c_a": phys.c_a,
+        "M": result.foundation.mass_ratio, "K": result.foundation.stiffness_ratio,
+        "zeta_a": result.foundation.damping_ratio,
+        "lambda_crit": crit.to_dict()["lambda"],
+        "lambda_crit_at_least": result.lam_max if math.isinf(result.lambda_crit) else None,
+        "critical_speed": crit.to_dict()["speed"],
+        "critical_load": crit.to_dict()["load"],
+        "absorber_optimum_lambda_crit": result.reference_lambda_crit,
+        "source": "maximum simulated stick-slip onset, M <= M_opt of Eq. (28)",
+    }

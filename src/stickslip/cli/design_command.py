@@ -65,6 +65,11 @@ def design(
     config: Annotated[
         Path | None, typer.Option("--config", help="TOML file with the same keys (m, k, ...)")
     ] = None,
+    stick_slip_optimum: Annotated[
+        bool,
+        typer.Option("--stick-slip-optimum/--no-stick-slip-optimum",
+                     help="also find the foundation best against stick-slip (a few seconds)"),
+    ] = True,
     json: Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")] = False,
 ) -> None:
     """Will it stick-slip, at which speed or load, and which foundation stops it (Fig. 16)."""
@@ -79,7 +84,7 @@ def design(
         foundation = PhysicalFoundation(v["m_a"], v["k_a"], v["c_a"])
     system = PhysicalSystem(m=v["m"], k=v["k"], c=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"],
                             load=v["load"], speed=v["speed"], foundation=foundation)
-    report = design_foundation(system)
+    report = design_foundation(system, stick_slip_optimum=stick_slip_optimum)
     payload = report.to_dict()
     if json:
         print_json(payload)
@@ -119,6 +124,15 @@ def format_report(p: dict[str, Any]) -> str:
         f"recommended foundation (Eqs. 28-30): m_a={g(r['m_a'], 'kg')}, k_a={g(r['k_a'], 'N/m')}, "
         f"c_a={g(r['c_a'], 'N s/m')}",
     ]
+    best = p.get("stick_slip_optimal_foundation")
+    if best:
+        onset = (f">= {best['lambda_crit_at_least']:g} (none found)" if best["lambda_crit"] is None
+                 else f"{best['lambda_crit']:.4g}, V_c={g(best['critical_speed'], 'm/s')}, "
+                 f"W_c={g(best['critical_load'], 'N')}")
+        lines.append(
+            f"stick-slip-optimal foundation: m_a={g(best['m_a'], 'kg')}, k_a={g(best['k_a'], 'N/m')}, "
+            f"c_a={g(best['c_a'], 'N s/m')}; stick-slip onset lambda_c {onset}"
+        )
     lines += [f"warning: {w}" for w in p.get("warnings", [])]
     return "\n".join(lines)
 
