@@ -9,6 +9,7 @@ from __future__ import annotations
 import json
 import math
 import sys
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any, NoReturn
 
@@ -96,6 +97,16 @@ def check_figure_path(path: Path) -> Path:
             f"figure file {str(path)!r} must end in one of {', '.join(FIGURE_SUFFIXES)}"
         )
     return check_output_path(path)
+
+
+def save_plot(draw: Callable[[Any], object], path: Path, size: tuple[float, float] = (8.0, 5.5)) -> str:
+    """Draw into the axes of a new figure with ``draw(ax)`` and save it to ``path`` (130 dpi)."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=size, layout="constrained")
+    draw(fig.add_subplot())
+    fig.savefig(path, dpi=130)
+    return str(path)
 
 
 def _writable(folder: Path) -> bool:

@@ -15,7 +15,7 @@ from typing import Annotated, Any
 
 import typer
 
-from stickslip.cli.common import BadInput, check_figure_path, check_output_path, print_json
+from stickslip.cli.common import BadInput, check_figure_path, check_output_path, print_json, save_plot
 from stickslip.cli.options import DVA, GAMMA, JSON, K_SCALE, PLOT
 
 LAM_SPEC = Annotated[
@@ -184,12 +184,7 @@ def map_command(
         result.to_csv(csv)
         payload["csv"] = str(csv)
     if plot is not None:
-        from matplotlib.figure import Figure
-
-        fig = Figure(figsize=(8.0, 5.5), layout="constrained")
-        result.plot(ax=fig.add_subplot())
-        fig.savefig(plot, dpi=130)
-        payload["plot"] = str(plot)
+        payload["plot"] = save_plot(lambda ax: result.plot(ax=ax), plot)
     if json:
         print_json(payload)
         return
@@ -264,12 +259,7 @@ def boundary_command(
         write_dataset(result.to_xarray(), out, overwrite=True)
         payload["out"] = str(out)
     if plot is not None:
-        from matplotlib.figure import Figure
-
-        fig = Figure(figsize=(8.0, 5.0), layout="constrained")
-        result.plot(ax=fig.add_subplot())
-        fig.savefig(plot, dpi=130)
-        payload["plot"] = str(plot)
+        payload["plot"] = save_plot(lambda ax: result.plot(ax=ax), plot, (8.0, 5.0))
     if json:
         print_json(payload)
         return
