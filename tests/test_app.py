@@ -25,7 +25,7 @@ pytest.importorskip("streamlit", reason="the app extra (streamlit) is not instal
 from streamlit.testing.v1 import AppTest
 
 from stickslip.cli import app_command
-from stickslip.cli.main import run
+from tests.cli_helpers import run_cli as _run
 
 APP = Path(app_command.APP_SCRIPT)
 # The first run may JIT-compile the engine (numba) when its cache is cold.
@@ -198,14 +198,6 @@ def test_history_csv_is_in_si_and_dimensionless(computed: dict[str, Any]) -> Non
 
 # ---- the command ------------------------------------------------------------------------
 
-def _run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
-    try:
-        run(args)
-        code = 0
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def test_app_command_without_streamlit_is_one_line(monkeypatch: pytest.MonkeyPatch,

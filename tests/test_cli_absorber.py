@@ -23,6 +23,7 @@ from stickslip.analysis.theory import (
 )
 from stickslip.cli.absorber_commands import register
 from stickslip.model import elastic_foundation
+from tests.cli_helpers import run_cli as _run_main
 
 FRF_KEYS = {"H_max", "Omega_peak", "zeta_eq", "foundation", "local_maxima", "rigid_base"}
 TUNE_KEYS = {"M", "K", "zeta_a", "H_max", "Omega_peak", "zeta_eq", "fitted", "at_bound"}
@@ -99,16 +100,6 @@ def test_tune_with_fixed_mass_ratio_text(app: typer.Typer) -> None:
     assert "M fixed" in out and "Eq. (31)" in out and "2.23607" in out
 
 
-def _run_main(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
-    from stickslip.cli.main import run
-
-    try:
-        run(args)
-        code = 0
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 @pytest.mark.parametrize(

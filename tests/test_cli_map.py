@@ -14,21 +14,13 @@ from pathlib import Path
 import pytest
 
 from stickslip.analysis.theory import critical_lambda_exact
-from stickslip.cli.main import run
 from stickslip.sweep import OccurrenceMap, occurrence_map
+from tests.cli_helpers import run_cli as _run
 from tests.sweep_helpers import assert_same_map
 
 SMALL = ["--lam", "0.5:4:4", "--zeta", "0.1,0.2,0.3"]
 
 
-def _run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
-    try:
-        run(args)
-        code = 0
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def _digest(path: Path) -> str:

@@ -10,20 +10,12 @@ from pathlib import Path
 import pytest
 
 from stickslip.analysis.theory import stick_slip_period
-from stickslip.cli.main import run
+from tests.cli_helpers import run_cli as _run
 
 JSON_KEYS = {"verdict", "certificate", "n_stick", "period", "amplitude", "max_velocity", "t_end",
              "status"}
 
 
-def _run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
-    try:
-        run(args)
-        code = 0
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def test_json_is_one_object_with_the_contract_keys(capsys: pytest.CaptureFixture[str]) -> None:

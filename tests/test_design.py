@@ -17,9 +17,9 @@ from stickslip.analysis.theory import (
     equivalent_damping_fit,
     optimal_foundation_fit,
 )
-from stickslip.cli.main import run
 from stickslip.cli.units import to_si
 from stickslip.model import rigid_base
+from tests.cli_helpers import run_cli as _cli
 
 # a 2 kg slider on 50 kN/m with 20 N s/m, mu_s = 0.5, mu_k = 0.3, 500 N, 5 cm/s
 SYSTEM = PhysicalSystem(m=2.0, k=50e3, c=20.0, mu_s=0.5, mu_k=0.3, load=500.0, speed=0.05)
@@ -80,14 +80,6 @@ def test_lowest_onset_of_rigid_base_is_eq_36() -> None:
     assert found == pytest.approx(critical_lambda_exact(0.2), rel=1e-7)
 
 
-def _cli(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
-    try:
-        run(args)
-        code = 0
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 ARGS = ["--m", "2 kg", "--k", "50 kN/m", "--c", "20 N*s/m", "--mu-s", "0.5", "--mu-k", "0.3",
