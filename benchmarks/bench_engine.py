@@ -105,7 +105,7 @@ def combine(first: OracleResult, rest: OracleResult | None) -> tuple[np.ndarray,
 
 def run_case(case: Case, args: argparse.Namespace) -> dict[str, Any]:
     structure = elastic_foundation(case.zeta, optimal_foundation_fit(case.zeta).scaled(case.k_scale))
-    slider = Slider(case.lam, case.zeta, args.gamma)
+    slider = Slider(case.lam, gamma=args.gamma)
     init = startup_state(structure, slider)
 
     # engine: median of repeats (JIT already warm)
@@ -213,7 +213,7 @@ def main(argv: list[str] | None = None) -> int:
     c0 = cases[0]
     st0 = elastic_foundation(c0.zeta, optimal_foundation_fit(c0.zeta))
     t0 = time.perf_counter()
-    simulate(st0, Slider(c0.lam, c0.zeta, args.gamma), t_max=c0.t_max)
+    simulate(st0, Slider(c0.lam, gamma=args.gamma), t_max=c0.t_max)
     t_warm = time.perf_counter() - t0
     print(f"engine warm-up (JIT compile or cache load): {t_warm:.2f} s")
     print(

@@ -100,7 +100,7 @@ def main(argv: list[str] | None = None) -> int:
             times.append(time.perf_counter() - t0)
         t_end = float(ds["t_end"][i, j])
         structure = chain_structure(zeta_j, (dva.resolve(zeta_j),))  # type: ignore[arg-type]
-        start = startup_state(structure, Slider(lam_i, zeta_j, 2.0))
+        start = startup_state(structure, Slider(lam_i, gamma=2.0))
         t0 = time.perf_counter()
         oracle_simulate(structure.mass, structure.damping, structure.stiffness, lam_i, 2.0,
                         start.position, start.velocity, t_end, max_step=0.01)

@@ -15,7 +15,7 @@ import pytest
 import typer
 from typer.testing import CliRunner
 
-from stickslip.analysis.absorber import response_peak
+from stickslip.analysis.frequency_response import response_peak
 from stickslip.analysis.theory import (
     equivalent_damping_fit,
     optimal_foundation_fit,

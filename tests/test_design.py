@@ -17,8 +17,8 @@ from stickslip.analysis.theory import (
     equivalent_damping_fit,
     optimal_foundation_fit,
 )
-from stickslip.cli.units import to_si
 from stickslip.model import rigid_base
+from stickslip.model.units import to_si
 from tests.cli_helpers import run_cli as _cli
 
 # a 2 kg slider on 50 kN/m with 20 N s/m, mu_s = 0.5, mu_k = 0.3, 500 N, 5 cm/s
@@ -49,23 +49,22 @@ def test_wrong_units_are_rejected(name: str, text: str, needle: str) -> None:
 def test_design_report_matches_closed_forms_and_simulation() -> None:
     report = design_foundation(SYSTEM)
     d = report.to_dict()
-    slider = SYSTEM.slider()
     # closed forms: Eq. (39), Eq. (36), Eq. (33) with Eq. (37)
-    assert d["critical_lambda"]["rigid_theory"] == pytest.approx(critical_lambda_approx(slider.zeta))
-    assert d["critical_lambda"]["rigid_exact"] == pytest.approx(critical_lambda_exact(slider.zeta))
-    assert d["zeta_eq"] == pytest.approx(equivalent_damping_fit(slider.zeta))
-    zeta_eq = equivalent_damping_fit(slider.zeta)
+    assert d["critical_lambda"]["rigid_theory"] == pytest.approx(critical_lambda_approx(SYSTEM.zeta))
+    assert d["critical_lambda"]["rigid_exact"] == pytest.approx(critical_lambda_exact(SYSTEM.zeta))
+    assert d["zeta_eq"] == pytest.approx(equivalent_damping_fit(SYSTEM.zeta))
+    zeta_eq = equivalent_damping_fit(SYSTEM.zeta)
     assert d["critical_lambda"]["foundation_theory"] == pytest.approx(critical_lambda_approx(zeta_eq))
     # simulation of the rigid base agrees with the exact Eq. (36)
     assert d["critical_lambda"]["rigid_simulation"] == pytest.approx(
-        critical_lambda_exact(slider.zeta), rel=2e-6)
+        critical_lambda_exact(SYSTEM.zeta), rel=2e-6)
     # lambda = (mu_s - mu_k) W / (V sqrt(mk)): critical speed and load invert it
     lam_c = d["critical_lambda"]["rigid_exact"]
     root_mk = math.sqrt(2.0 * 50e3)
     assert d["critical_speed"]["rigid_exact"] == pytest.approx(0.2 * 500.0 / (lam_c * root_mk))
     assert d["critical_load"]["rigid_exact"] == pytest.approx(lam_c * 0.05 * root_mk / 0.2)
     # the recommended foundation is Eqs. (28)-(30) in SI units
-    fit = optimal_foundation_fit(slider.zeta)
+    fit = optimal_foundation_fit(SYSTEM.zeta)
     assert d["foundation"]["m_a"] == pytest.approx(fit.mass_ratio * 2.0)
     assert d["foundation"]["k_a"] == pytest.approx(fit.stiffness_ratio**2 * 50e3)
     assert d["foundation"]["c_a"] == pytest.approx(2 * fit.damping_ratio * root_mk)
@@ -76,7 +75,7 @@ def test_design_report_matches_closed_forms_and_simulation() -> None:
 
 def test_lowest_onset_of_rigid_base_is_eq_36() -> None:
     # reference: root of Eq. (36)
-    found = lowest_onset(rigid_base(0.2), 0.2, rtol=1e-8)
+    found = lowest_onset(rigid_base(0.2), rtol=1e-8)
     assert found == pytest.approx(critical_lambda_exact(0.2), rel=1e-7)
 
 
@@ -145,6 +144,6 @@ def test_step_budget_is_a_reported_status() -> None:
     from stickslip import Foundation, RunStatus, Slider, elastic_foundation, simulate
 
     # zeta_a = 1000 forces steps of ~2.5e-4: the budget ends the run, it never hangs
-    result = simulate(elastic_foundation(0.1, Foundation(1.0, 1.0, 1000.0)), Slider(3.0, 0.1))
+    result = simulate(elastic_foundation(0.1, Foundation(1.0, 1.0, 1000.0)), Slider(3.0))
     assert result.status is RunStatus.MAX_STEPS
     assert result.verdict.value == "undetermined"

@@ -14,7 +14,16 @@ import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
 
-from stickslip import Foundation, Mode, RunStatus, Slider, Verdict, chain_structure, simulate
+from stickslip import (
+    EngineOptions,
+    Foundation,
+    Mode,
+    RunStatus,
+    Slider,
+    Verdict,
+    chain_structure,
+    simulate,
+)
 
 foundations = st.builds(
     Foundation,
@@ -28,7 +37,7 @@ foundations = st.builds(
 def systems(draw):  # type: ignore[no-untyped-def]
     zeta = draw(st.floats(0.0, 0.8))
     stages = draw(st.lists(foundations, min_size=0, max_size=2))
-    slider = Slider(draw(st.floats(0.01, 40.0)), zeta, draw(st.floats(0.0, 5.0)))
+    slider = Slider(draw(st.floats(0.01, 40.0)), gamma=draw(st.floats(0.0, 5.0)))
     return chain_structure(zeta, stages), slider
 
 
@@ -40,7 +49,7 @@ def _stick_force(structure, q, v):  # type: ignore[no-untyped-def]
 @given(systems())
 def test_phases_obey_their_definitions(system) -> None:  # type: ignore[no-untyped-def]
     structure, slider = system
-    result = simulate(structure, slider, t_max=150.0, max_events=400)
+    result = simulate(structure, slider, options=EngineOptions(t_max=150.0, max_events=400))
     assert np.all(np.diff(result.segment_times) > 0.0)
     assert isinstance(result.status, RunStatus)
     t = np.linspace(0.0, result.t_end, 2500)
@@ -61,7 +70,7 @@ def test_phases_obey_their_definitions(system) -> None:  # type: ignore[no-untyp
 @given(systems())
 def test_verdict_matches_status(system) -> None:  # type: ignore[no-untyped-def]
     structure, slider = system
-    result = simulate(structure, slider, t_max=300.0, max_events=1000, record=False)
+    result = simulate(structure, slider, options=EngineOptions(t_max=300.0, max_events=1000), record=False)
     expected = {
         RunStatus.CERTIFIED_STEADY: Verdict.STEADY_SLIDING,
         RunStatus.CERTIFIED_CYCLE: Verdict.STICK_SLIP,
@@ -80,7 +89,7 @@ def test_verdict_matches_status(system) -> None:  # type: ignore[no-untyped-def]
 def test_max_events_is_a_reported_status() -> None:
     # a 2DOF stick-slip case needs 5 switches before its breakaway state repeats
     structure = chain_structure(0.1, (Foundation(2.8, 1.09, 1.5),))
-    result = simulate(structure, Slider(15.0, 0.1), max_events=3)
+    result = simulate(structure, Slider(15.0), options=EngineOptions(max_events=3))
     assert result.status is RunStatus.MAX_EVENTS
     assert result.verdict is Verdict.UNDETERMINED
     assert "increase max_events" in result.status.message
@@ -88,7 +97,7 @@ def test_max_events_is_a_reported_status() -> None:
 
 def test_t_max_is_a_reported_status() -> None:
     structure = chain_structure(0.05, ())
-    result = simulate(structure, Slider(3.0, 0.05), t_max=2.0)
+    result = simulate(structure, Slider(3.0), t_max=2.0)
     assert result.status is RunStatus.T_MAX
     assert result.t_end == 2.0
     assert result.certificate == ""

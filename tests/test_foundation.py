@@ -17,9 +17,9 @@ def test_stiff_foundation_reproduces_rigid_base(stiffness_ratio: float, lam: flo
     # closed-form limit: as K -> infinity the foundation becomes the rigid base; the
     # foundation's static compliance is 1/K^2 of the slider spring's, so the period
     # differs by O(1/K^2) (measured: 0.85e-2 and 1.2e-2 at K = 10, ~1e-3 at K = 30)
-    rigid = simulate(rigid_base(zeta), Slider(lam, zeta))
+    rigid = simulate(rigid_base(zeta), Slider(lam))
     stiff = simulate(elastic_foundation(zeta, Foundation(1.0, stiffness_ratio, 0.5)),
-                     Slider(lam, zeta))
+                     Slider(lam))
     assert stiff.verdict is rigid.verdict
     assert rigid.verdict is not Verdict.UNDETERMINED
     if rigid.verdict is Verdict.STICK_SLIP:
@@ -31,7 +31,7 @@ def test_optimal_foundation_suppresses_stick_slip_of_the_rigid_base() -> None:
     # paper Fig. 8: at zeta = 0.1 the rigid base stick-slips from lambda ~ 1.47 (Eq. 36),
     # the optimally tuned foundation only above lambda ~ 4.5 (Eq. 37 with Eq. 33)
     zeta, lam = 0.1, 3.0
-    rigid = simulate(rigid_base(zeta), Slider(lam, zeta))
-    tuned = simulate(elastic_foundation(zeta, optimal_foundation_fit(zeta)), Slider(lam, zeta))
+    rigid = simulate(rigid_base(zeta), Slider(lam))
+    tuned = simulate(elastic_foundation(zeta, optimal_foundation_fit(zeta)), Slider(lam))
     assert rigid.verdict is Verdict.STICK_SLIP
     assert tuned.verdict is Verdict.STEADY_SLIDING

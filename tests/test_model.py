@@ -25,17 +25,37 @@ from stickslip.model import (
 @pytest.mark.parametrize(
     ("kwargs", "message"),
     [
-        ({"lam": 0.0, "zeta": 0.1}, "lambda=0.0 must be positive"),
-        ({"lam": -1.0, "zeta": 0.1}, "must be positive"),
-        ({"lam": float("nan"), "zeta": 0.1}, "must be finite"),
-        ({"lam": 1.0, "zeta": -0.1}, "zeta=-0.1 must not be negative"),
-        ({"lam": 1.0, "zeta": float("inf")}, "must be finite"),
-        ({"lam": 1.0, "zeta": 0.1, "gamma": -2.0}, "gamma"),
+        ({"lam": 0.0}, "lambda=0.0 must be positive"),
+        ({"lam": -1.0}, "must be positive"),
+        ({"lam": float("nan")}, "must be finite"),
+        ({"lam": 1.0, "gamma": -2.0}, "gamma"),
     ],
 )
 def test_slider_rejects_bad_values(kwargs: dict, message: str) -> None:
     with pytest.raises(ValueError, match=message):
         Slider(**kwargs)
+
+
+@pytest.mark.parametrize(("zeta", "message"), [(-0.1, "zeta=-0.1 must not be negative"),
+                                              (float("inf"), "must be finite")])
+def test_structure_rejects_bad_zeta(zeta: float, message: str) -> None:
+    with pytest.raises(ValueError, match=message):
+        chain_structure(zeta)
+
+
+def test_slider_gamma_is_keyword_only() -> None:
+    # zeta lives in the structure; a positional second number must not silently become gamma
+    with pytest.raises(TypeError):
+        Slider(3.0, 0.1)  # type: ignore[misc]
+
+
+STAGES = [(), (Foundation(1.5, 0.9, 1.1),), (Foundation(1, 1, 0.5), Foundation(2, 1.5, 0.3))]
+
+
+@pytest.mark.parametrize("stages", STAGES)
+def test_structure_zeta_is_the_primary_damping(stages: tuple) -> None:
+    # Section 2.3: zeta = c / (2 sqrt(mk)) is the only damper on DOF 0 of the chain
+    assert chain_structure(0.137, stages).zeta == pytest.approx(0.137, rel=1e-15)
 
 
 @pytest.mark.parametrize(
@@ -73,7 +93,7 @@ def test_chain_of_two_foundations() -> None:
 
 def test_startup_state_matches_design_formula() -> None:
     # DESIGN.md section 1: xi = -gamma lam (1 + 1/K^2), xi_a = -gamma lam / K^2
-    sl = Slider(3.0, 0.1, 2.0)
+    sl = Slider(3.0, gamma=2.0)
     big_k = 0.8
     init = startup_state(elastic_foundation(0.1, Foundation(1.2, big_k, 0.5)), sl)
     assert init.position == pytest.approx([-6.0 * (1 + 1 / big_k**2), -6.0 / big_k**2])
@@ -88,7 +108,8 @@ def test_physical_system_groups() -> None:
     s = p.slider()
     root_mk = math.sqrt(2.0 * 50e3)
     assert s.lam == pytest.approx(0.2 * 100.0 / (0.1 * root_mk))
-    assert s.zeta == pytest.approx(20.0 / (2 * root_mk))
+    assert p.zeta == pytest.approx(20.0 / (2 * root_mk))
+    assert p.structure().zeta == pytest.approx(20.0 / (2 * root_mk))
     assert s.gamma == pytest.approx(0.3 / 0.2)
     f = p.dimensionless_foundation()
     assert f is not None
@@ -116,12 +137,12 @@ def test_physical_rejects_mu_k_not_below_mu_s() -> None:
 )
 def test_physical_round_trip(lam, zeta, gamma, m, k, mu_s, speed, big_m, big_k, za) -> None:
     # scaling law: the dimensionless groups survive the trip to SI units and back
-    sl = Slider(lam, zeta, gamma)
+    sl = Slider(lam, gamma=gamma)
     fnd = Foundation(big_m, big_k, za)
-    p = PhysicalSystem.from_dimensionless(sl, m=m, k=k, mu_s=mu_s, speed=speed, foundation=fnd)
+    p = PhysicalSystem.from_dimensionless(sl, zeta=zeta, m=m, k=k, mu_s=mu_s, speed=speed, foundation=fnd)
     back = p.slider()
     assert back.lam == pytest.approx(lam, rel=1e-9)
-    assert back.zeta == pytest.approx(zeta, rel=1e-9, abs=1e-15)
+    assert p.zeta == pytest.approx(zeta, rel=1e-9, abs=1e-15)
     assert back.gamma == pytest.approx(gamma, rel=1e-9, abs=1e-12)
     f = p.dimensionless_foundation()
     assert f is not None

@@ -28,7 +28,7 @@ CASES = [
 @pytest.mark.parametrize(("zeta", "k_scale", "lam"), CASES)
 def test_events_and_verdict_agree_with_solve_ivp(zeta: float, k_scale: float, lam: float) -> None:
     structure = elastic_foundation(zeta, optimal_foundation_fit(zeta).scaled(k_scale))
-    slider = Slider(lam, zeta, 2.0)
+    slider = Slider(lam, gamma=2.0)
     ours = simulate(structure, slider)
     assert ours.verdict is not Verdict.UNDETERMINED
     # the oracle runs past our certificate so that its tail verdict is meaningful

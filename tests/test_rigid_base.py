@@ -23,7 +23,7 @@ ZETAS = [0.005, 0.01, 0.03, 0.1, 0.2, 0.3, 0.45, 0.6]
 
 
 def _verdict(lam: float, zeta: float, gamma: float = 2.0) -> Verdict:
-    result = simulate(rigid_base(zeta), Slider(lam, zeta, gamma))
+    result = simulate(rigid_base(zeta), Slider(lam, gamma=gamma))
     assert result.verdict is not Verdict.UNDETERMINED, result.status.message
     return result.verdict
 
@@ -73,7 +73,7 @@ def test_gamma_does_not_move_the_1dof_boundary(gamma: float) -> None:
 @pytest.mark.parametrize("lam", [0.05, 0.5, 1.0, 3.0, 20.0])
 def test_undamped_period_and_amplitude_equal_eqs_34_35(lam: float) -> None:
     # reference: paper Eq. (34) (period 2 pi / (f_ss/f_n)) and Eq. (35) (amplitude sqrt(1+lam^2))
-    result = simulate(rigid_base(0.0), Slider(lam, 0.0, 2.0))
+    result = simulate(rigid_base(0.0), Slider(lam, gamma=2.0))
     assert result.verdict is Verdict.STICK_SLIP
     assert result.period == pytest.approx(stick_slip_period(lam), rel=1e-9)
     assert result.amplitude == pytest.approx(stick_slip_amplitude_ratio(lam), rel=1e-9)
@@ -84,7 +84,7 @@ def test_undamped_period_and_amplitude_equal_eqs_34_35(lam: float) -> None:
 def test_undamped_trajectory_is_the_exact_circle() -> None:
     # closed form: in slip-I, xi^2 + xi'^2 = 1 + lam^2 (energy conservation, zeta = 0)
     lam = 2.0
-    result = simulate(rigid_base(0.0), Slider(lam, 0.0, 2.0))
+    result = simulate(rigid_base(0.0), Slider(lam, gamma=2.0))
     t = np.linspace(0.0, result.t_end, 3001)
     q, v, modes = result.state_at(t)
     slip = modes == 0
@@ -95,7 +95,7 @@ def test_undamped_trajectory_is_the_exact_circle() -> None:
 
 def test_startup_state_is_stuck_at_the_kinetic_offset() -> None:
     # DESIGN.md section 1: startup xi = -gamma lam, xi' = 1 for the rigid base
-    result = simulate(rigid_base(0.1), Slider(2.0, 0.1, 2.0))
+    result = simulate(rigid_base(0.1), Slider(2.0, gamma=2.0))
     assert result.initial.position[0] == pytest.approx(-4.0)
     assert result.initial_mode.label == "stick"
     # the first breakaway is at S = 2 zeta + xi = lam (Eq. 20), i.e. xi = lam - 2 zeta

@@ -9,8 +9,8 @@ import pytest
 from stickslip import Foundation, Slider, Verdict, elastic_foundation, simulate
 from stickslip.analysis.critical import lowest_onset
 from stickslip.analysis.dva import DvaSpec
-from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
 from stickslip.analysis.theory import optimal_foundation_fit
+from stickslip.analysis.tuning import optimal_foundation_stick_slip
 from stickslip.sweep import stick_slip_boundary
 
 
@@ -19,7 +19,7 @@ def test_lowest_onset_agrees_with_full_scan() -> None:
     # batched bracketing of every verdict change (sweep)
     zeta = 0.1
     st = elastic_foundation(zeta, optimal_foundation_fit(zeta).scaled(2.0))
-    fast = lowest_onset(st, zeta, rtol=1e-7)
+    fast = lowest_onset(st, rtol=1e-7)
     full = stick_slip_boundary([zeta], DvaSpec("optimal", k_scale=2.0), rtol=1e-7)
     onsets = [c.lam for c in full.crossings[0] if c.onset]
     assert fast == pytest.approx(onsets[0], rel=1e-6)
@@ -35,14 +35,14 @@ def test_tuned_foundation_beats_absorber_optimum_and_is_checked_by_simulation() 
     # the absorber optimum's onset is a real stick-slip onset (checked on both sides)
     st_ref = elastic_foundation(zeta, ref)
     lam_ref = result.reference_lambda_crit
-    assert simulate(st_ref, Slider(lam_ref * 1.001, zeta)).verdict is Verdict.STICK_SLIP
-    assert simulate(st_ref, Slider(lam_ref * 0.999, zeta)).verdict is Verdict.STEADY_SLIDING
+    assert simulate(st_ref, Slider(lam_ref * 1.001)).verdict is Verdict.STICK_SLIP
+    assert simulate(st_ref, Slider(lam_ref * 0.999)).verdict is Verdict.STEADY_SLIDING
     # the paper's observation (Figs. 11a, 12-15): a softer foundation than K_opt does better
     assert result.lambda_crit > lam_ref
     assert result.foundation.stiffness_ratio < ref.stiffness_ratio
     st = elastic_foundation(zeta, result.foundation)
     probe = min(result.lambda_crit, lam_max) * 0.999
-    assert simulate(st, Slider(probe, zeta)).verdict is Verdict.STEADY_SLIDING
+    assert simulate(st, Slider(probe)).verdict is Verdict.STEADY_SLIDING
     d = result.to_dict()
     assert {"M", "K", "zeta_a", "lambda_crit", "absorber_optimum"} <= d.keys()
     if math.isinf(result.lambda_crit):

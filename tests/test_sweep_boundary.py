@@ -26,7 +26,7 @@ TWO_BAND = DvaSpec("explicit", Foundation(1.0, 0.7, 0.02))
 def _verdict(dva: DvaSpec, lam: float, zeta: float) -> Verdict:
     foundation = dva.resolve(zeta)
     structure = chain_structure(zeta, () if foundation is None else (foundation,))
-    return simulate(structure, Slider(lam, zeta, 2.0), record=False).verdict
+    return simulate(structure, Slider(lam, gamma=2.0), record=False).verdict
 
 
 def test_rigid_base_boundary_equals_eq_36_root() -> None:

@@ -37,7 +37,7 @@ def test_cells_equal_single_simulations(optimal_serial: OccurrenceMap) -> None:
     spec = DvaSpec("optimal")
     for i, j in [(0, 0), (3, 2), (5, 4), (4, 1)]:
         lam, zeta = float(ds["lambda"][i]), float(ds["zeta"][j])
-        run = simulate(chain_structure(zeta, (spec.resolve(zeta),)), Slider(lam, zeta, 2.0),
+        run = simulate(chain_structure(zeta, (spec.resolve(zeta),)), Slider(lam, gamma=2.0),
                        record=False)
         assert optimal_serial.verdict_at(lam, zeta) is run.verdict
         assert int(ds["n_stick"][i, j]) == run.n_stick
@@ -159,7 +159,7 @@ def test_store_of_another_configuration_is_never_mixed(tmp_path: Path) -> None:
 
 
 def test_fingerprint_tracks_every_input() -> None:
-    from stickslip.sweep.executors import EngineSettings
+    from stickslip import EngineOptions
     from stickslip.sweep.occurrence import MapConfig
 
     lam, zeta = Axis.parse("1,2", "lambda"), Axis.parse("0.1", "zeta")
@@ -169,8 +169,8 @@ def test_fingerprint_tracks_every_input() -> None:
         MapConfig(lam, Axis.parse("0.2", "zeta"), DvaSpec("optimal")),
         MapConfig(lam, zeta, DvaSpec("optimal", k_scale=2.0)),
         MapConfig(lam, zeta, DvaSpec("optimal"), gamma=1.0),
-        MapConfig(lam, zeta, DvaSpec("optimal"), settings=EngineSettings(t_max=100.0)),
-        MapConfig(lam, zeta, DvaSpec("optimal"), settings=EngineSettings(max_period=3)),
+        MapConfig(lam, zeta, DvaSpec("optimal"), options=EngineOptions(t_max=100.0)),
+        MapConfig(lam, zeta, DvaSpec("optimal"), options=EngineOptions(max_period=3)),
     ]
     prints = {v.fingerprint() for v in variants}
     assert len(prints) == len(variants) and base.fingerprint() not in prints

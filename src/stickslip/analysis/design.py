@@ -16,13 +16,14 @@ from dataclasses import dataclass
 from typing import Any
 
 from stickslip.analysis.critical import lowest_onset
-from stickslip.analysis.simulation import Verdict, simulate
+from stickslip.analysis.simulation import simulate
 from stickslip.analysis.theory import (
     critical_lambda_approx,
     critical_lambda_exact,
     equivalent_damping_fit,
     optimal_foundation_fit,
 )
+from stickslip.analysis.verdict import Verdict
 from stickslip.model.parameters import Foundation
 from stickslip.model.physical import (
     PhysicalFoundation,
@@ -86,7 +87,7 @@ class DesignReport:
 
         f = self.foundation
         r = self.recommended
-        fd = self.foundation_dimensionless
+        dimensionless = self.foundation_dimensionless
         return {
             "lambda": self.lam,
             "zeta": self.zeta,
@@ -99,7 +100,8 @@ class DesignReport:
             "critical_load": pick("load"),
             "foundation": {
                 "m_a": f.m_a, "k_a": f.k_a, "c_a": f.c_a,
-                "M": fd.mass_ratio, "K": fd.stiffness_ratio, "zeta_a": fd.damping_ratio,
+                "M": dimensionless.mass_ratio, "K": dimensionless.stiffness_ratio,
+                "zeta_a": dimensionless.damping_ratio,
                 "source": self.foundation_source,
             },
             "recommended_foundation": {"m_a": r.m_a, "k_a": r.k_a, "c_a": r.c_a,
@@ -147,7 +149,7 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
         speed and load (a few seconds more).
     """
     slider = system.slider()
-    lam, zeta, gamma = slider.lam, slider.zeta, slider.gamma
+    lam, zeta, gamma = slider.lam, system.zeta, slider.gamma
     if zeta > MAX_DESIGN_ZETA:
         raise ValueError(
             f"zeta={zeta:.4g} (c={system.c:g} N s/m) is above {MAX_DESIGN_ZETA}: the slider is "
@@ -157,28 +159,28 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
     recommended = foundation_to_physical(recommended_dimless, system.m, system.k)
     if system.foundation is not None:
         foundation = system.foundation
-        fd = foundation_to_dimensionless(foundation, system.m, system.k)
+        dimensionless = foundation_to_dimensionless(foundation, system.m, system.k)
         source = "existing foundation (given)"
-        from stickslip.analysis.absorber import equivalent_damping
+        from stickslip.analysis.frequency_response import equivalent_damping
 
-        zeta_eq = equivalent_damping(elastic_foundation(zeta, fd))
+        zeta_eq = equivalent_damping(elastic_foundation(zeta, dimensionless))
         zeta_eq_source = "Eq. (32): 1 / (2 H_max) of this foundation"
     else:
-        foundation, fd = recommended, recommended_dimless
+        foundation, dimensionless = recommended, recommended_dimless
         source = "recommended: Fig. 16 procedure, Eqs. (28)-(30)"
         zeta_eq = equivalent_damping_fit(zeta)
         zeta_eq_source = "Eq. (33)"
     rigid = rigid_base(zeta)
-    with_foundation = elastic_foundation(zeta, fd)
+    with_foundation = elastic_foundation(zeta, dimensionless)
     lam_hi = max(lam_max, 4.0 * lam)
     crit = {
         "rigid_theory": _critical(system, critical_lambda_approx(zeta)),
         "rigid_exact": _critical(system, critical_lambda_exact(zeta)),
         "rigid_simulation": _critical(
-            system, lowest_onset(rigid, zeta, gamma, lam_min=1e-3, lam_max=lam_hi, rtol=rtol)),
+            system, lowest_onset(rigid, gamma=gamma, lam_min=1e-3, lam_max=lam_hi, rtol=rtol)),
         "foundation_theory": _critical(system, critical_lambda_approx(zeta_eq)),
         "foundation_simulation": _critical(
-            system, lowest_onset(with_foundation, zeta, gamma, lam_min=1e-3, lam_max=lam_hi, rtol=rtol)),
+            system, lowest_onset(with_foundation, gamma=gamma, lam_min=1e-3, lam_max=lam_hi, rtol=rtol)),
     }
     sim_rigid = simulate(rigid, slider, record=False).verdict
     sim_found = simulate(with_foundation, slider, record=False).verdict
@@ -200,14 +202,14 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
             "fitted: trust the simulated verdicts, not the theory column"
         )
     optimum = _stick_slip_optimum(system, zeta, gamma, lam) if stick_slip_optimum else None
-    return DesignReport(system, lam, zeta, gamma, zeta_eq, zeta_eq_source, foundation, fd,
+    return DesignReport(system, lam, zeta, gamma, zeta_eq, zeta_eq_source, foundation, dimensionless,
                         source, recommended, verdicts, crit, tuple(warnings), optimum)
 
 
 def _stick_slip_optimum(system: PhysicalSystem, zeta: float, gamma: float,
                         lam: float) -> dict[str, Any]:
     """The stick-slip-optimal foundation in SI units, beside the absorber optimum."""
-    from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
+    from stickslip.analysis.tuning import optimal_foundation_stick_slip
 
     result = optimal_foundation_stick_slip(zeta, gamma, lam_max=max(100.0, 4.0 * lam))
     phys = foundation_to_physical(result.foundation, system.m, system.k)

@@ -69,7 +69,7 @@ class DvaSpec:
 
             base = optimal_foundation_fit(zeta)
         elif self.kind == "optimal-exact":
-            from stickslip.analysis.absorber import optimal_foundation_exact
+            from stickslip.analysis.tuning import optimal_foundation_exact
 
             base = optimal_foundation_exact(zeta)
         else:

@@ -16,13 +16,13 @@ included. A verdict is certified, never guessed from the tail of a time series:
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
-from enum import Enum, IntEnum, StrEnum
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from stickslip.analysis.verdict import Mode, RunStatus, Verdict
 from stickslip.kernel import engine
 from stickslip.model._validate import positive
 from stickslip.model.initial import InitialState, startup_state
@@ -39,68 +39,6 @@ DEFAULT_T_MAX = 5000.0
 DEFAULT_MAX_EVENTS = 100_000
 DEFAULT_CYCLE_TOL = 1e-9
 DEFAULT_MAX_PERIOD = 8
-
-
-class Mode(IntEnum):
-    """Friction state of the slider (paper Eq. 2)."""
-
-    SLIP_I = engine.SLIP_I  # slower than the belt, xi' < 1
-    SLIP_II = engine.SLIP_II  # faster than the belt, xi' > 1
-    STICK = engine.STICK  # moving with the belt, xi' = 1
-
-    @property
-    def label(self) -> str:
-        """Name used in the paper: ``slip-I``, ``slip-II`` or ``stick``."""
-        return {0: "slip-I", 1: "slip-II", 2: "stick"}[int(self)]
-
-
-class Verdict(StrEnum):
-    """Certified answer to "does this system stick-slip?"."""
-
-    STICK_SLIP = "stick-slip"
-    STEADY_SLIDING = "steady-sliding"
-    UNDETERMINED = "undetermined"
-
-    @property
-    def code(self) -> int:
-        """Integer code used in datasets (``flag_values``)."""
-        return {"steady-sliding": 0, "stick-slip": 1, "undetermined": 2}[self.value]
-
-
-class RunStatus(Enum):
-    """How a run ended, with an actionable message."""
-
-    CERTIFIED_STEADY = (engine.STATUS_STEADY, "steady sliding certified by a Lyapunov bound")
-    CERTIFIED_CYCLE = (engine.STATUS_CYCLE, "stick-slip cycle certified by a repeating breakaway")
-    T_MAX = (
-        engine.STATUS_T_MAX,
-        "time horizon reached before a verdict could be certified; increase t_max",
-    )
-    MAX_EVENTS = (
-        engine.STATUS_MAX_EVENTS,
-        "maximum number of events reached before a verdict; increase max_events",
-    )
-    MAX_STEPS = (
-        engine.STATUS_MAX_STEPS,
-        f"step budget ({engine.MAX_STEPS} sub-steps) used up before a verdict: the structure "
-        "is so stiff or so heavily damped that its time steps are tiny; check the parameters",
-    )
-
-    def __init__(self, code: int, message: str) -> None:
-        self.code = code
-        self.message = message
-
-    @classmethod
-    def from_code(cls, code: int) -> RunStatus:
-        for status in cls:
-            if status.code == code:
-                return status
-        raise ValueError(f"unknown run status code {code}")
-
-    @property
-    def label(self) -> str:
-        """Short machine-readable name, e.g. ``t-max``."""
-        return self.name.lower().replace("_", "-")
 
 
 @dataclass(frozen=True)
@@ -247,7 +185,7 @@ class SimulationResult:
             "t_certified": num(self.t_certified),
             "t_max": float(self.t_max),
             "lambda": self.slider.lam,
-            "zeta": self.slider.zeta,
+            "zeta": self.structure.zeta,
             "gamma": self.slider.gamma,
             "structure": st.name,
             "n_dof": st.n_dof,
@@ -306,15 +244,57 @@ class TimeHistory:
         )
 
 
+@dataclass(frozen=True)
+class EngineOptions:
+    """Limits and tolerances of the engine: one object for :func:`simulate` and every sweep.
+
+    Parameters
+    ----------
+    t_max : float
+        Dimensionless time horizon ``tau`` of a run.
+    max_events : int
+        Bound on the number of mode switches per run (guards against chattering).
+    cycle_tol : float
+        Relative tolerance for a breakaway state to count as repeated.
+    max_period : int
+        Longest cycle, in stick phases, that is looked for (period-k cycles).
+    """
+
+    t_max: float = DEFAULT_T_MAX
+    max_events: int = DEFAULT_MAX_EVENTS
+    cycle_tol: float = DEFAULT_CYCLE_TOL
+    max_period: int = DEFAULT_MAX_PERIOD
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "t_max", positive("t_max", self.t_max))
+        object.__setattr__(self, "cycle_tol", positive("cycle_tol", self.cycle_tol))
+        for name in ("max_events", "max_period"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or int(value) != value or int(value) < 1:
+                raise ValueError(f"{name}={value!r} must be a whole number of at least 1")
+            object.__setattr__(self, name, int(value))
+
+    def with_t_max(self, t_max: float | None) -> EngineOptions:
+        """The same options with another horizon (unchanged when ``t_max`` is None)."""
+        return self if t_max is None else replace(self, t_max=t_max)
+
+    def to_dict(self) -> dict[str, float | int]:
+        """The options as a JSON-ready dictionary (recorded in datasets)."""
+        return {
+            "t_max": self.t_max,
+            "max_events": self.max_events,
+            "cycle_tol": self.cycle_tol,
+            "max_period": self.max_period,
+        }
+
+
 def simulate(
     structure: Structure,
     slider: Slider,
     *,
     initial: InitialState | None = None,
-    t_max: float = DEFAULT_T_MAX,
-    max_events: int = DEFAULT_MAX_EVENTS,
-    cycle_tol: float = DEFAULT_CYCLE_TOL,
-    max_period: int = DEFAULT_MAX_PERIOD,
+    options: EngineOptions | None = None,
+    t_max: float | None = None,
     record: bool = True,
     run_to_t_max: bool = False,
 ) -> SimulationResult:
@@ -324,20 +304,17 @@ def simulate(
     ----------
     structure : Structure
         Dimensionless mass, damping and stiffness matrices, contact on DOF 0
-        (``rigid_base``, ``elastic_foundation`` or any chain).
+        (``rigid_base``, ``elastic_foundation`` or any chain). The primary damping ratio
+        ``zeta`` is part of it (:attr:`Structure.zeta`).
     slider : Slider
-        ``lambda``, ``zeta`` (already inside ``structure``'s damping) and ``gamma``.
+        The frictional contact: ``lambda`` and ``gamma``.
     initial : InitialState, optional
         Defaults to the startup state (belt starts, springs relaxed, slider stuck,
         foundation at rest); see :func:`stickslip.model.startup_state`.
-    t_max : float
-        Dimensionless time horizon (``tau``).
-    max_events : int
-        Bound on the number of mode switches (guards against chattering).
-    cycle_tol : float
-        Relative tolerance for a breakaway state to count as repeated.
-    max_period : int
-        Longest cycle, in stick phases, that is looked for (period-k cycles).
+    options : EngineOptions, optional
+        Horizon, event budget and cycle tolerance (defaults of :class:`EngineOptions`).
+    t_max : float, optional
+        Dimensionless time horizon (``tau``); overrides ``options.t_max``.
     record : bool
         Keep the phase list (needed for dense output and plots).
     run_to_t_max : bool
@@ -348,12 +325,7 @@ def simulate(
     -------
     SimulationResult
     """
-    t_max = positive("t_max", t_max)
-    if int(max_events) < 1:
-        raise ValueError(f"max_events={max_events!r} must be at least 1")
-    cycle_tol = positive("cycle_tol", cycle_tol)
-    if int(max_period) < 1:
-        raise ValueError(f"max_period={max_period!r} must be at least 1")
+    opts = (options or EngineOptions()).with_t_max(t_max)
     if initial is None:
         initial = startup_state(structure, slider)
     z0 = initial.as_vector(structure.n_dof)
@@ -364,10 +336,10 @@ def simulate(
         float(slider.lam),
         float(slider.gamma),
         z0,
-        float(t_max),
-        int(max_events),
-        float(cycle_tol),
-        int(max_period),
+        float(opts.t_max),
+        int(opts.max_events),
+        float(opts.cycle_tol),
+        int(opts.max_period),
         bool(record),
         bool(run_to_t_max),
     )
@@ -391,7 +363,7 @@ def simulate(
         structure=structure,
         slider=slider,
         initial=initial,
-        t_max=t_max,
+        t_max=opts.t_max,
         verdict=verdict,
         status=status,
         certificate=certificate,

@@ -1,11 +1,11 @@
 """The stickslip web app: the design procedure of the paper's Fig. 16 in a browser.
 
 Run it with ``stickslip app`` (or ``streamlit run`` on this file). Inputs are text with
-units ("2 kg", "50 kN/m"), parsed once by :func:`stickslip.cli.units.to_si`; everything
+units ("2 kg", "50 kN/m"), parsed once by :func:`stickslip.model.units.to_si`; everything
 after that is SI floats and dimensionless groups. Every number shown comes from the public
 Python API (:func:`~stickslip.analysis.design.design_foundation`, :func:`~stickslip.simulate`,
 :func:`~stickslip.sweep.occurrence_map`,
-:func:`~stickslip.analysis.stick_slip_tuning.optimal_foundation_stick_slip`); this script
+:func:`~stickslip.analysis.tuning.optimal_foundation_stick_slip`); this script
 only lays out inputs and results. Invalid input shows one line per problem and nothing is
 computed.
 """
@@ -41,9 +41,9 @@ from stickslip import (
 )
 from stickslip.analysis.design import design_foundation
 from stickslip.analysis.dva import DvaSpec
-from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
-from stickslip.cli.units import QUANTITIES, to_si
+from stickslip.analysis.tuning import optimal_foundation_stick_slip
 from stickslip.model.physical import foundation_to_physical
+from stickslip.model.units import QUANTITIES, to_si
 from stickslip.plot.maps import occurrence_map_plot
 from stickslip.plot.simulation import phase_portrait_plot, time_history_plot
 from stickslip.sweep import OccurrenceMap, occurrence_map
@@ -172,7 +172,7 @@ def operating_point_runs(lam: float, zeta: float, gamma: float,
     to certify the verdict (so a stick-slip cycle shows at least twice), within
     :data:`PLOT_HORIZON`.
     """
-    slider = Slider(lam, zeta, gamma)
+    slider = Slider(lam, gamma=gamma)
     structures = {"rigid base": rigid_base(zeta),
                   "with foundation": elastic_foundation(zeta, Foundation(*foundation))}
     certified = max(simulate(s, slider, record=False).t_end for s in structures.values())

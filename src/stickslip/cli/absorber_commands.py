@@ -1,6 +1,6 @@
 """``stickslip frf`` and ``stickslip tune``: the foundation as a vibration absorber.
 
-Thin commands over :mod:`stickslip.analysis.absorber` (paper Figs. 3-6 and 10,
+Thin commands over :mod:`stickslip.analysis.tuning` (paper Figs. 3-6 and 10,
 Eqs. 28-33).
 """
 
@@ -11,7 +11,7 @@ from typing import Annotated, Any
 
 import typer
 
-from stickslip.cli.common import BadInput, check_figure_path, parse_dva, print_json
+from stickslip.cli.console import BadInput, check_figure_path, parse_dva, print_json
 from stickslip.cli.options import JSON
 
 ZETA = Annotated[float, typer.Option("--zeta", help="damping ratio c / (2 sqrt(m k)) >= 0")]
@@ -52,7 +52,7 @@ def frf(
     json: JSON = False,
 ) -> None:
     """Frequency response H = k|X|/f of the slider under a harmonic force and its exact peak."""
-    from stickslip.analysis.absorber import response_curves, response_peak
+    from stickslip.analysis.frequency_response import response_curves, response_peak
     from stickslip.model import rigid_base
 
     zeta = _zeta(zeta)
@@ -131,7 +131,7 @@ def tune(
     instead, with ``M`` bounded by the absorber optimum's ``M_opt`` (Eq. 28) unless
     ``--mass-ratio`` sets the bound.
     """
-    from stickslip.analysis.absorber import MAX_TUNING_ZETA, tune_foundation
+    from stickslip.analysis.tuning import MAX_TUNING_ZETA, tune_foundation
     from stickslip.model._validate import positive
 
     zeta = _zeta(zeta)
@@ -177,8 +177,8 @@ def tune(
 
 def _tune_stick_slip(zeta: float, gamma: float, mass_ratio: float | None, lam_max: float,
                      json: bool) -> None:
-    from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
     from stickslip.analysis.theory import optimal_mass_ratio_fit
+    from stickslip.analysis.tuning import optimal_foundation_stick_slip
 
     bounds = None if mass_ratio is None else (mass_ratio / 20.0, mass_ratio)
     if bounds is None:

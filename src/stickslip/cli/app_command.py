@@ -11,7 +11,7 @@ from typing import Annotated
 
 import typer
 
-from stickslip.cli.common import BadInput
+from stickslip.cli.console import BadInput
 
 APP_SCRIPT = Path(__file__).resolve().parent.parent / "app" / "streamlit_app.py"
 #: Seconds left to Streamlit to shut down after Ctrl-C before it is killed.

@@ -8,8 +8,8 @@ from typing import Annotated, Any
 
 import typer
 
-from stickslip.cli.common import BadInput, print_json
-from stickslip.cli.units import QUANTITIES, to_si
+from stickslip.cli.console import BadInput, print_json
+from stickslip.model.units import QUANTITIES, to_si
 
 REQUIRED = ("m", "k", "mu_s", "mu_k", "load", "speed")
 FOUNDATION = ("m_a", "k_a", "c_a")

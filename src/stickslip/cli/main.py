@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from stickslip.cli.common import BadInput, fail
+from stickslip.cli.console import BadInput, fail
 
 try:  # typer >= 0.25 ships its own copy of click
     from typer._click import exceptions as click_exceptions

@@ -15,7 +15,7 @@ from typing import Annotated, Any
 
 import typer
 
-from stickslip.cli.common import BadInput, check_figure_path, check_output_path, print_json, save_plot
+from stickslip.cli.console import BadInput, check_figure_path, check_output_path, print_json, save_plot
 from stickslip.cli.options import DVA, GAMMA, JSON, K_SCALE, PLOT
 
 LAM_SPEC = Annotated[
@@ -146,14 +146,12 @@ def map_command(
 ) -> None:
     """Occurrence map over a (lambda, zeta) grid (paper Figs. 8 and 11); resumable."""
     from stickslip.analysis.dva import DvaSpec
-    from stickslip.io.netcdf import write_dataset
-    from stickslip.sweep.executors import EngineSettings, check_backend
-    from stickslip.sweep.occurrence import MapConfig, OccurrenceMap, compute_map
+    from stickslip.sweep.executors import check_backend
+    from stickslip.sweep.occurrence import MapConfig, OccurrenceMap, occurrence_map
     from stickslip.sweep.store import discard_store
 
     lam_axis, zeta_axis = _parse_axes(lam, zeta, lam_spacing, zeta_spacing)
-    settings = EngineSettings() if t_max is None else EngineSettings(t_max=t_max)
-    config = MapConfig(lam_axis, zeta_axis, DvaSpec.parse(dva, k_scale), gamma, settings)
+    config = MapConfig.create(lam_axis, zeta_axis, DvaSpec.parse(dva, k_scale), gamma, t_max=t_max)
     chosen = check_backend(backend or ("dask" if scheduler else "threads"), workers, scheduler)
     if chunk_size is not None and chunk_size < 1:
         raise BadInput(f"--chunk-size {chunk_size} must be at least 1")
@@ -172,10 +170,11 @@ def map_command(
     else:
         enabled = not json and sys.stderr.isatty()
         with _ProgressBar(enabled, f"map {config.shape[0]}x{config.shape[1]}") as bar:
-            result = compute_map(config, backend=chosen, workers=workers, scheduler=scheduler,
-                                 chunk_size=chunk_size, progress=bar, store=store,
-                                 overwrite=overwrite)
-        write_dataset(result.dataset, out, overwrite=True)
+            result = occurrence_map(config.lam, config.zeta, config.dva, config.gamma,
+                                    options=config.options, backend=chosen, workers=workers,
+                                    scheduler=scheduler, chunk_size=chunk_size, progress=bar,
+                                    store=store, overwrite=overwrite)
+        result.to_netcdf(out, overwrite=True)
         discard_store(store)
     payload = result.to_dict()
     payload.update({"out": str(out), "csv": None, "plot": None, "reused_output": reused,
@@ -238,7 +237,6 @@ def boundary_command(
 ) -> None:
     """Critical lambda against zeta: every verdict change, bisected to --rtol (Fig. 11a)."""
     from stickslip.analysis.dva import DvaSpec
-    from stickslip.io.netcdf import write_dataset
     from stickslip.sweep.boundary import stick_slip_boundary
     from stickslip.sweep.executors import check_backend
 
@@ -256,7 +254,7 @@ def boundary_command(
     payload = result.to_dict()
     payload.update({"out": None, "plot": None})
     if out is not None:
-        write_dataset(result.to_xarray(), out, overwrite=True)
+        result.to_netcdf(out, overwrite=True)
         payload["out"] = str(out)
     if plot is not None:
         payload["plot"] = save_plot(lambda ax: result.plot(ax=ax), plot, (8.0, 5.0))

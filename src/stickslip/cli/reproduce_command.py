@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from stickslip.cli.common import BadInput, print_json
+from stickslip.cli.console import BadInput, print_json
 
 
 def reproduce(

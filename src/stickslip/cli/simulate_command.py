@@ -8,7 +8,7 @@ from typing import Annotated, Any
 import numpy as np
 import typer
 
-from stickslip.cli.common import BadInput, check_figure_path, parse_dva, print_json
+from stickslip.cli.console import BadInput, check_figure_path, parse_dva, print_json
 from stickslip.cli.options import DVA, GAMMA, JSON, K_SCALE
 from stickslip.model.initial import InitialState
 
@@ -54,16 +54,18 @@ def simulate(
     json: JSON = False,
 ) -> None:
     """One simulation: certified verdict, period, amplitude, events."""
+    from stickslip.analysis.simulation import EngineOptions
     from stickslip.analysis.simulation import simulate as run_simulation
     from stickslip.model import Slider, chain_structure
 
-    slider = Slider(lam, zeta, gamma)
-    foundation = parse_dva(dva, slider.zeta, k_scale)
-    structure = chain_structure(slider.zeta, () if foundation is None else (foundation,))
+    slider = Slider(lam, gamma=gamma)
+    foundation = parse_dva(dva, zeta, k_scale)
+    structure = chain_structure(zeta, () if foundation is None else (foundation,))
     init = parse_initial(initial, structure.n_dof)
     if plot is not None:
         check_figure_path(plot)
-    result = run_simulation(structure, slider, initial=init, t_max=t_max, max_events=max_events)
+    result = run_simulation(structure, slider, initial=init,
+                            options=EngineOptions(t_max=t_max, max_events=max_events))
     payload = result.to_dict()
     if foundation is not None:
         payload["foundation"] = {

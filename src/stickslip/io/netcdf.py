@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any, Final
 
 import numpy as np
 
-from stickslip.sweep.store import atomic_output
+from stickslip.io.atomic import atomic_output
 
 if TYPE_CHECKING:
     import xarray as xr

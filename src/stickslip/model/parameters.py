@@ -16,33 +16,33 @@ reading reproduces Eq. (31).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from stickslip.model._validate import non_negative, positive
 
 
 @dataclass(frozen=True)
 class Slider:
-    """The frictional primary system on the moving belt (dimensionless).
+    """The frictional contact of the slider on the moving belt (dimensionless).
+
+    The slider's own spring and damper belong to the linear structure
+    (:class:`~stickslip.model.Structure`, whose :attr:`~stickslip.model.Structure.zeta` is the
+    primary damping ratio); the slider object carries only what the friction contact adds.
 
     Parameters
     ----------
     lam : float
         ``lambda = (mu_s - mu_k) W / (V sqrt(m k))``, dimensionless, > 0. Larger values mean a
         heavier load, a slower belt or a softer spring (paper Section 2.3).
-    zeta : float
-        Damping ratio of the primary system ``c / (2 sqrt(m k))``, dimensionless, >= 0.
-    gamma : float, default 2
+    gamma : float, default 2, keyword-only
         ``mu_k / (mu_s - mu_k)``, dimensionless, >= 0. The paper uses 2 throughout.
     """
 
     lam: float
-    zeta: float
-    gamma: float = 2.0
+    gamma: float = field(default=2.0, kw_only=True)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "lam", positive("lambda", self.lam))
-        object.__setattr__(self, "zeta", non_negative("zeta", self.zeta))
         object.__setattr__(self, "gamma", non_negative("gamma", self.gamma))
 
 

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 from stickslip.model._validate import non_negative, positive
 from stickslip.model.parameters import Foundation, Slider
+from stickslip.model.structure import Structure, chain_structure
 
 
 @dataclass(frozen=True)
@@ -103,13 +104,22 @@ class PhysicalSystem:
         return self.speed * math.sqrt(self.m * self.k)
 
     def slider(self) -> Slider:
-        """Dimensionless ``lambda``, ``zeta``, ``gamma`` (definitions after Eq. 27)."""
+        """Dimensionless ``lambda`` and ``gamma`` of the contact (definitions after Eq. 27)."""
         root_mk = math.sqrt(self.m * self.k)
         return Slider(
-            lam=(self.mu_s - self.mu_k) * self.load / (self.speed * root_mk),
-            zeta=self.c / (2.0 * root_mk),
+            (self.mu_s - self.mu_k) * self.load / (self.speed * root_mk),
             gamma=self.mu_k / (self.mu_s - self.mu_k),
         )
+
+    @property
+    def zeta(self) -> float:
+        """Primary damping ratio ``zeta = c / (2 sqrt(m k))``, dimensionless (Section 2.3)."""
+        return self.c / (2.0 * math.sqrt(self.m * self.k))
+
+    def structure(self) -> Structure:
+        """The dimensionless structure: rigid base, or the slider on its foundation (Fig. 1)."""
+        found = self.dimensionless_foundation()
+        return chain_structure(self.zeta, () if found is None else (found,))
 
     def dimensionless_foundation(self) -> Foundation | None:
         """Dimensionless ``M``, ``K``, ``zeta_a`` of the foundation, or ``None`` (rigid base)."""
@@ -132,6 +142,7 @@ class PhysicalSystem:
         cls,
         slider: Slider,
         *,
+        zeta: float,
         m: float,
         k: float,
         mu_s: float,
@@ -140,7 +151,7 @@ class PhysicalSystem:
     ) -> PhysicalSystem:
         """Build the physical system with given ``m``, ``k``, ``mu_s``, ``V`` and groups.
 
-        The inverse of :meth:`slider` and :meth:`dimensionless_foundation`:
+        The inverse of :meth:`slider`, :attr:`zeta` and :meth:`dimensionless_foundation`:
         ``mu_k = mu_s gamma / (1 + gamma)``, ``W = lambda V sqrt(m k) / (mu_s - mu_k)``,
         ``c = 2 zeta sqrt(m k)``.
         """
@@ -155,7 +166,7 @@ class PhysicalSystem:
         return cls(
             m=m,
             k=k,
-            c=2.0 * slider.zeta * root_mk,
+            c=2.0 * non_negative("zeta", zeta) * root_mk,
             mu_s=mu_s,
             mu_k=mu_k,
             load=load,

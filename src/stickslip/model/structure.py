@@ -75,6 +75,16 @@ class Structure:
         object.__setattr__(self, "stiffness", stiffness)
 
     @property
+    def zeta(self) -> float:
+        """Primary damping ratio ``zeta = c / (2 sqrt(m k))``: half the damping on DOF 0.
+
+        ``C_00 / 2`` counts every damper attached to the slider; for the paper's structures
+        (:func:`chain_structure`) that is the slider's own damper ``c``. This is the one place
+        ``zeta`` lives: every result reads it from here.
+        """
+        return 0.5 * float(self.damping[0, 0])
+
+    @property
     def n_dof(self) -> int:
         """Number of degrees of freedom (1 for the rigid base, 2 with one foundation)."""
         return int(self.mass.shape[0])

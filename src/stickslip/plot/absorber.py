@@ -3,8 +3,8 @@
 Follows the plotting contract of the package: every ``*_plot`` takes ``ax=None`` (a new
 figure is made when omitted), accepts only the keywords it documents, draws, and returns
 the artists it made. No ``plt.show()``, no global style changes. The data come from
-:mod:`stickslip.analysis.absorber` (:func:`~stickslip.analysis.absorber.tuning_curve`,
-:func:`~stickslip.analysis.absorber.response_curves`); these functions only draw.
+:mod:`stickslip.analysis.tuning` (:func:`~stickslip.analysis.tuning.tuning_curve`,
+:func:`~stickslip.analysis.frequency_response.response_curves`); these functions only draw.
 """
 
 from __future__ import annotations
@@ -25,7 +25,8 @@ from stickslip.analysis.theory import (
 )
 
 if TYPE_CHECKING:
-    from stickslip.analysis.absorber import ResponseCurves, TuningCurve
+    from stickslip.analysis.frequency_response import ResponseCurves
+from stickslip.analysis.tuning import TuningCurve
 
 EXACT_STYLE: dict[str, Any] = {"color": "black", "marker": "o", "ms": 4, "mfc": "white", "lw": 0.8}
 FIT_STYLE: dict[str, Any] = {"color": "tab:red", "lw": 1.4}
@@ -63,7 +64,7 @@ def optimal_parameter_plot(
     Parameters
     ----------
     curve : TuningCurve
-        Exact optimum over a ``zeta`` grid (:func:`stickslip.analysis.absorber.tuning_curve`).
+        Exact optimum over a ``zeta`` grid (:func:`stickslip.analysis.tuning.tuning_curve`).
     parameter : {"M", "K", "zeta_a"}
         ``M_opt`` (Eq. 28), ``K_opt`` (Eq. 29) or ``zeta_a,opt`` (Eq. 30), dimensionless.
     ax : matplotlib Axes, optional
@@ -124,7 +125,7 @@ def frequency_response_plot(
     Parameters
     ----------
     curves : ResponseCurves
-        From :func:`stickslip.analysis.absorber.response_curves`.
+        From :func:`stickslip.analysis.frequency_response.response_curves`.
     ax : matplotlib Axes, optional
     show_rigid : bool
         Draw the slider on the rigid base (no foundation), thin grey.

@@ -25,8 +25,8 @@ from matplotlib.patches import Patch
 from numpy.typing import NDArray
 
 from stickslip.analysis.dva import DvaSpec
+from stickslip.analysis.theory import analytic_boundaries
 from stickslip.model.parameters import Foundation
-from stickslip.sweep.analytic import analytic_boundaries
 from stickslip.sweep.occurrence import VERDICTS, OccurrenceMap, dva_from_config, stored_foundations
 
 if TYPE_CHECKING:

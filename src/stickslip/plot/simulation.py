@@ -33,7 +33,7 @@ def _history(result: SimulationResult, t_start: float, n_points: int) -> TimeHis
 
 
 def _shade_stick(ax: Axes, result: SimulationResult, t_start: float) -> list[Any]:
-    from stickslip.analysis.simulation import Mode
+    from stickslip.analysis.verdict import Mode
 
     artists: list[Any] = []
     times = np.append(result.segment_times, result.t_end)
@@ -141,7 +141,7 @@ def simulation_plot(
     s = result.slider
     if title is None:
         title = (
-            f"{result.structure.name}: $\\lambda$={s.lam:.4g}, $\\zeta$={s.zeta:.4g}, "
+            f"{result.structure.name}: $\\lambda$={s.lam:.4g}, $\\zeta$={result.structure.zeta:.4g}, "
             f"$\\gamma$={s.gamma:.4g} -- {result.verdict.value}"
         )
     fig.suptitle(title)

@@ -3,13 +3,12 @@
 from __future__ import annotations
 
 import json
-import platform
 import time
 from collections.abc import Callable
-from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
+from stickslip.io.provenance import git_revision, library_versions, package_version, utc_now
 from stickslip.model.initial import STARTUP_DESCRIPTION
 from stickslip.reproduction import steps_design, steps_dynamics
 from stickslip.reproduction.quality import quality as get_quality
@@ -20,39 +19,15 @@ StepProgress = Callable[[str, int, int], None]
 
 def provenance(quality_name: str) -> dict[str, Any]:
     """Versions, git revision and settings recorded with every reproduction."""
-    import matplotlib
-    import numba
-    import numpy
-    import scipy
-
-    from stickslip import __version__
-
     return {
-        "stickslip": __version__,
-        "git_revision": git_revision(),
-        "date": datetime.now(UTC).isoformat(timespec="seconds"),
-        "python": platform.python_version(),
-        "numpy": numpy.__version__,
-        "scipy": scipy.__version__,
-        "numba": numba.__version__,
-        "matplotlib": matplotlib.__version__,
+        "stickslip": package_version(),
+        "git_revision": git_revision() or None,
+        "date": utc_now(),
+        **{name: version for name, version in library_versions().items()},
         "quality": quality_name,
         "initial_condition": STARTUP_DESCRIPTION,
         "gamma": "2 unless stated",
     }
-
-
-def git_revision() -> str | None:
-    """The git commit of the source tree, when it is a git checkout."""
-    import subprocess
-
-    here = Path(__file__).resolve().parent
-    try:
-        out = subprocess.run(["git", "rev-parse", "HEAD"], cwd=here, capture_output=True,
-                             text=True, check=True, timeout=5)
-    except (OSError, subprocess.SubprocessError):
-        return None
-    return out.stdout.strip() or None
 
 
 def reproduce(out_dir: Path, quality: str = "default",
@@ -69,7 +44,7 @@ def reproduce(out_dir: Path, quality: str = "default",
     progress : callable, optional
         ``progress(step, done, total)`` called as the work advances.
     """
-    q = get_quality(quality)
+    preset = get_quality(quality)
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
@@ -88,17 +63,17 @@ def reproduce(out_dir: Path, quality: str = "default",
     step("absorber: optimal tuning (Figs. 4, 5, 6, 10)")
     from stickslip.reproduction import steps_absorber
 
-    f, c = steps_absorber.absorber_figures(out_dir, q)
+    f, c = steps_absorber.absorber_figures(out_dir, preset)
     figures += f
     claims += c
     step("time histories (Figs. 7, 12-15)")
-    f, c = steps_dynamics.time_history_figures(out_dir, q)
+    f, c = steps_dynamics.time_history_figures(out_dir, preset)
     figures += f
     claims += c
     step("occurrence maps (Figs. 8, 11)")
     from stickslip.reproduction import steps_maps
 
-    f, c = steps_maps.map_figures(out_dir, q, report_step)
+    f, c = steps_maps.map_figures(out_dir, preset, report_step)
     figures += f
     claims += c
     step("closed forms (Eqs. 34-39)")
@@ -109,7 +84,7 @@ def reproduce(out_dir: Path, quality: str = "default",
     claims += c
     claims.append(steps_design.stick_slip_optimum_claim())
     figures.sort(key=lambda rec: rec.key)
-    report = Report(out_dir, q.name, figures, claims, provenance(q.name),
+    report = Report(out_dir, preset.name, figures, claims, provenance(preset.name),
                     time.perf_counter() - start)
     write_markdown(report)
     write_html(report)

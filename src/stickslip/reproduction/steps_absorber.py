@@ -7,20 +7,21 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
-from stickslip.analysis.absorber import response_curves, tuning_curve
+from stickslip.analysis.frequency_response import response_curves
 from stickslip.analysis.theory import optimal_foundation_fit, peak_response_fit
+from stickslip.analysis.tuning import tuning_curve
 from stickslip.model.structure import elastic_foundation
 from stickslip.reproduction.claims import Claim
-from stickslip.reproduction.common import save_columns, save_figure
+from stickslip.reproduction.outputs import save_columns, save_figure
 from stickslip.reproduction.quality import Quality
 from stickslip.reproduction.report import FigureRecord
 
 FIG5_ZETA = 0.1
 
 
-def absorber_figures(out_dir: Path, q: Quality) -> tuple[list[FigureRecord], list[Claim]]:
+def absorber_figures(out_dir: Path, quality: Quality) -> tuple[list[FigureRecord], list[Claim]]:
     """Exact optimum over ``zeta`` against the paper's fits; frequency responses."""
-    from stickslip.analysis.absorber import response_peak
+    from stickslip.analysis.frequency_response import response_peak
     from stickslip.plot.absorber import (
         equivalent_damping_plot,
         frequency_response_plot,
@@ -30,7 +31,7 @@ def absorber_figures(out_dir: Path, q: Quality) -> tuple[list[FigureRecord], lis
 
     data_dir = out_dir / "data"
     data_dir.mkdir(parents=True, exist_ok=True)
-    zetas = np.linspace(0.0, 0.4, q.tuning_zetas)
+    zetas = np.linspace(0.0, 0.4, quality.tuning_zetas)
     curve = tuning_curve(zetas)
     nc = data_dir / "fig04-06-10-tuning.nc"
     curve.to_xarray().to_netcdf(nc, engine="h5netcdf")

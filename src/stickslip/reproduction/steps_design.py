@@ -9,10 +9,10 @@ from pathlib import Path
 from matplotlib.figure import Figure
 
 from stickslip.analysis.design import design_foundation
-from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
+from stickslip.analysis.tuning import optimal_foundation_stick_slip
 from stickslip.model.physical import PhysicalSystem
 from stickslip.reproduction.claims import Claim
-from stickslip.reproduction.common import save_figure
+from stickslip.reproduction.outputs import save_figure
 from stickslip.reproduction.report import FigureRecord
 
 #: The worked example: a 2 kg slider on 50 kN/m, 20 N s/m, mu_s 0.5, mu_k 0.3, 150 N, 5 cm/s.

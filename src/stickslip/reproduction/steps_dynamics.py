@@ -7,30 +7,31 @@ from pathlib import Path
 
 import numpy as np
 
-from stickslip.analysis.simulation import Verdict, simulate
+from stickslip.analysis.simulation import simulate
 from stickslip.analysis.theory import (
     critical_lambda_approx,
     critical_lambda_exact,
     stick_slip_amplitude_ratio,
     stick_slip_period,
 )
+from stickslip.analysis.verdict import Verdict
 from stickslip.model import Slider, rigid_base
 from stickslip.reproduction import histories
 from stickslip.reproduction.claims import Claim
-from stickslip.reproduction.common import save_columns, save_figure
+from stickslip.reproduction.outputs import save_columns, save_figure
 from stickslip.reproduction.quality import Quality
 from stickslip.reproduction.report import FigureRecord
 
 
-def time_history_figures(out_dir: Path, q: Quality) -> tuple[list[FigureRecord], list[Claim]]:
+def time_history_figures(out_dir: Path, quality: Quality) -> tuple[list[FigureRecord], list[Claim]]:
     """Figs. 7, 12, 13, 14, 15 and the claims read off them."""
     data_dir = out_dir / "data"
     figures: list[FigureRecord] = []
     claims: list[Claim] = []
 
     runs7 = histories.fig7_runs()
-    csv7 = save_columns(histories.history_table(runs7, q.history_points), data_dir / "fig07.csv")
-    figures.append(save_figure(histories.fig7_figure(runs7, q.history_points), out_dir, "fig07",
+    csv7 = save_columns(histories.history_table(runs7, quality.history_points), data_dir / "fig07.csv")
+    figures.append(save_figure(histories.fig7_figure(runs7, quality.history_points), out_dir, "fig07",
                                "Fig. 7: time histories, tuned and detuned foundation", [csv7]))
     tuned = {r.lam: r.verdict.value for r in runs7 if r.k_scale == 1.0}
     detuned = {r.lam: r.verdict.value for r in runs7 if r.k_scale == 2.0}
@@ -46,16 +47,16 @@ def time_history_figures(out_dir: Path, q: Quality) -> tuple[list[FigureRecord],
     ))
 
     runs12 = histories.fig12_runs()
-    csv12 = save_columns(histories.history_table(runs12, q.history_points),
+    csv12 = save_columns(histories.history_table(runs12, quality.history_points),
                          data_dir / "fig12-15.csv")
     for lam in (1.0, 10.0):
         number = 12 if lam == 1.0 else 13
-        figures.append(save_figure(histories.fig12_figure(runs12, lam, q.history_points), out_dir,
+        figures.append(save_figure(histories.fig12_figure(runs12, lam, quality.history_points), out_dir,
                                    f"fig{number}", f"Fig. {number}: both masses at lambda = {lam:g}",
                                    [csv12]))
     for lam in (1.0, 10.0):
         number = 14 if lam == 1.0 else 15
-        figures.append(save_figure(histories.phase_figure(runs12, lam, q.history_points), out_dir,
+        figures.append(save_figure(histories.phase_figure(runs12, lam, quality.history_points), out_dir,
                                    f"fig{number}", f"Fig. {number}: phase plane at lambda = {lam:g}",
                                    [csv12]))
     v = {(r.lam, r.k_scale): r.verdict for r in runs12}
@@ -90,7 +91,7 @@ def closed_form_claims() -> list[Claim]:
     claims = []
     errors = []
     for lam in (0.5, 2.0, 10.0):
-        r = simulate(rigid_base(0.0), Slider(lam, 0.0))
+        r = simulate(rigid_base(0.0), Slider(lam))
         errors.append(max(abs(r.period / stick_slip_period(lam) - 1.0),
                           abs(r.amplitude / stick_slip_amplitude_ratio(lam) - 1.0)))
     claims.append(Claim(

@@ -16,7 +16,7 @@ from stickslip.analysis.theory import (
     equivalent_damping_fit,
 )
 from stickslip.reproduction.claims import Claim
-from stickslip.reproduction.common import save_figure
+from stickslip.reproduction.outputs import save_figure
 from stickslip.reproduction.quality import Quality
 from stickslip.reproduction.report import FigureRecord
 
@@ -46,13 +46,13 @@ def _onsets(v: np.ndarray, lams: np.ndarray) -> np.ndarray:
     return out
 
 
-def map_figures(out_dir: Path, q: Quality, progress_for: Callable[[str], Progress]
+def map_figures(out_dir: Path, quality: Quality, progress_for: Callable[[str], Progress]
                 ) -> tuple[list[FigureRecord], list[Claim]]:
     """Figs. 8a-b and 11a-b, the gamma maps, and the claims read off them."""
     from stickslip.plot.maps import occurrence_map_plot
 
-    lams = np.geomspace(*q.lam_range, q.map_lam)
-    zetas = np.linspace(*q.zeta_range, q.map_zeta)
+    lams = np.geomspace(*quality.lam_range, quality.map_lam)
+    zetas = np.linspace(*quality.zeta_range, quality.map_zeta)
     specs = {
         "rigid": DvaSpec("none"),
         "optimal": DvaSpec("optimal"),
@@ -133,7 +133,7 @@ def map_figures(out_dir: Path, q: Quality, progress_for: Callable[[str], Progres
         frac,
     ))
     n_und = {k: int(np.sum(v[k] == UNDETERMINED)) for k in v}
-    claims.append(gamma_claim(q, progress_for))
+    claims.append(gamma_claim(quality, progress_for))
     claims.append(Claim(
         "undetermined", "(our engine)",
         "Every map cell gets a certified verdict.",
@@ -144,10 +144,10 @@ def map_figures(out_dir: Path, q: Quality, progress_for: Callable[[str], Progres
     return figures, claims
 
 
-def gamma_claim(q: Quality, progress_for: Callable[[str], Progress]) -> Claim:
+def gamma_claim(quality: Quality, progress_for: Callable[[str], Progress]) -> Claim:
     """Section 3: gamma does not affect occurrence (rigid base, cited; foundation, relied on)."""
-    lams = np.geomspace(*q.lam_range, q.gamma_lam)
-    zetas = np.linspace(*q.zeta_range, q.gamma_zeta)
+    lams = np.geomspace(*quality.lam_range, quality.gamma_lam)
+    zetas = np.linspace(*quality.zeta_range, quality.gamma_zeta)
     rows = []
     data: dict[str, Any] = {}
     worst = 0

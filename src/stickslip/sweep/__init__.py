@@ -8,27 +8,21 @@
 * :class:`Axis` parses ``start:stop:n``, ``log:start:stop:n`` and comma lists.
 """
 
-from stickslip.sweep.analytic import AnalyticBoundary, analytic_boundaries, equivalent_damping_ratio
 from stickslip.sweep.boundary import BoundaryResult, Crossing, stick_slip_boundary
-from stickslip.sweep.executors import BACKENDS, EngineSettings
+from stickslip.sweep.executors import BACKENDS
 from stickslip.sweep.grid import Axis
-from stickslip.sweep.occurrence import MapConfig, OccurrenceMap, compute_map, occurrence_map
+from stickslip.sweep.occurrence import MapConfig, OccurrenceMap, occurrence_map
 from stickslip.sweep.store import ChunkStore, StoreMismatch
 
 __all__ = [
     "BACKENDS",
-    "AnalyticBoundary",
     "Axis",
     "BoundaryResult",
     "ChunkStore",
     "Crossing",
-    "EngineSettings",
     "MapConfig",
     "OccurrenceMap",
     "StoreMismatch",
-    "analytic_boundaries",
-    "compute_map",
-    "equivalent_damping_ratio",
     "occurrence_map",
     "stick_slip_boundary",
 ]

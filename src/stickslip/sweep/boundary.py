@@ -19,26 +19,26 @@ be missed (two crossings inside one scan interval cancel); refine with a larger 
 
 from __future__ import annotations
 
-import itertools
-import json
 import math
 import time
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from stickslip.analysis.critical import Crossing, bisect_crossings, scan_brackets
 from stickslip.analysis.dva import DvaSpec
-from stickslip.analysis.simulation import Verdict
+from stickslip.analysis.simulation import EngineOptions
+from stickslip.analysis.theory import analytic_boundaries
+from stickslip.analysis.verdict import Verdict, verdict_codes, verdict_flag_attributes
+from stickslip.io.provenance import package_version, provenance_attributes
 from stickslip.kernel import engine
 from stickslip.model._validate import non_negative, positive
 from stickslip.model.parameters import Foundation
-from stickslip.sweep.analytic import analytic_boundaries
-from stickslip.sweep.executors import CellBatch, EngineSettings, StructureSet, run_batch
+from stickslip.sweep.executors import CellBatch, StructureSet, run_batch
 from stickslip.sweep.grid import Axis, as_axis
-from stickslip.sweep.occurrence import VERDICTS, verdict_codes
-from stickslip.sweep.provenance import git_revision, library_versions, package_version, utc_now
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -48,34 +48,6 @@ FloatArray = NDArray[np.float64]
 _STEADY = Verdict.STEADY_SLIDING.code
 _STICK_SLIP = Verdict.STICK_SLIP.code
 _UNDETERMINED = Verdict.UNDETERMINED.code
-
-
-@dataclass(frozen=True)
-class Crossing:
-    """A change of verdict along ``lambda`` at fixed ``zeta``.
-
-    Attributes
-    ----------
-    lam : float
-        Location, the geometric midpoint of the final bracket (dimensionless).
-    lo, hi : float
-        Final bracket: the verdict below ``lo`` side differs from the ``hi`` side.
-    onset : bool
-        True when stick-slip lies above (steady sliding below), False for the reverse.
-    converged : bool
-        True when ``hi - lo <= rtol * lo``; False when a bisection run was undetermined.
-    """
-
-    lam: float
-    lo: float
-    hi: float
-    onset: bool
-    converged: bool
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready."""
-        return {"lambda": self.lam, "lo": self.lo, "hi": self.hi,
-                "kind": "onset" if self.onset else "end", "converged": self.converged}
 
 
 @dataclass(frozen=True)
@@ -90,7 +62,7 @@ class BoundaryResult:
         The foundation choice.
     gamma, lam_min, lam_max, rtol : float
     n_scan : int
-    settings : EngineSettings
+    options : EngineOptions
     scan_lambda : ndarray, shape (n_scan,)
         The log-spaced scan points.
     scan_verdict : ndarray, shape (n_zeta, n_scan)
@@ -112,7 +84,7 @@ class BoundaryResult:
     lam_max: float
     n_scan: int
     rtol: float
-    settings: EngineSettings
+    options: EngineOptions
     scan_lambda: FloatArray = field(repr=False)
     scan_verdict: NDArray[np.int8] = field(repr=False)
     crossings: tuple[tuple[Crossing, ...], ...] = field(repr=False)
@@ -171,7 +143,7 @@ class BoundaryResult:
             "lam_max": self.lam_max,
             "n_scan": self.n_scan,
             "rtol": self.rtol,
-            "engine": self.settings.to_dict(),
+            "engine": self.options.to_dict(),
             "package_version": package_version(),
         }
 
@@ -204,7 +176,7 @@ class BoundaryResult:
             "lam_max": self.lam_max,
             "n_scan": self.n_scan,
             "rtol": self.rtol,
-            "t_max": self.settings.t_max,
+            "t_max": self.options.t_max,
             "n_runs": self.n_runs,
             "elapsed_s": self.elapsed,
             "rows": rows,
@@ -252,8 +224,7 @@ class BoundaryResult:
             }),
             "scan_verdict": (("zeta", "scan_lambda"), self.scan_verdict, {
                 "long_name": "certified verdict at the scan points",
-                "flag_values": np.array([v.code for v in VERDICTS], dtype=np.int8),
-                "flag_meanings": " ".join(v.value for v in VERDICTS),
+                **verdict_flag_attributes(),
             }),
         }
         for key, values in self.analytic().items():
@@ -261,17 +232,11 @@ class BoundaryResult:
                 "long_name": f"critical lambda of the closed form {key.replace('eq', 'Eq. ')}",
                 "units": "1",
             })
-        attrs = {
-            "title": f"critical lambda against zeta, {self.dva.describe()}, gamma = {self.gamma:g}",
-            "Conventions": "CF-1.10",
-            "stickslip_version": package_version(),
-            "git_revision": git_revision(),
-            "library_versions": json.dumps(library_versions(), sort_keys=True),
-            "date_created": utc_now(),
-            "configuration": json.dumps(self.configuration(), sort_keys=True),
-            "rtol": self.rtol,
-            "t_max": self.settings.t_max,
-        }
+        attrs = provenance_attributes(
+            f"critical lambda against zeta, {self.dva.describe()}, gamma = {self.gamma:g}",
+            self.configuration(),
+        )
+        attrs.update({"rtol": self.rtol, "t_max": self.options.t_max})
         return xr.Dataset(
             data,
             coords={
@@ -281,6 +246,12 @@ class BoundaryResult:
             },
             attrs=attrs,
         )
+
+    def to_netcdf(self, path: str | Path, *, overwrite: bool = True) -> Path:
+        """Write :meth:`to_xarray` to netCDF-4 atomically; see :func:`stickslip.io.netcdf.write_dataset`."""
+        from stickslip.io.netcdf import write_dataset
+
+        return write_dataset(self.to_xarray(), path, overwrite=overwrite)
 
     def plot(self, **kwargs: Any) -> list[Any]:
         """Draw the boundary; see :func:`stickslip.plot.maps.boundary_plot`."""
@@ -299,7 +270,7 @@ def stick_slip_boundary(
     n_scan: int = 48,
     rtol: float = 1e-6,
     t_max: float | None = None,
-    settings: EngineSettings | None = None,
+    options: EngineOptions | None = None,
     workers: int | None = None,
 ) -> BoundaryResult:
     """Every critical ``lambda`` in ``[lam_min, lam_max]`` at each ``zeta``, by scan and bisection.
@@ -319,9 +290,9 @@ def stick_slip_boundary(
     rtol : float
         Relative width of the final brackets, ``0 < rtol < 1`` (default ``1e-6``).
     t_max : float, optional
-        Time horizon of each simulation (dimensionless); overrides ``settings.t_max``.
-    settings : EngineSettings, optional
-        Engine limits (defaults of :func:`stickslip.simulate`).
+        Time horizon of each simulation (dimensionless); overrides ``options.t_max``.
+    options : EngineOptions, optional
+        Engine limits (defaults of :class:`EngineOptions`).
     workers : int, optional
         Numba threads (all cores when None).
 
@@ -343,18 +314,15 @@ def stick_slip_boundary(
     rtol = positive("rtol", rtol)
     if rtol >= 1.0:
         raise ValueError(f"rtol={rtol!r} must be below 1")
-    engine_settings = settings or EngineSettings()
-    if t_max is not None:
-        engine_settings = EngineSettings(t_max, engine_settings.max_events,
-                                         engine_settings.cycle_tol, engine_settings.max_period)
+    engine_options = (options or EngineOptions()).with_t_max(t_max)
     structures = StructureSet.resolve(spec, axis.values)
     n_zeta = len(axis)
 
     def verdicts(index: NDArray[np.int64], lams: FloatArray) -> NDArray[np.int8]:
         if index.size == 0:
             return np.zeros(0, dtype=np.int8)
-        _, iout = run_batch(structures, CellBatch(index, lams, gamma), engine_settings, workers)
-        return verdict_codes(iout[:, engine.I_STATUS])
+        _, int_summary = run_batch(structures, CellBatch(index, lams, gamma), engine_options, workers)
+        return verdict_codes(int_summary[:, engine.I_STATUS])
 
     scan = np.geomspace(lam_min, lam_max, int(n_scan))
     scan[0], scan[-1] = lam_min, lam_max
@@ -362,29 +330,13 @@ def stick_slip_boundary(
     scan_verdict = verdicts(index, np.tile(scan, n_zeta)).reshape(n_zeta, scan.size)
     n_runs = index.size
 
-    # open brackets: zeta index, lo, hi, verdict at lo
-    brackets: list[list[Any]] = []
-    for j in range(n_zeta):
-        known = [(float(scan[i]), int(c)) for i, c in enumerate(scan_verdict[j]) if c != _UNDETERMINED]
-        for (lo, v_lo), (hi, v_hi) in itertools.pairwise(known):
-            if v_lo != v_hi:
-                brackets.append([j, lo, hi, v_lo, True])
-    active = [b for b in brackets if not _narrow(b[1], b[2], rtol)]
-    while active:
-        mids = np.array([math.sqrt(b[1] * b[2]) for b in active])
-        codes = verdicts(np.array([b[0] for b in active], dtype=np.int64), mids)
-        n_runs += mids.size
-        for b, mid, code in zip(active, mids, codes, strict=True):
-            if code == _UNDETERMINED:
-                b[4] = False
-            elif code == b[3]:
-                b[1] = float(mid)
-            else:
-                b[2] = float(mid)
-        active = [b for b in active if b[4] and not _narrow(b[1], b[2], rtol)]
+    brackets = [(j, lo, hi, v_lo) for j in range(n_zeta)
+                for lo, hi, v_lo in scan_brackets(scan, scan_verdict[j])]
+    found, n_bisect = bisect_crossings(verdicts, brackets, rtol)
+    n_runs += n_bisect
     per_zeta: list[list[Crossing]] = [[] for _ in range(n_zeta)]
-    for j, lo, hi, v_lo, ok in brackets:
-        per_zeta[j].append(Crossing(math.sqrt(lo * hi), lo, hi, onset=v_lo == _STEADY, converged=ok))
+    for j, crossing in found:
+        per_zeta[j].append(crossing)
     return BoundaryResult(
         zeta=axis,
         dva=spec,
@@ -393,7 +345,7 @@ def stick_slip_boundary(
         lam_max=lam_max,
         n_scan=int(n_scan),
         rtol=rtol,
-        settings=engine_settings,
+        options=engine_options,
         scan_lambda=scan,
         scan_verdict=scan_verdict,
         crossings=tuple(tuple(sorted(c, key=lambda x: x.lam)) for c in per_zeta),
@@ -401,9 +353,3 @@ def stick_slip_boundary(
         n_runs=n_runs,
         elapsed=time.perf_counter() - started,
     )
-
-
-def _narrow(lo: float, hi: float, rtol: float) -> bool:
-    """Bracket reached the tolerance, or no float lies strictly between its ends."""
-    mid = math.sqrt(lo * hi)
-    return hi - lo <= rtol * lo or not lo < mid < hi

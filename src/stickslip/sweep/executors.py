@@ -1,7 +1,7 @@
 """Running the cells of a sweep: serially, over numba threads, or on a Dask cluster.
 
 Every cell is one certified simulation from the startup state (``run_cells`` of
-:mod:`stickslip.kernel.sweep`). Cells are independent and the engine is deterministic, so
+:mod:`stickslip.kernel.batch`). Cells are independent and the engine is deterministic, so
 the float and integer summaries of a cell do not depend on the backend, the number of
 threads or the chunking: the backends return bit-identical arrays.
 
@@ -22,13 +22,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from stickslip.analysis.dva import DvaSpec
-from stickslip.analysis.simulation import (
-    DEFAULT_CYCLE_TOL,
-    DEFAULT_MAX_EVENTS,
-    DEFAULT_MAX_PERIOD,
-    DEFAULT_T_MAX,
-)
-from stickslip.model._validate import non_negative, positive
+from stickslip.analysis.simulation import EngineOptions
+from stickslip.model._validate import non_negative
 from stickslip.model.parameters import Foundation
 from stickslip.model.structure import chain_structure
 
@@ -41,46 +36,6 @@ BACKENDS: tuple[Backend, ...] = ("serial", "threads", "dask")
 #: magnitude (a certified steady state can come after one phase, a cycle near the boundary
 #: after thousands), so threads take small batches instead of one fixed slice each.
 THREAD_BATCH = 4
-
-
-@dataclass(frozen=True)
-class EngineSettings:
-    """Engine limits of every cell (defaults of :func:`stickslip.simulate`).
-
-    Parameters
-    ----------
-    t_max : float
-        Dimensionless time horizon ``tau`` of each run.
-    max_events : int
-        Bound on the number of mode switches per run.
-    cycle_tol : float
-        Relative tolerance for a repeating breakaway state.
-    max_period : int
-        Longest cycle looked for, in stick phases.
-    """
-
-    t_max: float = DEFAULT_T_MAX
-    max_events: int = DEFAULT_MAX_EVENTS
-    cycle_tol: float = DEFAULT_CYCLE_TOL
-    max_period: int = DEFAULT_MAX_PERIOD
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "t_max", positive("t_max", self.t_max))
-        object.__setattr__(self, "cycle_tol", positive("cycle_tol", self.cycle_tol))
-        for name in ("max_events", "max_period"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or int(value) != value or int(value) < 1:
-                raise ValueError(f"{name}={value!r} must be a whole number of at least 1")
-            object.__setattr__(self, name, int(value))
-
-    def to_dict(self) -> dict[str, float | int]:
-        """The settings as a JSON-ready dictionary (recorded in datasets)."""
-        return {
-            "t_max": self.t_max,
-            "max_events": self.max_events,
-            "cycle_tol": self.cycle_tol,
-            "max_period": self.max_period,
-        }
 
 
 @dataclass(frozen=True)
@@ -135,7 +90,7 @@ class CellBatch:
 
 
 def run_batch(
-    structures: StructureSet, batch: CellBatch, settings: EngineSettings, n_threads: int | None = None
+    structures: StructureSet, batch: CellBatch, options: EngineOptions, n_threads: int | None = None
 ) -> tuple[FloatArray, IntArray]:
     """Run ``batch`` with ``run_cells`` on ``n_threads`` numba threads (all when None).
 
@@ -143,23 +98,23 @@ def run_batch(
     with the layouts ``F_*`` and ``I_*`` of :mod:`stickslip.kernel.engine`. This is also the
     task that Dask workers run, so it only takes plain, picklable data.
     """
-    from stickslip.kernel.sweep import run_cells
+    from stickslip.kernel.batch import run_cells
 
     gammas = np.full(batch.lams.shape, float(batch.gamma))
     with numba_threads(n_threads):
-        fout, iout = run_cells(
+        float_summary, int_summary = run_cells(
             structures.masses,
             structures.dampings,
             structures.stiffnesses,
             np.ascontiguousarray(batch.structure_index, dtype=np.int64),
             np.ascontiguousarray(batch.lams, dtype=np.float64),
             gammas,
-            float(settings.t_max),
-            int(settings.max_events),
-            float(settings.cycle_tol),
-            int(settings.max_period),
+            float(options.t_max),
+            int(options.max_events),
+            float(options.cycle_tol),
+            int(options.max_period),
         )
-    return fout, iout
+    return float_summary, int_summary
 
 
 @contextmanager
@@ -245,13 +200,13 @@ def check_backend(backend: str, workers: int | None, scheduler: str | None) -> B
 def execute(
     structures: StructureSet,
     batches: Sequence[tuple[Chunk, CellBatch]],
-    settings: EngineSettings,
+    options: EngineOptions,
     *,
     backend: Backend = "threads",
     workers: int | None = None,
     scheduler: str | None = None,
 ) -> Iterator[tuple[Chunk, FloatArray, IntArray]]:
-    """Run every batch and yield ``(chunk, fout, iout)`` as each one finishes.
+    """Run every batch and yield ``(chunk, float_summary, int_summary)`` as each one finishes.
 
     Parameters
     ----------
@@ -259,7 +214,7 @@ def execute(
         The structures the batches index into.
     batches : sequence of (Chunk, CellBatch)
         The work, one batch per chunk.
-    settings : EngineSettings
+    options : EngineOptions
         Engine limits.
     backend : {"serial", "threads", "dask"}
         ``serial``: one numba thread. ``threads``: ``workers`` numba threads (all cores
@@ -269,18 +224,18 @@ def execute(
     if not batches:
         return
     if backend == "dask":
-        yield from _execute_dask(structures, batches, settings, workers, scheduler)
+        yield from _execute_dask(structures, batches, options, workers, scheduler)
         return
     n_threads = 1 if backend == "serial" else workers
     for chunk, batch in batches:
-        fout, iout = run_batch(structures, batch, settings, n_threads)
-        yield chunk, fout, iout
+        float_summary, int_summary = run_batch(structures, batch, options, n_threads)
+        yield chunk, float_summary, int_summary
 
 
 def _execute_dask(
     structures: StructureSet,
     batches: Sequence[tuple[Chunk, CellBatch]],
-    settings: EngineSettings,
+    options: EngineOptions,
     workers: int | None,
     scheduler: str | None,
 ) -> Iterator[tuple[Chunk, FloatArray, IntArray]]:
@@ -294,12 +249,12 @@ def _execute_dask(
         [shared] = client.scatter([structures], broadcast=True)
         futures: dict[Any, Chunk] = {}
         for chunk, batch in batches:
-            future = client.submit(run_batch, shared, batch, settings, 1, pure=False)
+            future = client.submit(run_batch, shared, batch, options, 1, pure=False)
             futures[future] = chunk
         try:
             for future in as_completed(futures):
-                fout, iout = future.result()
-                yield futures[future], fout, iout
+                float_summary, int_summary = future.result()
+                yield futures[future], float_summary, int_summary
         finally:
             client.cancel(list(futures))
 

@@ -26,7 +26,15 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from stickslip.analysis.dva import DvaSpec
-from stickslip.analysis.simulation import RunStatus, Verdict
+from stickslip.analysis.simulation import EngineOptions
+from stickslip.analysis.verdict import (
+    VERDICTS,
+    Verdict,
+    status_flag_attributes,
+    verdict_codes,
+    verdict_flag_attributes,
+)
+from stickslip.io.provenance import package_version, provenance_attributes
 from stickslip.kernel import engine
 from stickslip.model._validate import non_negative, positive
 from stickslip.model.initial import STARTUP_DESCRIPTION
@@ -35,7 +43,6 @@ from stickslip.sweep.executors import (
     Backend,
     CellBatch,
     Chunk,
-    EngineSettings,
     StructureSet,
     check_backend,
     default_chunk_size,
@@ -43,7 +50,6 @@ from stickslip.sweep.executors import (
     make_chunks,
 )
 from stickslip.sweep.grid import Axis, as_axis
-from stickslip.sweep.provenance import git_revision, library_versions, package_version, utc_now
 from stickslip.sweep.store import ChunkStore
 
 if TYPE_CHECKING:
@@ -51,11 +57,6 @@ if TYPE_CHECKING:
     from matplotlib.artist import Artist
 
 Progress = Callable[[int, int], None]
-
-#: Verdict codes in the order of their integer values (``Verdict.code``).
-VERDICTS: tuple[Verdict, ...] = tuple(sorted(Verdict, key=lambda v: v.code))
-#: Run statuses (the certificate of a cell) in the order of their integer codes.
-STATUSES: tuple[RunStatus, ...] = tuple(sorted(RunStatus, key=lambda s: s.code))
 
 _NAN_COMMENT = "NaN (the _FillValue) where no stick-slip cycle was certified (verdict is not stick-slip)"
 _FLOAT_VARIABLES: dict[str, tuple[int, dict[str, str]]] = {
@@ -97,7 +98,7 @@ class MapConfig:
         The foundation, resolved at each ``zeta`` (``none`` is the rigid base).
     gamma : float
         ``mu_k / (mu_s - mu_k)``, dimensionless (the paper uses 2).
-    settings : EngineSettings
+    options : EngineOptions
         Engine limits of every cell.
     """
 
@@ -105,7 +106,7 @@ class MapConfig:
     zeta: Axis
     dva: DvaSpec = field(default_factory=DvaSpec)
     gamma: float = 2.0
-    settings: EngineSettings = field(default_factory=EngineSettings)
+    options: EngineOptions = field(default_factory=EngineOptions)
 
     def __post_init__(self) -> None:
         for value in self.lam.values.tolist():
@@ -113,6 +114,26 @@ class MapConfig:
         for value in self.zeta.values.tolist():
             non_negative("zeta", value)
         object.__setattr__(self, "gamma", non_negative("gamma", self.gamma))
+
+    @classmethod
+    def create(
+        cls,
+        lams: Axis | ArrayLike,
+        zetas: Axis | ArrayLike,
+        dva: DvaSpec | str = "none",
+        gamma: float = 2.0,
+        *,
+        options: EngineOptions | None = None,
+        t_max: float | None = None,
+    ) -> MapConfig:
+        """The configuration of :func:`occurrence_map` for these arguments (same parsing rules).
+
+        Lets a caller know the map's :meth:`fingerprint` before computing it (the command line
+        uses it to recognise an output file that already holds this map).
+        """
+        spec = DvaSpec.parse(dva) if isinstance(dva, str) else dva
+        engine_options = (options or EngineOptions()).with_t_max(t_max)
+        return cls(as_axis(lams, "lambda"), as_axis(zetas, "zeta"), spec, gamma, engine_options)
 
     @functools.cached_property
     def structures(self) -> StructureSet:
@@ -145,7 +166,7 @@ class MapConfig:
                 for f in self.structures.foundations
             ],
             "gamma": self.gamma,
-            "engine": self.settings.to_dict(),
+            "engine": self.options.to_dict(),
             "initial_condition": STARTUP_DESCRIPTION,
             "package_version": package_version(),
         }
@@ -339,7 +360,7 @@ def occurrence_map(
     gamma: float = 2.0,
     *,
     t_max: float | None = None,
-    settings: EngineSettings | None = None,
+    options: EngineOptions | None = None,
     backend: Backend = "threads",
     workers: int | None = None,
     scheduler: str | None = None,
@@ -364,9 +385,9 @@ def occurrence_map(
     gamma : float
         ``mu_k / (mu_s - mu_k)``, dimensionless, default 2 as in the paper.
     t_max : float, optional
-        Time horizon of each cell (dimensionless ``tau``); overrides ``settings.t_max``.
-    settings : EngineSettings, optional
-        Engine limits (defaults of :func:`stickslip.simulate`).
+        Time horizon of each cell (dimensionless ``tau``); overrides ``options.t_max``.
+    options : EngineOptions, optional
+        Engine limits (defaults of :class:`EngineOptions`).
     backend : {"threads", "serial", "dask"}
         ``threads``: numba threads (``workers`` of them, all cores when None);
         ``serial``: one thread; ``dask``: a ``dask.distributed`` cluster at ``scheduler``
@@ -391,21 +412,16 @@ def occurrence_map(
     -------
     OccurrenceMap
     """
-    spec = DvaSpec.parse(dva) if isinstance(dva, str) else dva
-    engine_settings = settings or EngineSettings()
-    if t_max is not None:
-        engine_settings = EngineSettings(t_max, engine_settings.max_events,
-                                         engine_settings.cycle_tol, engine_settings.max_period)
-    config = MapConfig(as_axis(lams, "lambda"), as_axis(zetas, "zeta"), spec, gamma, engine_settings)
+    config = MapConfig.create(lams, zetas, dva, gamma, options=options, t_max=t_max)
     backend = check_backend(backend, workers, scheduler)
     if chunk_size is not None and (isinstance(chunk_size, bool) or int(chunk_size) != chunk_size
                                    or chunk_size < 1):
         raise ValueError(f"chunk_size={chunk_size!r} must be a whole number of at least 1")
-    return compute_map(config, backend=backend, workers=workers, scheduler=scheduler,
-                       chunk_size=chunk_size, progress=progress, store=store, overwrite=overwrite)
+    return _compute_map(config, backend=backend, workers=workers, scheduler=scheduler,
+                        chunk_size=chunk_size, progress=progress, store=store, overwrite=overwrite)
 
 
-def compute_map(
+def _compute_map(
     config: MapConfig,
     *,
     backend: Backend = "threads",
@@ -416,7 +432,7 @@ def compute_map(
     store: str | Path | None = None,
     overwrite: bool = False,
 ) -> OccurrenceMap:
-    """Compute the map of an already validated :class:`MapConfig` (see :func:`occurrence_map`)."""
+    """Compute the map of a validated :class:`MapConfig` (the body of :func:`occurrence_map`)."""
     started = time.perf_counter()
     n_cells = config.n_cells
     size = int(chunk_size) if chunk_size is not None else default_chunk_size(n_cells, backend)
@@ -427,23 +443,23 @@ def compute_map(
                                  overwrite=overwrite)
         size = chunk_store.chunk_size
     chunks = make_chunks(n_cells, size)
-    fout = np.full((n_cells, engine.N_FLOAT), np.nan)
-    iout = np.zeros((n_cells, engine.N_INT), dtype=np.int64)
+    float_summary = np.full((n_cells, engine.N_FLOAT), np.nan)
+    int_summary = np.zeros((n_cells, engine.N_INT), dtype=np.int64)
     missing: list[Chunk] = []
     for chunk in chunks:
         stored = chunk_store.load(chunk.index, chunk.size) if chunk_store is not None else None
         if stored is None:
             missing.append(chunk)
         else:
-            fout[chunk.start:chunk.stop], iout[chunk.start:chunk.stop] = stored
+            float_summary[chunk.start:chunk.stop], int_summary[chunk.start:chunk.stop] = stored
     done = n_cells - sum(c.size for c in missing)
     if progress is not None:
         progress(done, n_cells)
     batches: Sequence[tuple[Chunk, CellBatch]] = [(c, config.batch(c)) for c in missing]
-    for chunk, f_chunk, i_chunk in execute(config.structures, batches, config.settings,
+    for chunk, f_chunk, i_chunk in execute(config.structures, batches, config.options,
                                            backend=backend, workers=workers, scheduler=scheduler):
-        fout[chunk.start:chunk.stop] = f_chunk
-        iout[chunk.start:chunk.stop] = i_chunk
+        float_summary[chunk.start:chunk.stop] = f_chunk
+        int_summary[chunk.start:chunk.stop] = i_chunk
         if chunk_store is not None:
             chunk_store.save(chunk.index, f_chunk, i_chunk)
         done += chunk.size
@@ -452,7 +468,7 @@ def compute_map(
     elapsed = time.perf_counter() - started
     if chunk_store is not None:
         chunk_store.record_run(len(chunks) - len(missing), len(missing), backend)
-    dataset = map_dataset(config, fout, iout, fingerprint)
+    dataset = map_dataset(config, float_summary, int_summary, fingerprint)
     return OccurrenceMap(
         dataset,
         chunks_total=len(chunks),
@@ -464,27 +480,15 @@ def compute_map(
     )
 
 
-def verdict_codes(status: NDArray[np.integer[Any]]) -> NDArray[np.int8]:
-    """Verdict code of each run status: certified steady 0, certified cycle 1, else 2.
-
-    Anything that is not a certificate (time horizon, event budget, an unknown status) is
-    ``undetermined``: never rounded to a verdict.
-    """
-    codes = np.full(np.shape(status), Verdict.UNDETERMINED.code, dtype=np.int8)
-    codes[status == RunStatus.CERTIFIED_STEADY.code] = Verdict.STEADY_SLIDING.code
-    codes[status == RunStatus.CERTIFIED_CYCLE.code] = Verdict.STICK_SLIP.code
-    return codes
-
-
 def map_dataset(
-    config: MapConfig, fout: NDArray[np.float64], iout: NDArray[np.int64], fingerprint: str
+    config: MapConfig, float_summary: NDArray[np.float64], int_summary: NDArray[np.int64], fingerprint: str
 ) -> xr.Dataset:
     """Assemble the dataset of DESIGN.md section 6 from the engine's per-cell summaries.
 
     Parameters
     ----------
     config : MapConfig
-    fout, iout : ndarray, shapes ``(n_cells, N_FLOAT)`` and ``(n_cells, N_INT)``
+    float_summary, int_summary : ndarray, shapes ``(n_cells, N_FLOAT)`` and ``(n_cells, N_INT)``
         Summaries in flat lambda-major order (``c = i_lambda * n_zeta + j_zeta``).
     fingerprint : str
         :meth:`MapConfig.fingerprint`, stored in the attributes.
@@ -493,31 +497,28 @@ def map_dataset(
 
     shape = config.shape
     dims = ("lambda", "zeta")
-    status = iout[:, engine.I_STATUS].reshape(shape)
+    status = int_summary[:, engine.I_STATUS].reshape(shape)
     data_vars: dict[str, Any] = {
         "verdict": (dims, verdict_codes(status), {
             "long_name": "certified stick-slip verdict from the startup state",
-            "flag_values": np.array([v.code for v in VERDICTS], dtype=np.int8),
-            "flag_meanings": " ".join(v.value for v in VERDICTS),
+            **verdict_flag_attributes(),
             "comment": "undetermined: no certificate before t_max or max_events (see certificate)",
         }),
         "certificate": (dims, status.astype(np.int8), {
             "long_name": "how the run ended: the certificate of the verdict, or why there is none",
-            "flag_values": np.array([s.code for s in STATUSES], dtype=np.int8),
-            "flag_meanings": " ".join(s.label for s in STATUSES),
-            "comment": "; ".join(f"{s.label}: {s.message}" for s in STATUSES),
+            **status_flag_attributes(),
         }),
-        "n_stick": (dims, iout[:, engine.I_N_STICK].reshape(shape).astype(np.int32), {
+        "n_stick": (dims, int_summary[:, engine.I_N_STICK].reshape(shape).astype(np.int32), {
             "long_name": "number of stick phases in the run, the initial one included",
             "units": "1",
         }),
-        "cycle_k": (dims, iout[:, engine.I_CYCLE_K].reshape(shape).astype(np.int16), {
+        "cycle_k": (dims, int_summary[:, engine.I_CYCLE_K].reshape(shape).astype(np.int16), {
             "long_name": "stick phases per certified cycle (period-k cycle); 0 without a cycle",
             "units": "1",
         }),
     }
     for name, (column, var_attrs) in _FLOAT_VARIABLES.items():
-        data_vars[name] = (dims, fout[:, column].reshape(shape).astype(np.float64), var_attrs)
+        data_vars[name] = (dims, float_summary[:, column].reshape(shape).astype(np.float64), var_attrs)
     foundations = config.structures.foundations
     if foundations and foundations[0] is not None:
         for name, attr, long_name in (
@@ -539,23 +540,19 @@ def map_dataset(
             "spacing": config.zeta.spacing,
         }),
     }
-    configuration = config.to_dict()
-    attrs: dict[str, Any] = {
-        "title": f"stick-slip occurrence map, {config.dva.describe()}, gamma = {config.gamma:g}",
-        "Conventions": "CF-1.10",
+    attrs: dict[str, Any] = provenance_attributes(
+        f"stick-slip occurrence map, {config.dva.describe()}, gamma = {config.gamma:g}",
+        config.to_dict(),
+    )
+    attrs.update({
         "source": f"stickslip {package_version()}: exact piecewise-linear engine, certified verdicts",
         "references": "Discussion of Stick-Slip Dynamics of 2DOF Sliding Systems Based on Dynamic "
                       "Vibration Absorbers Analysis (Figs. 8 and 11)",
-        "stickslip_version": package_version(),
-        "git_revision": git_revision(),
-        "library_versions": json.dumps(library_versions(), sort_keys=True),
-        "date_created": utc_now(),
         "initial_condition": STARTUP_DESCRIPTION,
-        "t_max": config.settings.t_max,
+        "t_max": config.options.t_max,
         "gamma": config.gamma,
         "dva": config.dva.describe(),
-        "configuration": json.dumps(configuration, sort_keys=True, allow_nan=False),
         "config_fingerprint": fingerprint,
-    }
+    })
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 

@@ -15,23 +15,20 @@ from __future__ import annotations
 
 import json
 import os
-import tempfile
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
-from datetime import UTC, datetime
 from pathlib import Path
-from typing import IO, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from stickslip.io.atomic import TMP_MARK, atomic_write
+from stickslip.io.provenance import utc_now
 from stickslip.kernel.engine import N_FLOAT, N_INT
 
 STORE_FORMAT = "stickslip-map-store"
 STORE_VERSION = 1
 MANIFEST = "manifest.json"
 _CHUNK_PREFIX = "chunk-"
-_TMP_MARK = ".tmp-"
 
 
 class StoreMismatch(ValueError):
@@ -97,7 +94,7 @@ class ChunkStore:
                 "fingerprint": fingerprint,
                 "n_cells": int(n_cells),
                 "chunk_size": int(chunk_size),
-                "created": _now(),
+                "created": utc_now(),
                 "configuration": configuration,
                 "runs": [],
             }
@@ -123,7 +120,7 @@ class ChunkStore:
     def chunk_files(self) -> list[Path]:
         """Chunk files present in the folder."""
         return sorted(
-            p for p in self.path.glob(f"{_CHUNK_PREFIX}*.npz") if _TMP_MARK not in p.name
+            p for p in self.path.glob(f"{_CHUNK_PREFIX}*.npz") if TMP_MARK not in p.name
         )
 
     def load(self, index: int, size: int) -> tuple[NDArray[np.float64], NDArray[np.int64]] | None:
@@ -146,7 +143,7 @@ class ChunkStore:
 
     def save(self, index: int, fout: NDArray[np.float64], iout: NDArray[np.int64]) -> None:
         """Write a finished chunk atomically."""
-        _atomic_write(
+        atomic_write(
             self.chunk_path(index),
             lambda fh: np.savez(fh, fingerprint=np.array(self.fingerprint), fout=fout, iout=iout),
         )
@@ -154,7 +151,7 @@ class ChunkStore:
     def record_run(self, loaded: int, computed: int, backend: str) -> None:
         """Append a line to the manifest's run log (chunks loaded from disk and computed)."""
         self._manifest["runs"].append(
-            {"finished": _now(), "chunks_loaded": int(loaded), "chunks_computed": int(computed),
+            {"finished": utc_now(), "chunks_loaded": int(loaded), "chunks_computed": int(computed),
              "backend": backend}
         )
         self._write_manifest(self._manifest)
@@ -185,10 +182,10 @@ class ChunkStore:
 
     def _write_manifest(self, manifest: dict[str, Any]) -> None:
         text = json.dumps(manifest, indent=1)
-        _atomic_write(self.path / MANIFEST, lambda fh: fh.write(text.encode()))
+        atomic_write(self.path / MANIFEST, lambda fh: fh.write(text.encode()))
 
     def _remove_temporaries(self) -> None:
-        for p in self.path.glob(f"*{_TMP_MARK}*"):
+        for p in self.path.glob(f"*{TMP_MARK}*"):
             p.unlink(missing_ok=True)
 
 
@@ -200,41 +197,10 @@ def discard_store(path: str | os.PathLike[str]) -> None:
     folder = Path(path)
     if not folder.is_dir():
         return
-    for p in [*folder.glob(f"{_CHUNK_PREFIX}*.npz"), *folder.glob(f"*{_TMP_MARK}*"),
+    for p in [*folder.glob(f"{_CHUNK_PREFIX}*.npz"), *folder.glob(f"*{TMP_MARK}*"),
               folder / MANIFEST]:
         p.unlink(missing_ok=True)
     try:
         folder.rmdir()
     except OSError:
         pass  # the folder holds files that are not ours
-
-
-@contextmanager
-def atomic_output(target: str | os.PathLike[str]) -> Iterator[Path]:
-    """Yield a temporary path next to ``target``; rename it over ``target`` on success.
-
-    Readers never see a half-written file, and a run killed while writing leaves the old
-    ``target`` (or none) plus a temporary file that the next run of a store removes.
-    """
-    target = Path(target)
-    fd, name = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}{_TMP_MARK}",
-                                suffix=target.suffix)
-    os.close(fd)
-    tmp = Path(name)
-    try:
-        yield tmp
-        os.replace(tmp, target)
-    finally:
-        tmp.unlink(missing_ok=True)
-
-
-def _atomic_write(target: Path, write: Callable[[IO[bytes]], object]) -> None:
-    """Write through ``write(fileobj)`` to a temporary file, flush to disk, then rename."""
-    with atomic_output(target) as tmp, open(tmp, "wb") as fh:
-        write(fh)
-        fh.flush()
-        os.fsync(fh.fileno())
-
-
-def _now() -> str:
-    return datetime.now(UTC).isoformat(timespec="seconds")

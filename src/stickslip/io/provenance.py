@@ -1,19 +1,26 @@
-"""Where a result came from: package and library versions, git revision, date."""
+"""Where a result came from: package and library versions, git revision, date.
+
+:func:`provenance_attributes` gives the global attributes every stickslip dataset carries
+(CF conventions, versions, revision, date, the full resolved configuration as JSON), so that
+maps, boundaries and every later dataset describe their origin the same way.
+"""
 
 from __future__ import annotations
 
 import functools
+import json
 import platform
 import subprocess
 from datetime import UTC, datetime
 from importlib import metadata
 from pathlib import Path
+from typing import Any
 
-_LIBRARIES = ("numpy", "scipy", "numba", "xarray", "h5netcdf", "h5py", "dask", "distributed")
+_LIBRARIES = ("numpy", "scipy", "numba", "matplotlib", "xarray", "h5netcdf", "h5py", "dask", "distributed")
 
 
 def package_version() -> str:
-    """Version of the ``stickslip`` package."""
+    """Version of the installed ``stickslip`` package (its metadata: the one source of truth)."""
     from stickslip import __version__
 
     return __version__
@@ -55,3 +62,24 @@ def library_versions() -> dict[str, str]:
 def utc_now() -> str:
     """Current date and time, ISO 8601 in UTC."""
     return datetime.now(UTC).isoformat(timespec="seconds")
+
+
+def provenance_attributes(title: str, configuration: dict[str, Any]) -> dict[str, Any]:
+    """Global attributes of a stickslip dataset (CF-1.10 and provenance, DESIGN.md section 6).
+
+    Parameters
+    ----------
+    title : str
+        What the dataset is (the CF ``title``).
+    configuration : dict
+        The full resolved configuration, stored as sorted JSON (floats at full precision).
+    """
+    return {
+        "title": title,
+        "Conventions": "CF-1.10",
+        "stickslip_version": package_version(),
+        "git_revision": git_revision(),
+        "library_versions": json.dumps(library_versions(), sort_keys=True),
+        "date_created": utc_now(),
+        "configuration": json.dumps(configuration, sort_keys=True, allow_nan=False),
+    }

@@ -1,0 +1,115 @@
+"""The verdict vocabulary: friction modes, verdicts, run statuses and their dataset codes.
+
+One home for every name and integer code a result can carry: the :class:`Verdict` of a run
+(``stick-slip``, ``steady-sliding``, ``undetermined``), the :class:`RunStatus` that certifies
+it (or says why there is no certificate), the friction :class:`Mode` of each phase, and the
+CF ``flag_values``/``flag_meanings`` attributes with which datasets store them (DESIGN.md
+section 6). Codes never change meaning; new members get new codes.
+"""
+
+from __future__ import annotations
+
+from enum import Enum, IntEnum, StrEnum
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from stickslip.kernel import engine
+
+
+class Mode(IntEnum):
+    """Friction state of the slider (paper Eq. 2)."""
+
+    SLIP_I = engine.SLIP_I  # slower than the belt, xi' < 1
+    SLIP_II = engine.SLIP_II  # faster than the belt, xi' > 1
+    STICK = engine.STICK  # moving with the belt, xi' = 1
+
+    @property
+    def label(self) -> str:
+        """Name used in the paper: ``slip-I``, ``slip-II`` or ``stick``."""
+        return {0: "slip-I", 1: "slip-II", 2: "stick"}[int(self)]
+
+
+class Verdict(StrEnum):
+    """Certified answer to "does this system stick-slip?"."""
+
+    STICK_SLIP = "stick-slip"
+    STEADY_SLIDING = "steady-sliding"
+    UNDETERMINED = "undetermined"
+
+    @property
+    def code(self) -> int:
+        """Integer code used in datasets (``flag_values``)."""
+        return {"steady-sliding": 0, "stick-slip": 1, "undetermined": 2}[self.value]
+
+
+class RunStatus(Enum):
+    """How a run ended, with an actionable message."""
+
+    CERTIFIED_STEADY = (engine.STATUS_STEADY, "steady sliding certified by a Lyapunov bound")
+    CERTIFIED_CYCLE = (engine.STATUS_CYCLE, "stick-slip cycle certified by a repeating breakaway")
+    T_MAX = (
+        engine.STATUS_T_MAX,
+        "time horizon reached before a verdict could be certified; increase t_max",
+    )
+    MAX_EVENTS = (
+        engine.STATUS_MAX_EVENTS,
+        "maximum number of events reached before a verdict; increase max_events",
+    )
+    MAX_STEPS = (
+        engine.STATUS_MAX_STEPS,
+        f"step budget ({engine.MAX_STEPS} sub-steps) used up before a verdict: the structure "
+        "is so stiff or so heavily damped that its time steps are tiny; check the parameters",
+    )
+
+    def __init__(self, code: int, message: str) -> None:
+        self.code = code
+        self.message = message
+
+    @classmethod
+    def from_code(cls, code: int) -> RunStatus:
+        for status in cls:
+            if status.code == code:
+                return status
+        raise ValueError(f"unknown run status code {code}")
+
+    @property
+    def label(self) -> str:
+        """Short machine-readable name, e.g. ``t-max``."""
+        return self.name.lower().replace("_", "-")
+
+
+#: Verdicts in the order of their integer codes (``Verdict.code``).
+VERDICTS: tuple[Verdict, ...] = tuple(sorted(Verdict, key=lambda v: v.code))
+#: Run statuses (the certificate of a run) in the order of their integer codes.
+STATUSES: tuple[RunStatus, ...] = tuple(sorted(RunStatus, key=lambda s: s.code))
+
+
+def verdict_flag_attributes() -> dict[str, Any]:
+    """CF ``flag_values`` and ``flag_meanings`` of an integer verdict variable."""
+    return {
+        "flag_values": np.array([v.code for v in VERDICTS], dtype=np.int8),
+        "flag_meanings": " ".join(v.value for v in VERDICTS),
+    }
+
+
+def status_flag_attributes() -> dict[str, Any]:
+    """CF flag attributes of an integer run-status (certificate) variable, with the messages."""
+    return {
+        "flag_values": np.array([s.code for s in STATUSES], dtype=np.int8),
+        "flag_meanings": " ".join(s.label for s in STATUSES),
+        "comment": "; ".join(f"{s.label}: {s.message}" for s in STATUSES),
+    }
+
+
+def verdict_codes(status: NDArray[np.integer[Any]]) -> NDArray[np.int8]:
+    """Verdict code of each run status: certified steady 0, certified cycle 1, else 2.
+
+    Anything that is not a certificate (time horizon, event budget, an unknown status) is
+    ``undetermined``: never rounded to a verdict.
+    """
+    codes = np.full(np.shape(status), Verdict.UNDETERMINED.code, dtype=np.int8)
+    codes[status == RunStatus.CERTIFIED_STEADY.code] = Verdict.STEADY_SLIDING.code
+    codes[status == RunStatus.CERTIFIED_CYCLE.code] = Verdict.STICK_SLIP.code
+    return codes
