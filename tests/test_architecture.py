@@ -108,7 +108,7 @@ def test_imports_go_down_the_layers() -> None:
     bad = []
     for imp in INTERNAL:
         src, dst = _layer(imp.source), _layer(imp.target)
-        if src is None or dst is None or RANK[dst] <= RANK[src] and {src, dst} != {"cli", "app"}:
+        if src is None or dst is None or (RANK[dst] <= RANK[src] and {src, dst} != {"cli", "app"}):
             continue
         if {src, dst} == {"cli", "app"} and src != dst:
             bad.append(f"{imp.where()}: cli and app are siblings")
@@ -165,3 +165,15 @@ def test_checker_catches_an_upward_import(tmp_path: Path) -> None:
     assert imp.source == "stickslip.model.zz_probe_upward" and imp.target == "stickslip.sweep.grid"
     assert RANK[_layer(imp.target) or ""] > RANK[_layer(imp.source) or ""]
     assert "zz_probe_upward:1 imports stickslip.sweep.grid" in imp.where()
+
+
+def test_public_api_is_flat_and_complete() -> None:
+    # every name of stickslip.__all__ resolves, and the lazy table and __all__ agree
+    import stickslip
+
+    assert set(stickslip.__all__) == set(stickslip._EXPORTS) | {"__version__"}
+    for name in stickslip.__all__:
+        assert getattr(stickslip, name) is not None, name
+    from importlib import metadata
+
+    assert stickslip.__version__ == metadata.version("stickslip")

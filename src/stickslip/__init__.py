@@ -19,13 +19,17 @@ neither numba, scipy, xarray nor matplotlib until they are needed.
 from __future__ import annotations
 
 import importlib
-from importlib import metadata
 from typing import TYPE_CHECKING, Any
 
-try:
-    __version__: str = metadata.version("stickslip")
-except metadata.PackageNotFoundError:  # pragma: no cover - running from an uninstalled tree
-    __version__ = "0+unknown"
+
+def _installed_version() -> str:
+    """The version in the installed package metadata (pyproject.toml is its one source)."""
+    from importlib import metadata
+
+    try:
+        return metadata.version("stickslip")
+    except metadata.PackageNotFoundError:  # pragma: no cover - running from an uninstalled tree
+        return "0+unknown"
 
 #: Public name -> module that defines it.
 _EXPORTS: dict[str, str] = {
@@ -92,11 +96,69 @@ _EXPORTS: dict[str, str] = {
     "reproduce": "stickslip.reproduction.run",
 }
 
-__all__ = sorted([*_EXPORTS, "__version__"])
+__all__ = [
+    "STARTUP_DESCRIPTION",
+    "Axis",
+    "BoundaryResult",
+    "Crossing",
+    "DesignReport",
+    "DvaSpec",
+    "EngineOptions",
+    "Foundation",
+    "InitialState",
+    "MapConfig",
+    "Mode",
+    "OccurrenceMap",
+    "PhysicalFoundation",
+    "PhysicalSystem",
+    "PlotResult",
+    "ResponseCurves",
+    "ResponsePeak",
+    "RunStatus",
+    "SimulationResult",
+    "Slider",
+    "StickSlipTuning",
+    "Structure",
+    "TimeHistory",
+    "TuningCurve",
+    "TuningResult",
+    "Verdict",
+    "__version__",
+    "analytic_boundaries",
+    "chain_structure",
+    "critical_lambda_approx",
+    "critical_lambda_exact",
+    "design_foundation",
+    "elastic_foundation",
+    "equivalent_damping",
+    "equivalent_damping_fit",
+    "frequency_response",
+    "lowest_onset",
+    "occurrence_map",
+    "optimal_foundation_exact",
+    "optimal_foundation_fit",
+    "optimal_foundation_stick_slip",
+    "peak_response_fit",
+    "reproduce",
+    "response_curves",
+    "response_peak",
+    "rigid_base",
+    "simulate",
+    "startup_state",
+    "stick_slip_amplitude_ratio",
+    "stick_slip_boundary",
+    "stick_slip_period",
+    "to_si",
+    "tune_foundation",
+    "tuning_curve",
+]
 
 
 def __getattr__(name: str) -> Any:
     """Import a public name from its module on first use (PEP 562)."""
+    if name == "__version__":
+        version = globals()["__version__"] = _installed_version()
+        return version
     try:
         module = _EXPORTS[name]
     except KeyError:
@@ -111,6 +173,7 @@ def __dir__() -> list[str]:
 
 
 if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
+    __version__: str
     from stickslip.analysis.critical import Crossing, lowest_onset
     from stickslip.analysis.design import DesignReport, design_foundation
     from stickslip.analysis.dva import DvaSpec

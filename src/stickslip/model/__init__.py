@@ -1,14 +1,30 @@
-"""Model layer: parameters, structures, physical units and initial conditions."""
+"""Model layer: parameters, structures, physical units and initial conditions.
 
-from stickslip.model.initial import STARTUP_DESCRIPTION, InitialState, startup_state
-from stickslip.model.parameters import Foundation, Slider
-from stickslip.model.physical import (
-    PhysicalFoundation,
-    PhysicalSystem,
-    foundation_to_dimensionless,
-    foundation_to_physical,
-)
-from stickslip.model.structure import Structure, chain_structure, elastic_foundation, rigid_base
+Names load on first use (PEP 562), so that importing one light module of this layer (for
+example :mod:`stickslip.model.units` for the command line's help text) does not import numpy.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+_EXPORTS: dict[str, str] = {
+    "STARTUP_DESCRIPTION": "stickslip.model.initial",
+    "InitialState": "stickslip.model.initial",
+    "startup_state": "stickslip.model.initial",
+    "Foundation": "stickslip.model.parameters",
+    "Slider": "stickslip.model.parameters",
+    "PhysicalFoundation": "stickslip.model.physical",
+    "PhysicalSystem": "stickslip.model.physical",
+    "foundation_to_dimensionless": "stickslip.model.physical",
+    "foundation_to_physical": "stickslip.model.physical",
+    "Structure": "stickslip.model.structure",
+    "chain_structure": "stickslip.model.structure",
+    "elastic_foundation": "stickslip.model.structure",
+    "rigid_base": "stickslip.model.structure",
+    "to_si": "stickslip.model.units",
+}
 
 __all__ = [
     "STARTUP_DESCRIPTION",
@@ -24,4 +40,32 @@ __all__ = [
     "foundation_to_physical",
     "rigid_base",
     "startup_state",
+    "to_si",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    try:
+        module = _EXPORTS[name]
+    except KeyError:
+        raise AttributeError(f"module 'stickslip.model' has no attribute {name!r}") from None
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return __all__
+
+
+if TYPE_CHECKING:  # pragma: no cover
+    from stickslip.model.initial import STARTUP_DESCRIPTION, InitialState, startup_state
+    from stickslip.model.parameters import Foundation, Slider
+    from stickslip.model.physical import (
+        PhysicalFoundation,
+        PhysicalSystem,
+        foundation_to_dimensionless,
+        foundation_to_physical,
+    )
+    from stickslip.model.structure import Structure, chain_structure, elastic_foundation, rigid_base
+    from stickslip.model.units import to_si
