@@ -383,14 +383,14 @@ def test_plots_follow_the_contract() -> None:
         (plots.equivalent_damping_plot, (curve,)),
     ]
     for fn, args in calls:
-        artists = fn(*args)  # type: ignore[operator]
+        artists = fn(*args).artists  # type: ignore[operator]
         assert artists and all(a.axes is not None for a in artists)
         ax = Figure().add_subplot()
-        drawn = fn(*args, ax=ax)  # type: ignore[operator]
+        drawn = fn(*args, ax=ax).artists  # type: ignore[operator]
         assert isinstance(ax, Axes) and all(a.axes is ax for a in drawn)
         with pytest.raises(TypeError):
             fn(*args, colour="red")  # type: ignore[operator]
-    fig = plots.optimal_tuning_plot(curve)
+    fig = plots.optimal_tuning_plot(curve).figure
     assert len(fig.axes) == 3
     with pytest.raises(ValueError, match="parameter"):
         plots.optimal_parameter_plot(curve, "mass")

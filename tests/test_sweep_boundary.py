@@ -75,7 +75,7 @@ def test_result_exports_and_analytic_values() -> None:
     np.testing.assert_array_equal(ds["critical_lambda"].values, result.critical_lambda)
     assert "critical_lambda_eq37" in ds
     ax = Figure().add_subplot()
-    artists = result.plot(ax=ax)
+    artists = result.plot(ax=ax).artists
     assert artists and ax.get_yscale() == "log"
     with pytest.raises(TypeError):
         result.plot(ax=ax, color="red")

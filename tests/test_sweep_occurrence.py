@@ -200,7 +200,7 @@ def test_bad_arguments_raise_value_error(kwargs: dict[str, object], needle: str)
 def test_plot_markers_image_and_contract(optimal_serial: OccurrenceMap) -> None:
     fig = Figure()
     ax = fig.add_subplot()
-    artists = optimal_serial.plot(ax=ax)
+    artists = optimal_serial.plot(ax=ax).artists
     assert artists and ax.get_yscale() == "log"
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
     assert "stick-slip" in labels and "steady-sliding" in labels
@@ -210,7 +210,7 @@ def test_plot_markers_image_and_contract(optimal_serial: OccurrenceMap) -> None:
     image_ax = Figure().add_subplot()
     from stickslip.plot.maps import occurrence_map_plot
 
-    out = occurrence_map_plot(optimal_serial.dataset, ax=image_ax, style="image")
+    out = occurrence_map_plot(optimal_serial.dataset, ax=image_ax, style="image").artists
     assert out and image_ax.collections  # the categorical image
     with pytest.raises(TypeError):
         occurrence_map_plot(optimal_serial, ax=image_ax, colour="red")  # type: ignore[call-arg]

@@ -378,6 +378,15 @@ class ResponseCurves:
             **{k: v for k, v in self.peak.to_dict().items() if k != "zeta_eq"},
         }
 
+    def plot(self, **kwargs: Any) -> Any:
+        """Draw the curves (paper Fig. 5), a ``PlotResult``.
+
+        Delegates to :func:`stickslip.plot.absorber.frequency_response_plot` (its keywords).
+        """
+        from stickslip.plot.absorber import frequency_response_plot
+
+        return frequency_response_plot(self, **kwargs)
+
 
 def response_curves(
     zeta: float, foundation: Foundation | None, omega: ArrayLike | None = None

@@ -31,7 +31,6 @@ from stickslip.model.structure import Structure
 
 if TYPE_CHECKING:
     import xarray as xr
-    from matplotlib.figure import Figure
 
 FloatArray = NDArray[np.float64]
 
@@ -200,8 +199,11 @@ class SimulationResult:
             ],
         }
 
-    def plot(self, **kwargs: Any) -> Figure:
-        """Time history and phase portrait; see :func:`stickslip.plot.simulation.simulation_plot`."""
+    def plot(self, **kwargs: Any) -> Any:
+        """Time histories and phase portrait, a ``PlotResult``.
+
+        Delegates to :func:`stickslip.plot.simulation.simulation_plot` (its keywords).
+        """
         from stickslip.plot.simulation import simulation_plot
 
         return simulation_plot(self, **kwargs)

@@ -370,6 +370,17 @@ class TuningResult:
             "relative_difference": self.relative_differences(),
         }
 
+    def plot(self, **kwargs: Any) -> Any:
+        """Frequency response of the tuned foundation against the rigid base (Fig. 5), a ``PlotResult``.
+
+        Delegates to :func:`stickslip.plot.absorber.frequency_response_plot` (its keywords)
+        with the curves of :func:`stickslip.analysis.frequency_response.response_curves`.
+        """
+        from stickslip.analysis.frequency_response import response_curves
+        from stickslip.plot.absorber import frequency_response_plot
+
+        return frequency_response_plot(response_curves(self.zeta, self.foundation), **kwargs)
+
 
 def _check_tuning_zeta(zeta: float) -> float:
     zeta = non_negative("zeta", zeta)
@@ -559,6 +570,30 @@ class TuningCurve:
             coords={"zeta": ("zeta", self.zeta, {"long_name": "primary damping ratio"})},
             attrs={"mass_ratio_fixed": int(self.mass_ratio_fixed)},
         )
+
+    def plot(self, kind: str = "parameters", **kwargs: Any) -> Any:
+        """Draw the curve, a ``PlotResult``.
+
+        Parameters
+        ----------
+        kind : {"parameters", "peak", "equivalent-damping"}
+            ``M_opt``, ``K_opt``, ``zeta_a,opt`` in three panels (Fig. 4,
+            :func:`~stickslip.plot.absorber.optimal_tuning_plot`); ``H_max`` (Fig. 6,
+            :func:`~stickslip.plot.absorber.peak_response_plot`); ``zeta_eq`` (Fig. 10,
+            :func:`~stickslip.plot.absorber.equivalent_damping_plot`).
+        **kwargs
+            Keywords of that plotting function.
+        """
+        from stickslip.plot import absorber
+
+        plots: dict[str, Callable[..., Any]] = {
+            "parameters": absorber.optimal_tuning_plot,
+            "peak": absorber.peak_response_plot,
+            "equivalent-damping": absorber.equivalent_damping_plot,
+        }
+        if kind not in plots:
+            raise ValueError(f"kind={kind!r} must be one of {', '.join(map(repr, plots))}")
+        return plots[kind](self, **kwargs)
 
 
 def tuning_curve(zetas: ArrayLike, *, mass_ratio: float | None = None) -> TuningCurve:

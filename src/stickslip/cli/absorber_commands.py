@@ -11,7 +11,7 @@ from typing import Annotated, Any
 
 import typer
 
-from stickslip.cli.console import BadInput, check_figure_path, parse_dva, print_json
+from stickslip.cli.console import BadInput, check_figure_path, parse_dva, print_json, save_plot
 from stickslip.cli.options import JSON
 
 ZETA = Annotated[float, typer.Option("--zeta", help="damping ratio c / (2 sqrt(m k)) >= 0")]
@@ -77,14 +77,7 @@ def frf(
         "rigid_base": {"H_max": rigid.h_max, "Omega_peak": rigid.omega_peak},
     }
     if plot is not None:
-        from matplotlib.figure import Figure
-
-        from stickslip.plot.absorber import frequency_response_plot
-
-        fig = Figure(figsize=(6.5, 4.2), layout="constrained")
-        frequency_response_plot(curves, ax=fig.add_subplot())
-        fig.savefig(plot, dpi=130)
-        payload["plot"] = str(plot)
+        payload["plot"] = save_plot(lambda ax: curves.plot(ax=ax), plot, (6.5, 4.2))
     if json:
         print_json(payload)
         return

@@ -99,14 +99,16 @@ def check_figure_path(path: Path) -> Path:
     return check_output_path(path)
 
 
-def save_plot(draw: Callable[[Any], object], path: Path, size: tuple[float, float] = (8.0, 5.5)) -> str:
-    """Draw into the axes of a new figure with ``draw(ax)`` and save it to ``path`` (130 dpi)."""
-    from matplotlib.figure import Figure
+def save_plot(draw: Callable[[Any], Any], path: Path, size: tuple[float, float] = (8.0, 5.5)) -> str:
+    """Draw into a new ``size`` figure with ``draw(ax)`` and save it to ``path`` atomically.
 
-    fig = Figure(figsize=size, layout="constrained")
-    draw(fig.add_subplot())
-    fig.savefig(path, dpi=130)
-    return str(path)
+    ``draw`` returns the :class:`~stickslip.plot.figure.PlotResult` of a ``*_plot`` function
+    (or of a result's ``.plot(ax=ax)``); its ``savefig`` writes at 130 dpi.
+    """
+    from stickslip.plot.figure import new_axes
+
+    _, ax = new_axes(figsize=size)
+    return str(draw(ax).savefig(path))
 
 
 def _writable(folder: Path) -> bool:

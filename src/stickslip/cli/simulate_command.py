@@ -76,9 +76,7 @@ def simulate(
     else:
         payload["foundation"] = None
     if plot is not None:
-        fig = result.plot(t_start=t_plot_start)
-        fig.savefig(plot, dpi=130)
-        payload["plot"] = str(plot)
+        payload["plot"] = str(result.plot(t_start=t_plot_start).savefig(plot))
     if json:
         print_json(payload)
         return

@@ -1,8 +1,8 @@
 """Figures of the absorber theory: the paper's Figs. 4, 5, 6 and 10.
 
-Follows the plotting contract of the package: every ``*_plot`` takes ``ax=None`` (a new
-figure is made when omitted), accepts only the keywords it documents, draws, and returns
-the artists it made. No ``plt.show()``, no global style changes. The data come from
+Follows the plotting contract of :mod:`stickslip.plot.figure`: every ``*_plot`` takes the
+data first and keyword-only options with ``ax=None``, draws, and returns a
+:class:`~stickslip.plot.figure.PlotResult`. The data come from
 :mod:`stickslip.analysis.tuning` (:func:`~stickslip.analysis.tuning.tuning_curve`,
 :func:`~stickslip.analysis.frequency_response.response_curves`); these functions only draw.
 """
@@ -10,11 +10,11 @@ the artists it made. No ``plt.show()``, no global style changes. The data come f
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from matplotlib.axes import Axes
-from matplotlib.figure import Figure
 
 from stickslip.analysis.theory import (
     equivalent_damping_fit,
@@ -23,10 +23,11 @@ from stickslip.analysis.theory import (
     optimal_stiffness_ratio_fit,
     peak_response_fit,
 )
+from stickslip.plot.figure import PlotResult, new_axes, new_grid
 
 if TYPE_CHECKING:
     from stickslip.analysis.frequency_response import ResponseCurves
-from stickslip.analysis.tuning import TuningCurve
+    from stickslip.analysis.tuning import TuningCurve
 
 EXACT_STYLE: dict[str, Any] = {"color": "black", "marker": "o", "ms": 4, "mfc": "white", "lw": 0.8}
 FIT_STYLE: dict[str, Any] = {"color": "tab:red", "lw": 1.4}
@@ -39,11 +40,7 @@ _PARAMETERS = {
 }
 
 
-def _new_axes(ax: Axes | None, size: tuple[float, float] = (4.5, 3.4)) -> Axes:
-    if ax is not None:
-        return ax
-    fig = Figure(figsize=size, layout="constrained")
-    return fig.add_subplot()
+PANEL_SIZE = (4.5, 3.4)
 
 
 def _fit_grid(zeta: np.ndarray) -> np.ndarray:
@@ -58,7 +55,7 @@ def optimal_parameter_plot(
     *,
     ax: Axes | None = None,
     show_fit: bool = True,
-) -> list[Any]:
+) -> PlotResult:
     """One panel of the paper's Fig. 4: an optimal foundation parameter against ``zeta``.
 
     Parameters
@@ -67,18 +64,20 @@ def optimal_parameter_plot(
         Exact optimum over a ``zeta`` grid (:func:`stickslip.analysis.tuning.tuning_curve`).
     parameter : {"M", "K", "zeta_a"}
         ``M_opt`` (Eq. 28), ``K_opt`` (Eq. 29) or ``zeta_a,opt`` (Eq. 30), dimensionless.
+        Part of the data (which curve), so it may be given by position.
     ax : matplotlib Axes, optional
+        Drawn into; a new figure is made when omitted.
     show_fit : bool
         Draw the paper's fitted cubic over the exact values.
 
     Returns
     -------
-    list of matplotlib artists
+    PlotResult
     """
     if parameter not in _PARAMETERS:
         raise ValueError(f"parameter={parameter!r} must be one of {', '.join(_PARAMETERS)}")
     attr, fit, label, eq = _PARAMETERS[parameter]
-    ax = _new_axes(ax)
+    fig, ax = new_axes(ax, figsize=PANEL_SIZE)
     artists: list[Any] = ax.plot(
         curve.zeta, getattr(curve, attr), label="exact optimum", **EXACT_STYLE
     )
@@ -88,29 +87,42 @@ def optimal_parameter_plot(
     ax.set_xlabel(r"$\zeta$")
     ax.set_ylabel(label)
     ax.legend(fontsize="small", frameon=False)
-    return artists
+    return PlotResult(fig, [ax], artists)
 
 
 def optimal_tuning_plot(
-    curve: TuningCurve, *, fig: Figure | None = None, show_fit: bool = True
-) -> Figure:
+    curve: TuningCurve,
+    *,
+    ax: Sequence[Axes] | None = None,
+    show_fit: bool = True,
+    title: str | None = None,
+) -> PlotResult:
     """The paper's Fig. 4: ``M_opt``, ``K_opt`` and ``zeta_a,opt`` against ``zeta``, three panels.
 
     Parameters
     ----------
     curve : TuningCurve
-    fig : matplotlib Figure, optional
-        Drawn into when given (it should be empty).
+    ax : sequence of three matplotlib Axes, optional
+        Axes for ``M``, ``K`` and ``zeta_a``; by default a new figure with one row of three.
     show_fit : bool
         Draw Eqs. (28)-(30) over the exact optimum.
+    title : str, optional
+        Figure title; by default (on a new figure) a line naming Fig. 4.
+
+    Returns
+    -------
+    PlotResult
+        Axes in the order ``M``, ``K``, ``zeta_a``.
     """
-    if fig is None:
-        fig = Figure(figsize=(12.0, 3.6), layout="constrained")
-    axes = fig.subplots(1, 3)
-    for ax, name in zip(axes, _PARAMETERS, strict=True):
-        optimal_parameter_plot(curve, name, ax=ax, show_fit=show_fit)
-    fig.suptitle("Optimal foundation (Fig. 4): exact optimum and the paper's fits")
-    return fig
+    if ax is None and title is None:
+        title = "Optimal foundation (Fig. 4): exact optimum and the paper's fits"
+    fig, axes = new_grid(1, 3, axes=ax, figsize=(12.0, 3.6))
+    artists: list[Any] = []
+    for panel, name in zip(axes, _PARAMETERS, strict=True):
+        artists += optimal_parameter_plot(curve, name, ax=panel, show_fit=show_fit).artists
+    if title is not None:
+        artists.append(fig.suptitle(title))
+    return PlotResult(fig, axes, artists)
 
 
 def frequency_response_plot(
@@ -119,7 +131,7 @@ def frequency_response_plot(
     ax: Axes | None = None,
     show_rigid: bool = True,
     show_equivalent: bool = True,
-) -> list[Any]:
+) -> PlotResult:
     """The paper's Fig. 5: ``H = k|X|/f`` against ``Omega`` with and without the foundation.
 
     Parameters
@@ -127,6 +139,7 @@ def frequency_response_plot(
     curves : ResponseCurves
         From :func:`stickslip.analysis.frequency_response.response_curves`.
     ax : matplotlib Axes, optional
+        Drawn into; a new figure is made when omitted.
     show_rigid : bool
         Draw the slider on the rigid base (no foundation), thin grey.
     show_equivalent : bool
@@ -134,9 +147,9 @@ def frequency_response_plot(
 
     Returns
     -------
-    list of matplotlib artists
+    PlotResult
     """
-    ax = _new_axes(ax, (5.5, 3.8))
+    fig, ax = new_axes(ax, figsize=(5.5, 3.8))
     artists: list[Any] = []
     peak = curves.peak
     if curves.foundation is not None and curves.dva is not None:
@@ -166,26 +179,27 @@ def frequency_response_plot(
     ax.set_ylabel(r"$H = kX/f$")
     ax.set_title(rf"$\zeta$ = {curves.zeta:.4g}")
     ax.legend(fontsize="small", frameon=False)
-    return artists
+    return PlotResult(fig, [ax], artists)
 
 
 def peak_response_plot(
     curve: TuningCurve, *, ax: Axes | None = None, show_fit: bool = True
-) -> list[Any]:
+) -> PlotResult:
     """The paper's Fig. 6: ``H_max`` at the optimum against ``zeta``, exact and Eq. (31).
 
     Parameters
     ----------
     curve : TuningCurve
     ax : matplotlib Axes, optional
+        Drawn into; a new figure is made when omitted.
     show_fit : bool
         Draw Eq. (31).
 
     Returns
     -------
-    list of matplotlib artists
+    PlotResult
     """
-    ax = _new_axes(ax)
+    fig, ax = new_axes(ax, figsize=PANEL_SIZE)
     artists: list[Any] = ax.plot(curve.zeta, curve.h_max, label="exact optimum", **EXACT_STYLE)
     if show_fit:
         z = _fit_grid(curve.zeta)
@@ -194,26 +208,27 @@ def peak_response_plot(
     ax.set_xlabel(r"$\zeta$")
     ax.set_ylabel(r"$H_{max}$")
     ax.legend(fontsize="small", frameon=False)
-    return artists
+    return PlotResult(fig, [ax], artists)
 
 
 def equivalent_damping_plot(
     curve: TuningCurve, *, ax: Axes | None = None, show_fit: bool = True
-) -> list[Any]:
+) -> PlotResult:
     """The paper's Fig. 10: ``zeta_eq = 1/(2 H_max)`` (Eq. 32) against ``zeta``, and Eq. (33).
 
     Parameters
     ----------
     curve : TuningCurve
     ax : matplotlib Axes, optional
+        Drawn into; a new figure is made when omitted.
     show_fit : bool
         Draw Eq. (33).
 
     Returns
     -------
-    list of matplotlib artists
+    PlotResult
     """
-    ax = _new_axes(ax)
+    fig, ax = new_axes(ax, figsize=PANEL_SIZE)
     artists: list[Any] = ax.plot(
         curve.zeta, curve.zeta_eq, label=r"exact optimum, $1/(2H_{max})$", **EXACT_STYLE
     )
@@ -227,4 +242,4 @@ def equivalent_damping_plot(
     ax.set_xlabel(r"$\zeta$")
     ax.set_ylabel(r"$\zeta_{eq}$")
     ax.legend(fontsize="small", frameon=False)
-    return artists
+    return PlotResult(fig, [ax], artists)

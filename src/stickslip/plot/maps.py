@@ -6,9 +6,9 @@ circles steady sliding (the paper's convention) and crosses for undetermined cel
 grids show a categorical image. The closed-form boundaries are overlaid: Eq. (36) exact and
 Eq. (39) for the rigid base, Eq. (37) with ``zeta_eq`` for a foundation.
 
-Follows the plotting contract of the package: every ``*_plot`` takes ``ax=None`` (a new
-figure is made when omitted), accepts only the keywords it documents, draws, and returns
-the artists it made. No ``plt.show()``, no global style changes.
+Follows the plotting contract of :mod:`stickslip.plot.figure`: every ``*_plot`` takes the
+data first and keyword-only options with ``ax=None``, draws, and returns a
+:class:`~stickslip.plot.figure.PlotResult`.
 """
 
 from __future__ import annotations
@@ -20,13 +20,13 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.colors import BoundaryNorm, ListedColormap
-from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 from numpy.typing import NDArray
 
 from stickslip.analysis.dva import DvaSpec
 from stickslip.analysis.theory import analytic_boundaries
 from stickslip.model.parameters import Foundation
+from stickslip.plot.figure import PlotResult, new_axes
 from stickslip.sweep.occurrence import VERDICTS, OccurrenceMap, dva_from_config, stored_foundations
 
 if TYPE_CHECKING:
@@ -53,11 +53,7 @@ CURVE_STYLES: dict[str, dict[str, Any]] = {
 MAX_MARKERS = 2500
 
 
-def _new_axes(ax: Axes | None) -> Axes:
-    if ax is not None:
-        return ax
-    fig = Figure(figsize=(7.0, 4.8), layout="constrained")
-    return fig.add_subplot()
+MAP_SIZE = (7.0, 4.8)
 
 
 def _is_log(values: FloatArray, spacing: str, requested: bool | None, lists: bool = False) -> bool:
@@ -100,7 +96,7 @@ def analytic_curves_plot(
     log: bool = False,
     n_points: int = 300,
     resolved: tuple[FloatArray, Sequence[Foundation | None]] | None = None,
-) -> list[Any]:
+) -> PlotResult:
     """Draw the closed-form critical lambda against zeta for ``dva``.
 
     Rigid base: Eq. (36) exact (solid) and Eq. (39) (dashed). Foundation: Eq. (37) with
@@ -113,6 +109,7 @@ def analytic_curves_plot(
     zeta_range : (float, float)
         Interval of ``zeta`` (dimensionless) to draw over.
     ax : matplotlib Axes, optional
+        Drawn into; a new figure is made when omitted.
     log : bool
         Sample ``zeta`` geometrically (for a log ``zeta`` axis).
     n_points : int
@@ -124,12 +121,13 @@ def analytic_curves_plot(
 
     Returns
     -------
-    list of matplotlib artists
+    PlotResult
+        The curves (or the note) as artists; none for an empty ``zeta_range``.
     """
-    ax = _new_axes(ax)
+    fig, ax = new_axes(ax, figsize=MAP_SIZE)
     lo, hi = zeta_range
     if lo == hi:
-        return []
+        return PlotResult(fig, [ax], [])
     zetas = _dense(lo, hi, log, n_points)
     foundations = None
     if resolved is not None and dva.kind == "optimal-exact":
@@ -145,7 +143,7 @@ def analytic_curves_plot(
         label = curve.label.replace("zeta_eq", r"$\zeta_{eq}$")
         artists += ax.plot(curve.zeta[ok], curve.lam[ok], label=label,
                            **CURVE_STYLES.get(curve.key, {}))
-    return artists
+    return PlotResult(fig, [ax], artists)
 
 
 def occurrence_map_plot(
@@ -160,7 +158,7 @@ def occurrence_map_plot(
     marker_size: float | None = None,
     max_markers: int = MAX_MARKERS,
     title: str | None = None,
-) -> list[Any]:
+) -> PlotResult:
     """Draw a stick-slip occurrence map as in the paper's Figs. 8 and 11.
 
     Parameters
@@ -189,12 +187,13 @@ def occurrence_map_plot(
 
     Returns
     -------
-    list of matplotlib artists
+    PlotResult
+        The artists are the markers (or the image), the closed-form curves and the legend.
     """
     if style not in ("auto", "markers", "image"):
         raise ValueError(f"style={style!r} must be 'auto', 'markers' or 'image'")
     ds = data.dataset if isinstance(data, OccurrenceMap) else data
-    ax = _new_axes(ax)
+    fig, ax = new_axes(ax, figsize=MAP_SIZE)
     lam = np.asarray(ds["lambda"].values, dtype=np.float64)
     zeta = np.asarray(ds["zeta"].values, dtype=np.float64)
     verdict = np.asarray(ds["verdict"].transpose("lambda", "zeta").values)
@@ -231,7 +230,7 @@ def occurrence_map_plot(
     if analytic and "configuration" in ds.attrs:
         dva = dva_from_config(json.loads(ds.attrs["configuration"]))
         curves = analytic_curves_plot(dva, (float(zeta[0]), float(zeta[-1])), ax=ax, log=x_log,
-                                      resolved=(zeta, stored_foundations(ds)))
+                                      resolved=(zeta, stored_foundations(ds))).artists
         artists += curves
         handles += curves
     if style == "markers":
@@ -249,7 +248,7 @@ def occurrence_map_plot(
     if legend and handles:
         artists.append(ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0),
                                  fontsize="small", frameon=False))
-    return artists
+    return PlotResult(fig, [ax], artists)
 
 
 def boundary_plot(
@@ -261,7 +260,7 @@ def boundary_plot(
     lam_log: bool = True,
     zeta_log: bool | None = None,
     title: str | None = None,
-) -> list[Any]:
+) -> PlotResult:
     """Draw simulated critical lambdas against zeta, every verdict change (paper Fig. 11a).
 
     Onsets (stick-slip above) are filled up-triangles joined by a line through the lowest
@@ -273,6 +272,7 @@ def boundary_plot(
     result : BoundaryResult
         From :func:`stickslip.sweep.boundary.stick_slip_boundary`.
     ax : matplotlib Axes, optional
+        Drawn into; a new figure is made when omitted.
     analytic : bool
         Overlay the closed-form boundaries of the foundation.
     legend : bool
@@ -284,9 +284,10 @@ def boundary_plot(
 
     Returns
     -------
-    list of matplotlib artists
+    PlotResult
+        The artists are the simulated points, the closed-form curves and the legend.
     """
-    ax = _new_axes(ax)
+    fig, ax = new_axes(ax, figsize=MAP_SIZE)
     zeta = np.asarray(result.zeta.values, dtype=np.float64)
     x_log = _is_log(zeta, result.zeta.spacing, zeta_log)
     artists: list[Any] = []
@@ -322,7 +323,7 @@ def boundary_plot(
         ax.set_xscale("log")
     if analytic and zeta.size:
         artists += analytic_curves_plot(result.dva, (float(zeta[0]), float(zeta[-1])), ax=ax,
-                                        log=x_log, resolved=(zeta, result.foundations))
+                                        log=x_log, resolved=(zeta, result.foundations)).artists
     ax.set_ylim(result.lam_min, result.lam_max)
     ax.set_xlabel(r"damping ratio $\zeta$")
     ax.set_ylabel(r"critical $\lambda$")
@@ -332,4 +333,4 @@ def boundary_plot(
     if legend and artists:
         artists.append(ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small",
                                  frameon=False))
-    return artists
+    return PlotResult(fig, [ax], artists)

@@ -1,17 +1,20 @@
 """Figures of one simulation: time history with stick phases shaded, phase portrait.
 
-Follows the plotting contract of the package: every ``*_plot`` takes ``ax=None`` (a new
-figure is made when omitted), accepts only the keywords it documents, draws, and returns
-the artists it made. No ``plt.show()``, no global style changes.
+Follows the plotting contract of :mod:`stickslip.plot.figure`: every ``*_plot`` takes the
+result first and keyword-only options with ``ax=None``, draws, and returns a
+:class:`~stickslip.plot.figure.PlotResult`.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+
+from stickslip.plot.figure import PlotResult, new_axes, new_grid
 
 if TYPE_CHECKING:
     from stickslip.analysis.simulation import SimulationResult, TimeHistory
@@ -21,11 +24,7 @@ PRIMARY_COLOR = "black"
 FOUNDATION_COLOR = "0.55"
 
 
-def _new_axes(ax: Axes | None) -> Axes:
-    if ax is not None:
-        return ax
-    fig = Figure(figsize=(7.0, 3.2), layout="constrained")
-    return fig.add_subplot()
+HISTORY_SIZE = (7.0, 3.2)
 
 
 def _history(result: SimulationResult, t_start: float, n_points: int) -> TimeHistory:
@@ -55,13 +54,14 @@ def time_history_plot(
     t_start: float = 0.0,
     n_points: int = 4000,
     show_foundation: bool = True,
-) -> list[Any]:
+) -> PlotResult:
     """Draw ``xi`` (or ``xi'``) against ``tau`` with stick phases shaded (paper Figs. 7, 12-13).
 
     Parameters
     ----------
     result : SimulationResult
     ax : matplotlib Axes, optional
+        Drawn into; a new figure is made when omitted.
     quantity : {"position", "velocity"}
         Dimensionless displacement ``xi`` (units ``V/omega_n``) or velocity ``xi'`` (units ``V``).
     t_start : float
@@ -73,11 +73,12 @@ def time_history_plot(
 
     Returns
     -------
-    list of matplotlib artists
+    PlotResult
+        One axes; the artists are the stick shading, the curves and the belt-speed line.
     """
     if quantity not in ("position", "velocity"):
         raise ValueError(f"quantity={quantity!r} must be 'position' or 'velocity'")
-    ax = _new_axes(ax)
+    fig, ax = new_axes(ax, figsize=HISTORY_SIZE)
     hist = _history(result, t_start, n_points)
     data = hist.position if quantity == "position" else hist.velocity
     artists: list[Any] = _shade_stick(ax, result, t_start)
@@ -93,7 +94,7 @@ def time_history_plot(
     ax.set_ylabel(f"${symbol}$")
     ax.set_xlim(hist.t[0], hist.t[-1])
     ax.legend(loc="upper right", fontsize="small", framealpha=0.85)
-    return artists
+    return PlotResult(fig, [ax], artists)
 
 
 def phase_portrait_plot(
@@ -102,12 +103,27 @@ def phase_portrait_plot(
     ax: Axes | None = None,
     t_start: float = 0.0,
     n_points: int = 4000,
-) -> list[Any]:
+) -> PlotResult:
     """Draw the trajectory in the ``(xi, xi')`` plane (paper Figs. 14-15).
 
     Stick phases lie on the line ``xi' = 1``; a stick-slip limit cycle is a closed orbit.
+
+    Parameters
+    ----------
+    result : SimulationResult
+    ax : matplotlib Axes, optional
+        Drawn into; a new figure is made when omitted.
+    t_start : float
+        First time drawn, dimensionless.
+    n_points : int
+        Samples of the exact trajectory.
+
+    Returns
+    -------
+    PlotResult
+        One axes; the artists are the orbit, the start marker and the belt-speed line.
     """
-    ax = _new_axes(ax)
+    fig, ax = new_axes(ax, figsize=(4.4, 4.0))
     hist = _history(result, t_start, n_points)
     artists: list[Any] = ax.plot(hist.position[:, 0], hist.velocity[:, 0], color=PRIMARY_COLOR,
                                  lw=0.9)
@@ -117,32 +133,57 @@ def phase_portrait_plot(
     ax.set_xlabel(r"$\xi$")
     ax.set_ylabel(r"$\xi'$")
     ax.legend(loc="lower right", fontsize="small", frameon=False)
-    return artists
+    return PlotResult(fig, [ax], artists)
 
 
 def simulation_plot(
     result: SimulationResult,
     *,
-    fig: Figure | None = None,
+    ax: Sequence[Axes] | None = None,
     t_start: float = 0.0,
     n_points: int = 4000,
     title: str | None = None,
-) -> Figure:
-    """Three panels: displacement and velocity histories, and the phase portrait."""
-    if fig is None:
+) -> PlotResult:
+    """Three panels: displacement and velocity histories, and the phase portrait.
+
+    Parameters
+    ----------
+    result : SimulationResult
+    ax : sequence of three matplotlib Axes, optional
+        Displacement, velocity and phase-plane axes to draw into; by default a new figure
+        with the histories on the left and the phase portrait on the right.
+    t_start : float
+        First time drawn, dimensionless.
+    n_points : int
+        Samples of the exact trajectory.
+    title : str, optional
+        Figure title; by default (on a new figure) the structure, ``lambda``, ``zeta``,
+        ``gamma`` and the verdict. Given axes keep their figure's title unless one is passed.
+
+    Returns
+    -------
+    PlotResult
+        Axes in the order displacement, velocity, phase plane.
+    """
+    if ax is None:
         fig = Figure(figsize=(11.0, 6.0), layout="constrained")
-    grid = fig.add_gridspec(2, 2, width_ratios=(2.2, 1.0))
-    ax_x = fig.add_subplot(grid[0, 0])
-    ax_v = fig.add_subplot(grid[1, 0], sharex=ax_x)
-    ax_p = fig.add_subplot(grid[:, 1])
-    time_history_plot(result, ax=ax_x, quantity="position", t_start=t_start, n_points=n_points)
-    time_history_plot(result, ax=ax_v, quantity="velocity", t_start=t_start, n_points=n_points)
-    phase_portrait_plot(result, ax=ax_p, t_start=t_start, n_points=n_points)
-    s = result.slider
-    if title is None:
-        title = (
-            f"{result.structure.name}: $\\lambda$={s.lam:.4g}, $\\zeta$={result.structure.zeta:.4g}, "
-            f"$\\gamma$={s.gamma:.4g} -- {result.verdict.value}"
-        )
-    fig.suptitle(title)
-    return fig
+        grid = fig.add_gridspec(2, 2, width_ratios=(2.2, 1.0))
+        ax_x = fig.add_subplot(grid[0, 0])
+        axes = [ax_x, fig.add_subplot(grid[1, 0], sharex=ax_x), fig.add_subplot(grid[:, 1])]
+        if title is None:
+            s = result.slider
+            title = (
+                f"{result.structure.name}: $\\lambda$={s.lam:.4g}, "
+                f"$\\zeta$={result.structure.zeta:.4g}, $\\gamma$={s.gamma:.4g} -- "
+                f"{result.verdict.value}"
+            )
+    else:
+        fig, axes = new_grid(3, 1, axes=ax)
+    artists: list[Any] = []
+    for panel, quantity in zip(axes[:2], ("position", "velocity"), strict=True):
+        artists += time_history_plot(result, ax=panel, quantity=quantity, t_start=t_start,
+                                     n_points=n_points).artists
+    artists += phase_portrait_plot(result, ax=axes[2], t_start=t_start, n_points=n_points).artists
+    if title is not None:
+        artists.append(fig.suptitle(title))
+    return PlotResult(fig, axes, artists)

@@ -9,18 +9,22 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
+from stickslip.io.atomic import atomic_savefig
+from stickslip.plot.figure import PlotResult
 from stickslip.reproduction.report import FigureRecord
 
 
-def save_figure(fig: Figure, out_dir: Path, key: str, title: str, data: Sequence[Path] = (),
-                caption: str = "") -> FigureRecord:
-    """Write ``key.png`` (150 dpi) and ``key.pdf`` into ``out_dir/figures``."""
+def save_figure(fig: Figure | PlotResult, out_dir: Path, key: str, title: str,
+                data: Sequence[Path] = (), caption: str = "") -> FigureRecord:
+    """Write ``key.png`` (150 dpi) and ``key.pdf`` into ``out_dir/figures``, each atomically.
+
+    ``fig`` is a figure or what a ``*_plot`` function returned.
+    """
+    figure = fig.figure if isinstance(fig, PlotResult) else fig
     folder = out_dir / "figures"
     folder.mkdir(parents=True, exist_ok=True)
-    png = folder / f"{key}.png"
-    pdf = folder / f"{key}.pdf"
-    fig.savefig(png, dpi=150)
-    fig.savefig(pdf)
+    png = atomic_savefig(figure, folder / f"{key}.png", dpi=150)
+    pdf = atomic_savefig(figure, folder / f"{key}.pdf")
     return FigureRecord(key, title, png, pdf, list(data), caption)
 
 

@@ -253,8 +253,8 @@ class BoundaryResult:
 
         return write_dataset(self.to_xarray(), path, overwrite=overwrite)
 
-    def plot(self, **kwargs: Any) -> list[Any]:
-        """Draw the boundary; see :func:`stickslip.plot.maps.boundary_plot`."""
+    def plot(self, **kwargs: Any) -> Any:
+        """Draw the boundary, a ``PlotResult``; see :func:`stickslip.plot.maps.boundary_plot`."""
         from stickslip.plot.maps import boundary_plot
 
         return boundary_plot(self, **kwargs)

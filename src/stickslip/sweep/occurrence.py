@@ -54,7 +54,6 @@ from stickslip.sweep.store import ChunkStore
 
 if TYPE_CHECKING:
     import xarray as xr
-    from matplotlib.artist import Artist
 
 Progress = Callable[[int, int], None]
 
@@ -339,8 +338,8 @@ class OccurrenceMap:
             "t_max": self.configuration["engine"]["t_max"],
         }
 
-    def plot(self, **kwargs: Any) -> list[Artist]:
-        """Draw the map; see :func:`stickslip.plot.maps.occurrence_map_plot`."""
+    def plot(self, **kwargs: Any) -> Any:
+        """Draw the map, a ``PlotResult``; see :func:`stickslip.plot.maps.occurrence_map_plot`."""
         from stickslip.plot.maps import occurrence_map_plot
 
         return occurrence_map_plot(self, **kwargs)
