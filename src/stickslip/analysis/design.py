@@ -117,6 +117,15 @@ class DesignReport:
             "stick_slip_optimal_foundation": self.stick_slip_optimum,
         }
 
+    def plot(self, **kwargs: Any) -> Any:
+        """The design procedure (paper Fig. 16) as a flowchart with these numbers, a ``PlotResult``.
+
+        Delegates to :func:`stickslip.plot.design.design_flowchart_plot` (its keywords).
+        """
+        from stickslip.plot.design import design_flowchart_plot
+
+        return design_flowchart_plot(self, **kwargs)
+
 
 def _critical(system: PhysicalSystem, lam: float) -> CriticalValues:
     if not math.isfinite(lam) or lam <= 0.0:

@@ -6,8 +6,6 @@ import json
 import math
 from pathlib import Path
 
-from matplotlib.figure import Figure
-
 from stickslip.analysis.design import design_foundation
 from stickslip.analysis.tuning import optimal_foundation_stick_slip
 from stickslip.model.physical import PhysicalSystem
@@ -19,44 +17,15 @@ from stickslip.reproduction.report import FigureRecord
 EXAMPLE = PhysicalSystem(m=2.0, k=50e3, c=20.0, mu_s=0.5, mu_k=0.3, load=150.0, speed=0.05)
 
 
-def _fmt(x: float | None, unit: str) -> str:
-    return "none" if x is None else f"{x:.4g} {unit}"
-
-
 def design_example(out_dir: Path) -> tuple[list[FigureRecord], list[Claim]]:
     """Fig. 16: the design procedure applied to :data:`EXAMPLE`, as a figure and JSON."""
-    report = design_foundation(EXAMPLE).to_dict()
+    design = design_foundation(EXAMPLE)
+    report = design.to_dict()
     data = out_dir / "data" / "fig16-design.json"
     data.parent.mkdir(parents=True, exist_ok=True)
     data.write_text(json.dumps(report, indent=2), encoding="utf-8")
-    s = report["system"]
-    f = report["foundation"]
-    steps = [
-        "1. Model the machine as a 1DOF sliding system:",
-        f"    m = {s['m']:g} kg, k = {s['k']:g} N/m, c = {s['c']:g} N s/m, mu_s = {s['mu_s']:g},"
-        f" mu_k = {s['mu_k']:g}, W = {s['load']:g} N, V = {s['speed']:g} m/s",
-        f"2. Dimensionless groups: lambda = {report['lambda']:.4g}, zeta = {report['zeta']:.4g},"
-        f" gamma = {report['gamma']:.4g}",
-        f"3. Rigid base: {report['verdict']['rigid']['theory']} by Eq. (39),"
-        f" {report['verdict']['rigid']['simulation']} by simulation",
-        f"4. Eq. (33): zeta_eq = {report['zeta_eq']:.4g};  Eq. (38) with the foundation:"
-        f" {report['verdict']['foundation']['theory']}",
-        f"5. Eqs. (28)-(30): M = {f['M']:.4g}, K = {f['K']:.4g}, zeta_a = {f['zeta_a']:.4g}",
-        f"    m_a = {f['m_a']:.4g} kg, k_a = {f['k_a']:.4g} N/m, c_a = {f['c_a']:.4g} N s/m",
-        f"6. Check by simulation: {report['verdict']['foundation']['simulation']}",
-        "7. Stick-slip below the critical speed / above the critical load:",
-    ]
-    for key, label in (("rigid_theory", "rigid, Eq. (39)"), ("rigid_simulation", "rigid, simulation"),
-                       ("foundation_theory", "foundation, Eq. (37)"),
-                       ("foundation_simulation", "foundation, simulation")):
-        steps.append(f"    {label:24} V_c = {_fmt(report['critical_speed'][key], 'm/s'):>12}"
-                     f"   W_c = {_fmt(report['critical_load'][key], 'N'):>10}")
-    fig = Figure(figsize=(9.0, 3.6), layout="constrained")
-    ax = fig.add_subplot()
-    ax.axis("off")
-    ax.text(0.0, 1.0, "\n".join(steps), family="monospace", fontsize=9, va="top")
-    fig.suptitle("Fig. 16: design procedure, worked example")
-    record = save_figure(fig, out_dir, "fig16", "Fig. 16: design procedure (worked example)", [data])
+    drawn = design.plot(title="Fig. 16: design procedure, worked example")
+    record = save_figure(drawn, out_dir, "fig16", "Fig. 16: design procedure (worked example)", [data])
     rigid_sim = report["verdict"]["rigid"]["simulation"]
     found_sim = report["verdict"]["foundation"]["simulation"]
     claim = Claim(
