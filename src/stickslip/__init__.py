@@ -18,8 +18,9 @@ neither numba, scipy, xarray nor matplotlib until they are needed.
 
 from __future__ import annotations
 
-import importlib
 from typing import TYPE_CHECKING, Any
+
+from stickslip._lazy import lazy_exports
 
 
 def _installed_version() -> str:
@@ -154,22 +155,15 @@ __all__ = [
 ]
 
 
+_getattr_export, __dir__ = lazy_exports(__name__, globals(), _EXPORTS)
+
+
 def __getattr__(name: str) -> Any:
     """Import a public name from its module on first use (PEP 562)."""
     if name == "__version__":
         version = globals()["__version__"] = _installed_version()
         return version
-    try:
-        module = _EXPORTS[name]
-    except KeyError:
-        raise AttributeError(f"module 'stickslip' has no attribute {name!r}") from None
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return __all__
+    return _getattr_export(name)
 
 
 if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only

@@ -11,11 +11,10 @@ import math
 import sys
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any, NoReturn
+from typing import TYPE_CHECKING, Any, NoReturn
 
-import numpy as np
-
-from stickslip.model.parameters import Foundation
+if TYPE_CHECKING:
+    from stickslip.model.parameters import Foundation
 
 EXIT_BAD_INPUT = 2
 
@@ -44,6 +43,8 @@ def parse_dva(text: str, zeta: float, k_scale: float = 1.0) -> Foundation | None
 
 
 def _jsonable(value: Any) -> Any:
+    import numpy as np  # imported here: ``stickslip --help`` must start fast
+
     if isinstance(value, dict):
         return {str(k): _jsonable(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):

@@ -30,6 +30,9 @@ def read_config(path: Path) -> dict[str, Any]:
     except tomllib.TOMLDecodeError as exc:
         raise BadInput(f"--config {str(path)!r} is not valid TOML: {exc}") from None
     section = data.get("system", data)
+    if not isinstance(section, dict):
+        raise BadInput(f"--config {str(path)!r}: 'system' must be a table of quantities, "
+                       f"not {section!r}")
     unknown = sorted(set(section) - set(QUANTITIES))
     if unknown:
         raise BadInput(f"--config {str(path)!r}: unknown keys {', '.join(unknown)}")
@@ -39,14 +42,19 @@ def read_config(path: Path) -> dict[str, Any]:
 def collect_inputs(flags: dict[str, Any], config: Path | None) -> dict[str, float]:
     """Merge the TOML file (if any) and the flags (flags win), convert to SI, check presence."""
     merged: dict[str, Any] = read_config(config) if config is not None else {}
+    from_file = set(merged)
     merged.update({k: v for k, v in flags.items() if v is not None})
+    from_file -= {k for k, v in flags.items() if v is not None}
     missing = [f"--{k.replace('_', '-')}" for k in REQUIRED if k not in merged]
     if missing:
         raise BadInput(f"missing {', '.join(missing)} (give them as flags or in --config)")
     given = [k for k in FOUNDATION if k in merged]
     if given and len(given) != len(FOUNDATION):
         raise BadInput("an existing foundation needs all of --m-a, --k-a and --c-a")
-    values = {k: to_si(k, v) for k, v in merged.items()}
+    values = {
+        key: to_si(key, value, source=f"--config {str(config)!r}: {key} =" if key in from_file else None)
+        for key, value in merged.items()
+    }
     values.setdefault("c", 0.0)
     return values
 

@@ -3,14 +3,15 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
-import numpy as np
 import typer
 
 from stickslip.cli.console import BadInput, check_figure_path, parse_dva, print_json
 from stickslip.cli.options import DVA, GAMMA, JSON, K_SCALE
-from stickslip.model.initial import InitialState
+
+if TYPE_CHECKING:
+    from stickslip.model.initial import InitialState
 
 LAM = Annotated[float, typer.Option("--lam", help="lambda = (mu_s - mu_k) W / (V sqrt(m k)) > 0")]
 ZETA = Annotated[float, typer.Option("--zeta", help="damping ratio c / (2 sqrt(m k)) >= 0")]
@@ -30,7 +31,9 @@ def parse_initial(text: str, n_dof: int) -> InitialState | None:
             f"--initial {text!r} has {len(values)} numbers; expected {2 * n_dof} "
             f"(positions then velocities of {n_dof} DOF)"
         )
-    return InitialState(np.array(values[:n_dof]), np.array(values[n_dof:]), f"user-defined: {text}")
+    from stickslip.model.initial import InitialState
+
+    return InitialState(values[:n_dof], values[n_dof:], f"user-defined: {text}")
 
 
 def simulate(

@@ -7,6 +7,7 @@ units. A bare number is taken as SI.
 from __future__ import annotations
 
 import math
+import re
 from functools import lru_cache
 from typing import Any
 
@@ -32,42 +33,72 @@ def _registry() -> Any:
     return pint.UnitRegistry()
 
 
-def to_si(name: str, value: str | float | int) -> float:
+#: One number (decimal point, optional exponent), then an optional unit: ``"2"``, ``"2.5 kg"``,
+#: ``"50 kN/m"``, ``"1e-3 N*s/m"``.
+_NUMBER_THEN_UNIT = re.compile(r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*(.*?)\s*$")
+
+
+def _parse(flag: str, text: str, what: str) -> tuple[float, str]:
+    """Split ``text`` into its one number and its unit text (possibly empty).
+
+    A value is one number with an optional unit. A decimal comma (``"1,5 kg"``), two numbers
+    (``"2 3 kg"``) and arithmetic (``"2**2000 kg"``) are refused rather than guessed.
+    """
+    if not text:
+        raise ValueError(f"{flag} is empty; expected the {what}")
+    if "," in text:
+        raise ValueError(f"{flag} {text!r}: use a decimal point, not a comma (one number and a unit)")
+    match = _NUMBER_THEN_UNIT.match(text)
+    if match is None:
+        raise ValueError(f"{flag} {text!r} does not start with a number; expected e.g. '2.5 kg'")
+    number, unit = match.group(1), match.group(2)
+    if re.search(r"(?<![\^*])\b\d", unit) or unit.startswith(("*", "/", "^", "+", "-")):
+        raise ValueError(f"{flag} {text!r} must be one number followed by a unit, "
+                         "not two numbers or arithmetic")
+    return float(number), unit
+
+
+def to_si(name: str, value: str | float | int, *, source: str | None = None) -> float:
     """Convert ``value`` for quantity ``name`` to an SI float, checking its dimension.
 
-    Raises ``ValueError`` with one line naming the value and why (for example a mass given
-    for a stiffness).
+    ``value`` is a number (taken as SI) or a string holding one number with an optional unit
+    (``"2 kg"``, ``"50 kN/m"``; a bare number is SI). Raises ``ValueError`` with one line
+    naming the value and why: a wrong dimension (a mass given for a stiffness), a decimal
+    comma, two numbers, arithmetic, a value that is not a number or a string (a TOML date,
+    list or table), or a result that is not finite. ``source`` names where the value came
+    from in the message (default: the command-line flag, e.g. ``--m``).
     """
     dim, si_unit, what = QUANTITIES[name]
-    flag = f"--{name.replace('_', '-')}"
-    if isinstance(value, bool):
-        raise ValueError(f"{flag} {value!r} is not a quantity")
+    flag = source or f"--{name.replace('_', '-')}"
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise ValueError(f"{flag} {value!r} is not a number or a quantity string such as '2 kg'")
     if isinstance(value, (int, float)):
         number = float(value)
     else:
-        text = str(value).strip()
-        if not text:
-            raise ValueError(f"{flag} is empty; expected the {what}")
-        ureg = _registry()
-        try:
-            quantity = ureg.Quantity(text)
-        except Exception:
-            raise ValueError(f"{flag} {text!r} is not a quantity pint understands") from None
-        if not isinstance(quantity, ureg.Quantity):  # a plain number
-            number = float(quantity)
-        elif dim == "":
-            if not quantity.dimensionless:
-                raise ValueError(f"{flag} {text!r} must be dimensionless ({what})")
-            number = float(quantity.to("dimensionless").magnitude)
-        elif quantity.dimensionless:
-            number = float(quantity.magnitude)
-        elif not quantity.check(dim):
-            raise ValueError(
-                f"{flag} {text!r} has the wrong unit for the {what}: expected {si_unit} "
-                f"(dimension {dim}), got {quantity.units:~}"
-            )
+        text = value.strip()
+        magnitude, unit_text = _parse(flag, text, what)
+        if not unit_text:
+            number = magnitude
         else:
-            number = float(quantity.to(si_unit.replace(" ", "*")).magnitude)
+            ureg = _registry()
+            try:
+                unit = ureg.parse_units(unit_text)
+            except Exception:
+                raise ValueError(f"{flag} {text!r}: {unit_text!r} is not a unit pint understands") from None
+            quantity = ureg.Quantity(magnitude, unit)
+            if dim == "":
+                if not quantity.dimensionless:
+                    raise ValueError(f"{flag} {text!r} must be dimensionless ({what})")
+                number = float(quantity.to("dimensionless").magnitude)
+            elif quantity.dimensionless:
+                number = float(quantity.to("dimensionless").magnitude)
+            elif not quantity.check(dim):
+                raise ValueError(
+                    f"{flag} {text!r} has the wrong unit for the {what}: expected {si_unit} "
+                    f"(dimension {dim}), got {quantity.units:~}"
+                )
+            else:
+                number = float(quantity.to(si_unit.replace(" ", "*")).magnitude)
     if not math.isfinite(number):
         raise ValueError(f"{flag} {value!r} must be finite")
     return number

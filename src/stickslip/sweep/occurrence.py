@@ -416,22 +416,6 @@ def occurrence_map(
     if chunk_size is not None and (isinstance(chunk_size, bool) or int(chunk_size) != chunk_size
                                    or chunk_size < 1):
         raise ValueError(f"chunk_size={chunk_size!r} must be a whole number of at least 1")
-    return _compute_map(config, backend=backend, workers=workers, scheduler=scheduler,
-                        chunk_size=chunk_size, progress=progress, store=store, overwrite=overwrite)
-
-
-def _compute_map(
-    config: MapConfig,
-    *,
-    backend: Backend = "threads",
-    workers: int | None = None,
-    scheduler: str | None = None,
-    chunk_size: int | None = None,
-    progress: Progress | None = None,
-    store: str | Path | None = None,
-    overwrite: bool = False,
-) -> OccurrenceMap:
-    """Compute the map of a validated :class:`MapConfig` (the body of :func:`occurrence_map`)."""
     started = time.perf_counter()
     n_cells = config.n_cells
     size = int(chunk_size) if chunk_size is not None else default_chunk_size(n_cells, backend)
