@@ -44,7 +44,7 @@ from stickslip.analysis.dva import DvaSpec
 from stickslip.analysis.tuning import optimal_foundation_stick_slip
 from stickslip.model.physical import foundation_to_physical
 from stickslip.model.units import QUANTITIES, to_si
-from stickslip.plot.maps import occurrence_map_plot
+from stickslip.plot.figure import new_grid
 from stickslip.plot.simulation import phase_portrait_plot, time_history_plot
 from stickslip.sweep import OccurrenceMap, occurrence_map
 
@@ -214,8 +214,7 @@ def _fmt(x: float | None, unit: str = "") -> str:
 
 def figure_of_run(result: SimulationResult, title: str) -> Figure:
     """Time history of ``xi`` (stick phases shaded) next to the phase portrait."""
-    fig = Figure(figsize=(10.0, 3.0), layout="constrained")
-    ax_t, ax_p = fig.subplots(1, 2, width_ratios=(2.2, 1.0))
+    fig, (ax_t, ax_p) = new_grid(1, 2, figsize=(10.0, 3.0), width_ratios=(2.2, 1.0))
     time_history_plot(result, ax=ax_t, quantity="position", n_points=PLOT_POINTS)
     phase_portrait_plot(result, ax=ax_p, n_points=PLOT_POINTS)
     fig.suptitle(title)
@@ -241,7 +240,7 @@ def occurrence_figure(maps: Mapping[str, OccurrenceMap], system: PhysicalSystem,
 
     entries: dict[str, Any] = {}
     for ax, (name, result) in zip(axes, maps.items(), strict=True):
-        occurrence_map_plot(result, ax=ax, style="image", legend=True, title=name)
+        result.plot(ax=ax, style="image", legend=True, title=name)
         legend = ax.get_legend()
         entries |= {text.get_text(): handle for text, handle in
                     zip(legend.get_texts(), legend.legend_handles, strict=True)}

@@ -11,6 +11,7 @@ from stickslip.analysis.simulation import SimulationResult, simulate
 from stickslip.analysis.theory import optimal_foundation_fit
 from stickslip.analysis.verdict import Verdict
 from stickslip.model import Slider, elastic_foundation
+from stickslip.plot.figure import new_grid
 from stickslip.plot.simulation import phase_portrait_plot, time_history_plot
 
 FIG7_ZETA = 0.1
@@ -55,14 +56,13 @@ def fig12_runs() -> list[Run]:
 def fig7_figure(runs: list[Run], n_points: int) -> Figure:
     """Displacement histories, one row per lambda, tuned (left) and detuned (right)."""
     lams = sorted({r.lam for r in runs})
-    fig = Figure(figsize=(11.0, 2.2 * len(lams) + 0.6), layout="constrained")
-    axes = fig.subplots(len(lams), 2, sharex=True, squeeze=False)
+    fig, axes = new_grid(len(lams), 2, figsize=(11.0, 2.2 * len(lams) + 0.6), sharex=True)
     for col, scale in enumerate((1.0, 2.0)):
         for row, lam in enumerate(lams):
             run = next(r for r in runs if r.lam == lam and r.k_scale == scale)
-            ax = axes[row, col]
-            time_history_plot(run.result, ax=ax, n_points=n_points, show_foundation=False)
-            ax.set_title(f"{run.label}: {run.verdict.value}", fontsize="small")
+            drawn = time_history_plot(run.result, ax=axes[2 * row + col], n_points=n_points,
+                                      show_foundation=False)
+            drawn.ax.set_title(f"{run.label}: {run.verdict.value}", fontsize="small")
     fig.suptitle(r"Fig. 7: $\xi(\tau)$ at $\zeta$ = 0.1, $\gamma$ = 2; "
                  r"(a) optimal foundation, (b) $K = 2K_{opt}$")
     return fig
@@ -70,13 +70,12 @@ def fig7_figure(runs: list[Run], n_points: int) -> Figure:
 
 def fig12_figure(runs: list[Run], lam: float, n_points: int) -> Figure:
     """Displacements and velocities of both masses (paper Figs. 12 and 13)."""
-    fig = Figure(figsize=(11.0, 5.5), layout="constrained")
-    axes = fig.subplots(2, 2, sharex=True)
+    fig, axes = new_grid(2, 2, figsize=(11.0, 5.5), sharex=True)
     for col, scale in enumerate((0.5, 2.0)):
         run = next(r for r in runs if r.lam == lam and r.k_scale == scale)
-        time_history_plot(run.result, ax=axes[0, col], quantity="position", n_points=n_points)
-        time_history_plot(run.result, ax=axes[1, col], quantity="velocity", n_points=n_points)
-        axes[0, col].set_title(f"({'ab'[col]}) {run.label}: {run.verdict.value}",
+        time_history_plot(run.result, ax=axes[col], quantity="position", n_points=n_points)
+        time_history_plot(run.result, ax=axes[2 + col], quantity="velocity", n_points=n_points)
+        axes[col].set_title(f"({'ab'[col]}) {run.label}: {run.verdict.value}",
                                fontsize="small")
     number = 12 if lam == 1.0 else 13
     fig.suptitle(f"Fig. {number}: both masses at $\\lambda$ = {lam:g}, $\\zeta$ = 0.01")
@@ -85,8 +84,7 @@ def fig12_figure(runs: list[Run], lam: float, n_points: int) -> Figure:
 
 def phase_figure(runs: list[Run], lam: float, n_points: int) -> Figure:
     """Phase portraits (paper Figs. 14 and 15)."""
-    fig = Figure(figsize=(10.0, 4.2), layout="constrained")
-    axes = fig.subplots(1, 2)
+    fig, axes = new_grid(1, 2, figsize=(10.0, 4.2))
     for col, scale in enumerate((0.5, 2.0)):
         run = next(r for r in runs if r.lam == lam and r.k_scale == scale)
         phase_portrait_plot(run.result, ax=axes[col], n_points=n_points)

@@ -5,7 +5,6 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
-from matplotlib.figure import Figure
 
 from stickslip.analysis.frequency_response import response_curves
 from stickslip.analysis.theory import optimal_foundation_fit, peak_response_fit
@@ -22,12 +21,7 @@ FIG5_ZETA = 0.1
 def absorber_figures(out_dir: Path, quality: Quality) -> tuple[list[FigureRecord], list[Claim]]:
     """Exact optimum over ``zeta`` against the paper's fits; frequency responses."""
     from stickslip.analysis.frequency_response import response_peak
-    from stickslip.plot.absorber import (
-        equivalent_damping_plot,
-        frequency_response_plot,
-        optimal_tuning_plot,
-        peak_response_plot,
-    )
+    from stickslip.plot.figure import new_axes
 
     data_dir = out_dir / "data"
     data_dir.mkdir(parents=True, exist_ok=True)
@@ -35,16 +29,15 @@ def absorber_figures(out_dir: Path, quality: Quality) -> tuple[list[FigureRecord
     curve = tuning_curve(zetas)
     nc = data_dir / "fig04-06-10-tuning.nc"
     curve.to_xarray().to_netcdf(nc, engine="h5netcdf")
-    figures = [save_figure(optimal_tuning_plot(curve), out_dir, "fig04",
+    figures = [save_figure(curve.plot(kind="parameters"), out_dir, "fig04",
                            "Fig. 4: optimal foundation parameters, exact and Eqs. (28)-(30)", [nc])]
-    for number, plot, title in (
-        (6, peak_response_plot, "Fig. 6: H_max at the optimum, exact and Eq. (31)"),
-        (10, equivalent_damping_plot, "Fig. 10: zeta_eq, exact (Eq. 32) and Eq. (33)"),
+    for number, kind, title in (
+        (6, "peak", "Fig. 6: H_max at the optimum, exact and Eq. (31)"),
+        (10, "equivalent-damping", "Fig. 10: zeta_eq, exact (Eq. 32) and Eq. (33)"),
     ):
-        fig = Figure(figsize=(5.5, 4.0), layout="constrained")
-        plot(curve, ax=fig.add_subplot())
-        fig.suptitle(title)
-        figures.append(save_figure(fig, out_dir, f"fig{number:02d}", title, [nc]))
+        drawn = curve.plot(kind=kind, ax=new_axes(figsize=(5.5, 4.0))[1])
+        drawn.figure.suptitle(title)
+        figures.append(save_figure(drawn, out_dir, f"fig{number:02d}", title, [nc]))
 
     curves = response_curves(FIG5_ZETA, optimal_foundation_fit(FIG5_ZETA))
     cols = {"Omega": curves.omega, "H_rigid": curves.rigid}
@@ -53,10 +46,9 @@ def absorber_figures(out_dir: Path, quality: Quality) -> tuple[list[FigureRecord
     if curves.equivalent is not None:
         cols["H_equivalent_1dof"] = curves.equivalent
     csv5 = save_columns(cols, data_dir / "fig05.csv")
-    fig = Figure(figsize=(6.5, 4.2), layout="constrained")
-    frequency_response_plot(curves, ax=fig.add_subplot())
-    fig.suptitle("Fig. 5: frequency response at zeta = 0.1")
-    figures.append(save_figure(fig, out_dir, "fig05", "Fig. 5: frequency response at zeta = 0.1",
+    drawn = curves.plot(ax=new_axes(figsize=(6.5, 4.2))[1])
+    drawn.figure.suptitle("Fig. 5: frequency response at zeta = 0.1")
+    figures.append(save_figure(drawn, out_dir, "fig05", "Fig. 5: frequency response at zeta = 0.1",
                                [csv5]))
 
     claims = []

@@ -7,7 +7,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from matplotlib.figure import Figure
 
 from stickslip.analysis.dva import DvaSpec
 from stickslip.analysis.theory import (
@@ -49,7 +48,7 @@ def _onsets(v: np.ndarray, lams: np.ndarray) -> np.ndarray:
 def map_figures(out_dir: Path, quality: Quality, progress_for: Callable[[str], Progress]
                 ) -> tuple[list[FigureRecord], list[Claim]]:
     """Figs. 8a-b and 11a-b, the gamma maps, and the claims read off them."""
-    from stickslip.plot.maps import occurrence_map_plot
+    from stickslip.plot.figure import new_grid
 
     lams = np.geomspace(*quality.lam_range, quality.map_lam)
     zetas = np.linspace(*quality.zeta_range, quality.map_zeta)
@@ -73,11 +72,10 @@ def map_figures(out_dir: Path, quality: Quality, progress_for: Callable[[str], P
                                   "(39), (b) optimal foundation with Eq. (37)"),
         (11, ("k_half", "k_double"), "Fig. 11: occurrence maps, (a) K = K_opt/2, (b) K = 2 K_opt"),
     ):
-        fig = Figure(figsize=(12.0, 5.0), layout="constrained")
-        axes = fig.subplots(1, 2, sharey=True)
+        fig, axes = new_grid(1, 2, figsize=(12.0, 5.0), sharey=True)
         for ax, key, letter in zip(axes, keys, "ab", strict=True):
-            occurrence_map_plot(maps[key], ax=ax)
-            ax.set_title(f"({letter}) {specs[key].describe()}", fontsize="small")
+            maps[key].plot(ax=ax, title=f"({letter}) {specs[key].describe()}")
+            ax.title.set_fontsize("small")
         fig.suptitle(title)
         figures.append(save_figure(fig, out_dir, f"fig{number:02d}", title,
                                    [paths[k] for k in keys]))
