@@ -11,6 +11,7 @@ text, set in points, fits its boxes whatever the numbers.
 from __future__ import annotations
 
 import math
+import textwrap
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -129,7 +130,7 @@ def design_flowchart_plot(
     report: DesignReport,
     *,
     ax: Axes | None = None,
-    title: str | None = "Design procedure of the paper's Fig. 16, worked example",
+    title: str | None = "Design procedure of the paper's Fig. 16",
 ) -> PlotResult:
     """Draw the design procedure of the paper's Fig. 16 with the numbers of ``report``.
 
@@ -197,10 +198,11 @@ def design_flowchart_plot(
     ])
     optimum = below(decision, 0.85)
     header = "5. Given foundation, dimensionless" if given else "5. Optimal foundation, Eqs. (28)-(30)"
-    chart.box(optimum, header, [
-        rf"$M_{{opt}}$ = {_num(f['M'])},   $K_{{opt}}$ = {_num(f['K'])},   "
-        rf"$\zeta_{{a,opt}}$ = {_num(f['zeta_a'])}",
-    ], "step")
+    symbols = (r"$M$", r"$K$", r"$\zeta_a$") if given else (
+        r"$M_{opt}$", r"$K_{opt}$", r"$\zeta_{a,opt}$")
+    chart.box(optimum, header, ["   ".join(
+        f"{symbol} = {_num(f[key])}," for symbol, key in zip(symbols, ("M", "K", "zeta_a"), strict=True)
+    ).rstrip(",")], "step")
     physical = below(optimum, 0.85)
     chart.box(physical, "6. Foundation in SI units", [
         f"$m_a$ = {_num(f['m_a'], 'kg')},   $k_a$ = {_num(f['k_a'], 'N/m')},   "
@@ -228,7 +230,7 @@ def design_flowchart_plot(
     ], "note")
     chart.arrow((groups.right, groups.middle), (rigid.left, groups.middle), bold=False)
     stop = _Box(side_x, decision.middle + 0.6, side_w, 1.2)
-    chart.box(stop, "Eq. (38) fails", ["the tuned foundation cannot",
+    chart.box(stop, "Eq. (38) fails", ["the foundation cannot",
                                        "suppress stick-slip: redesign",
                                        r"the machine ($\lambda$, $\zeta$)"], "stop")
     chart.right(decision, stop, "no", bold=not holds)
@@ -239,12 +241,15 @@ def design_flowchart_plot(
         f"with foundation: {verdicts['foundation']['simulation']}",
     ], "note")
     chart.right(redesign, check, bold=False)
+    bottom = redesign.bottom - 0.3
     if d["warnings"]:
-        chart.artists.append(ax.text(0.1, 0.05, "\n".join(d["warnings"]), ha="left", va="bottom",
-                                     fontsize=FONT_SIZE - 1, color="#b03a2e", wrap=True))
+        lines = [line for warning in d["warnings"] for line in textwrap.wrap(warning, 120)]
+        chart.artists.append(ax.text(0.3, redesign.bottom - 0.15, "\n".join(lines), ha="left",
+                                     va="top", fontsize=FONT_SIZE - 1, color="#b03a2e"))
+        bottom -= 0.2 * len(lines)
 
     ax.set_xlim(0.0, width)
-    ax.set_ylim(redesign.bottom - 0.3, height)
+    ax.set_ylim(bottom, height)
     ax.set_aspect("equal")
     ax.axis("off")
     if title:
