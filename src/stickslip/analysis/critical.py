@@ -116,7 +116,7 @@ def bisect_crossings(
                 b[2] = float(mid)
         active = [b for b in active if b[4] and not _narrow(b[1], b[2], rtol)]
     crossings = [
-        (int(j), Crossing(math.sqrt(lo * hi), lo, hi, onset=v_lo == _STEADY, converged=ok))
+        (int(j), Crossing(math.sqrt(lo * hi), lo, hi, onset=v_lo == _STEADY, converged=bool(ok)))
         for j, lo, hi, v_lo, ok in state
     ]
     return crossings, n_runs

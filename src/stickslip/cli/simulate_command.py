@@ -31,9 +31,11 @@ def parse_initial(text: str, n_dof: int) -> InitialState | None:
             f"--initial {text!r} has {len(values)} numbers; expected {2 * n_dof} "
             f"(positions then velocities of {n_dof} DOF)"
         )
+    import numpy as np
+
     from stickslip.model.initial import InitialState
 
-    return InitialState(values[:n_dof], values[n_dof:], f"user-defined: {text}")
+    return InitialState(np.array(values[:n_dof]), np.array(values[n_dof:]), f"user-defined: {text}")
 
 
 def simulate(

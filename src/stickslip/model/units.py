@@ -50,7 +50,10 @@ def _parse(flag: str, text: str, what: str) -> tuple[float, str]:
         raise ValueError(f"{flag} {text!r}: use a decimal point, not a comma (one number and a unit)")
     match = _NUMBER_THEN_UNIT.match(text)
     if match is None:
-        raise ValueError(f"{flag} {text!r} does not start with a number; expected e.g. '2.5 kg'")
+        if text.split()[0].lower().lstrip("+-") in {"nan", "inf", "infinity"}:
+            raise ValueError(f"{flag} {text!r} must be finite")
+        raise ValueError(f"{flag} {text!r} is not a quantity: expected one number and an optional "
+                         "unit, e.g. '2.5 kg'")
     number, unit = match.group(1), match.group(2)
     if re.search(r"(?<![\^*])\b\d", unit) or unit.startswith(("*", "/", "^", "+", "-")):
         raise ValueError(f"{flag} {text!r} must be one number followed by a unit, "
