@@ -16,9 +16,10 @@ reading reproduces Eq. (31).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from stickslip.model._validate import non_negative, positive
+from stickslip.model.friction import CoulombFriction, FrictionLaw
 
 
 @dataclass(frozen=True)
@@ -34,11 +35,15 @@ class Slider:
         Damping ratio of the primary system ``c / (2 sqrt(m k))``, dimensionless, >= 0.
     gamma : float, default 2
         ``mu_k / (mu_s - mu_k)``, dimensionless, >= 0. The paper uses 2 throughout.
+    friction : FrictionLaw, keyword-only, default CoulombFriction()
+        Friction magnitude while sliding as a function of the sliding speed
+        (:mod:`stickslip.model.friction`); the default is the paper's two-valued law.
     """
 
     lam: float
     zeta: float
     gamma: float = 2.0
+    friction: FrictionLaw = field(default_factory=CoulombFriction, kw_only=True)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "lam", positive("lambda", self.lam))

@@ -143,17 +143,23 @@ def run_batch(
     with the layouts ``F_*`` and ``I_*`` of :mod:`stickslip.kernel.engine`. This is also the
     task that Dask workers run, so it only takes plain, picklable data.
     """
-    from stickslip.kernel.sweep import run_cells
+    from stickslip.kernel.sweep import coulomb_tables, run_cells
 
     gammas = np.full(batch.lams.shape, float(batch.gamma))
+    lams = np.ascontiguousarray(batch.lams, dtype=np.float64)
+    edges, intercepts, slopes, n_bands = coulomb_tables(lams, gammas)
     with numba_threads(n_threads):
         fout, iout = run_cells(
             structures.masses,
             structures.dampings,
             structures.stiffnesses,
             np.ascontiguousarray(batch.structure_index, dtype=np.int64),
-            np.ascontiguousarray(batch.lams, dtype=np.float64),
+            lams,
             gammas,
+            edges,
+            intercepts,
+            slopes,
+            n_bands,
             float(settings.t_max),
             int(settings.max_events),
             float(settings.cycle_tol),

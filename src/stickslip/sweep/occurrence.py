@@ -473,6 +473,7 @@ def verdict_codes(status: NDArray[np.integer[Any]]) -> NDArray[np.int8]:
     codes = np.full(np.shape(status), Verdict.UNDETERMINED.code, dtype=np.int8)
     codes[status == RunStatus.CERTIFIED_STEADY.code] = Verdict.STEADY_SLIDING.code
     codes[status == RunStatus.CERTIFIED_CYCLE.code] = Verdict.STICK_SLIP.code
+    codes[status == RunStatus.CERTIFIED_OSCILLATION.code] = Verdict.SLIP_OSCILLATION.code
     return codes
 
 
