@@ -139,8 +139,13 @@ def _polynomials(sig_rows, start, sign, offset, u, row, coef):
 
 @njit(cache=True)
 def first_reach(sig_rows, start, sign, offset, sig0, sig1, w0, h, ahat, u, have_u, row, coef,
-                bp):
+                bp, departing):
     """First ``s`` in ``[0, h]`` where the event function ``g`` reaches 0.
+
+    ``departing``: the state has just left ``g = 0`` (a breakaway onto a slip mode whose
+    belt-speed event this is); a rise of ``g`` from exactly 0 on the first monotone piece is
+    then rounding noise of a departure with zero acceleration (``mu(0+) = mu_s``), not an
+    event. A departure with nonzero acceleration never has such a piece.
 
     ``g = sign * sig[start] + offset``; ``g <= 0`` is the safe side. Returns ``inf`` when
     ``g`` stays negative on the step. The cheap test (endpoint signs of ``g`` to ``g'''``)
@@ -163,8 +168,10 @@ def first_reach(sig_rows, start, sign, offset, sig0, sig1, w0, h, ahat, u, have_
         gb = poly_value(coef, 0, bp[i + 1])
         if gb >= 0.0 and gb > ga:
             if ga >= 0.0:
-                return bp[i]
-            return monotone_root(coef, 0, bp[i], bp[i + 1], ga, gb)
+                if not (departing and i == 0):
+                    return bp[i]
+            else:
+                return monotone_root(coef, 0, bp[i], bp[i + 1], ga, gb)
         ga = gb
     return np.inf
 
@@ -304,6 +311,8 @@ def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_m
     last_bound = np.nan
 
     fresh = True  # the signature of w must be recomputed (at the start and after events)
+    just_broke_away = False  # the first step after a breakaway (see first_reach)
+    departing = False
     while True:
         if mode == eq_mode and status == STATUS_RUNNING:
             last_bound = lyapunov_bound(w, z_eq, lyap, kappa, n_lyap)
@@ -334,12 +343,15 @@ def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_m
             matvec(phi[mode], w, w1)
         signature(sig_rows[mode], w1, sig1)
         n_steps += 1
+        departing = just_broke_away
+        just_broke_away = False
 
         s_ev = np.inf
         e_ev = -1
         for e in range(ev_count[mode]):
             s = first_reach(sig_rows[mode], f_start[mode, e], f_sign[mode, e], f_offset[mode, e],
-                            sig0, sig1, w, h, ahat[mode], u, have_u, row, coef, bp)
+                            sig0, sig1, w, h, ahat[mode], u, have_u, row, coef, bp,
+                            departing and ev_next[mode, e] == NEXT_BELT)
             if s < s_ev:
                 s_ev = s
                 e_ev = e
@@ -386,6 +398,7 @@ def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_m
         n_ev += 1
         if mode == STICK:
             new_mode = SLIP_I if e_ev == 0 else SLIP_II
+            just_broke_away = True
             cur_stick += t - stick_start
             j = n_bk % ring
             bk_t[j] = t
