@@ -52,8 +52,11 @@ if TYPE_CHECKING:
 
 Progress = Callable[[int, int], None]
 
-#: Verdict codes in the order of their integer values (``Verdict.code``).
-VERDICTS: tuple[Verdict, ...] = tuple(sorted(Verdict, key=lambda v: v.code))
+#: Verdict codes in the order of their integer values (``Verdict.code``). Maps run the Coulomb
+#: law, which cannot slip-oscillate; the slip-oscillation code (3) joins once maps take a law.
+VERDICTS: tuple[Verdict, ...] = tuple(
+    v for v in sorted(Verdict, key=lambda v: v.code) if v is not Verdict.SLIP_OSCILLATION
+)
 #: Run statuses (the certificate of a cell) in the order of their integer codes.
 STATUSES: tuple[RunStatus, ...] = tuple(sorted(RunStatus, key=lambda s: s.code))
 
