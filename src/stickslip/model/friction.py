@@ -412,6 +412,8 @@ class StribeckFriction:
             nodes = sorted(nodes + list(mids))
             if len(nodes) > MAX_BANDS:
                 raise ValueError(f"the Stribeck law needs more than {MAX_BANDS} bands; loosen the tolerance")
+        else:
+            raise ValueError("the Stribeck interpolant did not reach its tolerance in 60 refinements")
         return np.array(nodes)
 
     def bands(self, lam: float, gamma: float) -> BandTable:
