@@ -31,7 +31,9 @@ from stickslip.kernel.system import (
     SLIP_II,
     STICK,
     find_band,
+    mode_band,
     mode_code,
+    mode_kind,
     prepare_bands,
 )
 
@@ -73,23 +75,40 @@ N_INT = 6
 
 
 @njit(cache=True)
-def lyapunov_bound(w, z_eq, lyap, kappa, n_lyap):
-    """Smallest certified bound on ``sup |v_0|`` over the future of the equilibrium's mode.
+def lyapunov_applies(band, lyap_lo, lyap_hi, n_lyap):
+    """True when some Lyapunov function holds in slip-I of ``band``."""
+    for p in range(n_lyap):
+        if lyap_lo[p] <= band <= lyap_hi[p]:
+            return True
+    return False
 
-    The Lyapunov functions are centred at the steady-sliding equilibrium ``z_eq`` (the
-    origin for the Coulomb law, where ``w - z_eq`` is ``w`` exactly).
+
+@njit(cache=True)
+def lyapunov_bound(w, z_eq, lyap, kappa, n_lyap, band, lyap_lo, lyap_hi, margin):
+    """Smallest bound on ``sup |v_0|`` over the future, and whether one certifies steady sliding.
+
+    Each Lyapunov function ``p`` valid in slip-I of ``band`` gives ``|v_0| <= bound_p`` for
+    as long as the motion stays in its bands; ``bound_p < margin[p]`` proves that it does, for
+    ever. The functions are centred at the steady-sliding equilibrium ``z_eq`` (the origin
+    for the Coulomb law, where ``w - z_eq`` is ``w`` exactly).
     """
     nz = lyap.shape[1]
     best = np.inf
+    certified = False
     for p in range(n_lyap):
+        if band < lyap_lo[p] or band > lyap_hi[p]:
+            continue
         acc = 0.0
         for i in range(nz):
             row = 0.0
             for j in range(nz):
                 row += lyap[p, i, j] * (w[j] - z_eq[j])
             acc += (w[i] - z_eq[i]) * row
-        best = min(best, np.sqrt(max(acc, 0.0) * kappa[p]))
-    return best
+        bound = np.sqrt(max(acc, 0.0) * kappa[p])
+        best = min(best, bound)
+        if bound < margin[p]:
+            certified = True
+    return best, certified
 
 
 @njit(cache=True)
@@ -249,7 +268,8 @@ def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_m
     nz = 2 * n
     m = nz + 1
     (ahat, phi, hstep, sig_rows, f_start, f_sign, f_offset, stick_row, lyap, kappa, n_lyap,
-     ev_count, ev_next, ev_vel, eq_mode, z_eq, margin, sec_event) = prepare_bands(
+     ev_count, ev_next, ev_vel, eq_mode, z_eq, lyap_lo, lyap_hi, margin, sec_mode,
+     sec_event) = prepare_bands(
         mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
     cap = max_events + 1 if record else 1
     seg_t = np.empty(cap)
@@ -314,9 +334,11 @@ def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_m
     just_broke_away = False  # the first step after a breakaway (see first_reach)
     departing = False
     while True:
-        if mode == eq_mode and status == STATUS_RUNNING:
-            last_bound = lyapunov_bound(w, z_eq, lyap, kappa, n_lyap)
-            if last_bound < margin:
+        if mode_kind(mode) == SLIP_I and status == STATUS_RUNNING and lyapunov_applies(
+                mode_band(mode), lyap_lo, lyap_hi, n_lyap):
+            last_bound, certified = lyapunov_bound(w, z_eq, lyap, kappa, n_lyap, mode_band(mode),
+                                                   lyap_lo, lyap_hi, margin)
+            if certified:
                 status = STATUS_STEADY
                 fsum[F_T_CERTIFIED] = t
                 if not run_to_t_max:
@@ -454,7 +476,7 @@ def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_m
             # a friction band edge: the slider velocity is the edge's, the band changes
             w[n] = ev_vel[mode, e_ev]
             new_mode = ev_next[mode, e_ev]
-            if mode == eq_mode and e_ev == sec_event:
+            if mode == sec_mode and e_ev == sec_event:
                 j = n_os % ring
                 os_t[j] = t
                 os_z[j] = w[:nz]

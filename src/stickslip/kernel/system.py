@@ -212,9 +212,17 @@ def prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slope
     the number of valid Lyapunov matrices, the event tables ``ev_count (M,)``,
     ``ev_next (M, 2)`` (next mode, ``NEXT_BELT`` for the belt speed) and ``ev_vel (M, 2)``
     (slider velocity on the band edge), and the steady-sliding data: the slip-I mode of the
-    band holding ``u = 1`` (``eq_mode``), its equilibrium ``z_eq (2n,)``, the ``margin``
-    the Lyapunov bound on ``|xi'|`` must stay below (distance from ``u = 1`` to the band's
-    edges) and the event of ``eq_mode`` used as Poincare section (-1: none).
+    band holding ``u = 1`` (``eq_mode``), its equilibrium ``z_eq (2n,)``, for each Lyapunov
+    function the slip-I bands ``lyap_lo..lyap_hi`` where it is valid and the ``margin``
+    its bound on ``|xi'|`` must stay below (distance from ``u = 1`` to the edges of those
+    bands), and the mode and event used as Poincare section (-1: none).
+
+    The energy ``V = (q - q_eq)' K (q - q_eq)/2 + v' Mass v/2`` obeys
+    ``dV/dt = -v' C v - sigma(u) v_0^2`` in slip-I with the secant slope
+    ``sigma(u) = (F(u) - F(1)) / (u - 1)`` (``F`` continuous), so it never grows on bands
+    where ``C + sigma e_0 e_0'`` is positive semi-definite; on a band ``sigma`` is monotone,
+    so its extremes are at the band edges. The other function (``a' P + P a = -I``) is the
+    equilibrium band's only.
     ``M = 2 n_bands + 1`` modes.
 
     Signature: the few scalars every event and monitor of a mode is made of, so that each
@@ -302,25 +310,135 @@ def prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slope
         x, _ = gauss_solve(stiffness, e0)
         for i in range(n):
             z_eq[i] = force_eq * x[i]
-    margin = min(1.0 - edges[b_eq], edges[b_eq + 1] - 1.0)
-    use_energy = True
-    if s_eq < 0.0:
-        damp_b = damping.copy()
-        damp_b[0, 0] += s_eq
-        use_energy = is_positive_definite(damp_b)
+    # energy certificate: valid on the bands [e_lo, e_hi] around u = 1 where C + sigma e_0 e_0'
+    # stays positive semi-definite for every secant slope sigma = (F(u) - F(1)) / (u - 1)
+    f_one = intercepts[b_eq] + s_eq
+    sigma_min = s_eq
+    use_energy = _damping_ok(damping, sigma_min)
+    e_lo = b_eq
+    e_hi = b_eq
+    if use_energy:
+        if edges[b_eq] == 1.0 and b_eq > 0:
+            # the band below also touches u = 1 (its secant is its slope, up to rounding)
+            sigma_min = min(sigma_min, slopes[b_eq - 1],
+                            _secant(intercepts, slopes, b_eq - 1, edges[b_eq - 1], f_one))
+            if _damping_ok(damping, sigma_min):
+                e_lo = b_eq - 1
+            else:
+                sigma_min = s_eq
+        while e_lo > 0:
+            sig = _secant(intercepts, slopes, e_lo - 1, edges[e_lo - 1], f_one)
+            cand = min(sigma_min, sig)
+            if not _damping_ok(damping, cand):
+                break
+            sigma_min = cand
+            e_lo -= 1
+        while e_hi < nb - 1:
+            if edges[e_hi + 2] < np.inf:
+                sig = _secant(intercepts, slopes, e_hi + 1, edges[e_hi + 2], f_one)
+            else:
+                sig = slopes[e_hi + 1]  # the secant tends to the last slope
+            cand = min(sigma_min, sig)
+            if not _damping_ok(damping, cand):
+                break
+            sigma_min = cand
+            e_hi += 1
     lyap, kappa, n_lyap = lyapunov_data(mass, damping, stiffness,
                                         ahat[eq_mode, : m - 1, : m - 1], use_energy)
-    # Poincare section for slip oscillations: eq_mode leaving through its nearer speed edge
-    # (not the belt speed, which is the stick logic)
+    # per Lyapunov function: the slip-I bands where it holds and the margin on |xi'| that
+    # keeps the sliding speed inside them
+    lyap_lo = np.full(3, b_eq, dtype=np.int64)
+    lyap_hi = np.full(3, b_eq, dtype=np.int64)
+    margin = np.full(3, min(1.0 - edges[b_eq], edges[b_eq + 1] - 1.0))
+    if use_energy:
+        lyap_lo[0] = e_lo
+        lyap_hi[0] = e_hi
+        margin[0] = min(1.0 - edges[e_lo], edges[e_hi + 1] - 1.0)
+    lyap3 = np.zeros((3, 2 * n, 2 * n))
+    kappa3 = np.zeros(3)
+    for p in range(n_lyap):
+        lyap3[p] = lyap[p]
+        kappa3[p] = kappa[p]
+    if b_eq > 0 and edges[b_eq] == 1.0:
+        # the equilibrium sits on a band edge (e.g. a table point at u = 1): both bands share
+        # it, so a common quadratic Lyapunov function of their slip-I matrices holds on both
+        p_common, ok = _common_lyapunov(ahat[mode_code(SLIP_I, b_eq - 1), : m - 1, : m - 1],
+                                        ahat[eq_mode, : m - 1, : m - 1])
+        if ok:
+            e_v = np.zeros(2 * n)
+            e_v[n] = 1.0
+            x, ok = gauss_solve(p_common, e_v)
+            if ok and x[n] > 0.0:
+                lyap3[n_lyap] = p_common
+                kappa3[n_lyap] = x[n]
+                lyap_lo[n_lyap] = b_eq - 1
+                lyap_hi[n_lyap] = b_eq
+                margin[n_lyap] = min(1.0 - edges[b_eq - 1], edges[b_eq + 1] - 1.0)
+                n_lyap += 1
+    lyap = lyap3
+    kappa = kappa3
+    # Poincare section for slip oscillations: slip-I leaving, outwards, through the band edge
+    # nearest to u = 1 at a positive distance (an oscillation that crosses it has a velocity
+    # amplitude of at least that distance, so a motion settling on the equilibrium never
+    # repeats there); not the belt speed, which is the stick logic
+    sec_mode = -1
     sec_event = -1
     dist = np.inf
-    if b_eq > 0:
+    if b_eq > 0 and edges[b_eq] < 1.0:
+        sec_mode = eq_mode
         sec_event = 0
         dist = 1.0 - edges[b_eq]
+    elif b_eq > 1 and edges[b_eq] == 1.0:
+        sec_mode = mode_code(SLIP_I, b_eq - 1)
+        sec_event = 0
+        dist = 1.0 - edges[b_eq - 1]
     if edges[b_eq + 1] < np.inf and edges[b_eq + 1] - 1.0 < dist:
+        sec_mode = eq_mode
         sec_event = 1
     return (ahat, phi, hstep, sig_rows, f_start, f_sign, f_offset, stick_row, lyap, kappa, n_lyap,
-            ev_count, ev_next, ev_vel, eq_mode, z_eq, margin, sec_event)
+            ev_count, ev_next, ev_vel, eq_mode, z_eq, lyap_lo, lyap_hi, margin, sec_mode, sec_event)
+
+
+@njit(cache=True)
+def _common_lyapunov(a0, a1):
+    """``P`` with ``a_i' P + P a_i`` negative definite for both matrices; ``(P, ok)``.
+
+    Candidates: the solutions of ``a' P + P a = -I`` for ``a0``, ``a1`` and their mean; the
+    first that works for both matrices is returned.
+    """
+    nz = a0.shape[0]
+    a0 = np.ascontiguousarray(a0)
+    a1 = np.ascontiguousarray(a1)
+    mean = 0.5 * (a0 + a1)
+    for c in range(3):
+        cand = a0 if c == 0 else (a1 if c == 1 else mean)
+        p, ok = solve_lyapunov(cand, np.eye(nz))
+        if not ok or not is_positive_definite(p):
+            continue
+        good = True
+        for a in (a0, a1):
+            q = -(a.T @ p + p @ a)
+            if not is_positive_definite(0.5 * (q + q.T)):
+                good = False
+        if good:
+            return p, True
+    return np.eye(nz), False
+
+
+@njit(cache=True)
+def _damping_ok(damping, sigma):
+    """``C + sigma e_0 e_0'`` is positive semi-definite (``C`` is, by assumption, as before)."""
+    if sigma >= 0.0:
+        return True
+    damp = damping.copy()
+    damp[0, 0] += sigma
+    return is_positive_definite(damp)
+
+
+@njit(cache=True)
+def _secant(intercepts, slopes, band, u, f_one):
+    """``(F(u) - F(1)) / (u - 1)`` with ``F`` of ``band``."""
+    return (intercepts[band] + slopes[band] * u - f_one) / (u - 1.0)
 
 
 @njit(cache=True)
