@@ -268,7 +268,7 @@ def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_m
     nz = 2 * n
     m = nz + 1
     (ahat, phi, hstep, sig_rows, f_start, f_sign, f_offset, stick_row, lyap, kappa, n_lyap,
-     ev_count, ev_next, ev_vel, eq_mode, z_eq, lyap_lo, lyap_hi, margin, sec_mode,
+     ev_count, ev_next, ev_vel, _eq_mode, z_eq, lyap_lo, lyap_hi, margin, sec_mode,
      sec_event) = prepare_bands(
         mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
     cap = max_events + 1 if record else 1
