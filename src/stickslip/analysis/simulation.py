@@ -189,7 +189,10 @@ class SimulationResult:
 
     @property
     def event_modes(self) -> NDArray[np.int64]:
-        """Mode entered at each switch (codes of :class:`Mode`)."""
+        """Mode entered at each switch (codes of :class:`Mode`; with a velocity-dependent
+        friction law a band change is a switch too, and band ``b >= 1`` has the codes
+        ``1 + 2b`` (slip-I) and ``2 + 2b`` (slip-II), see
+        :func:`stickslip.kernel.system.mode_kind_band`)."""
         return self.segment_modes[1:]
 
     @property
