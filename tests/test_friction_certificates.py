@@ -42,3 +42,15 @@ def test_a_decaying_oscillation_is_not_a_slip_oscillation() -> None:
     structure = elastic_foundation(0.1, Foundation(1.5, 1.0, 0.5))
     r = simulate(structure, Slider(0.45, 0.1, friction=TABLE), run_to_t_max=True, t_max=400.0)
     assert r.verdict is Verdict.STEADY_SLIDING
+
+
+def test_stability_at_a_kink_reports_the_worse_side() -> None:
+    # TABLE has slopes -0.4 lam below u = 1 and +0.3 lam above (f from 0.5 to 0.3 to 0.6)
+    from stickslip.analysis.stability import one_sided_slopes, steady_sliding_stability
+
+    slider = Slider(0.45, 0.1, friction=TABLE)
+    left, right = one_sided_slopes(slider)
+    assert left == pytest.approx(-0.4 * 0.45) and right == pytest.approx(0.3 * 0.45)
+    stab = steady_sliding_stability(rigid_base(0.1), slider)
+    assert stab.kink and stab.slope == left
+    assert stab.growth_rate == pytest.approx(-(0.1 - 0.5 * 0.4 * 0.45), abs=1e-12)

@@ -46,6 +46,10 @@ class SteadySlidingStability:
         ``growth_rate < 0``.
     routh_hurwitz : bool or None
         The closed-form Routh-Hurwitz verdict for 1 and 2 DOF, None otherwise.
+    kink : bool
+        The law has a kink at ``u = 1`` (e.g. a table point at the belt speed): the
+        linearisation is not unique; the worse of the two one-sided slopes is reported (both
+        sides stable is necessary for stability; the engine's certificate decides).
     """
 
     slope: float
@@ -54,6 +58,7 @@ class SteadySlidingStability:
     growth_rate: float
     stable: bool
     routh_hurwitz: bool | None
+    kink: bool = False
 
 
 def linearised_damping(structure: Structure, slope: float) -> FloatArray:
@@ -138,6 +143,20 @@ def routh_hurwitz_2dof(structure: Structure, slope: float) -> bool:
     )
 
 
+def one_sided_slopes(slider: Slider) -> tuple[float, float]:
+    """``dF/du`` just below and just above ``u = 1``: the exact derivative for smooth laws,
+    the band slopes for the exact piecewise-linear ones (they differ at a kink)."""
+    law = slider.friction
+    if not law.exact:
+        s = float(law.slope_at(1.0, slider.lam, slider.gamma))
+        return s, s
+    edges, _, slopes = law.bands(slider.lam, slider.gamma)
+    b = int(np.searchsorted(edges, 1.0, side="right") - 1)
+    right = float(slopes[b])
+    left = float(slopes[b - 1]) if b > 0 and edges[b] == 1.0 else right
+    return left, right
+
+
 def steady_sliding_stability(structure: Structure, slider: Slider) -> SteadySlidingStability:
     """Eigenvalues, growth rate and Routh-Hurwitz verdict of steady sliding.
 
@@ -147,11 +166,16 @@ def steady_sliding_stability(structure: Structure, slider: Slider) -> SteadySlid
         Dimensionless matrices, contact on DOF 0.
     slider : Slider
         ``lambda``, ``gamma`` and the friction law; the slope is the law's exact derivative
-        at ``u = 1`` (for Stribeck not the piecewise-linear one).
+        at ``u = 1`` (for Stribeck not the piecewise-linear one; at a kink of a table the
+        worse side, see :func:`one_sided_slopes`).
     """
-    slope = float(slider.friction.slope_at(1.0, slider.lam, slider.gamma))
-    eig = np.asarray(np.linalg.eigvals(slip_matrix(structure, slope)), dtype=np.complex128)
-    growth = float(np.max(eig.real))
+    left, right = one_sided_slopes(slider)
+    slope, eig, growth = right, np.zeros(0, dtype=np.complex128), -np.inf
+    for s in (right, left) if left != right else (right,):
+        e = np.asarray(np.linalg.eigvals(slip_matrix(structure, s)), dtype=np.complex128)
+        g = float(np.max(e.real))
+        if g > growth:
+            slope, eig, growth = s, e, g
     rh: bool | None = None
     if structure.n_dof == 1:
         scale = float(np.sqrt(structure.mass[0, 0] * structure.stiffness[0, 0]))
@@ -159,4 +183,4 @@ def steady_sliding_stability(structure: Structure, slider: Slider) -> SteadySlid
         rh = routh_hurwitz_1dof(zeta, -0.5 * slope / scale)
     elif structure.n_dof == 2:
         rh = routh_hurwitz_2dof(structure, slope)
-    return SteadySlidingStability(slope, -0.5 * slope, eig, growth, growth < 0.0, rh)
+    return SteadySlidingStability(slope, -0.5 * slope, eig, growth, growth < 0.0, rh, left != right)
