@@ -10,7 +10,14 @@ included. A verdict is certified, never guessed from the tail of a time series:
 * ``stick-slip``: the state at a breakaway (end of a stick phase) repeats, to
   ``cycle_tol``, that of 1 to ``max_period`` breakaways before; the cycle's period and
   amplitude are then those of the repeating stretch.
-* ``undetermined``: neither before ``t_max`` or ``max_events``.
+* ``slip-oscillation`` (velocity-dependent friction only): a periodic motion that never
+  sticks; the state at a Poincare section (a friction-band edge next to steady sliding,
+  crossed outwards) repeats with no stick phase in between.
+* ``undetermined``: none of these before ``t_max`` or ``max_events``.
+
+The friction law is ``slider.friction`` (:mod:`stickslip.model.friction`); the result states
+how it was computed (``friction_description``) and the linear stability of steady sliding
+(:mod:`stickslip.analysis.stability`).
 """
 
 from __future__ import annotations
@@ -22,8 +29,10 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from stickslip.analysis.stability import steady_sliding_stability
 from stickslip.analysis.verdict import Mode, RunStatus, Verdict
 from stickslip.kernel import engine
+from stickslip.kernel.system import mode_kind_band
 from stickslip.model._validate import positive
 from stickslip.model.initial import InitialState, startup_state
 from stickslip.model.parameters import Slider
@@ -62,6 +71,14 @@ class SimulationResult:
         fraction of the period spent stuck. NaN without a cycle.
     max_velocity : float
         Largest slider velocity ``xi'`` reached in the run.
+    friction_description : str
+        The friction law and how it was computed (exact, or piecewise linear with its
+        law approximation tolerance).
+    growth_rate : float
+        Largest real part of the eigenvalues of the linearisation about steady sliding
+        (per unit ``tau``); positive: steady sliding is linearly unstable.
+    steady_sliding_stable : bool
+        ``growth_rate < 0``.
     """
 
     structure: Structure
@@ -90,6 +107,10 @@ class SimulationResult:
     segment_states: FloatArray = field(repr=False)
     breakaway_times: FloatArray = field(repr=False)
     final_state: FloatArray = field(repr=False)
+    friction_description: str = "coulomb, exact"
+    growth_rate: float = math.nan
+    steady_sliding_stable: bool = False
+    friction_bands: tuple[FloatArray, FloatArray, FloatArray] | None = field(default=None, repr=False)
 
     @property
     def event_times(self) -> FloatArray:
@@ -98,13 +119,21 @@ class SimulationResult:
 
     @property
     def event_modes(self) -> NDArray[np.int64]:
-        """Mode entered at each switch (codes of :class:`Mode`)."""
+        """Mode entered at each switch (codes of :class:`Mode`; with a velocity-dependent
+        friction law a band change is a switch too, and band ``b >= 1`` has the codes
+        ``1 + 2b`` (slip-I) and ``2 + 2b`` (slip-II), see
+        :func:`stickslip.kernel.system.mode_kind_band`)."""
         return self.segment_modes[1:]
 
     @property
     def initial_mode(self) -> Mode:
         """Friction state at ``tau = 0``."""
-        return Mode(int(self.segment_modes[0]))
+        return Mode(mode_kind_band(int(self.segment_modes[0]))[0])
+
+    def _bands(self) -> tuple[FloatArray, FloatArray, FloatArray]:
+        if self.friction_bands is not None:
+            return self.friction_bands
+        return self.slider.friction.bands(self.slider.lam, self.slider.gamma)
 
     def state_at(self, times: ArrayLikeFloat) -> tuple[FloatArray, FloatArray, NDArray[np.int64]]:
         """Exact positions, velocities and modes at the given times (dense output).
@@ -118,6 +147,7 @@ class SimulationResult:
         -------
         positions, velocities : ndarray, shape (len(times), n_dof)
         modes : ndarray of int, shape (len(times),)
+            Friction state (codes of :class:`Mode`; the friction band is not reported).
         """
         t = np.asarray(times, dtype=np.float64).reshape(-1)
         if t.size and (not np.all(np.isfinite(t)) or t.min() < 0.0 or t.max() > self.t_end):
@@ -130,6 +160,7 @@ class SimulationResult:
             st.stiffness,
             self.slider.lam,
             self.slider.gamma,
+            *self._bands(),
             self.segment_times,
             self.segment_modes,
             self.segment_states,
@@ -139,6 +170,8 @@ class SimulationResult:
         out[order] = states
         out_modes = np.empty_like(modes)
         out_modes[order] = modes
+        kinds = np.where(out_modes <= engine.STICK, out_modes, (out_modes - 3) % 2)
+        out_modes = kinds.astype(out_modes.dtype)
         n = st.n_dof
         return out[:, :n], out[:, n:], out_modes
 
@@ -166,6 +199,15 @@ class SimulationResult:
                 "damping_matrix": st.damping.tolist(),
                 "stiffness_matrix": st.stiffness.tolist(),
             }
+        coulomb = self.slider.friction.to_dict()["law"] == "coulomb"
+
+        def event(t: float, md: int) -> dict[str, Any]:
+            kind, band = mode_kind_band(md)
+            out: dict[str, Any] = {"t": float(t), "mode": Mode(kind).label}
+            if not coulomb:
+                out["band"] = band
+            return out
+
         return {
             "verdict": self.verdict.value,
             "certificate": self.certificate,
@@ -194,9 +236,11 @@ class SimulationResult:
             "initial_velocity": self.initial.velocity.tolist(),
             "n_events": int(self.event_times.size),
             "events": [
-                {"t": float(t), "mode": Mode(int(md)).label}
-                for t, md in zip(self.event_times, self.event_modes, strict=True)
+                event(t, int(md)) for t, md in zip(self.event_times, self.event_modes, strict=True)
             ],
+            "friction": {**self.slider.friction.to_dict(), "description": self.friction_description},
+            "growth_rate": num(self.growth_rate),
+            "steady_sliding_stable": bool(self.steady_sliding_stable),
         }
 
     def plot(self, **kwargs: Any) -> Any:
@@ -331,12 +375,14 @@ def simulate(
     if initial is None:
         initial = startup_state(structure, slider)
     z0 = initial.as_vector(structure.n_dof)
+    bands = slider.friction.bands(float(slider.lam), float(slider.gamma))
     seg_t, seg_mode, seg_state, bk_t, fsum, isum, z_end = engine.run(
         structure.mass,
         structure.damping,
         structure.stiffness,
         float(slider.lam),
         float(slider.gamma),
+        *bands,
         z0,
         float(opts.t_max),
         int(opts.max_events),
@@ -346,11 +392,29 @@ def simulate(
         bool(run_to_t_max),
     )
     status = RunStatus.from_code(int(isum[engine.I_STATUS]))
-    if status is RunStatus.CERTIFIED_STEADY:
+    n_bands = bands[1].size
+    description = slider.friction.describe() + (f" ({n_bands} bands)" if n_bands > 1 else "")
+    stability = steady_sliding_stability(structure, slider)
+    if status is RunStatus.CERTIFIED_STEADY and n_bands == 1:
         verdict = Verdict.STEADY_SLIDING
         certificate = (
             f"Lyapunov bound: |xi'| <= {fsum[engine.F_LYAPUNOV_BOUND]:.6g} < 1 for all "
             f"tau >= {fsum[engine.F_T_CERTIFIED]:.6g} in slip-I, so the slider never sticks again"
+        )
+    elif status is RunStatus.CERTIFIED_STEADY:
+        verdict = Verdict.STEADY_SLIDING
+        certificate = (
+            f"Lyapunov bound about steady sliding: |xi'| <= {fsum[engine.F_LYAPUNOV_BOUND]:.6g} "
+            f"for all tau >= {fsum[engine.F_T_CERTIFIED]:.6g}, so the sliding speed u = 1 - xi' "
+            f"stays inside the friction bands where the Lyapunov function holds and the slider "
+            f"never sticks again"
+        )
+    elif status is RunStatus.CERTIFIED_OSCILLATION:
+        verdict = Verdict.SLIP_OSCILLATION
+        certificate = (
+            f"Poincare-section state repeats after {int(isum[engine.I_CYCLE_K])} crossing(s) "
+            f"to {fsum[engine.F_CYCLE_MISMATCH]:.1e} (relative) with no stick phase; period "
+            f"{fsum[engine.F_PERIOD]:.6g}, amplitude {fsum[engine.F_AMPLITUDE]:.6g}"
         )
     elif status is RunStatus.CERTIFIED_CYCLE:
         verdict = Verdict.STICK_SLIP
@@ -388,4 +452,8 @@ def simulate(
         segment_states=seg_state,
         breakaway_times=bk_t,
         final_state=z_end,
+        friction_description=description,
+        growth_rate=stability.growth_rate,
+        steady_sliding_stable=stability.stable,
+        friction_bands=bands,
     )

@@ -243,3 +243,48 @@ def analytic_boundaries(
     label = f"Eq. (37), zeta_eq from {source.split(',')[0]}"
     lam = np.array([critical_lambda_approx(v) for v in zeta_eq])
     return [AnalyticBoundary("eq37", label, z, lam, zeta_eq)]
+
+
+def critical_lambda_linear(zeta: float, delta: float) -> float:
+    """Critical ``lambda`` of the rigid base with the linear friction law: Eq. (36) at ``zeta - delta``.
+
+    Derivation. With ``mu = mu_k - sigma v_r`` the dimensionless friction magnitude is
+    ``F(u) = gamma lambda - 2 delta u`` (``delta = sigma W / (2 sqrt(m k))``, ``u = 1 - xi'``
+    in slip-I). In the shifted coordinates of Eqs. (15)-(16) slip-I (Eq. 22 with this force)
+    reads ``xi'' + 2 zeta xi' + xi = F(u) - gamma lambda = -2 delta + 2 delta xi'``, i.e.
+
+        xi'' + 2 (zeta - delta) xi' + (xi + 2 delta) = 0.
+
+    With ``eta = xi + 2 delta`` and ``zeta_e = zeta - delta`` this is Nakano's slip-I
+    equation ``eta'' + 2 zeta_e eta' + eta = 0``. The stick force of Eq. (20) at ``xi' = 1``
+    is ``S = 2 zeta + xi = 2 (zeta - delta) + (xi + 2 delta) = 2 zeta_e eta' + eta`` at
+    ``eta' = 1``: the stick bounds ``-lambda (1 + 2 gamma) <= S <= lambda`` are the same in
+    ``eta``. Hence every breakaway happens at ``eta = lambda - 2 zeta_e``, ``eta' = 1``, the
+    breakaway state of Nakano's system with damping ``zeta_e``, and the slip-I trajectory
+    that follows (whether it returns to the belt speed, which decides stick-slip) is Nakano's.
+    The exact boundary is therefore Eq. (36) with ``zeta -> zeta_e``
+    (:func:`critical_lambda_exact`).
+
+    Validity:
+
+    * the startup stick phase must last (``S(0) = 2 zeta - gamma lambda <= lambda``, i.e.
+      ``2 zeta <= (1 + gamma) lambda_c``), so that the first breakaway is the one above;
+    * the floor of the law must not be reached. For ``delta > 0`` the friction is zero beyond
+      ``u* = gamma lambda / (2 delta)``; along slip-I from the breakaway the energy
+      ``eta^2 + eta'^2`` does not grow (``zeta_e >= 0``), so ``u = 1 - xi' <= 1 +
+      sqrt((lambda - 2 zeta_e)^2 + 1)``, and the result holds when ``u*`` exceeds this bound;
+    * ``zeta_e <= 0``: the slip-I motion does not decay, the slider returns to the belt speed:
+      always stick-slip, ``lambda_c = 0``; ``zeta_e >= 1``: never (``inf``).
+
+    Velocity strengthening (``delta < 0``) simply raises the effective damping.
+    """
+    zeta = non_negative("zeta", zeta)
+    try:
+        zeta_e = zeta - float(delta)
+    except (TypeError, ValueError):
+        raise ValueError(f"delta={delta!r} is not a number") from None
+    if not math.isfinite(zeta_e):
+        raise ValueError(f"delta={delta!r} must be finite")
+    if zeta_e <= 0.0:
+        return 0.0
+    return critical_lambda_exact(zeta_e)

@@ -37,11 +37,14 @@ class Verdict(StrEnum):
     STICK_SLIP = "stick-slip"
     STEADY_SLIDING = "steady-sliding"
     UNDETERMINED = "undetermined"
+    SLIP_OSCILLATION = "slip-oscillation"
 
     @property
     def code(self) -> int:
-        """Integer code used in datasets (``flag_values``)."""
-        return {"steady-sliding": 0, "stick-slip": 1, "undetermined": 2}[self.value]
+        """Integer code used in datasets (``flag_values``); codes never change meaning."""
+        return {"steady-sliding": 0, "stick-slip": 1, "undetermined": 2, "slip-oscillation": 3}[
+            self.value
+        ]
 
 
 class RunStatus(Enum):
@@ -61,6 +64,10 @@ class RunStatus(Enum):
         engine.STATUS_MAX_STEPS,
         f"step budget ({engine.MAX_STEPS} sub-steps) used up before a verdict: the structure "
         "is so stiff or so heavily damped that its time steps are tiny; check the parameters",
+    )
+    CERTIFIED_OSCILLATION = (
+        engine.STATUS_OSCILLATION,
+        "slip oscillation (never sticking) certified by a repeating Poincare-section state",
     )
 
     def __init__(self, code: int, message: str) -> None:
@@ -104,7 +111,7 @@ def status_flag_attributes() -> dict[str, Any]:
 
 
 def verdict_codes(status: NDArray[np.integer[Any]]) -> NDArray[np.int8]:
-    """Verdict code of each run status: certified steady 0, certified cycle 1, else 2.
+    """Verdict code of each run status: steady 0, stick-slip cycle 1, slip oscillation 3, else 2.
 
     Anything that is not a certificate (time horizon, event budget, an unknown status) is
     ``undetermined``: never rounded to a verdict.
@@ -112,4 +119,5 @@ def verdict_codes(status: NDArray[np.integer[Any]]) -> NDArray[np.int8]:
     codes = np.full(np.shape(status), Verdict.UNDETERMINED.code, dtype=np.int8)
     codes[status == RunStatus.CERTIFIED_STEADY.code] = Verdict.STEADY_SLIDING.code
     codes[status == RunStatus.CERTIFIED_CYCLE.code] = Verdict.STICK_SLIP.code
+    codes[status == RunStatus.CERTIFIED_OSCILLATION.code] = Verdict.SLIP_OSCILLATION.code
     return codes

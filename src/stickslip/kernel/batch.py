@@ -23,9 +23,14 @@ def startup_vector(stiffness, lam, gamma):
 
 
 @njit(parallel=True, cache=True)
-def run_cells(masses, dampings, stiffnesses, structure_index, lams, gammas, t_max, max_events,
-              cycle_tol, max_period):
+def run_cells(masses, dampings, stiffnesses, structure_index, lams, gammas, edges, intercepts,
+              slopes, n_bands, t_max, max_events, cycle_tol, max_period):
     """Run every cell from the startup state; cell ``c`` uses structure ``structure_index[c]``.
+
+    Cell ``c`` has the friction band table ``edges[c, :n_bands[c] + 1]``,
+    ``intercepts[c, :n_bands[c]]``, ``slopes[c, :n_bands[c]]`` (padded arrays of shapes
+    ``(n_cells, max_bands + 1)``, ``(n_cells, max_bands)``, ``(n_cells, max_bands)``); see
+    :func:`coulomb_tables` for the Coulomb law.
 
     Returns the float and integer summaries, shapes ``(n_cells, N_FLOAT)`` and
     ``(n_cells, N_INT)``, with the layouts of :mod:`stickslip.kernel.engine`.
@@ -36,8 +41,24 @@ def run_cells(masses, dampings, stiffnesses, structure_index, lams, gammas, t_ma
     for c in prange(n_cells):
         s = structure_index[c]
         z0 = startup_vector(stiffnesses[s], lams[c], gammas[c])
-        result = run(masses[s], dampings[s], stiffnesses[s], lams[c], gammas[c], z0, t_max,
+        nb = n_bands[c]
+        result = run(masses[s], dampings[s], stiffnesses[s], lams[c], gammas[c],
+                     edges[c, : nb + 1], intercepts[c, :nb], slopes[c, :nb], z0, t_max,
                      max_events, cycle_tol, max_period, False, False)
         fout[c] = result[4]
         iout[c] = result[5]
     return fout, iout
+
+
+def coulomb_tables(lams, gammas):
+    """Padded band tables ``(edges, intercepts, slopes, n_bands)`` of the Coulomb law per cell."""
+    lams = np.asarray(lams, dtype=np.float64)
+    gammas = np.asarray(gammas, dtype=np.float64)
+    n_cells = lams.shape[0]
+    edges = np.empty((n_cells, 2))
+    edges[:, 0] = 0.0
+    edges[:, 1] = np.inf
+    intercepts = (gammas * lams).reshape(n_cells, 1)
+    slopes = np.zeros((n_cells, 1))
+    n_bands = np.ones(n_cells, dtype=np.int64)
+    return edges, intercepts, slopes, n_bands

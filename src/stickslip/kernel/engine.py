@@ -26,10 +26,15 @@ from stickslip.kernel.system import (
     F_XI,
     N_ROWS,
     N_SIGNATURE,
+    NEXT_BELT,
     SLIP_I,
     SLIP_II,
     STICK,
-    prepare,
+    find_band,
+    mode_band,
+    mode_code,
+    mode_kind,
+    prepare_bands,
 )
 
 STATUS_RUNNING = 0
@@ -38,6 +43,8 @@ STATUS_CYCLE = 2
 STATUS_T_MAX = 3
 STATUS_MAX_EVENTS = 4
 STATUS_MAX_STEPS = 5
+#: a slip oscillation (periodic, never sticking) certified by a repeating section state
+STATUS_OSCILLATION = 6
 
 #: Bound on sub-steps per run. A very stiff or heavily damped structure needs tiny steps
 #: (h ||A|| <= 1/2); this keeps such a run to seconds, ending with a reported status.
@@ -68,19 +75,40 @@ N_INT = 6
 
 
 @njit(cache=True)
-def lyapunov_bound(w, lyap, kappa, n_lyap):
-    """Smallest certified bound on ``sup |v_0|`` over the future of slip-I."""
+def lyapunov_applies(band, lyap_lo, lyap_hi, n_lyap):
+    """True when some Lyapunov function holds in slip-I of ``band``."""
+    for p in range(n_lyap):
+        if lyap_lo[p] <= band <= lyap_hi[p]:
+            return True
+    return False
+
+
+@njit(cache=True)
+def lyapunov_bound(w, z_eq, lyap, kappa, n_lyap, band, lyap_lo, lyap_hi, margin):
+    """Smallest bound on ``sup |v_0|`` over the future, and whether one certifies steady sliding.
+
+    Each Lyapunov function ``p`` valid in slip-I of ``band`` gives ``|v_0| <= bound_p`` for
+    as long as the motion stays in its bands; ``bound_p < margin[p]`` proves that it does, for
+    ever. The functions are centred at the steady-sliding equilibrium ``z_eq`` (the origin
+    for the Coulomb law, where ``w - z_eq`` is ``w`` exactly).
+    """
     nz = lyap.shape[1]
     best = np.inf
+    certified = False
     for p in range(n_lyap):
+        if band < lyap_lo[p] or band > lyap_hi[p]:
+            continue
         acc = 0.0
         for i in range(nz):
             row = 0.0
             for j in range(nz):
-                row += lyap[p, i, j] * w[j]
-            acc += w[i] * row
-        best = min(best, np.sqrt(max(acc, 0.0) * kappa[p]))
-    return best
+                row += lyap[p, i, j] * (w[j] - z_eq[j])
+            acc += (w[i] - z_eq[i]) * row
+        bound = np.sqrt(max(acc, 0.0) * kappa[p])
+        best = min(best, bound)
+        if bound < margin[p]:
+            certified = True
+    return best, certified
 
 
 @njit(cache=True)
@@ -130,8 +158,13 @@ def _polynomials(sig_rows, start, sign, offset, u, row, coef):
 
 @njit(cache=True)
 def first_reach(sig_rows, start, sign, offset, sig0, sig1, w0, h, ahat, u, have_u, row, coef,
-                bp):
+                bp, departing):
     """First ``s`` in ``[0, h]`` where the event function ``g`` reaches 0.
+
+    ``departing``: the state has just left ``g = 0`` (a breakaway onto a slip mode whose
+    belt-speed event this is); a rise of ``g`` from exactly 0 on the first monotone piece is
+    then rounding noise of a departure with zero acceleration (``mu(0+) = mu_s``), not an
+    event. A departure with nonzero acceleration never has such a piece.
 
     ``g = sign * sig[start] + offset``; ``g <= 0`` is the safe side. Returns ``inf`` when
     ``g`` stays negative on the step. The cheap test (endpoint signs of ``g`` to ``g'''``)
@@ -154,8 +187,10 @@ def first_reach(sig_rows, start, sign, offset, sig0, sig1, w0, h, ahat, u, have_
         gb = poly_value(coef, 0, bp[i + 1])
         if gb >= 0.0 and gb > ga:
             if ga >= 0.0:
-                return bp[i]
-            return monotone_root(coef, 0, bp[i], bp[i + 1], ga, gb)
+                if not (departing and i == 0):
+                    return bp[i]
+            else:
+                return monotone_root(coef, 0, bp[i], bp[i + 1], ga, gb)
         ga = gb
     return np.inf
 
@@ -198,19 +233,29 @@ def mode_at_belt_speed(w, stick_row, lam, gamma):
 
 
 @njit(cache=True)
-def initial_mode(w, n, stick_row, lam, gamma):
-    """Mode of the initial state: by the slider velocity, or by Eq. (20) at belt speed."""
+def initial_mode(w, n, stick_row, lam, gamma, edges):
+    """Mode of the initial state: by the slider velocity (and its friction band), or by
+    Eq. (20) at belt speed."""
     if w[n] < 1.0:
-        return SLIP_I
+        return mode_code(SLIP_I, find_band(edges, 1.0 - w[n]))
     if w[n] > 1.0:
-        return SLIP_II
+        return mode_code(SLIP_II, find_band(edges, w[n] - 1.0))
     return mode_at_belt_speed(w, stick_row, lam, gamma)
 
 
 @njit(cache=True)
-def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, max_period,
-        record, run_to_t_max):
+def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_max, max_events,
+        cycle_tol, max_period, record, run_to_t_max):
     """Simulate from ``z0 = (q, v)`` until a verdict is certified, ``t_max`` or ``max_events``.
+
+    ``edges``, ``intercepts``, ``slopes``: the friction law's band table (see
+    :func:`stickslip.kernel.system.prepare_bands`); the Coulomb law is
+    ``([0, inf], [gamma lam], [0])``.
+
+    Verdicts: steady sliding (a Lyapunov bound keeps ``xi'`` inside the band of the
+    equilibrium for ever), a stick-slip cycle (repeating breakaway state) or a slip
+    oscillation (the state at a Poincare section, the equilibrium band's nearer speed edge
+    crossed outwards, repeats with no stick phase in between).
 
     With ``run_to_t_max`` the run goes on after the verdict until ``t_max`` (for figures);
     the verdict and its time ``F_T_CERTIFIED`` are those of the first certificate.
@@ -222,8 +267,10 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
     n = mass.shape[0]
     nz = 2 * n
     m = nz + 1
-    (ahat, phi, hstep, sig_rows, f_start, f_sign, f_offset, stick_row, lyap, kappa,
-     n_lyap) = prepare(mass, damping, stiffness, lam, gamma)
+    (ahat, phi, hstep, sig_rows, f_start, f_sign, f_offset, stick_row, lyap, kappa, n_lyap,
+     ev_count, ev_next, ev_vel, _eq_mode, z_eq, lyap_lo, lyap_hi, margin, sec_mode,
+     sec_event) = prepare_bands(
+        mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
     cap = max_events + 1 if record else 1
     seg_t = np.empty(cap)
     seg_mode = np.empty(cap, dtype=np.int64)
@@ -235,6 +282,12 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
     bk_dir = np.empty(ring, dtype=np.int64)
     interval = np.empty((ring, 4))  # xi min, xi max, v max, stick time per breakaway interval
     all_bk_t = np.empty(cap)
+    # Poincare-section states of slip oscillations, ring buffer like the breakaways
+    os_t = np.empty(ring)
+    os_z = np.empty((ring, nz))
+    os_stick = np.empty(ring, dtype=np.int64)
+    os_interval = np.empty((ring, 3))  # xi min, xi max, v max per section interval
+    n_os = 0
     fsum = np.full(N_FLOAT, np.nan)
     isum = np.zeros(N_INT, dtype=np.int64)
 
@@ -252,7 +305,7 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
     w[m - 1] = 1.0
 
     t = 0.0
-    mode = initial_mode(w, n, stick_row, lam, gamma)
+    mode = initial_mode(w, n, stick_row, lam, gamma, edges)
     n_seg = 0
     if record:
         seg_t[0] = 0.0
@@ -268,6 +321,9 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
     cur_vmax = w[n]
     cur_stick = 0.0
     max_v = w[n]
+    os_xmin = w[0]
+    os_xmax = w[0]
+    os_vmax = w[n]
     n_bk = 0
     n_ev = 0
     n_steps = 0
@@ -275,10 +331,14 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
     last_bound = np.nan
 
     fresh = True  # the signature of w must be recomputed (at the start and after events)
+    just_broke_away = False  # the first step after a breakaway (see first_reach)
+    departing = False
     while True:
-        if mode == SLIP_I and status == STATUS_RUNNING:
-            last_bound = lyapunov_bound(w, lyap, kappa, n_lyap)
-            if last_bound < 1.0:
+        if mode_kind(mode) == SLIP_I and status == STATUS_RUNNING and lyapunov_applies(
+                mode_band(mode), lyap_lo, lyap_hi, n_lyap):
+            last_bound, certified = lyapunov_bound(w, z_eq, lyap, kappa, n_lyap, mode_band(mode),
+                                                   lyap_lo, lyap_hi, margin)
+            if certified:
                 status = STATUS_STEADY
                 fsum[F_T_CERTIFIED] = t
                 if not run_to_t_max:
@@ -305,12 +365,15 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
             matvec(phi[mode], w, w1)
         signature(sig_rows[mode], w1, sig1)
         n_steps += 1
+        departing = just_broke_away
+        just_broke_away = False
 
         s_ev = np.inf
         e_ev = -1
-        for e in range(2 if mode == STICK else 1):
+        for e in range(ev_count[mode]):
             s = first_reach(sig_rows[mode], f_start[mode, e], f_sign[mode, e], f_offset[mode, e],
-                            sig0, sig1, w, h, ahat[mode], u, have_u, row, coef, bp)
+                            sig0, sig1, w, h, ahat[mode], u, have_u, row, coef, bp,
+                            departing and ev_next[mode, e] == NEXT_BELT)
             if s < s_ev:
                 s_ev = s
                 e_ev = e
@@ -331,15 +394,21 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
             cur_xmax = max(cur_xmax, w_end[0])
             cur_vmax = max(cur_vmax, 1.0)
             max_v = max(max_v, 1.0)
+            os_xmin = min(os_xmin, w[0])
+            os_xmax = max(os_xmax, w_end[0])
+            os_vmax = max(os_vmax, 1.0)
         else:
             lo, hi = value_range(sig_rows[mode], f_start[mode, F_XI], sig0, sig1, w, s_end,
                                  ahat[mode], u, have_u, row, coef, bp, cur_xmin, cur_xmax)
             cur_xmin = min(cur_xmin, lo)
             cur_xmax = max(cur_xmax, hi)
+            os_xmin = min(os_xmin, lo)
+            os_xmax = max(os_xmax, hi)
             lo, hi = value_range(sig_rows[mode], f_start[mode, F_VEL], sig0, sig1, w, s_end,
                                  ahat[mode], u, have_u, row, coef, bp, -np.inf, cur_vmax)
             cur_vmax = max(cur_vmax, hi)
             max_v = max(max_v, hi)
+            os_vmax = max(os_vmax, hi)
 
         t += s_end
         w[:] = w_end
@@ -351,6 +420,7 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
         n_ev += 1
         if mode == STICK:
             new_mode = SLIP_I if e_ev == 0 else SLIP_II
+            just_broke_away = True
             cur_stick += t - stick_start
             j = n_bk % ring
             bk_t[j] = t
@@ -402,6 +472,55 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
                     isum[I_CYCLE_K] = k
                     fsum[F_T_CERTIFIED] = t
                     break
+        elif ev_next[mode, e_ev] != NEXT_BELT:
+            # a friction band edge: the slider velocity is the edge's, the band changes
+            w[n] = ev_vel[mode, e_ev]
+            new_mode = ev_next[mode, e_ev]
+            if mode == sec_mode and e_ev == sec_event:
+                j = n_os % ring
+                os_t[j] = t
+                os_z[j] = w[:nz]
+                os_stick[j] = n_stick
+                os_interval[j, 0] = os_xmin
+                os_interval[j, 1] = os_xmax
+                os_interval[j, 2] = os_vmax
+                n_os += 1
+                os_xmin = w[0]
+                os_xmax = w[0]
+                os_vmax = w[n]
+                scale = 1.0
+                for c in range(nz):
+                    scale = max(scale, abs(w[c]))
+                for k in range(1, max_period + 1):
+                    if n_os - 1 - k < 0 or status != STATUS_RUNNING:
+                        break
+                    i = (n_os - 1 - k) % ring
+                    if os_stick[i] != os_stick[j]:
+                        break  # a stick phase inside the stretch: not a slip oscillation
+                    diff = 0.0
+                    for c in range(nz):
+                        diff = max(diff, abs(os_z[j, c] - os_z[i, c]))
+                    if diff <= cycle_tol * scale:
+                        status = STATUS_OSCILLATION
+                        period = os_t[j] - os_t[i]
+                        xmin = np.inf
+                        xmax = -np.inf
+                        vmax = -np.inf
+                        for back in range(k):
+                            p = (n_os - 1 - back) % ring
+                            xmin = min(xmin, os_interval[p, 0])
+                            xmax = max(xmax, os_interval[p, 1])
+                            vmax = max(vmax, os_interval[p, 2])
+                        fsum[F_PERIOD] = period
+                        fsum[F_AMPLITUDE] = 0.5 * (xmax - xmin)
+                        fsum[F_XI_MIN] = xmin
+                        fsum[F_XI_MAX] = xmax
+                        fsum[F_STICK_RATIO] = 0.0
+                        fsum[F_CYCLE_MAX_VELOCITY] = vmax
+                        fsum[F_CYCLE_MISMATCH] = diff / scale
+                        isum[I_CYCLE_K] = k
+                        fsum[F_T_CERTIFIED] = t
+                        break
         else:
             w[n] = 1.0
             new_mode = mode_at_belt_speed(w, stick_row, lam, gamma)
@@ -422,7 +541,7 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
                 seg_state[n_seg] = w[:nz]
             seg_t_last = t
             n_seg += 1
-        if status == STATUS_CYCLE and not run_to_t_max:
+        if (status == STATUS_CYCLE or status == STATUS_OSCILLATION) and not run_to_t_max:
             break
         if n_ev >= max_events:
             if status == STATUS_RUNNING:
@@ -451,7 +570,8 @@ def run(mass, damping, stiffness, lam, gamma, z0, t_max, max_events, cycle_tol, 
 
 
 @njit(cache=True)
-def evaluate(mass, damping, stiffness, lam, gamma, seg_t, seg_mode, seg_state, times):
+def evaluate(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, seg_t, seg_mode,
+             seg_state, times):
     """Exact states at sorted ``times`` from the recorded phases (dense output).
 
     Reproduces the run loop's own step grid: full steps with ``expm(A_hat h)`` from the
@@ -460,7 +580,8 @@ def evaluate(mass, damping, stiffness, lam, gamma, seg_t, seg_mode, seg_state, t
     n = mass.shape[0]
     nz = 2 * n
     m = nz + 1
-    ahat, phi, hstep = prepare(mass, damping, stiffness, lam, gamma)[:3]
+    ahat, phi, hstep = prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts,
+                               slopes)[:3]
     out = np.empty((times.shape[0], nz))
     modes = np.empty(times.shape[0], dtype=np.int64)
     u = np.empty((TAYLOR_DEGREE + 1, m))

@@ -8,6 +8,12 @@ shifted coordinates of Eqs. (15)-(16). Each mode is ``w' = A_hat w`` with consta
 * slip-II (``SLIP_II``): right-hand side ``-2 gamma lambda e_0`` (Eqs. 25-27);
 * stick (``STICK``): ``q_0' = v_0 = 1`` held, the other DOFs driven (Eqs. 19-21).
 
+With a velocity-dependent friction law (:mod:`stickslip.model.friction`) the sliding speed
+``u = |1 - xi'|`` is split into bands on which the friction magnitude is affine,
+``F(u) = a_b + s_b u``; each band has its own slip-I and slip-II mode (codes
+:func:`mode_code`; band 0 keeps the codes above) and the band edges are events, located
+like the belt speed. The Coulomb law is the single band ``F = gamma lambda``.
+
 Event functions are affine in ``w`` and written so that the current mode is safe while
 they are negative; they and their time derivatives are read off a per-mode "signature"
 of the state (see :func:`prepare`).
@@ -29,19 +35,78 @@ from stickslip.kernel.linalg import (
 SLIP_I = 0
 SLIP_II = 1
 STICK = 2
-N_MODES = 3
+N_MODES = 3  # with one friction band (Coulomb)
 N_ROWS = 4
 N_SIGNATURE = N_ROWS + 1
-# functionals of each mode: events 0 and 1 (stick has two), then the monitors of xi and v_0
+# functionals of each mode: events 0 and 1, then the monitors of xi and v_0
 N_FUNCTIONALS = 4
 F_XI = 2
 F_VEL = 3
 STEP_THETA = 0.5
+#: next-mode code of an event that reaches the belt speed (decided by Eq. 20)
+NEXT_BELT = -1
 
 
 @njit(cache=True)
-def mode_matrices(mass, damping, stiffness, lam, gamma):
-    """Augmented matrices ``A_hat[mode]`` (3, m, m) and the stick-force row (m,).
+def mode_code(kind, band):
+    """Mode code of slip kind ``kind`` (``SLIP_I`` or ``SLIP_II``) in friction band ``band``.
+
+    Band 0 keeps the codes 0 and 1 (stick is 2), so that a one-band (Coulomb) law has the
+    mode codes it always had; band ``b >= 1`` has slip-I ``1 + 2b`` and slip-II ``2 + 2b``.
+    """
+    if band == 0:
+        return kind
+    return 1 + 2 * band + kind
+
+
+@njit(cache=True)
+def mode_kind(code):
+    """``SLIP_I``, ``SLIP_II`` or ``STICK`` of a mode code."""
+    if code <= STICK:
+        return code
+    return (code - 3) % 2
+
+
+@njit(cache=True)
+def mode_band(code):
+    """Friction band of a mode code (0 for stick)."""
+    if code <= STICK:
+        return 0
+    return (code - 3) // 2 + 1
+
+
+def mode_kind_band(code: int) -> tuple[int, int]:
+    """``(kind, band)`` of a mode code (plain Python, for result objects)."""
+    code = int(code)
+    if code <= STICK:
+        return code, 0
+    return (code - 3) % 2, (code - 3) // 2 + 1
+
+
+@njit(cache=True)
+def find_band(edges, u):
+    """Band ``b`` with ``edges[b] <= u < edges[b + 1]`` (the last band is unbounded)."""
+    nb = edges.shape[0] - 1
+    for b in range(nb - 1, -1, -1):
+        if u >= edges[b]:
+            return b
+    return 0
+
+
+@njit(cache=True)
+def _is_coulomb_band(intercept, slope, lam, gamma):
+    return slope == 0.0 and intercept == gamma * lam
+
+
+@njit(cache=True)
+def mode_matrices(mass, damping, stiffness, lam, gamma, intercepts, slopes):
+    """Augmented matrices ``A_hat[mode]`` (2 n_bands + 1, m, m) and the stick-force row (m,).
+
+    Friction band ``b`` has ``F(u) = a + s u`` (``a = intercepts[b]``, ``s = slopes[b]``)
+    with the sliding speed ``u = |1 - xi'|``. Slip-I (``u = 1 - xi'``) adds ``s`` to
+    ``C_00`` and the forcing ``(a + s - gamma lambda) e_0``; slip-II (``u = xi' - 1``) adds
+    ``s`` to ``C_00`` and the forcing ``-(a - s + gamma lambda) e_0``. A band with
+    ``s = 0`` and ``a = gamma lambda`` (Coulomb) uses the paper's expressions unchanged.
 
     The stick force ``S = (Mass q'' + C q' + K q)_0`` with ``q_0'' = 0``, evaluated on a
     state with ``v_0 = 1``; stick holds while ``-lambda (1 + 2 gamma) <= S <= lambda``
@@ -49,18 +114,40 @@ def mode_matrices(mass, damping, stiffness, lam, gamma):
     """
     n = mass.shape[0]
     m = 2 * n + 1
+    nb = intercepts.shape[0]
+    n_modes = 2 * nb + 1
     minv = np.linalg.inv(mass)
     acc_q = -(minv @ stiffness)
     acc_v = -(minv @ damping)
-    ahat = np.zeros((N_MODES, m, m))
-    for mode in range(2):
-        for i in range(n):
-            ahat[mode, i, n + i] = 1.0
-            for j in range(n):
-                ahat[mode, n + i, j] = acc_q[i, j]
-                ahat[mode, n + i, n + j] = acc_v[i, j]
-    for i in range(n):
-        ahat[SLIP_II, n + i, m - 1] = -2.0 * gamma * lam * minv[i, 0]
+    ahat = np.zeros((n_modes, m, m))
+    for b in range(nb):
+        a = intercepts[b]
+        s = slopes[b]
+        coulomb = _is_coulomb_band(a, s, lam, gamma)
+        if s != 0.0:
+            damp_b = damping.copy()
+            damp_b[0, 0] += s
+            acc_vb = -(minv @ damp_b)
+        else:
+            acc_vb = acc_v
+        for kind in range(2):
+            mode = mode_code(kind, b)
+            for i in range(n):
+                ahat[mode, i, n + i] = 1.0
+                for j in range(n):
+                    ahat[mode, n + i, j] = acc_q[i, j]
+                    ahat[mode, n + i, n + j] = acc_vb[i, j]
+        mode_1 = mode_code(SLIP_I, b)
+        mode_2 = mode_code(SLIP_II, b)
+        if coulomb:
+            for i in range(n):
+                ahat[mode_2, n + i, m - 1] = -2.0 * gamma * lam * minv[i, 0]
+        else:
+            force_1 = (a + s) - gamma * lam
+            force_2 = -(a - s) - gamma * lam
+            for i in range(n):
+                ahat[mode_1, n + i, m - 1] = force_1 * minv[i, 0]
+                ahat[mode_2, n + i, m - 1] = force_2 * minv[i, 0]
     # stick: q' = v for every DOF, v_0' = 0, the rest driven with q_0'' = 0
     for i in range(n):
         ahat[STICK, i, n + i] = 1.0
@@ -103,12 +190,40 @@ def derivative_rows(row0, ahat, out):
 
 @njit(cache=True)
 def prepare(mass, damping, stiffness, lam, gamma):
+    """:func:`prepare_bands` with the Coulomb law's band table (the signature before friction laws)."""
+    edges = np.array([0.0, np.inf])
+    intercepts = np.array([gamma * lam])
+    slopes = np.array([0.0])
+    return prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
+
+
+@njit(cache=True)
+def prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes):
     """Everything the run loop needs, computed once per parameter point.
 
-    Returns ``ahat (3,m,m)``, ``phi (3,m,m) = expm(ahat h)``, ``hstep (3,)``,
-    ``sig_rows (3, N_SIGNATURE, m)``, the functional table ``f_start, f_sign, f_offset``
-    (each ``(3, N_FUNCTIONALS)``), ``stick_row (m,)``, ``lyap (2, 2n, 2n)``, ``kappa (2,)``
-    and the number of valid Lyapunov matrices.
+    ``edges`` (n_bands + 1,), ``intercepts`` and ``slopes`` (n_bands,) are the friction
+    law's band table: band ``b`` covers the sliding speed ``u`` in
+    ``[edges[b], edges[b + 1])`` with ``F(u) = intercepts[b] + slopes[b] u``;
+    ``edges[0] = 0`` and ``edges[-1] = inf``.
+
+    Returns ``ahat (M,m,m)``, ``phi (M,m,m) = expm(ahat h)``, ``hstep (M,)``,
+    ``sig_rows (M, N_SIGNATURE, m)``, the functional table ``f_start, f_sign, f_offset``
+    (each ``(M, N_FUNCTIONALS)``), ``stick_row (m,)``, ``lyap (2, 2n, 2n)``, ``kappa (2,)``,
+    the number of valid Lyapunov matrices, the event tables ``ev_count (M,)``,
+    ``ev_next (M, 2)`` (next mode, ``NEXT_BELT`` for the belt speed) and ``ev_vel (M, 2)``
+    (slider velocity on the band edge), and the steady-sliding data: the slip-I mode of the
+    band holding ``u = 1`` (``eq_mode``), its equilibrium ``z_eq (2n,)``, for each Lyapunov
+    function the slip-I bands ``lyap_lo..lyap_hi`` where it is valid and the ``margin``
+    its bound on ``|xi'|`` must stay below (distance from ``u = 1`` to the edges of those
+    bands), and the mode and event used as Poincare section (-1: none).
+
+    The energy ``V = (q - q_eq)' K (q - q_eq)/2 + v' Mass v/2`` obeys
+    ``dV/dt = -v' C v - sigma(u) v_0^2`` in slip-I with the secant slope
+    ``sigma(u) = (F(u) - F(1)) / (u - 1)`` (``F`` continuous), so it never grows on bands
+    where ``C + sigma e_0 e_0'`` is positive semi-definite; on a band ``sigma`` is monotone,
+    so its extremes are at the band edges. The other function (``a' P + P a = -I``) is the
+    equilibrium band's only.
+    ``M = 2 n_bands + 1`` modes.
 
     Signature: the few scalars every event and monitor of a mode is made of, so that each
     state is projected once per step. Slip modes: ``xi`` and ``v_0`` with its first three
@@ -118,17 +233,19 @@ def prepare(mass, damping, stiffness, lam, gamma):
     """
     n = mass.shape[0]
     m = 2 * n + 1
-    ahat, stick_row = mode_matrices(mass, damping, stiffness, lam, gamma)
-    hstep = np.empty(N_MODES)
-    phi = np.empty((N_MODES, m, m))
-    for mode in range(N_MODES):
+    nb = intercepts.shape[0]
+    n_modes = 2 * nb + 1
+    ahat, stick_row = mode_matrices(mass, damping, stiffness, lam, gamma, intercepts, slopes)
+    hstep = np.empty(n_modes)
+    phi = np.empty((n_modes, m, m))
+    for mode in range(n_modes):
         norm = inf_norm(ahat[mode, : m - 1, : m - 1])
         hstep[mode] = STEP_THETA / max(norm, 1e-12)
         phi[mode] = expm(ahat[mode] * hstep[mode])
-    sig_rows = np.zeros((N_MODES, N_SIGNATURE, m))
+    sig_rows = np.zeros((n_modes, N_SIGNATURE, m))
     row = np.zeros(m)
     deriv = np.zeros((N_ROWS, m))
-    for mode in range(N_MODES):
+    for mode in range(n_modes):
         sig_rows[mode, 0, 0] = 1.0
         row[:] = 0.0
         if mode == STICK:
@@ -138,32 +255,202 @@ def prepare(mass, damping, stiffness, lam, gamma):
         derivative_rows(row, ahat[mode], deriv)
         for j in range(N_ROWS):
             sig_rows[mode, 1 + j] = deriv[j]
-    f_start = np.ones((N_MODES, N_FUNCTIONALS), dtype=np.int64)
-    f_sign = np.ones((N_MODES, N_FUNCTIONALS))
-    f_offset = np.zeros((N_MODES, N_FUNCTIONALS))
-    for mode in range(N_MODES):
+    f_start = np.ones((n_modes, N_FUNCTIONALS), dtype=np.int64)
+    f_sign = np.ones((n_modes, N_FUNCTIONALS))
+    f_offset = np.zeros((n_modes, N_FUNCTIONALS))
+    ev_count = np.zeros(n_modes, dtype=np.int64)
+    ev_next = np.full((n_modes, 2), NEXT_BELT, dtype=np.int64)
+    ev_vel = np.ones((n_modes, 2))
+    for mode in range(n_modes):
         f_start[mode, F_XI] = 0
-    # slip-I ends when v_0 rises to 1; slip-II when v_0 falls to 1
-    f_offset[SLIP_I, 0] = -1.0
-    f_sign[SLIP_II, 0] = -1.0
-    f_offset[SLIP_II, 0] = 1.0
+    for b in range(nb):
+        lo = edges[b]
+        hi = edges[b + 1]
+        m1 = mode_code(SLIP_I, b)
+        m2 = mode_code(SLIP_II, b)
+        # event 0: the sliding speed falls to the band's lower edge (the belt speed for b = 0)
+        # slip-I ends when v_0 rises to 1 - lo; slip-II when v_0 falls to 1 + lo
+        f_offset[m1, 0] = -(1.0 - lo)
+        f_sign[m2, 0] = -1.0
+        f_offset[m2, 0] = 1.0 + lo
+        if b > 0:
+            ev_next[m1, 0] = mode_code(SLIP_I, b - 1)
+            ev_next[m2, 0] = mode_code(SLIP_II, b - 1)
+            ev_vel[m1, 0] = 1.0 - lo
+            ev_vel[m2, 0] = 1.0 + lo
+        ev_count[m1] = 1
+        ev_count[m2] = 1
+        # event 1: the sliding speed rises to the band's upper edge
+        if hi < np.inf:
+            f_sign[m1, 1] = -1.0
+            f_offset[m1, 1] = 1.0 - hi
+            f_offset[m2, 1] = -(1.0 + hi)
+            ev_next[m1, 1] = mode_code(SLIP_I, b + 1)
+            ev_next[m2, 1] = mode_code(SLIP_II, b + 1)
+            ev_vel[m1, 1] = 1.0 - hi
+            ev_vel[m2, 1] = 1.0 + hi
+            ev_count[m1] = 2
+            ev_count[m2] = 2
     # stick ends when S rises to lambda or falls to -lambda (1 + 2 gamma), Eq. (20)
     f_offset[STICK, 0] = -lam
     f_sign[STICK, 1] = -1.0
     f_offset[STICK, 1] = -lam * (1.0 + 2.0 * gamma)
-    lyap, kappa, n_lyap = lyapunov_data(mass, damping, stiffness, ahat[SLIP_I, : m - 1, : m - 1])
-    return ahat, phi, hstep, sig_rows, f_start, f_sign, f_offset, stick_row, lyap, kappa, n_lyap
+    ev_count[STICK] = 2
+    ev_next[STICK, 0] = SLIP_I
+    ev_next[STICK, 1] = SLIP_II
+    # steady sliding: the slider rests (xi' = 0), u = 1, in the slip-I mode of its band
+    b_eq = find_band(edges, 1.0)
+    eq_mode = mode_code(SLIP_I, b_eq)
+    s_eq = slopes[b_eq]
+    force_eq = (intercepts[b_eq] + s_eq) - gamma * lam
+    z_eq = np.zeros(2 * n)
+    if not _is_coulomb_band(intercepts[b_eq], s_eq, lam, gamma) and force_eq != 0.0:
+        e0 = np.zeros(n)
+        e0[0] = 1.0
+        x, _ = gauss_solve(stiffness, e0)
+        for i in range(n):
+            z_eq[i] = force_eq * x[i]
+    # energy certificate: valid on the bands [e_lo, e_hi] around u = 1 where C + sigma e_0 e_0'
+    # stays positive semi-definite for every secant slope sigma = (F(u) - F(1)) / (u - 1)
+    f_one = intercepts[b_eq] + s_eq
+    sigma_min = s_eq
+    use_energy = _damping_ok(damping, sigma_min)
+    e_lo = b_eq
+    e_hi = b_eq
+    if use_energy:
+        if edges[b_eq] == 1.0 and b_eq > 0:
+            # the band below also touches u = 1 (its secant is its slope, up to rounding)
+            sigma_min = min(sigma_min, slopes[b_eq - 1],
+                            _secant(intercepts, slopes, b_eq - 1, edges[b_eq - 1], f_one))
+            if _damping_ok(damping, sigma_min):
+                e_lo = b_eq - 1
+            else:
+                sigma_min = s_eq
+        while e_lo > 0:
+            sig = _secant(intercepts, slopes, e_lo - 1, edges[e_lo - 1], f_one)
+            cand = min(sigma_min, sig)
+            if not _damping_ok(damping, cand):
+                break
+            sigma_min = cand
+            e_lo -= 1
+        while e_hi < nb - 1:
+            if edges[e_hi + 2] < np.inf:
+                sig = _secant(intercepts, slopes, e_hi + 1, edges[e_hi + 2], f_one)
+            else:
+                sig = slopes[e_hi + 1]  # the secant tends to the last slope
+            cand = min(sigma_min, sig)
+            if not _damping_ok(damping, cand):
+                break
+            sigma_min = cand
+            e_hi += 1
+    lyap, kappa, n_lyap = lyapunov_data(mass, damping, stiffness,
+                                        ahat[eq_mode, : m - 1, : m - 1], use_energy)
+    # per Lyapunov function: the slip-I bands where it holds and the margin on |xi'| that
+    # keeps the sliding speed inside them
+    lyap_lo = np.full(3, b_eq, dtype=np.int64)
+    lyap_hi = np.full(3, b_eq, dtype=np.int64)
+    margin = np.full(3, min(1.0 - edges[b_eq], edges[b_eq + 1] - 1.0))
+    if use_energy:
+        lyap_lo[0] = e_lo
+        lyap_hi[0] = e_hi
+        margin[0] = min(1.0 - edges[e_lo], edges[e_hi + 1] - 1.0)
+    lyap3 = np.zeros((3, 2 * n, 2 * n))
+    kappa3 = np.zeros(3)
+    for p in range(n_lyap):
+        lyap3[p] = lyap[p]
+        kappa3[p] = kappa[p]
+    if b_eq > 0 and edges[b_eq] == 1.0:
+        # the equilibrium sits on a band edge (e.g. a table point at u = 1): both bands share
+        # it, so a common quadratic Lyapunov function of their slip-I matrices holds on both
+        p_common, ok = _common_lyapunov(ahat[mode_code(SLIP_I, b_eq - 1), : m - 1, : m - 1],
+                                        ahat[eq_mode, : m - 1, : m - 1])
+        if ok:
+            e_v = np.zeros(2 * n)
+            e_v[n] = 1.0
+            x, ok = gauss_solve(p_common, e_v)
+            if ok and x[n] > 0.0:
+                lyap3[n_lyap] = p_common
+                kappa3[n_lyap] = x[n]
+                lyap_lo[n_lyap] = b_eq - 1
+                lyap_hi[n_lyap] = b_eq
+                margin[n_lyap] = min(1.0 - edges[b_eq - 1], edges[b_eq + 1] - 1.0)
+                n_lyap += 1
+    lyap = lyap3
+    kappa = kappa3
+    # Poincare section for slip oscillations: slip-I leaving, outwards, through the band edge
+    # nearest to u = 1 at a positive distance (an oscillation that crosses it has a velocity
+    # amplitude of at least that distance, so a motion settling on the equilibrium never
+    # repeats there); not the belt speed, which is the stick logic
+    sec_mode = -1
+    sec_event = -1
+    dist = np.inf
+    if b_eq > 0 and edges[b_eq] < 1.0:
+        sec_mode = eq_mode
+        sec_event = 0
+        dist = 1.0 - edges[b_eq]
+    elif b_eq > 1 and edges[b_eq] == 1.0:
+        sec_mode = mode_code(SLIP_I, b_eq - 1)
+        sec_event = 0
+        dist = 1.0 - edges[b_eq - 1]
+    if edges[b_eq + 1] < np.inf and edges[b_eq + 1] - 1.0 < dist:
+        sec_mode = eq_mode
+        sec_event = 1
+    return (ahat, phi, hstep, sig_rows, f_start, f_sign, f_offset, stick_row, lyap, kappa, n_lyap,
+            ev_count, ev_next, ev_vel, eq_mode, z_eq, lyap_lo, lyap_hi, margin, sec_mode, sec_event)
 
 
 @njit(cache=True)
-def lyapunov_data(mass, damping, stiffness, a):
+def _common_lyapunov(a0, a1):
+    """``P`` with ``a_i' P + P a_i`` negative definite for both matrices; ``(P, ok)``.
+
+    Candidates: the solutions of ``a' P + P a = -I`` for ``a0``, ``a1`` and their mean; the
+    first that works for both matrices is returned.
+    """
+    nz = a0.shape[0]
+    a0 = np.ascontiguousarray(a0)
+    a1 = np.ascontiguousarray(a1)
+    mean = 0.5 * (a0 + a1)
+    for c in range(3):
+        cand = a0 if c == 0 else (a1 if c == 1 else mean)
+        p, ok = solve_lyapunov(cand, np.eye(nz))
+        if not ok or not is_positive_definite(p):
+            continue
+        good = True
+        for a in (a0, a1):
+            q = -(a.T @ p + p @ a)
+            if not is_positive_definite(0.5 * (q + q.T)):
+                good = False
+        if good:
+            return p, True
+    return np.eye(nz), False
+
+
+@njit(cache=True)
+def _damping_ok(damping, sigma):
+    """``C + sigma e_0 e_0'`` is positive semi-definite (``C`` is, by assumption, as before)."""
+    if sigma >= 0.0:
+        return True
+    damp = damping.copy()
+    damp[0, 0] += sigma
+    return is_positive_definite(damp)
+
+
+@njit(cache=True)
+def _secant(intercepts, slopes, band, u, f_one):
+    """``(F(u) - F(1)) / (u - 1)`` with ``F`` of ``band``."""
+    return (intercepts[band] + slopes[band] * u - f_one) / (u - 1.0)
+
+
+@njit(cache=True)
+def lyapunov_data(mass, damping, stiffness, a, use_energy):
     """Quadratic Lyapunov functions ``V = z' P z`` of slip-I and ``kappa = (P^-1)_vv``.
 
     Along slip-I, ``V`` never increases, and ``|v_0| <= sqrt(kappa V)`` bounds the slider
     velocity for all future time (Cauchy-Schwarz in the ``P`` inner product). Two choices:
     the mechanical energy ``P = diag(K, Mass)/2`` (valid for any passive structure, since
     ``dV/dt = -v' C v <= 0``), and, when ``a`` is Hurwitz, the solution of
-    ``a' P + P a = -I``. The run loop uses the smaller bound.
+    ``a' P + P a = -I``. The run loop uses the smaller bound. ``use_energy`` is false when
+    the friction slope makes the damping matrix indefinite (the energy may then grow).
     """
     n = mass.shape[0]
     nz = 2 * n
@@ -175,15 +462,17 @@ def lyapunov_data(mass, damping, stiffness, a):
             lyap[0, n + i, n + j] = 0.5 * mass[i, j]
     e_v = np.zeros(nz)
     e_v[n] = 1.0
-    x, _ = gauss_solve(lyap[0], e_v)
-    kappa[0] = x[n]
-    n_lyap = 1
+    n_lyap = 0
+    if use_energy:
+        x, _ = gauss_solve(lyap[0], e_v)
+        kappa[0] = x[n]
+        n_lyap = 1
     # Lyapunov's theorem: a is Hurwitz iff a' P + P a = -I has a positive definite solution
     p, ok = solve_lyapunov(a, np.eye(nz))
     if ok and is_positive_definite(p):
         x, ok = gauss_solve(p, e_v)
         if ok and x[n] > 0.0:
-            lyap[1] = p
-            kappa[1] = x[n]
-            n_lyap = 2
+            lyap[n_lyap] = p
+            kappa[n_lyap] = x[n]
+            n_lyap += 1
     return lyap, kappa, n_lyap

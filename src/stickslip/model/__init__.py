@@ -14,6 +14,12 @@ _EXPORTS: dict[str, str] = {
     "STARTUP_DESCRIPTION": "stickslip.model.initial",
     "InitialState": "stickslip.model.initial",
     "startup_state": "stickslip.model.initial",
+    "CoulombFriction": "stickslip.model.friction",
+    "FrictionLaw": "stickslip.model.friction",
+    "LinearFriction": "stickslip.model.friction",
+    "StribeckFriction": "stickslip.model.friction",
+    "TableFriction": "stickslip.model.friction",
+    "read_friction_table": "stickslip.model.friction",
     "Foundation": "stickslip.model.parameters",
     "Slider": "stickslip.model.parameters",
     "PhysicalFoundation": "stickslip.model.physical",
@@ -29,16 +35,22 @@ _EXPORTS: dict[str, str] = {
 
 __all__ = [
     "STARTUP_DESCRIPTION",
+    "CoulombFriction",
     "Foundation",
+    "FrictionLaw",
     "InitialState",
+    "LinearFriction",
     "PhysicalFoundation",
     "PhysicalSystem",
     "Slider",
+    "StribeckFriction",
     "Structure",
+    "TableFriction",
     "chain_structure",
     "elastic_foundation",
     "foundation_to_dimensionless",
     "foundation_to_physical",
+    "read_friction_table",
     "rigid_base",
     "startup_state",
     "to_si",
@@ -49,6 +61,14 @@ __getattr__, __dir__ = lazy_exports(__name__, globals(), _EXPORTS)
 
 
 if TYPE_CHECKING:  # pragma: no cover
+    from stickslip.model.friction import (
+        CoulombFriction,
+        FrictionLaw,
+        LinearFriction,
+        StribeckFriction,
+        TableFriction,
+        read_friction_table,
+    )
     from stickslip.model.initial import STARTUP_DESCRIPTION, InitialState, startup_state
     from stickslip.model.parameters import Foundation, Slider
     from stickslip.model.physical import (

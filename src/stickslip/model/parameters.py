@@ -19,6 +19,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from stickslip.model._validate import non_negative, positive
+from stickslip.model.friction import CoulombFriction, FrictionLaw
 
 
 @dataclass(frozen=True)
@@ -36,10 +37,14 @@ class Slider:
         heavier load, a slower belt or a softer spring (paper Section 2.3).
     gamma : float, default 2, keyword-only
         ``mu_k / (mu_s - mu_k)``, dimensionless, >= 0. The paper uses 2 throughout.
+    friction : FrictionLaw, keyword-only, default CoulombFriction()
+        Friction magnitude while sliding as a function of the sliding speed
+        (:mod:`stickslip.model.friction`); the default is the paper's two-valued law.
     """
 
     lam: float
     gamma: float = field(default=2.0, kw_only=True)
+    friction: FrictionLaw = field(default_factory=CoulombFriction, kw_only=True)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "lam", positive("lambda", self.lam))

@@ -41,9 +41,11 @@ MARKERS: dict[str, dict[str, Any]] = {
     "steady-sliding": {"marker": "o", "markerfacecolor": "none", "markeredgecolor": "black"},
     "stick-slip": {"marker": "o", "markerfacecolor": "black", "markeredgecolor": "black"},
     "undetermined": {"marker": "x", "markerfacecolor": "tab:red", "markeredgecolor": "tab:red"},
+    "slip-oscillation": {"marker": "D", "markerfacecolor": "tab:purple", "markeredgecolor": "tab:purple"},
 }
 #: Colours of the categorical image, in verdict-code order.
-COLORS = {"steady-sliding": "#dceaf7", "stick-slip": "#303030", "undetermined": "#e4572e"}
+COLORS = {"steady-sliding": "#dceaf7", "stick-slip": "#303030", "undetermined": "#e4572e",
+          "slip-oscillation": "#8e6bb8"}
 CURVE_STYLES: dict[str, dict[str, Any]] = {
     "eq36": {"color": "tab:blue", "ls": "-", "lw": 1.6},
     "eq39": {"color": "tab:green", "ls": "--", "lw": 1.6},

@@ -98,17 +98,23 @@ def run_batch(
     with the layouts ``F_*`` and ``I_*`` of :mod:`stickslip.kernel.engine`. This is also the
     task that Dask workers run, so it only takes plain, picklable data.
     """
-    from stickslip.kernel.batch import run_cells
+    from stickslip.kernel.batch import coulomb_tables, run_cells
 
     gammas = np.full(batch.lams.shape, float(batch.gamma))
+    lams = np.ascontiguousarray(batch.lams, dtype=np.float64)
+    edges, intercepts, slopes, n_bands = coulomb_tables(lams, gammas)
     with numba_threads(n_threads):
         float_summary, int_summary = run_cells(
             structures.masses,
             structures.dampings,
             structures.stiffnesses,
             np.ascontiguousarray(batch.structure_index, dtype=np.int64),
-            np.ascontiguousarray(batch.lams, dtype=np.float64),
+            lams,
             gammas,
+            edges,
+            intercepts,
+            slopes,
+            n_bands,
             float(options.t_max),
             int(options.max_events),
             float(options.cycle_tol),

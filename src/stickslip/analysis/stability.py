@@ -1,0 +1,186 @@
+"""Linear stability of steady sliding under a velocity-dependent friction law.
+
+At steady sliding the slider rests in the moving frame of the structure (``xi' = 0``), so
+the sliding speed is the belt speed, ``u = 1``. A small motion about it stays in slip-I,
+where the friction force on DOF 0 is ``F(1 - xi') - gamma lambda``; linearised,
+``F(1) - gamma lambda - F'(1) xi'``: the friction slope ``s = dF/du`` at ``u = 1`` adds to the
+damping ``C_00`` (velocity weakening, ``s < 0``, is negative damping). With the local
+weakening ``delta_loc = -s / 2`` (for the linear law ``delta_loc = delta``) the linearisation
+is
+
+    Mass q'' + (C - 2 delta_loc e_0 e_0') q' + K q = 0,
+
+and steady sliding is linearly stable iff every eigenvalue of its first-order matrix has a
+negative real part; the growth rate is the largest real part (per unit ``tau``). All
+quantities are dimensionless.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from stickslip.model.parameters import Slider
+from stickslip.model.structure import Structure
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class SteadySlidingStability:
+    """Linear stability of steady sliding.
+
+    Attributes
+    ----------
+    slope : float
+        ``dF/du`` at ``u = 1`` (exact derivative of the law; dimensionless).
+    delta_local : float
+        ``-slope / 2``, the local velocity weakening.
+    eigenvalues : ndarray of complex
+        Of the linearisation (per unit ``tau``).
+    growth_rate : float
+        Largest real part of the eigenvalues.
+    stable : bool
+        ``growth_rate < 0``.
+    routh_hurwitz : bool or None
+        The closed-form Routh-Hurwitz verdict for 1 and 2 DOF, None otherwise.
+    kink : bool
+        The law has a kink at ``u = 1`` (e.g. a table point at the belt speed): the
+        linearisation is not unique; the worse of the two one-sided slopes is reported (both
+        sides stable is necessary for stability; the engine's certificate decides).
+    """
+
+    slope: float
+    delta_local: float
+    eigenvalues: NDArray[np.complex128]
+    growth_rate: float
+    stable: bool
+    routh_hurwitz: bool | None
+    kink: bool = False
+
+
+def linearised_damping(structure: Structure, slope: float) -> FloatArray:
+    """Damping matrix of the linearisation: ``C + slope e_0 e_0'``."""
+    c = np.array(structure.damping, dtype=np.float64)
+    c[0, 0] += slope
+    return c
+
+
+def slip_matrix(structure: Structure, slope: float) -> FloatArray:
+    """First-order matrix ``[[0, I], [-M^-1 K, -M^-1 (C + slope e_0 e_0')]]`` of slip-I."""
+    n = structure.n_dof
+    minv = np.linalg.inv(structure.mass)
+    a = np.zeros((2 * n, 2 * n))
+    a[:n, n:] = np.eye(n)
+    a[n:, :n] = -minv @ structure.stiffness
+    a[n:, n:] = -minv @ linearised_damping(structure, slope)
+    return a
+
+
+def routh_hurwitz_1dof(zeta: float, delta_local: float) -> bool:
+    """Rigid base: ``xi'' + 2 (zeta - delta_loc) xi' + xi = 0`` is stable iff ``zeta > delta_loc``.
+
+    The characteristic polynomial ``s^2 + 2 (zeta - delta_loc) s + 1`` is Hurwitz iff all its
+    coefficients are positive (Routh-Hurwitz for degree 2).
+    """
+    return zeta - delta_local > 0.0
+
+
+def quartic_coefficients(mass: FloatArray, damping: FloatArray, stiffness: FloatArray) -> FloatArray:
+    """Coefficients ``(a4, a3, a2, a1, a0)`` of ``det(M s^2 + C s + K)`` for 2 DOF.
+
+    With ``P_ij(s) = M_ij s^2 + C_ij s + K_ij`` (symmetric matrices),
+    ``det P = P_00 P_11 - P_01^2``, so
+
+    * ``a4 = M00 M11 - M01^2``
+    * ``a3 = M00 C11 + C00 M11 - 2 M01 C01``
+    * ``a2 = M00 K11 + C00 C11 + K00 M11 - 2 M01 K01 - C01^2``
+    * ``a1 = C00 K11 + K00 C11 - 2 C01 K01``
+    * ``a0 = K00 K11 - K01^2``.
+    """
+    m, c, k = mass, damping, stiffness
+    return np.array([
+        m[0, 0] * m[1, 1] - m[0, 1] ** 2,
+        m[0, 0] * c[1, 1] + c[0, 0] * m[1, 1] - 2.0 * m[0, 1] * c[0, 1],
+        m[0, 0] * k[1, 1] + c[0, 0] * c[1, 1] + k[0, 0] * m[1, 1] - 2.0 * m[0, 1] * k[0, 1] - c[0, 1] ** 2,
+        c[0, 0] * k[1, 1] + k[0, 0] * c[1, 1] - 2.0 * c[0, 1] * k[0, 1],
+        k[0, 0] * k[1, 1] - k[0, 1] ** 2,
+    ])
+
+
+def routh_hurwitz_quartic(coefficients: FloatArray) -> bool:
+    """Hurwitz test of ``a4 s^4 + a3 s^3 + a2 s^2 + a1 s + a0`` with ``a4 > 0``.
+
+    Routh's array of the quartic has the first column ``a4, a3, b1, c1, a0`` with
+    ``b1 = (a3 a2 - a4 a1) / a3`` and ``c1 = (b1 a1 - a3 a0) / b1``; all roots lie in the
+    open left half plane iff the column has no sign change, i.e. iff
+
+    * ``a_i > 0`` for all ``i``,
+    * ``a3 a2 - a4 a1 > 0`` (Hurwitz determinant ``D2``),
+    * ``a1 (a3 a2 - a4 a1) - a3^2 a0 > 0`` (``D3``).
+    """
+    a4, a3, a2, a1, a0 = (float(x) for x in coefficients)
+    if min(a4, a3, a2, a1, a0) <= 0.0:
+        return False
+    d2 = a3 * a2 - a4 * a1
+    d3 = a1 * d2 - a3 * a3 * a0
+    return d2 > 0.0 and d3 > 0.0
+
+
+def routh_hurwitz_2dof(structure: Structure, slope: float) -> bool:
+    """Routh-Hurwitz verdict for a 2DOF structure (elastic foundation) with friction slope ``slope``.
+
+    For the foundation in the paper's form (``M = diag(1, M_a)``, ``C_00 = 2 zeta``,
+    ``C_01 = -2 zeta`` ...) the quartic is that of :func:`quartic_coefficients` with
+    ``C_00 -> C_00 + slope = C_00 - 2 delta_loc``.
+    """
+    if structure.n_dof != 2:
+        raise ValueError(f"routh_hurwitz_2dof needs 2 degrees of freedom, got {structure.n_dof}")
+    return routh_hurwitz_quartic(
+        quartic_coefficients(structure.mass, linearised_damping(structure, slope), structure.stiffness)
+    )
+
+
+def one_sided_slopes(slider: Slider) -> tuple[float, float]:
+    """``dF/du`` just below and just above ``u = 1``: the exact derivative for smooth laws,
+    the band slopes for the exact piecewise-linear ones (they differ at a kink)."""
+    law = slider.friction
+    if not law.exact:
+        s = float(law.slope_at(1.0, slider.lam, slider.gamma))
+        return s, s
+    edges, _, slopes = law.bands(slider.lam, slider.gamma)
+    b = int(np.searchsorted(edges, 1.0, side="right") - 1)
+    right = float(slopes[b])
+    left = float(slopes[b - 1]) if b > 0 and edges[b] == 1.0 else right
+    return left, right
+
+
+def steady_sliding_stability(structure: Structure, slider: Slider) -> SteadySlidingStability:
+    """Eigenvalues, growth rate and Routh-Hurwitz verdict of steady sliding.
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless matrices, contact on DOF 0.
+    slider : Slider
+        ``lambda``, ``gamma`` and the friction law; the slope is the law's exact derivative
+        at ``u = 1`` (for Stribeck not the piecewise-linear one; at a kink of a table the
+        worse side, see :func:`one_sided_slopes`).
+    """
+    left, right = one_sided_slopes(slider)
+    slope, eig, growth = right, np.zeros(0, dtype=np.complex128), -np.inf
+    for s in (right, left) if left != right else (right,):
+        e = np.asarray(np.linalg.eigvals(slip_matrix(structure, s)), dtype=np.complex128)
+        g = float(np.max(e.real))
+        if g > growth:
+            slope, eig, growth = s, e, g
+    rh: bool | None = None
+    if structure.n_dof == 1:
+        scale = float(np.sqrt(structure.mass[0, 0] * structure.stiffness[0, 0]))
+        zeta = 0.5 * float(structure.damping[0, 0]) / scale
+        rh = routh_hurwitz_1dof(zeta, -0.5 * slope / scale)
+    elif structure.n_dof == 2:
+        rh = routh_hurwitz_2dof(structure, slope)
+    return SteadySlidingStability(slope, -0.5 * slope, eig, growth, growth < 0.0, rh, left != right)
