@@ -7,10 +7,11 @@ resolved per ``zeta``.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Literal
 
-from stickslip.model._validate import positive
+from stickslip.model._validate import at_most, positive
 from stickslip.model.parameters import Foundation
 
 DvaKind = Literal["none", "optimal", "optimal-exact", "explicit"]
@@ -35,7 +36,7 @@ class DvaSpec:
     k_scale: float = 1.0
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "k_scale", positive("k_scale", self.k_scale))
+        object.__setattr__(self, "k_scale", at_most("k_scale", positive("k_scale", self.k_scale)))
         if self.kind not in ("none", "optimal", "optimal-exact", "explicit"):
             raise ValueError(f"dva kind {self.kind!r} is not none, optimal, optimal-exact or explicit")
         if (self.kind == "explicit") != (self.foundation is not None):
@@ -67,7 +68,7 @@ class DvaSpec:
         if self.kind == "optimal":
             from stickslip.analysis.theory import optimal_foundation_fit
 
-            base = optimal_foundation_fit(zeta)
+            base = optimal_foundation_fit(check_fitted_zeta(zeta))
         elif self.kind == "optimal-exact":
             from stickslip.analysis.tuning import optimal_foundation_exact
 
@@ -100,3 +101,37 @@ class DvaSpec:
         assert self.foundation is not None
         f = self.foundation
         return f"{f.mass_ratio!r},{f.stiffness_ratio!r},{f.damping_ratio!r}"
+
+
+def check_fitted_zeta(zeta: float) -> float:
+    """Refuse ``zeta`` above ``MAX_DESIGN_ZETA`` for the fitted optimum (Eqs. 28-30).
+
+    The fit is defined on ``0 <= zeta <= FITTED_ZETA_RANGE`` (0.4); between that and
+    ``MAX_DESIGN_ZETA`` (0.9) it is extrapolated and callers warn
+    (:func:`fitted_zeta_warning`), above it is refused, as ``tune`` and ``design`` do.
+    """
+    from stickslip.analysis.design import MAX_DESIGN_ZETA
+    from stickslip.model._validate import non_negative
+
+    z = non_negative("zeta", zeta)
+    if z > MAX_DESIGN_ZETA:
+        raise ValueError(
+            f"zeta={zeta!r} is above {MAX_DESIGN_ZETA}: the fitted optimal foundation "
+            "(--dva optimal, Eqs. 28-30, fitted for zeta <= 0.4) is not defined there"
+        )
+    return z
+
+
+def fitted_zeta_warning(spec: DvaSpec, zetas: Iterable[float]) -> str | None:
+    """One line when the fitted optimum is used outside its fitted range, else None."""
+    from stickslip.analysis.design import FITTED_ZETA_RANGE
+
+    if spec.kind != "optimal":
+        return None
+    above = [float(z) for z in zetas if float(z) > FITTED_ZETA_RANGE]
+    if not above:
+        return None
+    return (
+        f"zeta={max(above):.3g} is outside the range 0 <= zeta <= {FITTED_ZETA_RANGE} on which "
+        "the optimal foundation (Eqs. 28-30) is fitted: it is extrapolated there"
+    )

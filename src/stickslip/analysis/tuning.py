@@ -37,6 +37,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import minimize
 
 from stickslip.analysis.critical import lowest_onset
+from stickslip.analysis.design import MAX_DESIGN_ZETA
 from stickslip.analysis.frequency_response import (
     ResponsePeak,
     frequency_response,
@@ -49,7 +50,7 @@ from stickslip.analysis.theory import (
     optimal_foundation_fit,
     peak_response_fit,
 )
-from stickslip.model._validate import non_negative, positive
+from stickslip.model._validate import non_negative, positive, ratio
 from stickslip.model.parameters import Foundation
 from stickslip.model.structure import Structure, elastic_foundation
 
@@ -61,8 +62,9 @@ STIFFNESS_BOUNDS: tuple[float, float] = (1e-3, 1e3)
 """Search interval of the stiffness ratio ``K = sqrt(k_a/k)`` (dimensionless)."""
 DAMPING_BOUNDS: tuple[float, float] = (1e-4, 1e3)
 """Search interval of the foundation damping ratio ``zeta_a`` (dimensionless)."""
-MAX_TUNING_ZETA = 0.9
-"""Largest primary damping ratio accepted by the tuning (the FRF itself takes any zeta)."""
+MAX_TUNING_ZETA = MAX_DESIGN_ZETA
+"""Largest primary damping ratio accepted by the tuning (the FRF itself takes any zeta);
+the same bound as the design procedure's (one home: :mod:`stickslip.analysis.design`)."""
 
 
 
@@ -393,7 +395,7 @@ def _check_tuning_zeta(zeta: float) -> float:
 
 
 def _check_mass_bounds(bounds: tuple[float, float]) -> tuple[float, float]:
-    lo, hi = positive("lower mass bound", bounds[0]), positive("upper mass bound", bounds[1])
+    lo, hi = ratio("lower mass bound", bounds[0]), ratio("upper mass bound", bounds[1])
     if lo >= hi:
         raise ValueError(f"mass bounds {bounds!r} must be increasing")
     return lo, hi
@@ -426,7 +428,7 @@ def tune_foundation(
     """
     zeta = _check_tuning_zeta(zeta)
     if mass_ratio is not None:
-        mass_ratio = positive("mass ratio M", mass_ratio)
+        mass_ratio = ratio("mass ratio M", mass_ratio)
     return _tune_cached(zeta, mass_ratio, _check_mass_bounds(mass_bounds))
 
 

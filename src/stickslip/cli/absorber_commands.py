@@ -11,8 +11,15 @@ from typing import Annotated, Any
 
 import typer
 
-from stickslip.cli.console import BadInput, check_figure_path, parse_dva, print_json, save_plot
-from stickslip.cli.options import JSON
+from stickslip.cli.console import (
+    BadInput,
+    check_figure_path,
+    parse_dva,
+    print_json,
+    save_plot,
+    warn_fitted_range,
+)
+from stickslip.cli.options import JSON, OVERWRITE
 
 ZETA = Annotated[float, typer.Option("--zeta", help="damping ratio c / (2 sqrt(m k)) >= 0")]
 
@@ -49,6 +56,7 @@ def frf(
         Path | None,
         typer.Option("--plot", help="write the response curves (paper Fig. 5) to this file"),
     ] = None,
+    overwrite: OVERWRITE = False,
     json: JSON = False,
 ) -> None:
     """Frequency response H = k|X|/f of the slider under a harmonic force and its exact peak."""
@@ -57,8 +65,9 @@ def frf(
 
     zeta = _zeta(zeta)
     if plot is not None:
-        check_figure_path(plot)
+        check_figure_path(plot, overwrite=overwrite)
     foundation = parse_dva(dva, zeta, k_scale)
+    warn_fitted_range(dva, [zeta])
     curves = response_curves(zeta, foundation)
     peak = curves.peak
     rigid = response_peak(rigid_base(zeta))
@@ -125,16 +134,19 @@ def tune(
     ``--mass-ratio`` sets the bound.
     """
     from stickslip.analysis.tuning import MAX_TUNING_ZETA, tune_foundation
-    from stickslip.model._validate import positive
+    from stickslip.model._validate import at_most, non_negative, positive, ratio
 
     zeta = _zeta(zeta)
     if zeta > MAX_TUNING_ZETA:
         raise BadInput(f"--zeta {zeta!r} is above {MAX_TUNING_ZETA}: no tuning is defined there")
-    if mass_ratio is not None:
-        try:
-            mass_ratio = positive("--mass-ratio", mass_ratio)
-        except ValueError as exc:
-            raise BadInput(str(exc)) from None
+    try:
+        if mass_ratio is not None:
+            mass_ratio = ratio("--mass-ratio", mass_ratio)
+        # checked whatever the objective: a value given is never silently ignored
+        gamma = at_most("--gamma", non_negative("--gamma", gamma))
+        lam_max = at_most("--lam-max", positive("--lam-max", lam_max))
+    except ValueError as exc:
+        raise BadInput(str(exc)) from None
     if objective not in ("absorber", "stick-slip"):
         raise BadInput(f"--objective {objective!r} must be 'absorber' or 'stick-slip'")
     if objective == "stick-slip":

@@ -42,6 +42,96 @@ def parse_dva(text: str, zeta: float, k_scale: float = 1.0) -> Foundation | None
     return DvaSpec.parse(text, k_scale).resolve(zeta)
 
 
+def max_events_limit() -> int:
+    """Largest ``--max-events``: the engine's step budget (``kernel.engine.MAX_STEPS``).
+
+    Every mode switch ends a step and a run never takes more than ``MAX_STEPS`` steps, so a
+    larger budget can never be used; the phase record is allocated for ``max_events + 1``
+    rows, and 1e12 of them asked for terabytes.
+    """
+    from stickslip.kernel.engine import MAX_STEPS
+
+    return int(MAX_STEPS)
+
+
+def check_run_limits(lam: float, gamma: float, *, max_events: int | None = None,
+                     plot_from: float | None = None) -> None:
+    """Refuse values a run cannot use: overflowing ``2 gamma lambda``, an event budget beyond
+    the step budget, a non-finite or negative first plotted time."""
+    from stickslip.model._validate import friction_range, non_negative
+
+    try:
+        friction_range(lam, gamma)
+        if plot_from is not None:
+            non_negative("--plot-from", plot_from)
+    except ValueError as exc:
+        raise BadInput(str(exc)) from None
+    if max_events is not None:
+        limit = max_events_limit()
+        if max_events < 1:
+            raise BadInput(f"--max-events {max_events} must be at least 1")
+        if max_events > limit:
+            raise BadInput(
+                f"--max-events {max_events} exceeds {limit}: a run stops after {limit} steps "
+                "(every event ends one), so more events can never happen"
+            )
+
+
+#: Copies of a map's per-cell results alive at the peak (the engine's summaries, the
+#: dataset's variables, the netCDF encoding buffers): a conservative factor.
+_RESULT_COPIES = 3
+
+
+def physical_memory() -> int | None:
+    """Bytes of RAM of this machine (``os.sysconf``), None where unknown."""
+    import os
+
+    try:
+        pages, size = os.sysconf("SC_PHYS_PAGES"), os.sysconf("SC_PAGE_SIZE")
+    except (AttributeError, ValueError, OSError):
+        return None
+    return int(pages) * int(size) if pages > 0 and size > 0 else None
+
+
+def check_grid_memory(n_cells: int) -> None:
+    """Refuse a grid whose results would not fit in half the RAM, before anything is written.
+
+    Each cell keeps ``N_FLOAT`` float and ``N_INT`` integer summaries (8 bytes each) of the
+    engine, held in about :data:`_RESULT_COPIES` copies while the dataset is built and written.
+    """
+    from stickslip.kernel.engine import N_FLOAT, N_INT
+
+    need = int(n_cells) * 8 * (N_FLOAT + N_INT) * _RESULT_COPIES
+    ram = physical_memory()
+    if ram is not None and need > ram // 2:
+        raise BadInput(
+            f"a grid of {n_cells:,} cells needs about {need / 2**30:,.1f} GiB for its results, "
+            f"more than half of this machine's {ram / 2**30:,.1f} GiB; use fewer points "
+            "(--lam/--zeta) or split the map"
+        )
+
+
+def warn(message: str) -> None:
+    """Print ``warning: message`` on stderr as one line (never on stdout: --json stays clean)."""
+    line = " ".join(str(message).split())
+    print(f"stickslip: warning: {line}", file=sys.stderr)
+
+
+def warn_fitted_range(spec: Any, zetas: Any) -> None:
+    """One warning line when ``--dva optimal`` is used above the fitted range of Eqs. 28-30.
+
+    ``spec`` is a :class:`~stickslip.analysis.dva.DvaSpec` or the ``--dva`` text. Call it
+    after every check has passed, so that a rejected command prints only its error line.
+    """
+    from stickslip.analysis.dva import DvaSpec, fitted_zeta_warning
+
+    if isinstance(spec, str):
+        spec = DvaSpec.parse(spec)
+    note = fitted_zeta_warning(spec, zetas)
+    if note:
+        warn(note)
+
+
 def _jsonable(value: Any) -> Any:
     import numpy as np  # imported here: ``stickslip --help`` must start fast
 
@@ -66,38 +156,42 @@ def print_json(payload: dict[str, Any]) -> None:
     sys.stdout.write(json.dumps(_jsonable(payload), allow_nan=False) + "\n")
 
 
-def check_output_path(path: Path, *, overwrite: bool = True) -> Path:
-    """Check that ``path`` can be written before any work starts.
+def check_output_path(path: Path, *, overwrite: bool = True, option: str = "output") -> Path:
+    """Check that ``path`` can be written before any work starts; create nothing.
 
-    Rejects a directory, a missing parent folder that cannot be created, or an existing
-    file when ``overwrite`` is false.
+    Rejects a directory, an existing file when ``overwrite`` is false, and a parent folder
+    that cannot be created or written. Missing folders are created only when the file is
+    written (:func:`stickslip.io.atomic.atomic_output`), so a rejected command leaves none.
     """
     path = Path(path)
     if path.exists() and path.is_dir():
-        raise BadInput(f"output path {str(path)!r} is a directory")
+        raise BadInput(f"{option} path {str(path)!r} is a directory")
     if path.exists() and not overwrite:
-        raise BadInput(f"output file {str(path)!r} exists; pass --overwrite to replace it")
+        raise BadInput(f"{option} file {str(path)!r} exists; pass --overwrite to replace it")
     parent = path.parent
-    try:
-        parent.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise BadInput(f"cannot create folder {str(parent)!r}: {exc.strerror}") from None
-    if not _writable(parent):
-        raise BadInput(f"folder {str(parent)!r} is not writable")
+    existing = parent
+    while not existing.exists() and existing != existing.parent:
+        existing = existing.parent
+    if not existing.is_dir():
+        raise BadInput(f"cannot create folder {str(parent)!r}: {str(existing)!r} is not a folder")
+    if not _writable(existing):
+        if existing != parent:
+            raise BadInput(f"cannot create folder {str(parent)!r}: {str(existing)!r} is not writable")
+        raise BadInput(f"folder {str(parent)!r} is not writable (needed for {str(path)!r})")
     return path
 
 
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg")
 
 
-def check_figure_path(path: Path) -> Path:
-    """Like :func:`check_output_path`, and the suffix must name a figure format."""
+def check_figure_path(path: Path, *, overwrite: bool = False) -> Path:
+    """Like :func:`check_output_path` for ``--plot``, and the suffix must name a figure format."""
     path = Path(path)
     if path.suffix.lower() not in FIGURE_SUFFIXES:
         raise BadInput(
             f"figure file {str(path)!r} must end in one of {', '.join(FIGURE_SUFFIXES)}"
         )
-    return check_output_path(path)
+    return check_output_path(path, overwrite=overwrite, option="--plot")
 
 
 def save_plot(draw: Callable[[Any], Any], path: Path, size: tuple[float, float] = (8.0, 5.5)) -> str:

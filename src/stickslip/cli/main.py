@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+import warnings
 from typing import Annotated
 
 import typer
@@ -58,8 +59,21 @@ def _register() -> None:
 _register()
 
 
+def _show_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,
+                  file: object = None, line: str | None = None) -> None:
+    """Warnings as one line on stderr, ``stickslip: warning: ...`` (no source line)."""
+    text = " ".join(str(message).split())
+    print(f"stickslip: warning: {text}", file=sys.stderr)
+
+
 def run(argv: list[str] | None = None) -> None:
     """Console entry point: one line on stderr and exit code 2 for any bad input."""
+    with warnings.catch_warnings():
+        warnings.showwarning = _show_warning
+        _run(argv)
+
+
+def _run(argv: list[str] | None) -> None:
     try:
         result = app(args=argv, standalone_mode=False)
     except click_exceptions.NoArgsIsHelpError:

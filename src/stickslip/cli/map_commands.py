@@ -15,7 +15,16 @@ from typing import Annotated, Any
 
 import typer
 
-from stickslip.cli.console import BadInput, check_figure_path, check_output_path, print_json, save_plot
+from stickslip.cli.console import (
+    BadInput,
+    check_figure_path,
+    check_grid_memory,
+    check_output_path,
+    check_run_limits,
+    print_json,
+    save_plot,
+    warn_fitted_range,
+)
 from stickslip.cli.options import DVA, GAMMA, JSON, K_SCALE, PLOT
 
 LAM_SPEC = Annotated[
@@ -140,18 +149,21 @@ def map_command(
         int | None, typer.Option("--chunk-size", help="cells per chunk (progress, tasks, resume)")
     ] = None,
     overwrite: Annotated[
-        bool, typer.Option("--overwrite", help="replace an output or resume store of another configuration")
+        bool, typer.Option("--overwrite", help="replace an existing --out, --csv or --plot file, "
+                           "or a resume store of another configuration")
     ] = False,
     json: JSON = False,
 ) -> None:
     """Occurrence map over a (lambda, zeta) grid (paper Figs. 8 and 11); resumable."""
     from stickslip.analysis.dva import DvaSpec
+    from stickslip.io.lock import output_lock
     from stickslip.sweep.executors import check_backend
     from stickslip.sweep.occurrence import MapConfig, OccurrenceMap, occurrence_map
     from stickslip.sweep.store import discard_store
 
     lam_axis, zeta_axis = _parse_axes(lam, zeta, lam_spacing, zeta_spacing)
     config = MapConfig.create(lam_axis, zeta_axis, DvaSpec.parse(dva, k_scale), gamma, t_max=t_max)
+    check_run_limits(float(config.lam.values.max()), config.gamma)
     chosen = check_backend(backend or ("dask" if scheduler else "threads"), workers, scheduler)
     if chunk_size is not None and chunk_size < 1:
         raise BadInput(f"--chunk-size {chunk_size} must be at least 1")
@@ -159,31 +171,35 @@ def map_command(
         raise BadInput(f"output file {str(out)!r} must end in .nc (netCDF)")
     check_output_path(out)
     if csv is not None:
-        check_output_path(csv)
+        check_output_path(csv, overwrite=overwrite, option="--csv")
     if plot is not None:
-        check_figure_path(plot)
+        check_figure_path(plot, overwrite=overwrite)
+    check_grid_memory(config.n_cells)
     fingerprint = config.fingerprint()
-    reused = _check_existing_output(out, fingerprint, overwrite)
-    store = store_path(out)
-    if reused:
-        result = OccurrenceMap.from_netcdf(out)
-    else:
-        enabled = not json and sys.stderr.isatty()
-        with _ProgressBar(enabled, f"map {config.shape[0]}x{config.shape[1]}") as bar:
-            result = occurrence_map(config.lam, config.zeta, config.dva, config.gamma,
-                                    options=config.options, backend=chosen, workers=workers,
-                                    scheduler=scheduler, chunk_size=chunk_size, progress=bar,
-                                    store=store, overwrite=overwrite)
-        result.to_netcdf(out, overwrite=True)
-        discard_store(store)
-    payload = result.to_dict()
-    payload.update({"out": str(out), "csv": None, "plot": None, "reused_output": reused,
-                    "store": str(store)})
-    if csv is not None:
-        result.to_csv(csv)
-        payload["csv"] = str(csv)
-    if plot is not None:
-        payload["plot"] = save_plot(lambda ax: result.plot(ax=ax), plot)
+    out.parent.mkdir(parents=True, exist_ok=True)  # every check passed: writing starts
+    with output_lock(out):
+        warn_fitted_range(config.dva, config.zeta.values)
+        reused = _check_existing_output(out, fingerprint, overwrite)
+        store = store_path(out)
+        if reused:
+            result = OccurrenceMap.from_netcdf(out)
+        else:
+            enabled = not json and sys.stderr.isatty()
+            with _ProgressBar(enabled, f"map {config.shape[0]}x{config.shape[1]}") as bar:
+                result = occurrence_map(config.lam, config.zeta, config.dva, config.gamma,
+                                        options=config.options, backend=chosen, workers=workers,
+                                        scheduler=scheduler, chunk_size=chunk_size, progress=bar,
+                                        store=store, overwrite=overwrite)
+            result.to_netcdf(out, overwrite=True)
+            discard_store(store)
+        payload = result.to_dict()
+        payload.update({"out": str(out), "csv": None, "plot": None, "reused_output": reused,
+                        "store": str(store)})
+        if csv is not None:
+            result.to_csv(csv)
+            payload["csv"] = str(csv)
+        if plot is not None:
+            payload["plot"] = save_plot(lambda ax: result.plot(ax=ax), plot)
     if json:
         print_json(payload)
         return
@@ -231,7 +247,9 @@ def boundary_command(
     out: Annotated[
         Path | None, typer.Option("--out", help="also write the result as netCDF (.nc)")
     ] = None,
-    overwrite: Annotated[bool, typer.Option("--overwrite", help="replace an existing --out file")] = False,
+    overwrite: Annotated[
+        bool, typer.Option("--overwrite", help="replace an existing --out or --plot file")
+    ] = False,
     plot: PLOT = None,
     json: JSON = False,
 ) -> None:
@@ -248,9 +266,10 @@ def boundary_command(
             raise BadInput(f"output file {str(out)!r} must end in .nc (netCDF)")
         check_output_path(out, overwrite=overwrite)
     if plot is not None:
-        check_figure_path(plot)
+        check_figure_path(plot, overwrite=overwrite)
     result = stick_slip_boundary(zeta_axis, spec, gamma, lam_min=lam_min, lam_max=lam_max,
                                  n_scan=scan, rtol=rtol, t_max=t_max, workers=workers)
+    warn_fitted_range(spec, zeta_axis.values)
     payload = result.to_dict()
     payload.update({"out": None, "plot": None})
     if out is not None:

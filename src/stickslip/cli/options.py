@@ -19,3 +19,6 @@ DVA = Annotated[
 K_SCALE = Annotated[float, typer.Option("--k-scale", help="multiply the foundation's K (Figs. 11-15)")]
 JSON = Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")]
 PLOT = Annotated[Path | None, typer.Option("--plot", help="write the figure here (.png, .pdf, .svg)")]
+OVERWRITE = Annotated[
+    bool, typer.Option("--overwrite", help="replace an existing --plot (or --csv) file")
+]

@@ -7,8 +7,15 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from stickslip.cli.console import BadInput, check_figure_path, parse_dva, print_json
-from stickslip.cli.options import DVA, GAMMA, JSON, K_SCALE
+from stickslip.cli.console import (
+    BadInput,
+    check_figure_path,
+    check_run_limits,
+    parse_dva,
+    print_json,
+    warn_fitted_range,
+)
+from stickslip.cli.options import DVA, GAMMA, JSON, K_SCALE, OVERWRITE
 
 if TYPE_CHECKING:
     from stickslip.model.initial import InitialState
@@ -56,6 +63,7 @@ def simulate(
     t_plot_start: Annotated[
         float, typer.Option("--plot-from", help="first time drawn in the figure")
     ] = 0.0,
+    overwrite: OVERWRITE = False,
     json: JSON = False,
 ) -> None:
     """One simulation: certified verdict, period, amplitude, events."""
@@ -64,11 +72,13 @@ def simulate(
     from stickslip.model import Slider, chain_structure
 
     slider = Slider(lam, gamma=gamma)
+    check_run_limits(slider.lam, slider.gamma, max_events=max_events, plot_from=t_plot_start)
     foundation = parse_dva(dva, zeta, k_scale)
     structure = chain_structure(zeta, () if foundation is None else (foundation,))
     init = parse_initial(initial, structure.n_dof)
     if plot is not None:
-        check_figure_path(plot)
+        check_figure_path(plot, overwrite=overwrite)
+    warn_fitted_range(dva, [zeta])
     result = run_simulation(structure, slider, initial=init,
                             options=EngineOptions(t_max=t_max, max_events=max_events))
     payload = result.to_dict()

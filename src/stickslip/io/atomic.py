@@ -31,11 +31,14 @@ def _umask_mode() -> int:
 def atomic_output(target: str | os.PathLike[str]) -> Iterator[Path]:
     """Yield a temporary path next to ``target``; rename it over ``target`` on success.
 
-    On an exception (a full disk, a failed plot) the temporary file is removed and
-    ``target`` is untouched. The new file gets the mode of the umask (``mkstemp`` alone
-    would leave it readable by its owner only).
+    Missing parent folders are created. On an exception (a full disk, a failed plot) the
+    temporary file is removed and ``target`` is untouched. The new file gets the mode of the
+    umask (``mkstemp`` alone would leave it readable by its owner only).
     """
     target = Path(target)
+    # missing folders are made here, when writing starts: a command rejected during its
+    # checks leaves none behind
+    target.parent.mkdir(parents=True, exist_ok=True)
     handle, name = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}{TMP_MARK}",
                                 suffix=target.suffix)
     os.close(handle)

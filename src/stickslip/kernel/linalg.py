@@ -10,6 +10,11 @@ from numba import njit
 
 TAYLOR_DEGREE_EXPM = 18
 
+#: Upper bound on the squarings of :func:`expm`: halving any finite double (at most
+#: 1.8e308 = 2**1024) 1100 times brings it below 1/2, so the bound is never reached for a
+#: finite matrix and every loop of this module ends, whatever the input.
+MAX_SQUARINGS_EXPM = 1100
+
 
 @njit(cache=True)
 def matvec(a: np.ndarray, x: np.ndarray, out: np.ndarray) -> None:
@@ -62,11 +67,17 @@ def expm(a: np.ndarray) -> np.ndarray:
     The scaled matrix has infinity norm at most 1/2, so the truncation error is below
     ``0.5**19 / 19!`` (about 1e-23) relative, far below double precision. Checked against
     ``scipy.linalg.expm`` in the tests.
+
+    A matrix with a NaN or infinite entry (norm not finite) has no exponential: the result
+    is then all NaN, which the caller sees (and which the engine's step and event budgets
+    absorb), instead of an endless halving loop.
     """
     n = a.shape[0]
     norm = inf_norm(a)
+    if not np.isfinite(norm):
+        return np.full((n, n), np.nan)
     squarings = 0
-    while norm > 0.5:
+    while norm > 0.5 and squarings < MAX_SQUARINGS_EXPM:
         norm *= 0.5
         squarings += 1
     b = a / (2.0**squarings)

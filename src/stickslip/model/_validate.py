@@ -34,3 +34,47 @@ def non_negative(name: str, value: float) -> float:
     if x < 0.0:
         raise ValueError(f"{name}={value!r} must not be negative")
     return x
+
+
+#: Largest accepted dimensionless parameter (``lambda``, ``gamma``, ``zeta``, ``M``, ``K``,
+#: ``zeta_a``, ``k_scale``, swept grid values). The paper's values are ``lambda`` 0.01-100,
+#: ``gamma`` 2, ``zeta`` <= 0.9, ``M`` and ``K`` of order one: 1e6 is four orders of magnitude
+#: beyond anything physical, and it keeps every derived quantity finite and well scaled --
+#: ``K**2`` (a spring of the stiffness matrix) <= 1e12, the slip-II force
+#: ``2 gamma lambda`` <= 2e12, the startup offset ``gamma lambda / K**2`` and the entries of
+#: the matrix exponential far from overflow (1.8e308). Larger inputs used to overflow to
+#: ``inf`` and make the engine spin forever or crash.
+MAX_PARAMETER = 1e6
+
+#: Smallest accepted mass or stiffness ratio (``M``, ``K``): both are inverted by the engine
+#: (``M**-1`` in the equations of motion, ``K**-2`` in the equilibrium offset), so the same
+#: six orders of magnitude apply below one.
+MIN_RATIO = 1e-6
+
+
+def at_most(name: str, value: float, limit: float = MAX_PARAMETER) -> float:
+    """Return ``value`` as a finite float whose magnitude is at most ``limit``."""
+    x = finite(name, value)
+    if abs(x) > limit:
+        raise ValueError(
+            f"{name}={value!r} is beyond the supported range (magnitude at most {limit:g}; "
+            "larger values overflow the dimensionless equations)"
+        )
+    return x
+
+
+def ratio(name: str, value: float) -> float:
+    """A mass or stiffness ratio: positive, between :data:`MIN_RATIO` and :data:`MAX_PARAMETER`."""
+    x = at_most(name, positive(name, value))
+    if x < MIN_RATIO:
+        raise ValueError(
+            f"{name}={value!r} is below the supported range {name} >= {MIN_RATIO:g} "
+            "(its inverse would overflow the dimensionless equations)"
+        )
+    return x
+
+
+def friction_range(lam: float, gamma: float) -> None:
+    """Refuse ``lambda`` or ``gamma`` above :data:`MAX_PARAMETER` (``2 gamma lambda`` overflows)."""
+    at_most("lambda", lam)
+    at_most("gamma", gamma)

@@ -64,7 +64,15 @@ def startup_state(structure: Structure, slider: Slider) -> InitialState:
     ``xi = -gamma lambda``. The slider moves with the belt (``xi' = 1``), the foundation is
     at rest.
     """
+    from stickslip.model._validate import friction_range
+
+    friction_range(slider.lam, slider.gamma)
     position = -slider.gamma * slider.lam * structure.kinetic_equilibrium_offset()
+    if not np.all(np.isfinite(position)):
+        raise ValueError(
+            f"the startup state overflows: gamma * lambda = {slider.gamma * slider.lam:.3g} "
+            "times the structure's static deflection is not finite"
+        )
     velocity = np.zeros(structure.n_dof)
     velocity[0] = 1.0
     return InitialState(position, velocity, STARTUP_DESCRIPTION)

@@ -24,14 +24,32 @@ from stickslip.model.parameters import Foundation
 FloatArray = NDArray[np.float64]
 
 
+#: Largest magnitude of a matrix entry: a chain of foundations at the parameter bounds
+#: (``K <= 1e6``, so springs ``K**2 <= 1e12``) stays well inside it, and the products the
+#: engine forms (``Mass^-1 Stiffness``, the matrix exponential, the Lyapunov solve) stay far
+#: from overflow.
+MAX_MATRIX_ENTRY = 1e13
+
+
 def _matrix(name: str, value: object, n: int | None = None) -> FloatArray:
-    a = np.array(value, dtype=np.float64)
+    raw = np.asarray(value)
+    if np.iscomplexobj(raw):
+        raise ValueError(f"{name} has complex entries; the matrices must be real")
+    try:
+        a = np.array(raw, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a matrix of real numbers") from None
     if a.ndim != 2 or a.shape[0] != a.shape[1] or a.shape[0] == 0:
         raise ValueError(f"{name} must be a non-empty square matrix, got shape {a.shape}")
     if n is not None and a.shape[0] != n:
         raise ValueError(f"{name} is {a.shape[0]}x{a.shape[0]}, expected {n}x{n}")
     if not np.all(np.isfinite(a)):
         raise ValueError(f"{name} has NaN or infinite entries")
+    if np.abs(a).max() > MAX_MATRIX_ENTRY:
+        raise ValueError(
+            f"{name} has an entry of magnitude {np.abs(a).max():.3g}, beyond the supported "
+            f"{MAX_MATRIX_ENTRY:g} (the engine's products would overflow)"
+        )
     if not np.allclose(a, a.T, rtol=1e-12, atol=1e-14):
         raise ValueError(f"{name} must be symmetric")
     a = 0.5 * (a + a.T)
@@ -118,9 +136,13 @@ def chain_structure(zeta: float, foundations: Sequence[Foundation] = ()) -> Stru
         ``mass = diag(1, M_1, M_2, ...)``; springs ``1, K_1^2, K_2^2, ...`` and dampers
         ``2 zeta, 2 zeta_a1, ...`` in series.
     """
-    from stickslip.model._validate import non_negative
+    from stickslip.model._validate import at_most, non_negative, ratio
 
-    zeta = non_negative("zeta", zeta)
+    zeta = at_most("zeta", non_negative("zeta", zeta))
+    for f in foundations:  # before squaring K: 1e200**2 overflows
+        ratio("M", f.mass_ratio)
+        ratio("K", f.stiffness_ratio)
+        at_most("zeta_a", f.damping_ratio)
     n = 1 + len(foundations)
     masses = [1.0] + [f.mass_ratio for f in foundations]
     springs = [1.0] + [f.stiffness_ratio**2 for f in foundations]

@@ -35,7 +35,7 @@ from stickslip.analysis.theory import analytic_boundaries
 from stickslip.analysis.verdict import Verdict, verdict_codes, verdict_flag_attributes
 from stickslip.io.provenance import package_version, provenance_attributes
 from stickslip.kernel import engine
-from stickslip.model._validate import non_negative, positive
+from stickslip.model._validate import at_most, non_negative, positive
 from stickslip.model.parameters import Foundation
 from stickslip.sweep.executors import CellBatch, StructureSet, run_batch
 from stickslip.sweep.grid import Axis, as_axis
@@ -305,8 +305,9 @@ def stick_slip_boundary(
     axis = as_axis(zetas, "zeta")
     for value in axis.values.tolist():
         non_negative("zeta", value)
-    gamma = non_negative("gamma", gamma)
-    lam_min, lam_max = positive("lam_min", lam_min), positive("lam_max", lam_max)
+    gamma = at_most("gamma", non_negative("gamma", gamma))
+    lam_min = at_most("lam_min", positive("lam_min", lam_min))
+    lam_max = at_most("lam_max", positive("lam_max", lam_max))
     if lam_max <= lam_min:
         raise ValueError(f"lam_max={lam_max!r} must exceed lam_min={lam_min!r}")
     if isinstance(n_scan, bool) or int(n_scan) != n_scan or n_scan < 2:

@@ -24,6 +24,8 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from stickslip.model._validate import MAX_PARAMETER
+
 Spacing = Literal["linear", "log", "list"]
 
 #: Largest number of points accepted on one axis (a typo such as ``0.1:50:2e9`` would
@@ -60,6 +62,12 @@ class Axis:
             raise ValueError(f"{self.name} grid is empty")
         if not np.all(np.isfinite(values)):
             raise ValueError(f"{self.name} grid has NaN or infinite values")
+        if np.abs(values).max() > MAX_PARAMETER:
+            big = float(values[np.argmax(np.abs(values))])
+            raise ValueError(
+                f"{self.name} grid value {big!r} is beyond the supported range "
+                f"|{self.name}| <= {MAX_PARAMETER:g} (larger values overflow the equations)"
+            )
         values = np.sort(values)
         if np.any(np.diff(values) == 0.0):
             dup = float(values[1:][np.diff(values) == 0.0][0])

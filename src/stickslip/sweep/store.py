@@ -7,6 +7,10 @@ its cells, tagged with the fingerprint). Every file is written to a temporary na
 renamed over the target (``os.replace``), so a run killed at any instant leaves either the
 whole chunk or none of it.
 
+A damaged file (a truncated, empty or corrupt chunk, a manifest that is not JSON or lacks a
+key) is reported in one line (a :class:`StoreDamaged` warning) and computed again; a damaged
+manifest discards the chunks too, since their layout cannot be trusted without it.
+
 A store made for another configuration is never mixed into a run: opening it raises
 :class:`StoreMismatch` unless ``overwrite=True``, which empties it first.
 """
@@ -15,6 +19,7 @@ from __future__ import annotations
 
 import json
 import os
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -72,6 +77,10 @@ class ChunkStore:
         self.path.mkdir(parents=True, exist_ok=True)
         self._remove_temporaries()
         manifest = self._read_manifest()
+        if manifest is _DAMAGED:
+            # chunks cannot be trusted without the manifest's chunk size: recompute them
+            self.clear()
+            manifest = None
         if manifest is not None and manifest.get("fingerprint") != fingerprint:
             if not overwrite:
                 raise StoreMismatch(
@@ -133,11 +142,15 @@ class ChunkStore:
                 fingerprint = str(data["fingerprint"])
                 fout = np.array(data["fout"], dtype=np.float64)
                 iout = np.array(data["iout"], dtype=np.int64)
-        except (OSError, ValueError, KeyError):
-            return None  # unreadable: computed again
+        except Exception as exc:  # truncated, empty, not a zip, missing arrays: all recomputed
+            reason = " ".join(str(exc).split()) or type(exc).__name__
+            _damaged(f"chunk file {str(path)!r} is unreadable ({reason}); computing it again")
+            return None
         if fingerprint != self.fingerprint:
             raise StoreMismatch(f"chunk file {str(path)!r} belongs to another configuration")
         if fout.shape != (size, N_FLOAT) or iout.shape != (size, N_INT):
+            _damaged(f"chunk file {str(path)!r} holds {fout.shape[0]} cells, expected {size}; "
+                     "computing it again")
             return None
         return fout, iout
 
@@ -168,16 +181,26 @@ class ChunkStore:
         """Delete the store: its files, then the folder if nothing else is in it."""
         discard_store(self.path)
 
-    def _read_manifest(self) -> dict[str, Any] | None:
+    def _read_manifest(self) -> Any:
+        """The manifest; None when there is none; :data:`_DAMAGED` (after a warning) when it
+        cannot be used: not JSON, truncated, or a key or value missing or of the wrong type."""
         path = self.path / MANIFEST
         if not path.exists():
             return None
         try:
             manifest = json.loads(path.read_text())
-        except (OSError, ValueError):
-            raise StoreMismatch(f"resume store manifest {str(path)!r} is unreadable") from None
-        if not isinstance(manifest, dict) or manifest.get("format") != STORE_FORMAT:
+        except (OSError, ValueError) as exc:
+            reason = " ".join(str(exc).split()) or type(exc).__name__
+            _damaged(f"resume store manifest {str(path)!r} is unreadable ({reason}); "
+                     "starting the store afresh")
+            return _DAMAGED
+        if isinstance(manifest, dict) and "format" in manifest and manifest["format"] != STORE_FORMAT:
             raise StoreMismatch(f"{str(path)!r} is not a stickslip resume store manifest")
+        problem = _manifest_problem(manifest)
+        if problem:
+            _damaged(f"resume store manifest {str(path)!r} is damaged ({problem}); "
+                     "starting the store afresh")
+            return _DAMAGED
         return manifest
 
     def _write_manifest(self, manifest: dict[str, Any]) -> None:
@@ -187,6 +210,44 @@ class ChunkStore:
     def _remove_temporaries(self) -> None:
         for p in self.path.glob(f"*{TMP_MARK}*"):
             p.unlink(missing_ok=True)
+
+
+class StoreDamaged(UserWarning):
+    """A resume store file was damaged (truncated, empty, corrupt); it is computed again."""
+
+
+#: Marker returned by ``_read_manifest`` for a manifest that exists but cannot be used.
+_DAMAGED: Any = object()
+
+#: Keys of a manifest and the types their values must have.
+_MANIFEST_KEYS: dict[str, type | tuple[type, ...]] = {
+    "format": str,
+    "version": int,
+    "fingerprint": str,
+    "n_cells": int,
+    "chunk_size": int,
+    "runs": list,
+}
+
+
+def _manifest_problem(manifest: Any) -> str:
+    """What is wrong with a parsed manifest, or ``""``."""
+    if not isinstance(manifest, dict):
+        return f"a JSON {type(manifest).__name__}, not an object"
+    for key, kind in _MANIFEST_KEYS.items():
+        if key not in manifest:
+            return f"missing key {key!r}"
+        value = manifest[key]
+        if not isinstance(value, kind) or isinstance(value, bool):
+            return f"key {key!r} has the wrong type"
+    if manifest["chunk_size"] < 1 or manifest["n_cells"] < 0:
+        return "chunk_size or n_cells out of range"
+    return ""
+
+
+def _damaged(message: str) -> None:
+    """Report a damaged store file: one line (a warning, not an exception)."""
+    warnings.warn(message, StoreDamaged, stacklevel=3)
 
 
 def discard_store(path: str | os.PathLike[str]) -> None:

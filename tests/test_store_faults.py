@@ -1,0 +1,123 @@
+"""Issue 12, point 5: a damaged resume store is reported in one line and recomputed.
+
+Each test makes a store with a clean run, damages it (truncate, empty, delete or corrupt a
+chunk; corrupt the manifest or drop one of its keys), runs again on it and checks that the
+result is bit-identical to the clean run.
+"""
+
+from __future__ import annotations
+
+import json
+import warnings
+from collections.abc import Callable
+from pathlib import Path
+
+import pytest
+
+from stickslip.sweep import occurrence_map
+from stickslip.sweep.store import MANIFEST, StoreDamaged
+from tests.cli_helpers import run_cli
+from tests.sweep_helpers import LAMS, ZETAS, assert_same_map
+
+
+def _clean(tmp_path: Path) -> tuple[Path, object]:
+    store = tmp_path / "store"
+    full = occurrence_map(LAMS, ZETAS, "none", chunk_size=4, store=store)
+    assert len(list(store.glob("chunk-*.npz"))) == 8
+    return store, full
+
+
+def _truncate(p: Path) -> None:
+    data = p.read_bytes()
+    p.write_bytes(data[: len(data) // 2])
+
+
+def _empty(p: Path) -> None:
+    p.write_bytes(b"")
+
+
+def _garbage(p: Path) -> None:
+    p.write_bytes(b"PK\x03\x04 this is not a zip archive at all" * 10)
+
+
+CHUNK_DAMAGE: dict[str, Callable[[Path], None]] = {
+    "truncated": _truncate, "empty": _empty, "corrupt": _garbage, "deleted": Path.unlink,
+}
+
+
+@pytest.mark.parametrize("kind", sorted(CHUNK_DAMAGE))
+def test_damaged_chunk_is_reported_and_recomputed(kind: str, tmp_path: Path) -> None:
+    store, full = _clean(tmp_path)
+    victim = sorted(store.glob("chunk-*.npz"))[3]
+    CHUNK_DAMAGE[kind](victim)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        again = occurrence_map(LAMS, ZETAS, "none", chunk_size=4, store=store)
+    damaged = [w for w in caught if issubclass(w.category, StoreDamaged)]
+    if kind == "deleted":
+        assert damaged == []  # a missing chunk is simply not done yet
+    else:
+        assert len(damaged) == 1 and victim.name in str(damaged[0].message)
+        assert "\n" not in str(damaged[0].message)
+    assert again.chunks_computed == 1 and again.chunks_loaded == 7
+    assert_same_map(full.dataset, again.dataset)
+    # the chunk was rewritten: a third run loads everything
+    third = occurrence_map(LAMS, ZETAS, "none", chunk_size=4, store=store)
+    assert third.chunks_computed == 0
+
+
+def _drop_key(key: str) -> Callable[[Path], None]:
+    def damage(p: Path) -> None:
+        manifest = json.loads(p.read_text())
+        del manifest[key]
+        p.write_text(json.dumps(manifest))
+    return damage
+
+
+MANIFEST_DAMAGE: dict[str, Callable[[Path], None]] = {
+    "truncated": _truncate,
+    "empty": _empty,
+    "not-an-object": lambda p: p.write_text("[1, 2, 3]"),
+    "no-n_cells": _drop_key("n_cells"),
+    "no-chunk_size": _drop_key("chunk_size"),
+    "no-runs": _drop_key("runs"),
+    "no-fingerprint": _drop_key("fingerprint"),
+}
+
+
+@pytest.mark.parametrize("kind", sorted(MANIFEST_DAMAGE))
+def test_damaged_manifest_is_reported_and_store_rebuilt(kind: str, tmp_path: Path) -> None:
+    store, full = _clean(tmp_path)
+    MANIFEST_DAMAGE[kind](store / MANIFEST)
+    with pytest.warns(StoreDamaged, match="manifest") as caught:
+        again = occurrence_map(LAMS, ZETAS, "none", chunk_size=4, store=store)
+    assert len(caught) == 1
+    assert_same_map(full.dataset, again.dataset)
+    manifest = json.loads((store / MANIFEST).read_text())
+    assert manifest["n_cells"] == 30 and manifest["fingerprint"] == full.fingerprint
+
+
+def test_cli_resume_over_damaged_store_warns_once_and_completes(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # the store the CLI would resume: OUT.parts, made by an interrupted run of the same map
+    out = tmp_path / "m.nc"
+    store = tmp_path / "m.nc.parts"
+    args = ["map", "--lam", "log:0.1:50:6", "--zeta", "0.01,0.05,0.1,0.2,0.4", "--out", str(out),
+            "--chunk-size", "4", "--json"]
+    occurrence_map("log:0.1:50:6", "0.01,0.05,0.1,0.2,0.4", "none", chunk_size=4, store=store)
+    _truncate(sorted(store.glob("chunk-*.npz"))[2])
+    _empty(sorted(store.glob("chunk-*.npz"))[5])
+    code, stdout, err = run_cli(args, capsys)
+    assert code == 0, err
+    lines = err.strip().splitlines()
+    assert len(lines) == 2 and all(line.startswith("stickslip: warning: chunk file") for line in lines)
+    payload = json.loads(stdout)
+    assert payload["chunks"]["computed"] == 2 and payload["chunks"]["loaded"] == 6
+    assert not store.exists()
+    # a clean run of the same map gives the same file contents
+    clean = tmp_path / "clean.nc"
+    code, _, err = run_cli([*args[:6], str(clean), *args[7:]], capsys)
+    assert code == 0, err
+    from stickslip.sweep import OccurrenceMap
+
+    assert_same_map(OccurrenceMap.from_netcdf(out).dataset, OccurrenceMap.from_netcdf(clean).dataset)
