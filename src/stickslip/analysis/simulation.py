@@ -33,7 +33,7 @@ from stickslip.analysis.stability import steady_sliding_stability
 from stickslip.analysis.verdict import Mode, RunStatus, Verdict
 from stickslip.kernel import engine
 from stickslip.kernel.system import mode_kind_band
-from stickslip.model._validate import positive
+from stickslip.model._validate import friction_range, positive
 from stickslip.model.initial import InitialState, startup_state
 from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
@@ -319,6 +319,8 @@ class EngineOptions:
             if isinstance(value, bool) or int(value) != value or int(value) < 1:
                 raise ValueError(f"{name}={value!r} must be a whole number of at least 1")
             object.__setattr__(self, name, int(value))
+        if self.max_events > engine.MAX_STEPS:  # every event ends a step: more never happen
+            raise ValueError(f"max_events={self.max_events} exceeds the engine's {engine.MAX_STEPS} steps")
 
     def with_t_max(self, t_max: float | None) -> EngineOptions:
         """The same options with another horizon (unchanged when ``t_max`` is None)."""
@@ -372,6 +374,7 @@ def simulate(
     SimulationResult
     """
     opts = (options or EngineOptions()).with_t_max(t_max)
+    friction_range(slider.lam, slider.gamma)  # 2 gamma lambda must not overflow (issue 12)
     if initial is None:
         initial = startup_state(structure, slider)
     z0 = initial.as_vector(structure.n_dof)
