@@ -184,3 +184,43 @@ def steady_sliding_stability(structure: Structure, slider: Slider) -> SteadySlid
     elif structure.n_dof == 2:
         rh = routh_hurwitz_2dof(structure, slope)
     return SteadySlidingStability(slope, -0.5 * slope, eig, growth, growth < 0.0, rh, left != right)
+
+
+def growth_rate(structure: Structure, delta: float) -> float:
+    """Largest real part of the eigenvalues of slip-I with uniform weakening ``delta`` (per ``tau``)."""
+    return float(np.max(np.linalg.eigvals(slip_matrix(structure, -2.0 * delta)).real))
+
+
+def critical_weakening(structure: Structure, *, rtol: float = 1e-10) -> float:
+    """Largest friction weakening ``delta_crit`` for which steady sliding stays stable.
+
+    Steady sliding of ``structure`` under a law with local slope ``dF/du = -2 delta`` at the
+    belt speed is stable for ``0 <= delta < delta_crit`` (dimensionless, ``delta = sigma W /
+    (2 sqrt(m k))`` for the linear law). Closed form on the rigid base: ``delta_crit = zeta``
+    (Routh-Hurwitz of ``s^2 + 2 (zeta - delta) s + 1``, :func:`routh_hurwitz_1dof`).
+
+    Method: the trace of the slip matrix, ``-tr(M^-1 C) + 2 delta (M^-1)_00``, is the sum of
+    the eigenvalues, so every ``delta`` above ``tr(M^-1 C) / (2 (M^-1)_00)`` is unstable; the
+    growth rate is scanned on 64 points below that bound and the first sign change bisected
+    to ``rtol``. Returns 0 when steady sliding is not stable even without weakening.
+    """
+    if growth_rate(structure, 0.0) >= 0.0:
+        return 0.0
+    minv = np.linalg.inv(structure.mass)
+    upper = float(np.trace(minv @ structure.damping)) / (2.0 * float(minv[0, 0]))
+    grid = np.linspace(0.0, upper, 65)[1:]
+    lo, hi = 0.0, upper
+    for d in grid:
+        if growth_rate(structure, float(d)) >= 0.0:
+            hi = float(d)
+            break
+        lo = float(d)
+    for _ in range(200):
+        if hi - lo <= rtol * max(hi, 1e-300):
+            break
+        mid = 0.5 * (lo + hi)
+        if growth_rate(structure, mid) >= 0.0:
+            hi = mid
+        else:
+            lo = mid
+    return 0.5 * (lo + hi)

@@ -265,14 +265,11 @@ class TableFriction:
         return {"law": "table", "u": list(self.u), "f": list(self.f)}
 
 
-def read_friction_table(
-    path: str | Path, *, mu_s: float | None = None, mu_k: float | None = None, speed: float | None = None
-) -> TableFriction:
-    """Read a friction curve from a CSV file with a header row.
+def read_friction_csv_columns(path: str | Path) -> tuple[list[float], list[float]]:
+    """The ``v`` and ``mu`` columns of a measured friction curve (CSV with a header row).
 
-    Columns ``v`` [m/s] and ``mu`` [-] (then ``mu_s``, ``mu_k`` and the belt ``speed``
-    [m/s] are required), or ``v`` and ``f`` for the dimensionless form (``v`` = sliding
-    speed over belt speed, ``f = (mu - mu_k)/(mu_s - mu_k)``).
+    ``#`` starts a comment line. Returns the speeds and friction values as read (no units).
+    A file with columns ``v`` and ``f`` (the dimensionless form) is read the same way.
     """
     p = Path(path)
     try:
@@ -287,8 +284,7 @@ def read_friction_table(
     if "v" not in header or ("mu" not in header and "f" not in header):
         raise ValueError(f"friction table {p} needs columns v and mu (or v and f), got {', '.join(header)}")
     iv = header.index("v")
-    kind = "mu" if "mu" in header else "f"
-    iy = header.index(kind)
+    iy = header.index("mu" if "mu" in header else "f")
     v: list[float] = []
     y: list[float] = []
     for k, row in enumerate(rows[1:], start=2):
@@ -297,10 +293,27 @@ def read_friction_table(
             y.append(float(row[iy]))
         except (IndexError, ValueError):
             raise ValueError(f"friction table {p}, line {k}: not two numbers: {','.join(row)}") from None
-    if kind == "f":
+    return v, y
+
+
+def read_friction_table(
+    path: str | Path, *, mu_s: float | None = None, mu_k: float | None = None, speed: float | None = None
+) -> TableFriction:
+    """Read a friction curve from a CSV file with a header row.
+
+    Columns ``v`` [m/s] and ``mu`` [-] (then ``mu_s``, ``mu_k`` and the belt ``speed``
+    [m/s] are required), or ``v`` and ``f`` for the dimensionless form (``v`` = sliding
+    speed over belt speed, ``f = (mu - mu_k)/(mu_s - mu_k)``).
+    """
+    v, y = read_friction_csv_columns(path)
+    header = Path(path).read_text().lower()
+    dimensionless = "mu" not in [h.strip() for h in next(
+        line for line in header.splitlines() if line.strip() and not line.startswith("#")).split(",")]
+    if dimensionless:
         return TableFriction(tuple(v), tuple(y))
     if mu_s is None or mu_k is None or speed is None:
-        raise ValueError(f"friction table {p} gives mu: pass mu_s, mu_k and speed to make it dimensionless")
+        raise ValueError(f"friction table {path} gives mu: pass mu_s, mu_k and speed to make it "
+                         "dimensionless, or give columns v (over the belt speed) and f")
     return TableFriction.from_physical(v, y, mu_s, mu_k, speed)
 
 
@@ -445,3 +458,56 @@ class StribeckFriction:
 
 
 FrictionLaw = CoulombFriction | LinearFriction | TableFriction | StribeckFriction
+
+
+FRICTION_SYNTAX = (
+    "coulomb | linear:DELTA | table:FILE.csv | "
+    "stribeck:vs=V_S[,n=N][,viscous=D_V][,mu0=R0][,tol=TOL]"
+)
+
+
+def parse_friction(text: str) -> FrictionLaw:
+    """A friction law from its command-line text (dimensionless), see :data:`FRICTION_SYNTAX`.
+
+    * ``coulomb``: the paper's law (the default);
+    * ``linear:DELTA``: :class:`LinearFriction` with the dimensionless slope ``DELTA``
+      (``mu(0+) = mu_k``; > 0 weakening, < 0 strengthening);
+    * ``table:FILE.csv``: :class:`TableFriction` from a CSV with columns ``v`` (sliding speed
+      over belt speed) and ``f = (mu - mu_k)/(mu_s - mu_k)``;
+    * ``stribeck:vs=...,n=...,viscous=...,mu0=...,tol=...``: :class:`StribeckFriction` with
+      ``vs = v_s / V``, exponent ``n`` (default 1), ``viscous = sigma_v W / (2 sqrt(m k))``
+      (default 0), ``mu0 = (mu_0 - mu_k)/(mu_s - mu_k)`` (default 1) and the law tolerance
+      ``tol`` in units of lambda (default 1e-4).
+
+    Raises ``ValueError`` with one line naming the text and what is expected.
+    """
+    raw = str(text).strip()
+    kind, _, arg = raw.partition(":")
+    kind = kind.strip().lower()
+    if kind == "coulomb" and not arg:
+        return CoulombFriction()
+    if kind == "linear":
+        try:
+            return LinearFriction(float(arg))
+        except ValueError:
+            raise ValueError(f"--friction {raw!r}: linear needs a number, e.g. linear:0.05") from None
+    if kind == "table" and arg:
+        return read_friction_table(arg.strip())
+    if kind == "stribeck" and arg:
+        names = {"vs": "velocity_ratio", "n": "exponent", "viscous": "viscous", "mu0": "mu0_ratio",
+                 "tol": "tolerance"}
+        values: dict[str, float] = {}
+        for item in arg.split(","):
+            key, eq, value = item.partition("=")
+            key = key.strip().lower()
+            if not eq or key not in names:
+                raise ValueError(f"--friction {raw!r}: {item.strip()!r} is not one of "
+                                 f"{', '.join(k + '=...' for k in names)}")
+            try:
+                values[names[key]] = float(value)
+            except ValueError:
+                raise ValueError(f"--friction {raw!r}: {key}={value.strip()!r} is not a number") from None
+        if "velocity_ratio" not in values:
+            raise ValueError(f"--friction {raw!r}: stribeck needs vs=V_S/V, e.g. stribeck:vs=0.5")
+        return StribeckFriction(**values)
+    raise ValueError(f"--friction {raw!r} is not one of: {FRICTION_SYNTAX}")

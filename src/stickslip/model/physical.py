@@ -7,9 +7,19 @@ Everything here is in SI units: kg, N/m, N s/m, N, m/s. Units given as text ("2 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
 
 from stickslip.model._validate import non_negative, positive
+from stickslip.model.friction import (
+    CoulombFriction,
+    FrictionLaw,
+    LinearFriction,
+    StribeckFriction,
+    TableFriction,
+)
 from stickslip.model.parameters import Foundation, Slider
 from stickslip.model.structure import Structure, chain_structure
 
@@ -39,6 +49,74 @@ class PhysicalFoundation:
 
 
 @dataclass(frozen=True)
+class PhysicalFriction:
+    """A velocity-dependent friction law in SI units (DESIGN.md section 8, the ``[friction]`` table).
+
+    Parameters
+    ----------
+    law : {"coulomb", "linear", "table", "stribeck"}
+        The law's shape; ``mu_s`` and ``mu_k`` come from the system (for ``stribeck``
+        ``mu_k`` is the high-speed limit, for ``table`` the kinetic reference).
+    slope : float
+        ``linear``: ``sigma`` in ``mu = mu_k - sigma v_r``, s/m (> 0 weakening).
+    mu_0 : float or None
+        ``stribeck``: friction coefficient at vanishing sliding speed, ``mu_k <= ... <= mu_s``
+        (default ``mu_s``).
+    stribeck_velocity : float
+        ``stribeck``: ``v_s``, m/s (> 0).
+    exponent : float
+        ``stribeck``: ``n`` (> 0).
+    viscous : float
+        ``stribeck``: ``sigma_v``, s/m.
+    table_v, table_mu : tuple of float
+        ``table``: sliding speeds, m/s, and friction coefficients of a measured curve.
+    tolerance : float
+        ``stribeck``: law approximation error in units of lambda (see
+        :class:`~stickslip.model.friction.StribeckFriction`).
+    """
+
+    law: str = "coulomb"
+    slope: float = 0.0
+    mu_0: float | None = None
+    stribeck_velocity: float = 1.0
+    exponent: float = 1.0
+    viscous: float = 0.0
+    table_v: tuple[float, ...] = ()
+    table_mu: tuple[float, ...] = ()
+    tolerance: float = 1e-4
+
+    def __post_init__(self) -> None:
+        if self.law not in ("coulomb", "linear", "table", "stribeck"):
+            raise ValueError(f"friction law {self.law!r} is not one of coulomb, linear, table, stribeck")
+        if self.law == "table" and not self.table_v:
+            raise ValueError("the table friction law needs a curve (table = \"curve.csv\")")
+
+    def dimensionless(self, m: float, k: float, mu_s: float, mu_k: float, load: float,
+                      speed: float) -> FrictionLaw:
+        """The law in the engine's units: ``delta = sigma W / (2 sqrt(m k))``, ``u = v / V``.
+
+        Stribeck: ``u_s = v_s / V``, ``r0 = (mu_0 - mu_k) / (mu_s - mu_k)``,
+        ``d_v = sigma_v W / (2 sqrt(m k))``. Table: ``u_i = v_i / V``,
+        ``f_i = (mu_i - mu_k) / (mu_s - mu_k)``.
+        """
+        weight = load / (2.0 * math.sqrt(m * k))
+        if self.law == "linear":
+            return LinearFriction(self.slope * weight)
+        if self.law == "table":
+            return TableFriction.from_physical(self.table_v, self.table_mu, mu_s, mu_k, speed)
+        if self.law == "stribeck":
+            mu_0 = mu_s if self.mu_0 is None else self.mu_0
+            return StribeckFriction(
+                positive("stribeck_velocity", self.stribeck_velocity) / speed,
+                exponent=self.exponent,
+                viscous=self.viscous * weight,
+                mu0_ratio=(mu_0 - mu_k) / (mu_s - mu_k),
+                tolerance=self.tolerance,
+            )
+        return CoulombFriction()
+
+
+@dataclass(frozen=True)
 class PhysicalSystem:
     """The sliding system of the paper's Fig. 1 in SI units.
 
@@ -58,6 +136,8 @@ class PhysicalSystem:
         Belt speed ``V``, m/s (> 0).
     foundation : PhysicalFoundation or None
         The elastic foundation; ``None`` is the rigid base.
+    friction : PhysicalFriction
+        The friction law while sliding (default: the paper's Coulomb law, ``mu = mu_k``).
     """
 
     m: float
@@ -68,6 +148,7 @@ class PhysicalSystem:
     load: float
     speed: float
     foundation: PhysicalFoundation | None = None
+    friction: PhysicalFriction = PhysicalFriction()
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "m", positive("m", self.m))
@@ -104,11 +185,13 @@ class PhysicalSystem:
         return self.speed * math.sqrt(self.m * self.k)
 
     def slider(self) -> Slider:
-        """Dimensionless ``lambda`` and ``gamma`` of the contact (definitions after Eq. 27)."""
+        """Dimensionless ``lambda``, ``gamma`` and friction law of the contact (after Eq. 27)."""
         root_mk = math.sqrt(self.m * self.k)
         return Slider(
             (self.mu_s - self.mu_k) * self.load / (self.speed * root_mk),
             gamma=self.mu_k / (self.mu_s - self.mu_k),
+            friction=self.friction.dimensionless(self.m, self.k, self.mu_s, self.mu_k, self.load,
+                                                 self.speed),
         )
 
     @property
@@ -193,3 +276,38 @@ def foundation_to_physical(foundation: Foundation, m: float, k: float) -> Physic
         k_a=foundation.stiffness_ratio**2 * k,
         c_a=2.0 * foundation.damping_ratio * math.sqrt(m * k),
     )
+
+
+def physical_friction_from_config(table: Mapping[str, Any], *, base_dir: Path | None = None,
+                                  source: str = "[friction]") -> PhysicalFriction:
+    """The ``[friction]`` table of a TOML configuration (DESIGN.md section 8) in SI units.
+
+    Keys: ``law`` (coulomb | linear | table | stribeck), ``slope`` (linear, s/m), ``mu_0``,
+    ``stribeck_velocity`` (m/s), ``exponent``, ``viscous`` (s/m), ``tolerance`` (stribeck), and
+    ``table`` (a CSV with columns ``v`` [m/s] and ``mu``, relative to ``base_dir``). Values
+    may carry units (``"0.02 s/m"``). Raises ``ValueError`` naming the key and the value.
+    """
+    from stickslip.model.friction import read_friction_csv_columns
+    from stickslip.model.units import FRICTION_QUANTITIES, to_si
+
+    if not isinstance(table, Mapping):
+        raise ValueError(f"{source} must be a table of keys, not {table!r}")
+    unknown = sorted(set(table) - set(FRICTION_QUANTITIES) - {"law", "table"})
+    if unknown:
+        raise ValueError(f"{source}: unknown keys {', '.join(unknown)} (allowed: law, table, "
+                         f"{', '.join(FRICTION_QUANTITIES)})")
+    law = table.get("law", "coulomb")
+    if not isinstance(law, str):
+        raise ValueError(f"{source}: law = {law!r} must be a string")
+    values: dict[str, Any] = {"law": law.strip().lower()}
+    for key in FRICTION_QUANTITIES:
+        if key in table:
+            values[key] = to_si(key, table[key], source=f"{source}: {key} =")
+    if "table" in table:
+        path = table["table"]
+        if not isinstance(path, str):
+            raise ValueError(f"{source}: table = {path!r} must be the path of a CSV file")
+        full = Path(path) if base_dir is None or Path(path).is_absolute() else base_dir / path
+        v, mu = read_friction_csv_columns(full)
+        values["table_v"], values["table_mu"] = tuple(v), tuple(mu)
+    return PhysicalFriction(**values)

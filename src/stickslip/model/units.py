@@ -25,6 +25,16 @@ QUANTITIES: dict[str, tuple[str, str, str]] = {
     "c_a": ("[force] * [time] / [length]", "N s/m", "foundation damping coefficient"),
 }
 
+#: Quantities of the ``[friction]`` table (DESIGN.md section 8), same layout.
+FRICTION_QUANTITIES: dict[str, tuple[str, str, str]] = {
+    "slope": ("[time] / [length]", "s/m", "linear law: slope sigma of mu = mu_k - sigma v_r"),
+    "mu_0": ("", "", "Stribeck law: friction coefficient at vanishing sliding speed"),
+    "stribeck_velocity": ("[velocity]", "m/s", "Stribeck law: Stribeck velocity v_s"),
+    "exponent": ("", "", "Stribeck law: exponent n"),
+    "viscous": ("[time] / [length]", "s/m", "Stribeck law: viscous slope sigma_v"),
+    "tolerance": ("", "", "Stribeck law: law approximation error in units of lambda"),
+}
+
 
 @lru_cache(maxsize=1)
 def _registry() -> Any:
@@ -71,7 +81,7 @@ def to_si(name: str, value: str | float | int, *, source: str | None = None) -> 
     list or table), or a result that is not finite. ``source`` names where the value came
     from in the message (default: the command-line flag, e.g. ``--m``).
     """
-    dim, si_unit, what = QUANTITIES[name]
+    dim, si_unit, what = QUANTITIES[name] if name in QUANTITIES else FRICTION_QUANTITIES[name]
     flag = source or f"--{name.replace('_', '-')}"
     if isinstance(value, bool) or not isinstance(value, (int, float, str)):
         raise ValueError(f"{flag} {value!r} is not a number or a quantity string such as '2 kg'")
