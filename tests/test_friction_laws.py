@@ -175,3 +175,8 @@ def test_run_cells_takes_per_cell_band_tables() -> None:
     e, a, s, nb = coulomb_tables(lams[:2], gammas[:2])
     assert e.tolist() == [[0.0, math.inf]] * 2 and nb.tolist() == [1, 1]
     assert startup_vector(st.stiffness, 1.0, 2.0).tolist() == [-2.0, 1.0]
+
+
+def test_slider_refuses_a_non_law() -> None:
+    with pytest.raises(ValueError, match="is not a friction law"):
+        Slider(1.0, 0.1, friction=0.3)  # type: ignore[arg-type]

@@ -49,6 +49,8 @@ class Slider:
     def __post_init__(self) -> None:
         object.__setattr__(self, "lam", positive("lambda", self.lam))
         object.__setattr__(self, "gamma", non_negative("gamma", self.gamma))
+        if not callable(getattr(self.friction, "bands", None)):
+            raise ValueError(f"friction={self.friction!r} is not a friction law (stickslip.model.friction)")
 
 
 @dataclass(frozen=True)
