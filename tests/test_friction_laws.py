@@ -179,4 +179,4 @@ def test_run_cells_takes_per_cell_band_tables() -> None:
 
 def test_slider_refuses_a_non_law() -> None:
     with pytest.raises(ValueError, match="is not a friction law"):
-        Slider(1.0, 0.1, friction=0.3)  # type: ignore[arg-type]
+        Slider(1.0, friction=0.3)  # type: ignore[arg-type]
