@@ -24,6 +24,7 @@ from stickslip.analysis.theory import (
     optimal_foundation_fit,
 )
 from stickslip.analysis.verdict import Verdict
+from stickslip.model.friction import CoulombFriction
 from stickslip.model.parameters import Foundation
 from stickslip.model.physical import (
     PhysicalFoundation,
@@ -31,7 +32,7 @@ from stickslip.model.physical import (
     foundation_to_dimensionless,
     foundation_to_physical,
 )
-from stickslip.model.structure import elastic_foundation, rigid_base
+from stickslip.model.structure import Structure, elastic_foundation, rigid_base
 
 #: Largest primary damping ratio the design procedure accepts; Eqs. (28)-(33) are fitted on
 #: ``0 <= zeta <= 0.4`` and results between 0.4 and this bound carry a warning.
@@ -77,6 +78,7 @@ class DesignReport:
     critical: dict[str, CriticalValues]
     warnings: tuple[str, ...] = ()
     stick_slip_optimum: dict[str, Any] | None = None
+    stability: dict[str, Any] | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """JSON keys of the ``design`` command (issue 6)."""
@@ -115,6 +117,8 @@ class DesignReport:
             "units": {"speed": "m/s", "load": "N", "m_a": "kg", "k_a": "N/m", "c_a": "N s/m"},
             "warnings": list(self.warnings),
             "stick_slip_optimal_foundation": self.stick_slip_optimum,
+            "friction": self.system.slider().friction.describe(),
+            "stability": self.stability,
         }
 
     def plot(self, **kwargs: Any) -> Any:
@@ -210,9 +214,46 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
             f"zeta={zeta:.3g} is outside the range 0 <= zeta <= 0.4 on which Eqs. (28)-(33) are "
             "fitted: trust the simulated verdicts, not the theory column"
         )
+    if not isinstance(slider.friction, CoulombFriction):
+        warnings.append(
+            "critical speeds and loads follow the paper's procedure for the Coulomb law; the "
+            f"simulated verdicts at the operating point use the friction law ({slider.friction.describe()})"
+        )
     optimum = _stick_slip_optimum(system, zeta, gamma, lam) if stick_slip_optimum else None
+    stability = stability_margin(system, {"rigid": rigid, "foundation": with_foundation})
     return DesignReport(system, lam, zeta, gamma, zeta_eq, zeta_eq_source, foundation, dimensionless,
-                        source, recommended, verdicts, crit, tuple(warnings), optimum)
+                        source, recommended, verdicts, crit, tuple(warnings), optimum, stability)
+
+
+def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -> dict[str, Any]:
+    """Linear stability of steady sliding for each structure, and its margin in SI units.
+
+    For each structure: the growth rate of small motions about steady sliding under the
+    system's friction law (per second: ``omega_n`` times the dimensionless rate), whether it is
+    stable, the critical weakening ``delta_crit``
+    (:func:`stickslip.analysis.stability.critical_weakening`) and the friction slope it allows,
+    ``sigma_crit = 2 delta_crit sqrt(m k) / W`` in s/m (``d mu / d v_r`` may fall by at most that
+    much at the belt speed), next to the law's own local weakening ``delta_local``; the margin is
+    ``delta_crit - delta_local`` (positive: stable).
+    """
+    from stickslip.analysis.stability import critical_weakening, steady_sliding_stability
+
+    slider = system.slider()
+    per_slope = 2.0 * math.sqrt(system.m * system.k) / system.load
+    out: dict[str, Any] = {"units": {"growth_rate": "1/s", "sigma": "s/m"}}
+    for name, structure in structures.items():
+        stab = steady_sliding_stability(structure, slider)
+        delta_crit = critical_weakening(structure)
+        out[name] = {
+            "stable": bool(stab.stable),
+            "growth_rate": stab.growth_rate * system.natural_frequency,
+            "delta_local": stab.delta_local,
+            "delta_crit": delta_crit,
+            "margin": delta_crit - stab.delta_local,
+            "sigma_local": stab.delta_local * per_slope,
+            "sigma_crit": delta_crit * per_slope,
+        }
+    return out
 
 
 def _stick_slip_optimum(system: PhysicalSystem, zeta: float, gamma: float,

@@ -118,8 +118,9 @@ def tune(
     ] = None,
     objective: Annotated[
         str,
-        typer.Option("--objective", help="absorber (minimum H_max, the paper's criterion) or "
-                     "stick-slip (maximum simulated stick-slip onset)"),
+        typer.Option("--objective", help="absorber (minimum H_max, the paper's criterion), "
+                     "stick-slip (maximum simulated stick-slip onset) or stability (maximum "
+                     "friction weakening delta with stable steady sliding)"),
     ] = "absorber",
     gamma: Annotated[float, typer.Option("--gamma", help="mu_k/(mu_s - mu_k), stick-slip objective")] = 2.0,
     lam_max: Annotated[
@@ -131,7 +132,10 @@ def tune(
 
     With ``--objective stick-slip`` the foundation maximises the simulated stick-slip onset
     instead, with ``M`` bounded by the absorber optimum's ``M_opt`` (Eq. 28) unless
-    ``--mass-ratio`` sets the bound.
+    ``--mass-ratio`` sets the bound. With ``--objective stability`` it maximises the largest
+    friction weakening ``delta`` for which steady sliding stays linearly stable (same bound).
+
+    Example: stickslip tune --zeta 0.1 --objective stability --json
     """
     from stickslip.analysis.tuning import MAX_TUNING_ZETA, tune_foundation
     from stickslip.model._validate import at_most, non_negative, positive, ratio
@@ -147,10 +151,13 @@ def tune(
         lam_max = at_most("--lam-max", positive("--lam-max", lam_max))
     except ValueError as exc:
         raise BadInput(str(exc)) from None
-    if objective not in ("absorber", "stick-slip"):
-        raise BadInput(f"--objective {objective!r} must be 'absorber' or 'stick-slip'")
+    if objective not in ("absorber", "stick-slip", "stability"):
+        raise BadInput(f"--objective {objective!r} must be 'absorber', 'stick-slip' or 'stability'")
     if objective == "stick-slip":
         _tune_stick_slip(zeta, gamma, mass_ratio, lam_max, json)
+        return
+    if objective == "stability":
+        _tune_stability(zeta, mass_ratio, json)
         return
     result = tune_foundation(zeta, mass_ratio=mass_ratio)
     payload = result.to_dict()
@@ -180,14 +187,45 @@ def tune(
     typer.echo("\n".join(lines))
 
 
+def _mass_bounds(zeta: float, mass_ratio: float | None) -> tuple[float, float]:
+    """``(M / 20, M)`` with ``M`` given by ``--mass-ratio`` or Eq. (28): no more mass than the absorber."""
+    from stickslip.analysis.theory import optimal_mass_ratio_fit
+
+    top = optimal_mass_ratio_fit(zeta) if mass_ratio is None else mass_ratio
+    return top / 20.0, top
+
+
+def _tune_stability(zeta: float, mass_ratio: float | None, json: bool) -> None:
+    from stickslip.analysis.tuning import optimal_foundation_stability
+
+    bounds = _mass_bounds(zeta, mass_ratio)
+    payload = optimal_foundation_stability(zeta, mass_ratio_bounds=bounds).to_dict()
+    if json:
+        print_json(payload)
+        return
+    ref = payload["absorber_optimum"]
+    typer.echo("\n".join([
+        f"stability-optimal foundation for zeta = {_fmt(zeta)} (M in [{bounds[0]:.4g}, {bounds[1]:.4g}], "
+        f"K in [{payload['stiffness_ratio_bounds'][0]:.4g}, {payload['stiffness_ratio_bounds'][1]:.4g}])",
+        f"{'':22s} {'M':>9s} {'K':>9s} {'zeta_a':>9s}  critical weakening delta_crit",
+        f"{'stability optimum':22s} {payload['M']:9.4g} {payload['K']:9.4g} "
+        f"{payload['zeta_a']:9.4g}  {payload['delta_crit']:.6g}",
+        f"{'absorber optimum':22s} {ref['M']:9.4g} {ref['K']:9.4g} {ref['zeta_a']:9.4g}  "
+        f"{ref['delta_crit']:.6g}  (Eqs. 28-30)",
+        f"{'rigid base':22s} {'':9s} {'':9s} {'':9s}  {payload['rigid_base_delta_crit']:.6g}  (= zeta)",
+        "steady sliding is linearly stable for every friction law whose weakening at the belt "
+        "speed, delta = -(dF/du)/2, is below delta_crit",
+        *(["note: K lies on its lower bound K_opt/10; softer foundations stabilise further but "
+           "drift by gamma lambda / K^2 and decay ever slower"]
+          if payload["K"] <= payload["stiffness_ratio_bounds"][0] * (1 + 1e-9) else []),
+    ]))
+
+
 def _tune_stick_slip(zeta: float, gamma: float, mass_ratio: float | None, lam_max: float,
                      json: bool) -> None:
-    from stickslip.analysis.theory import optimal_mass_ratio_fit
     from stickslip.analysis.tuning import optimal_foundation_stick_slip
 
-    bounds = None if mass_ratio is None else (mass_ratio / 20.0, mass_ratio)
-    if bounds is None:
-        bounds = (optimal_mass_ratio_fit(zeta) / 20.0, optimal_mass_ratio_fit(zeta))
+    bounds = _mass_bounds(zeta, mass_ratio)
     result = optimal_foundation_stick_slip(zeta, gamma, mass_ratio_bounds=bounds, lam_max=lam_max)
     payload = result.to_dict()
     if json:

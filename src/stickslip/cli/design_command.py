@@ -4,12 +4,15 @@ from __future__ import annotations
 
 import tomllib
 from pathlib import Path
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
 from stickslip.cli.console import BadInput, print_json
 from stickslip.model.units import QUANTITIES, to_si
+
+if TYPE_CHECKING:
+    from stickslip.model.physical import PhysicalFriction
 
 REQUIRED = ("m", "k", "mu_s", "mu_k", "load", "speed")
 FOUNDATION = ("m_a", "k_a", "c_a")
@@ -29,7 +32,7 @@ def read_config(path: Path) -> dict[str, Any]:
         raise BadInput(f"--config {str(path)!r} does not exist") from None
     except tomllib.TOMLDecodeError as exc:
         raise BadInput(f"--config {str(path)!r} is not valid TOML: {exc}") from None
-    section = data.get("system", data)
+    section = data.get("system", {k: v for k, v in data.items() if k != "friction"})
     if not isinstance(section, dict):
         raise BadInput(f"--config {str(path)!r}: 'system' must be a table of quantities, "
                        f"not {section!r}")
@@ -37,6 +40,19 @@ def read_config(path: Path) -> dict[str, Any]:
     if unknown:
         raise BadInput(f"--config {str(path)!r}: unknown keys {', '.join(unknown)}")
     return dict(section)
+
+
+def read_friction_config(path: Path | None) -> PhysicalFriction:
+    """The ``[friction]`` table of the TOML file (DESIGN.md section 8); Coulomb without one."""
+    from stickslip.model.physical import PhysicalFriction, physical_friction_from_config
+
+    if path is None:
+        return PhysicalFriction()
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    if "friction" not in data:
+        return PhysicalFriction()
+    return physical_friction_from_config(data["friction"], base_dir=path.parent,
+                                         source=f"--config {str(path)!r}: [friction]")
 
 
 def collect_inputs(flags: dict[str, Any], config: Path | None) -> dict[str, float]:
@@ -91,7 +107,8 @@ def design(
     if "m_a" in v:
         foundation = PhysicalFoundation(v["m_a"], v["k_a"], v["c_a"])
     system = PhysicalSystem(m=v["m"], k=v["k"], c=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"],
-                            load=v["load"], speed=v["speed"], foundation=foundation)
+                            load=v["load"], speed=v["speed"], foundation=foundation,
+                            friction=read_friction_config(config))
     report = design_foundation(system, stick_slip_optimum=stick_slip_optimum)
     payload = report.to_dict()
     if json:
@@ -141,6 +158,18 @@ def format_report(p: dict[str, Any]) -> str:
             f"stick-slip-optimal foundation: m_a={g(best['m_a'], 'kg')}, k_a={g(best['k_a'], 'N/m')}, "
             f"c_a={g(best['c_a'], 'N s/m')}; stick-slip onset lambda_c {onset}"
         )
+    stab = p.get("stability")
+    if stab:
+        lines += ["", f"steady sliding with the friction law ({p['friction']}):"]
+        for name in ("rigid", "foundation"):
+            s = stab[name]
+            lines.append(
+                f"  {('rigid base' if name == 'rigid' else 'with foundation'):22}"
+                f"{'stable' if s['stable'] else 'UNSTABLE':>9}  growth rate {g(s['growth_rate'], '1/s')}; "
+                f"tolerates a friction slope down to -{g(s['sigma_crit'], 's/m')} "
+                f"(delta_crit={g(s['delta_crit'])}, law's delta={g(s['delta_local'])}, "
+                f"margin {g(s['margin'])})"
+            )
     lines += [f"warning: {w}" for w in p.get("warnings", [])]
     return "\n".join(lines)
 

@@ -22,3 +22,12 @@ PLOT = Annotated[Path | None, typer.Option("--plot", help="write the figure here
 OVERWRITE = Annotated[
     bool, typer.Option("--overwrite", help="replace an existing --plot (or --csv) file")
 ]
+FRICTION = Annotated[
+    str,
+    typer.Option(
+        "--friction",
+        help="friction law while sliding (dimensionless): coulomb (the paper's), linear:DELTA, "
+        "table:FILE.csv (columns v = v_r/V and f = (mu - mu_k)/(mu_s - mu_k)), or "
+        "stribeck:vs=V_S/V[,n=N][,viscous=D_V][,mu0=R0][,tol=TOL]",
+    ),
+]

@@ -15,7 +15,7 @@ from stickslip.cli.console import (
     print_json,
     warn_fitted_range,
 )
-from stickslip.cli.options import DVA, GAMMA, JSON, K_SCALE, OVERWRITE
+from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE, OVERWRITE
 
 if TYPE_CHECKING:
     from stickslip.model.initial import InitialState
@@ -63,15 +63,20 @@ def simulate(
     t_plot_start: Annotated[
         float, typer.Option("--plot-from", help="first time drawn in the figure")
     ] = 0.0,
+    friction: FRICTION = "coulomb",
     overwrite: OVERWRITE = False,
     json: JSON = False,
 ) -> None:
-    """One simulation: certified verdict, period, amplitude, events."""
+    """One simulation: certified verdict, period, amplitude, events.
+
+    Example: stickslip simulate --lam 3 --zeta 0.1 --dva optimal --friction linear:0.05 --json
+    """
     from stickslip.analysis.simulation import EngineOptions
     from stickslip.analysis.simulation import simulate as run_simulation
     from stickslip.model import Slider, chain_structure
+    from stickslip.model.friction import parse_friction
 
-    slider = Slider(lam, gamma=gamma)
+    slider = Slider(lam, gamma=gamma, friction=parse_friction(friction))
     check_run_limits(slider.lam, slider.gamma, max_events=max_events, plot_from=t_plot_start)
     foundation = parse_dva(dva, zeta, k_scale)
     structure = chain_structure(zeta, () if foundation is None else (foundation,))
@@ -111,6 +116,10 @@ def _print_summary(p: dict[str, Any]) -> None:
         f"   stick ratio {fmt(p['stick_ratio'])}",
         f"max xi'     {fmt(p['max_velocity'])}   t_end {fmt(p['t_end'])}   events {p['n_events']}",
         f"initial     {p['initial_condition']}",
+        f"friction    {p['friction']['description']}",
+        "sliding     steady sliding is linearly "
+        + ("stable" if p["steady_sliding_stable"] else "UNSTABLE")
+        + f" (growth rate {fmt(p['growth_rate'])} per unit tau)",
     ]
     if p.get("foundation"):
         f = p["foundation"]

@@ -31,11 +31,12 @@ from numpy.typing import ArrayLike, NDArray
 from stickslip.analysis.critical import Crossing, bisect_crossings, scan_brackets
 from stickslip.analysis.dva import DvaSpec
 from stickslip.analysis.simulation import EngineOptions
-from stickslip.analysis.theory import analytic_boundaries
+from stickslip.analysis.theory import analytic_boundaries, critical_lambda_linear
 from stickslip.analysis.verdict import Verdict, verdict_codes, verdict_flag_attributes
 from stickslip.io.provenance import package_version, provenance_attributes
 from stickslip.kernel import engine
 from stickslip.model._validate import at_most, non_negative, positive
+from stickslip.model.friction import CoulombFriction, FrictionLaw, LinearFriction
 from stickslip.model.parameters import Foundation
 from stickslip.sweep.executors import CellBatch, StructureSet, run_batch
 from stickslip.sweep.grid import Axis, as_axis
@@ -89,6 +90,7 @@ class BoundaryResult:
     scan_verdict: NDArray[np.int8] = field(repr=False)
     crossings: tuple[tuple[Crossing, ...], ...] = field(repr=False)
     foundations: tuple[Foundation | None, ...] = field(default=(), repr=False)
+    friction: FrictionLaw = field(default_factory=CoulombFriction)
     n_runs: int = 0
     elapsed: float = 0.0
 
@@ -127,13 +129,27 @@ class BoundaryResult:
         return out
 
     def analytic(self) -> dict[str, FloatArray]:
-        """Closed-form critical lambda at each ``zeta``: ``eq36``/``eq39`` or ``eq37``."""
+        """Closed-form critical lambda at each ``zeta``: ``eq36``/``eq39`` or ``eq37``.
+
+        With a friction law other than Coulomb the paper's closed forms do not apply; on the
+        rigid base the linear law has its own exact boundary, Eq. (36) at ``zeta - delta``
+        (:func:`stickslip.analysis.theory.critical_lambda_linear`), under the key
+        ``eq36_linear``; other laws have none.
+        """
+        if isinstance(self.friction, LinearFriction) and self.dva.kind == "none":
+            delta = self.friction.delta
+            return {"eq36_linear": np.array([critical_lambda_linear(z, delta) for z in self.zeta.values])}
+        if not isinstance(self.friction, CoulombFriction):
+            return {}
         found = self.foundations if len(self.foundations) == len(self.zeta) else None
         return {c.key: c.lam for c in analytic_boundaries(self.dva, self.zeta.values, found)}
 
     def configuration(self) -> dict[str, Any]:
-        """The resolved configuration, JSON-ready."""
+        """The resolved configuration, JSON-ready (the friction law only when not Coulomb)."""
+        friction = {} if isinstance(self.friction, CoulombFriction) else {
+            "friction": {**self.friction.to_dict(), "description": self.friction.describe()}}
         return {
+            **friction,
             "zeta": {"spec": self.zeta.spec, "spacing": self.zeta.spacing,
                      "values": [float(v) for v in self.zeta.values]},
             "dva": {"text": self.dva.as_text(), "kind": self.dva.kind,
@@ -171,6 +187,7 @@ class BoundaryResult:
             rows.append(row)
         return {
             "dva": self.dva.describe(),
+            "friction": self.friction.describe(),
             "gamma": self.gamma,
             "lam_min": self.lam_min,
             "lam_max": self.lam_max,
@@ -272,6 +289,7 @@ def stick_slip_boundary(
     t_max: float | None = None,
     options: EngineOptions | None = None,
     workers: int | None = None,
+    friction: FrictionLaw | None = None,
 ) -> BoundaryResult:
     """Every critical ``lambda`` in ``[lam_min, lam_max]`` at each ``zeta``, by scan and bisection.
 
@@ -295,6 +313,8 @@ def stick_slip_boundary(
         Engine limits (defaults of :class:`EngineOptions`).
     workers : int, optional
         Numba threads (all cores when None).
+    friction : FrictionLaw, optional
+        Friction law of every run (the paper's Coulomb law by default).
 
     Returns
     -------
@@ -316,13 +336,14 @@ def stick_slip_boundary(
     if rtol >= 1.0:
         raise ValueError(f"rtol={rtol!r} must be below 1")
     engine_options = (options or EngineOptions()).with_t_max(t_max)
+    law = friction or CoulombFriction()
     structures = StructureSet.resolve(spec, axis.values)
     n_zeta = len(axis)
 
     def verdicts(index: NDArray[np.int64], lams: FloatArray) -> NDArray[np.int8]:
         if index.size == 0:
             return np.zeros(0, dtype=np.int8)
-        _, int_summary = run_batch(structures, CellBatch(index, lams, gamma), engine_options, workers)
+        _, int_summary = run_batch(structures, CellBatch(index, lams, gamma, law), engine_options, workers)
         return verdict_codes(int_summary[:, engine.I_STATUS])
 
     scan = np.geomspace(lam_min, lam_max, int(n_scan))
@@ -351,6 +372,7 @@ def stick_slip_boundary(
         scan_verdict=scan_verdict,
         crossings=tuple(tuple(sorted(c, key=lambda x: x.lam)) for c in per_zeta),
         foundations=structures.foundations,
+        friction=law,
         n_runs=n_runs,
         elapsed=time.perf_counter() - started,
     )

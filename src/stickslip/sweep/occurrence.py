@@ -37,6 +37,7 @@ from stickslip.analysis.verdict import (
 from stickslip.io.provenance import package_version, provenance_attributes
 from stickslip.kernel import engine
 from stickslip.model._validate import non_negative, positive
+from stickslip.model.friction import CoulombFriction, FrictionLaw
 from stickslip.model.initial import STARTUP_DESCRIPTION
 from stickslip.model.parameters import Foundation
 from stickslip.sweep.executors import (
@@ -99,6 +100,8 @@ class MapConfig:
         ``mu_k / (mu_s - mu_k)``, dimensionless (the paper uses 2).
     options : EngineOptions
         Engine limits of every cell.
+    friction : FrictionLaw
+        The friction law of every cell (default: the paper's Coulomb law).
     """
 
     lam: Axis
@@ -106,6 +109,7 @@ class MapConfig:
     dva: DvaSpec = field(default_factory=DvaSpec)
     gamma: float = 2.0
     options: EngineOptions = field(default_factory=EngineOptions)
+    friction: FrictionLaw = field(default_factory=CoulombFriction)
 
     def __post_init__(self) -> None:
         for value in self.lam.values.tolist():
@@ -124,6 +128,7 @@ class MapConfig:
         *,
         options: EngineOptions | None = None,
         t_max: float | None = None,
+        friction: FrictionLaw | None = None,
     ) -> MapConfig:
         """The configuration of :func:`occurrence_map` for these arguments (same parsing rules).
 
@@ -132,7 +137,8 @@ class MapConfig:
         """
         spec = DvaSpec.parse(dva) if isinstance(dva, str) else dva
         engine_options = (options or EngineOptions()).with_t_max(t_max)
-        return cls(as_axis(lams, "lambda"), as_axis(zetas, "zeta"), spec, gamma, engine_options)
+        return cls(as_axis(lams, "lambda"), as_axis(zetas, "zeta"), spec, gamma, engine_options,
+                   friction or CoulombFriction())
 
     @functools.cached_property
     def structures(self) -> StructureSet:
@@ -150,8 +156,15 @@ class MapConfig:
         return len(self.lam) * len(self.zeta)
 
     def to_dict(self) -> dict[str, Any]:
-        """The full resolved configuration, JSON-ready (floats kept to full precision)."""
+        """The full resolved configuration, JSON-ready (floats kept to full precision).
+
+        The friction law appears only when it is not the paper's Coulomb law, so that the
+        configuration (and fingerprint) of a Coulomb map is what it was before friction laws.
+        """
+        friction = {} if isinstance(self.friction, CoulombFriction) else {
+            "friction": {**self.friction.to_dict(), "description": self.friction.describe()}}
         return {
+            **friction,
             "lambda": _axis_dict(self.lam),
             "zeta": _axis_dict(self.zeta),
             "dva": {
@@ -183,6 +196,7 @@ class MapConfig:
             structure_index=cells % n_zeta,
             lams=np.array(self.lam.values[cells // n_zeta]),
             gamma=self.gamma,
+            friction=self.friction,
         )
 
 
@@ -334,6 +348,7 @@ class OccurrenceMap:
             "cells_per_second": self.cells_per_second,
             "fingerprint": self.fingerprint,
             "dva": self.dva.describe(),
+            "friction": self.dataset.attrs.get("friction", CoulombFriction().describe()),
             "gamma": self.configuration["gamma"],
             "t_max": self.configuration["engine"]["t_max"],
         }
@@ -360,6 +375,7 @@ def occurrence_map(
     *,
     t_max: float | None = None,
     options: EngineOptions | None = None,
+    friction: FrictionLaw | None = None,
     backend: Backend = "threads",
     workers: int | None = None,
     scheduler: str | None = None,
@@ -387,6 +403,9 @@ def occurrence_map(
         Time horizon of each cell (dimensionless ``tau``); overrides ``options.t_max``.
     options : EngineOptions, optional
         Engine limits (defaults of :class:`EngineOptions`).
+    friction : FrictionLaw, optional
+        Friction law of every cell (:mod:`stickslip.model.friction`); the paper's Coulomb law
+        by default. Cells may then also end in ``slip-oscillation``.
     backend : {"threads", "serial", "dask"}
         ``threads``: numba threads (``workers`` of them, all cores when None);
         ``serial``: one thread; ``dask``: a ``dask.distributed`` cluster at ``scheduler``
@@ -411,7 +430,8 @@ def occurrence_map(
     -------
     OccurrenceMap
     """
-    config = MapConfig.create(lams, zetas, dva, gamma, options=options, t_max=t_max)
+    config = MapConfig.create(lams, zetas, dva, gamma, options=options, t_max=t_max,
+                              friction=friction)
     backend = check_backend(backend, workers, scheduler)
     if chunk_size is not None and (isinstance(chunk_size, bool) or int(chunk_size) != chunk_size
                                    or chunk_size < 1):
@@ -523,8 +543,9 @@ def map_dataset(
             "spacing": config.zeta.spacing,
         }),
     }
+    law = "" if isinstance(config.friction, CoulombFriction) else f", friction {config.friction.describe()}"
     attrs: dict[str, Any] = provenance_attributes(
-        f"stick-slip occurrence map, {config.dva.describe()}, gamma = {config.gamma:g}",
+        f"stick-slip occurrence map, {config.dva.describe()}, gamma = {config.gamma:g}{law}",
         config.to_dict(),
     )
     attrs.update({
@@ -535,6 +556,7 @@ def map_dataset(
         "t_max": config.options.t_max,
         "gamma": config.gamma,
         "dva": config.dva.describe(),
+        "friction": config.friction.describe(),
         "config_fingerprint": fingerprint,
     })
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
