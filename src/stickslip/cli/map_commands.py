@@ -148,6 +148,10 @@ def map_command(
     chunk_size: Annotated[
         int | None, typer.Option("--chunk-size", help="cells per chunk (progress, tasks, resume)")
     ] = None,
+    scheduler_timeout: Annotated[
+        float, typer.Option("--scheduler-timeout",
+                            help="seconds allowed to reach the --scheduler (default 10)")
+    ] = 10.0,
     overwrite: Annotated[
         bool, typer.Option("--overwrite", help="replace an existing --out, --csv or --plot file, "
                            "or a resume store of another configuration")
@@ -175,9 +179,10 @@ def map_command(
     if plot is not None:
         check_figure_path(plot, overwrite=overwrite)
     check_grid_memory(config.n_cells)
+    reach = _scheduler_context(scheduler, scheduler_timeout)  # before any file is made
     fingerprint = config.fingerprint()
     out.parent.mkdir(parents=True, exist_ok=True)  # every check passed: writing starts
-    with output_lock(out):
+    with output_lock(out), reach:
         warn_fitted_range(config.dva, config.zeta.values)
         reused = _check_existing_output(out, fingerprint, overwrite)
         store = store_path(out)
@@ -204,6 +209,27 @@ def map_command(
         print_json(payload)
         return
     _print_map_summary(payload)
+
+
+def _scheduler_context(scheduler: str | None, timeout: float) -> Any:
+    """Check ``--scheduler-timeout``; reach ``--scheduler`` within it (one line if not).
+
+    Returns the Dask configuration context that makes the run's own client use the same
+    bound (``stickslip.scheduler-timeout``), or a no-op context without a scheduler.
+    """
+    import contextlib
+    import math
+
+    if not (timeout > 0.0 and math.isfinite(timeout)):
+        raise BadInput(f"--scheduler-timeout {timeout!r} must be a positive number of seconds")
+    if scheduler is None:
+        return contextlib.nullcontext()
+    import dask
+
+    from stickslip.sweep.executors import _probe_tcp
+
+    _probe_tcp(scheduler, timeout)
+    return dask.config.set({"stickslip.scheduler-timeout": timeout})
 
 
 def _print_map_summary(p: dict[str, Any]) -> None:

@@ -265,16 +265,44 @@ def _execute_dask(
             client.cancel(list(futures))
 
 
+#: Default bound, in seconds, on reaching a Dask scheduler: TCP connection, its handshake and
+#: the client's registration. Set ``stickslip.scheduler-timeout`` in the Dask configuration
+#: (``dask.config.set``, or the environment variable ``DASK_STICKSLIP__SCHEDULER_TIMEOUT``)
+#: to change it; ``stickslip map --scheduler-timeout`` does.
+SCHEDULER_TIMEOUT_S = 10.0
+
+#: Longest first message accepted from a scheduler: its handshake is under a hundred bytes.
+_MAX_HANDSHAKE_BYTES = 1 << 16
+
+
+def scheduler_timeout() -> float:
+    """Seconds allowed to reach a scheduler: the Dask config key or :data:`SCHEDULER_TIMEOUT_S`."""
+    try:
+        import dask
+
+        value = dask.config.get("stickslip.scheduler-timeout", default=None)
+    except ImportError:  # pragma: no cover - dask is an optional extra
+        value = None
+    if value is None:
+        return SCHEDULER_TIMEOUT_S
+    seconds = float(value)
+    if not (seconds > 0.0 and math.isfinite(seconds)):
+        raise ValueError(f"scheduler timeout {value!r} must be a positive number of seconds")
+    return seconds
+
+
 @contextmanager
 def _dask_client(client_cls: Any, cluster_cls: Any, workers: int | None,
                  scheduler: str | None) -> Iterator[Any]:
     if scheduler is not None:
-        _probe_tcp(scheduler)
+        timeout = scheduler_timeout()
+        _probe_tcp(scheduler, timeout)
         try:
-            client = client_cls(scheduler, timeout="20s")
-        except (OSError, TimeoutError, ValueError) as exc:
+            client = client_cls(scheduler, timeout=f"{timeout}s")
+        except Exception as exc:  # a wrong peer can fail in many ways; all mean "not reached"
             reason = " ".join(str(exc).split()) or type(exc).__name__
-            raise ValueError(f"cannot reach the dask scheduler at {scheduler!r}: {reason}") from None
+            raise ValueError(f"cannot reach the dask scheduler at {scheduler!r} within "
+                             f"{timeout:g} s: {reason}") from None
         with client:
             yield client
         return
@@ -294,19 +322,60 @@ def _dask_client(client_cls: Any, cluster_cls: Any, workers: int | None,
         yield client
 
 
-def _probe_tcp(address: str) -> None:
-    """Fail at once on a refused TCP scheduler address (the client would retry for 20 s)."""
+def _probe_tcp(address: str, timeout: float | None = None) -> None:
+    """Check within ``timeout`` seconds that a ``tcp://`` address is a Dask scheduler.
+
+    A scheduler sends its handshake (a small framed msgpack message naming ``python`` and
+    ``pickle-protocol``) as soon as a connection is accepted. A refused port fails at once;
+    a silent listener fails after ``timeout``; a peer that answers with anything else (an
+    HTTP server, a worker of another protocol) fails as "not a Dask scheduler" -- before the
+    Dask client could misread its bytes as a frame length (a 3 EiB allocation) or retry for
+    minutes. Other protocols (``tls://``, ``inproc://``) are left to the client.
+    """
     import socket
+    import time
 
     from distributed.comm import parse_address, parse_host_port
+
+    timeout = scheduler_timeout() if timeout is None else float(timeout)
+    deadline = time.monotonic() + timeout
+
+    def fail(reason: str) -> ValueError:
+        return ValueError(f"cannot reach the dask scheduler at {address!r}: {reason}")
 
     try:
         protocol, location = parse_address(address)
         if protocol != "tcp":
             return
         host, port = parse_host_port(location)
-        with socket.create_connection((host, port), timeout=5.0):
-            pass
-    except (OSError, ValueError, TypeError) as exc:
+    except (ValueError, TypeError) as exc:
         reason = " ".join(str(exc).split()) or type(exc).__name__
-        raise ValueError(f"cannot reach the dask scheduler at {address!r}: {reason}") from None
+        raise fail(reason) from None
+    try:
+        with socket.create_connection((host, port), timeout=timeout) as sock:
+            data = b""
+            need = 8
+            while len(data) < need:
+                left = deadline - time.monotonic()
+                if left <= 0.0:
+                    raise TimeoutError
+                sock.settimeout(left)
+                chunk = sock.recv(4096)
+                if not chunk:
+                    raise fail("the peer closed the connection without a Dask handshake "
+                               "(not a Dask scheduler)")
+                data += chunk
+                if len(data) >= 8:
+                    length = int.from_bytes(data[:8], "little")
+                    if not 0 < length <= _MAX_HANDSHAKE_BYTES:
+                        raise fail("the peer answered with something that is not a Dask "
+                                   "handshake (not a Dask scheduler)")
+                    need = 8 + length
+    except TimeoutError:
+        raise fail(f"no Dask handshake within {timeout:g} s (a silent peer, or not a Dask "
+                   "scheduler; see --scheduler-timeout)") from None
+    except OSError as exc:
+        reason = " ".join(str(exc).split()) or type(exc).__name__
+        raise fail(reason) from None
+    if b"pickle-protocol" not in data and b"python" not in data:
+        raise fail("the peer's first message is not a Dask handshake (not a Dask scheduler)")
