@@ -8,6 +8,11 @@ result is bit-identical to the clean run.
 from __future__ import annotations
 
 import json
+import os
+import signal
+import subprocess
+import sys
+import time
 import warnings
 from collections.abc import Callable
 from pathlib import Path
@@ -121,3 +126,73 @@ def test_cli_resume_over_damaged_store_warns_once_and_completes(
     from stickslip.sweep import OccurrenceMap
 
     assert_same_map(OccurrenceMap.from_netcdf(out).dataset, OccurrenceMap.from_netcdf(clean).dataset)
+
+
+# --- point 6: two runs on the same --out --------------------------------------------------
+
+def _stickslip(*args: str) -> list[str]:
+    return [sys.executable, "-c", "from stickslip.cli.main import run; run()", *args]
+
+
+def test_second_run_on_the_same_out_refuses_at_once(tmp_path: Path) -> None:
+    out = tmp_path / "m.nc"
+    lock = tmp_path / "m.nc.lock"
+    args = ["map", "--lam", "log:0.1:50:80", "--zeta", "0.01:0.4:50", "--out", str(out),
+            "--backend", "serial", "--chunk-size", "200", "--json"]
+    first = subprocess.Popen(_stickslip(*args), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             text=True)
+    try:
+        deadline = time.monotonic() + 120
+        while not lock.exists() and first.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.01)
+        os.kill(first.pid, signal.SIGSTOP)  # frozen while holding the lock: no race
+        assert lock.read_text().split()[0] == str(first.pid)
+        started = time.monotonic()
+        second = subprocess.run(_stickslip(*args), capture_output=True, text=True, timeout=60)
+        assert second.returncode == 2 and second.stdout == ""
+        lines = second.stderr.strip().splitlines()
+        assert len(lines) == 1 and f"process {first.pid}" in lines[0] and "lock" in lines[0]
+        assert time.monotonic() - started < 30
+        # the first run dies without cleaning up: its lock is stale and a new run takes it over
+        os.kill(first.pid, signal.SIGKILL)
+        first.wait(timeout=30)
+    finally:
+        if first.poll() is None:
+            first.kill()
+            first.wait()
+    assert lock.exists()
+    third = subprocess.run(_stickslip(*args), capture_output=True, text=True, timeout=300)
+    assert third.returncode == 0, third.stderr
+    assert json.loads(third.stdout)["n_cells"] == 4000
+    assert not lock.exists() and out.exists()
+
+
+def test_lock_of_a_live_process_is_respected_and_a_dead_one_taken_over(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "m.nc"
+    lock = tmp_path / "m.nc.lock"
+    args = ["map", "--lam", "0.5,2", "--zeta", "0.1", "--out", str(out), "--json"]
+    sleeper = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"])
+    try:
+        lock.write_text(f"{sleeper.pid}\n")
+        code, stdout, err = run_cli(args, capsys)
+        assert code == 2 and stdout == "" and len(err.strip().splitlines()) == 1
+        assert str(sleeper.pid) in err and not out.exists()
+        assert lock.read_text().strip() == str(sleeper.pid)  # not ours: left alone
+    finally:
+        sleeper.kill()
+        sleeper.wait()
+    code, stdout, err = run_cli(args, capsys)  # the PID is dead now: stale lock
+    assert code == 0, err
+    assert out.exists() and not lock.exists()
+
+
+def test_lock_is_released_when_the_run_fails(tmp_path: Path,
+                                             capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "m.nc"
+    store = tmp_path / "m.nc.parts"
+    store.mkdir()
+    (store / "chunk-000000.npz").write_bytes(b"stray")  # chunks but no manifest: refused
+    code, _, err = run_cli(["map", "--lam", "0.5,2", "--zeta", "0.1", "--out", str(out)], capsys)
+    assert code == 2 and "no manifest" in err
+    assert not (tmp_path / "m.nc.lock").exists()
