@@ -2,7 +2,7 @@
 
 Usage::
 
-    PYTHONPATH=src:. .venv/bin/python benchmarks/bench_friction.py
+    .venv/bin/python benchmarks/bench_friction.py
 
 Measured on the 2-core development machine (numbers vary by about 20 % run to run)::
 
@@ -24,9 +24,14 @@ Measured on the 2-core development machine (numbers vary by about 20 % run to ru
 
 from __future__ import annotations
 
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the oracle lives in tests/
+
 from tests.friction_oracle import friction_oracle_simulate
 
 from stickslip import Slider, elastic_foundation, rigid_base, simulate
