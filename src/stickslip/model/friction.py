@@ -22,6 +22,7 @@ Friction never changes sign with speed: ``linear`` and ``stribeck`` are floored 
 from __future__ import annotations
 
 import csv
+import functools
 import itertools
 import math
 from dataclasses import dataclass
@@ -379,7 +380,7 @@ class StribeckFriction:
         return float(-lam * self.mu0_ratio * n / us * x ** (n - 1.0) * math.exp(-(x**n)) + 2.0 * self.viscous)
 
     def nodes(self) -> FloatArray:
-        """Interpolation nodes in ``u`` (independent of lambda and gamma).
+        """Interpolation nodes in ``u`` (independent of lambda and gamma; computed once per law).
 
         The excess ``e(u) = r0 exp(-(u/u_s)^n)`` is interpolated to ``tolerance`` (in units of
         lambda; the viscous term is linear, so exact): nodes equidistribute ``sqrt(|e''|)``
@@ -388,6 +389,9 @@ class StribeckFriction:
         the last node ``U`` (where ``|r0| exp(-(U/u_s)^n) <= tolerance/2``) the excess is
         dropped and the tail is linear.
         """
+        return _stribeck_nodes(self).copy()
+
+    def _compute_nodes(self) -> FloatArray:
         tol = self.tolerance
         r0, n, us = abs(self.mu0_ratio), self.exponent, self.velocity_ratio
         if r0 <= 0.5 * tol:
@@ -511,3 +515,9 @@ def parse_friction(text: str) -> FrictionLaw:
             raise ValueError(f"--friction {raw!r}: stribeck needs vs=V_S/V, e.g. stribeck:vs=0.5")
         return StribeckFriction(**values)
     raise ValueError(f"--friction {raw!r} is not one of: {FRICTION_SYNTAX}")
+
+
+@functools.lru_cache(maxsize=64)
+def _stribeck_nodes(law: StribeckFriction) -> FloatArray:
+    """The nodes of a Stribeck law, cached: a map or a tuning evaluates the same law many times."""
+    return law._compute_nodes()
