@@ -22,9 +22,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.optimize import brentq
 
-from stickslip.analysis.frequency_response import equivalent_damping
 from stickslip.model._validate import non_negative, positive
 from stickslip.model.parameters import Foundation
 from stickslip.model.structure import chain_structure
@@ -131,6 +129,8 @@ def critical_lambda_exact(zeta: float) -> float:
     lo, hi = 1e-12, 1.0
     while nakano_boundary_residual(hi, zeta) <= 0.0:
         hi *= 2.0
+    from scipy.optimize import brentq  # here, not at import: the command line starts fast
+
     return float(brentq(nakano_boundary_residual, lo, hi, args=(zeta,), xtol=1e-15, rtol=1e-15))
 
 
@@ -206,6 +206,8 @@ def equivalent_damping_ratio(
         foundation = dva.resolve(zeta)
     assert foundation is not None  # kind is not "none"
     structure = chain_structure(zeta, (foundation,))
+    from stickslip.analysis.frequency_response import equivalent_damping  # scipy: load on use
+
     return float(equivalent_damping(structure)), ZETA_EQ_PEAK
 
 

@@ -6,15 +6,22 @@ import numpy as np
 from numba import njit, prange
 
 from stickslip.kernel.engine import N_FLOAT, N_INT, run
+from stickslip.kernel.linalg import gauss_solve
 
 
 @njit(cache=True)
 def startup_vector(stiffness, lam, gamma):
-    """Startup state ``(q, v)``: ``q = -gamma lam K^-1 e_0``, ``v = e_0`` (DESIGN.md section 1)."""
+    """Startup state ``(q, v)``: ``q = -gamma lam K^-1 e_0``, ``v = e_0`` (DESIGN.md section 1).
+
+    ``K^-1 e_0`` by :func:`~stickslip.kernel.linalg.gauss_solve` (no LAPACK in the engine): for
+    the rigid base and one foundation stage its arithmetic is that of LAPACK's ``gesv``, so a
+    map cell starts from bit for bit the state :func:`stickslip.model.startup_state` gives
+    (``tests/test_kernel_linalg.py``).
+    """
     n = stiffness.shape[0]
     e0 = np.zeros(n)
     e0[0] = 1.0
-    offset = np.linalg.solve(stiffness, e0)
+    offset, _ = gauss_solve(stiffness, e0)
     z0 = np.zeros(2 * n)
     for i in range(n):
         z0[i] = -gamma * lam * offset[i]

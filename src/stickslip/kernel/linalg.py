@@ -180,3 +180,24 @@ def solve_lyapunov(a: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, bool]:
         for j in range(n):
             p[i, j] = 0.5 * (vec[i * n + j] + vec[j * n + i])
     return p, ok
+
+
+@njit(cache=True)
+def inverse(a: np.ndarray) -> np.ndarray:
+    """Inverse of a non-singular matrix, column by column with :func:`gauss_solve`.
+
+    Written here rather than ``np.linalg.inv`` so that the compiled engine needs no LAPACK:
+    numba would otherwise load SciPy's BLAS and LAPACK (about 0.2 s) in every process that
+    runs it. For a diagonal matrix (every mass matrix of the paper's structures) the result
+    is exactly ``1 / a_ii``, as LAPACK's. A singular matrix gives NaN entries.
+    """
+    n = a.shape[0]
+    out = np.empty((n, n))
+    e = np.zeros(n)
+    for j in range(n):
+        e[:] = 0.0
+        e[j] = 1.0
+        x, ok = gauss_solve(a, e)
+        for i in range(n):
+            out[i, j] = x[i] if ok else np.nan
+    return out

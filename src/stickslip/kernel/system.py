@@ -28,6 +28,7 @@ from stickslip.kernel.linalg import (
     expm,
     gauss_solve,
     inf_norm,
+    inverse,
     is_positive_definite,
     solve_lyapunov,
 )
@@ -116,7 +117,7 @@ def mode_matrices(mass, damping, stiffness, lam, gamma, intercepts, slopes):
     m = 2 * n + 1
     nb = intercepts.shape[0]
     n_modes = 2 * nb + 1
-    minv = np.linalg.inv(mass)
+    minv = inverse(mass)
     acc_q = -(minv @ stiffness)
     acc_v = -(minv @ damping)
     ahat = np.zeros((n_modes, m, m))
@@ -152,7 +153,7 @@ def mode_matrices(mass, damping, stiffness, lam, gamma, intercepts, slopes):
     for i in range(n):
         ahat[STICK, i, n + i] = 1.0
     if n > 1:
-        mrr_inv = np.linalg.inv(mass[1:, 1:])
+        mrr_inv = inverse(mass[1:, 1:])
         for i in range(n - 1):
             for j in range(n):
                 sq = 0.0
