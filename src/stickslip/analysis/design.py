@@ -234,8 +234,11 @@ def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -
     (:func:`stickslip.analysis.stability.critical_weakening`) and the friction slope it allows,
     ``sigma_crit = 2 delta_crit sqrt(m k) / W`` in s/m (``d mu / d v_r`` may fall by at most that
     much at the belt speed), next to the law's own local weakening ``delta_local``; the margin is
-    ``delta_crit - delta_local`` (positive: stable).
+    ``delta_crit - delta_local`` (positive: stable). ``safe_disturbance``: the largest knock
+    about steady sliding certified never to start stick-slip
+    (:func:`stickslip.analysis.disturbance.safe_disturbance`), in J, m/s and m.
     """
+    from stickslip.analysis.disturbance import safe_disturbance
     from stickslip.analysis.stability import critical_weakening, steady_sliding_stability
 
     slider = system.slider()
@@ -252,6 +255,8 @@ def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -
             "margin": delta_crit - stab.delta_local,
             "sigma_local": stab.delta_local * per_slope,
             "sigma_crit": delta_crit * per_slope,
+            "safe_disturbance": {**safe_disturbance(structure, slider).physical(system),
+                                 "sentence": safe_disturbance(structure, slider).sentence(system)},
         }
     return out
 

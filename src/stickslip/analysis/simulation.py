@@ -41,6 +41,8 @@ from stickslip.model.structure import Structure
 if TYPE_CHECKING:
     import xarray as xr
 
+    from stickslip.analysis.disturbance import SafeDisturbance
+
 FloatArray = NDArray[np.float64]
 
 DEFAULT_T_MAX = 5000.0
@@ -186,6 +188,18 @@ class SimulationResult:
         q, v, modes = self.state_at(t)
         return TimeHistory(t, q, v, modes)
 
+    @property
+    def safe_disturbance(self) -> SafeDisturbance:
+        """Certified harmless disturbances of steady sliding for this system (no simulation).
+
+        See :func:`stickslip.analysis.disturbance.safe_disturbance`: the largest energy,
+        velocity kick and displacement about steady sliding from which the Lyapunov
+        certificate proves that the slider never sticks again.
+        """
+        from stickslip.analysis.disturbance import safe_disturbance
+
+        return safe_disturbance(self.structure, self.slider)
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary with the keys of DESIGN.md section 5."""
         def num(x: float) -> float | None:
@@ -241,6 +255,7 @@ class SimulationResult:
             "friction": {**self.slider.friction.to_dict(), "description": self.friction_description},
             "growth_rate": num(self.growth_rate),
             "steady_sliding_stable": bool(self.steady_sliding_stable),
+            "safe_disturbance": self.safe_disturbance.to_dict(),
         }
 
     def plot(self, **kwargs: Any) -> Any:

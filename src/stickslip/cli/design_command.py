@@ -170,6 +170,7 @@ def format_report(p: dict[str, Any]) -> str:
                 f"(delta_crit={g(s['delta_crit'])}, law's delta={g(s['delta_local'])}, "
                 f"margin {g(s['margin'])})"
             )
+            lines.append(f"  {'':22}{'':>9}  {s['safe_disturbance']['sentence']}")
     lines += [f"warning: {w}" for w in p.get("warnings", [])]
     return "\n".join(lines)
 

@@ -87,6 +87,7 @@ def simulate(
     result = run_simulation(structure, slider, initial=init,
                             options=EngineOptions(t_max=t_max, max_events=max_events))
     payload = result.to_dict()
+    payload["safe_disturbance_sentence"] = result.safe_disturbance.sentence()
     if foundation is not None:
         payload["foundation"] = {
             "M": foundation.mass_ratio,
@@ -120,6 +121,7 @@ def _print_summary(p: dict[str, Any]) -> None:
         "sliding     steady sliding is linearly "
         + ("stable" if p["steady_sliding_stable"] else "UNSTABLE")
         + f" (growth rate {fmt(p['growth_rate'])} per unit tau)",
+        f"disturbance {p['safe_disturbance_sentence']}",
     ]
     if p.get("foundation"):
         f = p["foundation"]
