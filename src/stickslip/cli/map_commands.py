@@ -25,7 +25,7 @@ from stickslip.cli.console import (
     save_plot,
     warn_fitted_range,
 )
-from stickslip.cli.options import DVA, GAMMA, JSON, K_SCALE, PLOT
+from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE, PLOT
 
 LAM_SPEC = Annotated[
     str,
@@ -156,9 +156,23 @@ def map_command(
         bool, typer.Option("--overwrite", help="replace an existing --out, --csv or --plot file, "
                            "or a resume store of another configuration")
     ] = False,
+    friction: FRICTION = "coulomb",
+    delta: Annotated[
+        str | None,
+        typer.Option("--delta", help="map over (lambda, delta) instead, at the one --zeta value: "
+                     "slopes delta of the linear law linear:DELTA (start:stop:n or v1,v2,...; "
+                     "> 0 velocity weakening); not with another --friction"),
+    ] = None,
     json: JSON = False,
 ) -> None:
-    """Occurrence map over a (lambda, zeta) grid (paper Figs. 8 and 11); resumable."""
+    """Occurrence map over a (lambda, zeta) grid (paper Figs. 8 and 11); resumable.
+
+    Example: stickslip map --lam log:0.1:50:200 --zeta 0.005:0.4:100 --dva optimal --out map.nc
+
+    With --delta: a (lambda, delta) grid at one zeta, each cell with the law linear:DELTA.
+
+    Example: stickslip map --lam log:0.1:50:100 --delta -0.1:0.3:41 --zeta 0.1 --out dmap.nc
+    """
     from stickslip.analysis.dva import DvaSpec
     from stickslip.io.lock import output_lock
     from stickslip.sweep.executors import check_backend
@@ -166,7 +180,22 @@ def map_command(
     from stickslip.sweep.store import discard_store
 
     lam_axis, zeta_axis = _parse_axes(lam, zeta, lam_spacing, zeta_spacing)
-    config = MapConfig.create(lam_axis, zeta_axis, DvaSpec.parse(dva, k_scale), gamma, t_max=t_max)
+    from stickslip.model.friction import CoulombFriction, parse_friction
+
+    law = parse_friction(friction)
+    delta_axis = None
+    if delta is not None:
+        from stickslip.sweep.grid import Axis
+
+        if not isinstance(law, CoulombFriction):
+            raise BadInput(f"--delta sets the linear law linear:DELTA in every cell; it cannot be "
+                           f"combined with --friction {friction}")
+        if len(zeta_axis) != 1:
+            raise BadInput(f"--delta maps over (lambda, delta) at one zeta: give exactly one "
+                           f"--zeta value, not {len(zeta_axis)} ({zeta})")
+        delta_axis = Axis.parse(delta, "delta")
+    config = MapConfig.create(lam_axis, zeta_axis, DvaSpec.parse(dva, k_scale), gamma, t_max=t_max,
+                              friction=None if delta_axis is not None else law, deltas=delta_axis)
     check_run_limits(float(config.lam.values.max()), config.gamma)
     chosen = check_backend(backend or ("dask" if scheduler else "threads"), workers, scheduler)
     if chunk_size is not None and chunk_size < 1:
@@ -192,7 +221,9 @@ def map_command(
             enabled = not json and sys.stderr.isatty()
             with _ProgressBar(enabled, f"map {config.shape[0]}x{config.shape[1]}") as bar:
                 result = occurrence_map(config.lam, config.zeta, config.dva, config.gamma,
-                                        options=config.options, backend=chosen, workers=workers,
+                                        options=config.options,
+                                        friction=None if delta_axis is not None else law,
+                                        deltas=delta_axis, backend=chosen, workers=workers,
                                         scheduler=scheduler, chunk_size=chunk_size, progress=bar,
                                         store=store, overwrite=overwrite)
             result.to_netcdf(out, overwrite=True)
@@ -236,11 +267,16 @@ def _print_map_summary(p: dict[str, Any]) -> None:
     counts = p["counts"]
     chunks = p["chunks"]
     rate = p["cells_per_second"]
+    grid = f"{p['n_lambda']} lambda x {p['n_zeta']} zeta"
+    if "n_delta" in p:
+        grid = f"{p['n_lambda']} lambda x {p['n_delta']} delta at zeta={p['zeta']:g}"
     lines = [
-        f"map         {p['n_lambda']} lambda x {p['n_zeta']} zeta = {p['n_cells']} cells, "
-        f"{p['dva']}, gamma={p['gamma']:g}, t_max={p['t_max']:g}",
+        f"map         {grid} = {p['n_cells']} cells, axes ({', '.join(p['axes'])}), "
+        f"{p['dva']}, gamma={p['gamma']:g}, t_max={p['t_max']:g}, friction {p['friction']}",
         f"verdicts    stick-slip {counts['stick-slip']}, steady-sliding {counts['steady-sliding']}, "
-        f"undetermined {counts['undetermined']} (stick-slip fraction {p['stick_slip_fraction']:.4f})",
+        f"undetermined {counts['undetermined']}"
+        + (f", slip-oscillation {counts['slip-oscillation']}" if counts.get('slip-oscillation') else "")
+        + f" (stick-slip fraction {p['stick_slip_fraction']:.4f})",
     ]
     if p["reused_output"]:
         lines.append("computed    nothing: the output already holds this map")
@@ -277,15 +313,21 @@ def boundary_command(
         bool, typer.Option("--overwrite", help="replace an existing --out or --plot file")
     ] = False,
     plot: PLOT = None,
+    friction: FRICTION = "coulomb",
     json: JSON = False,
 ) -> None:
-    """Critical lambda against zeta: every verdict change, bisected to --rtol (Fig. 11a)."""
+    """Critical lambda against zeta: every verdict change, bisected to --rtol (Fig. 11a).
+
+    Example: stickslip boundary --zeta 0.01:0.4:8 --dva none --friction linear:0.02 --json
+    """
     from stickslip.analysis.dva import DvaSpec
+    from stickslip.model.friction import parse_friction
     from stickslip.sweep.boundary import stick_slip_boundary
     from stickslip.sweep.executors import check_backend
 
     _, zeta_axis = _parse_axes(None, zeta, None, zeta_spacing)
     spec = DvaSpec.parse(dva, k_scale)
+    law = parse_friction(friction)
     check_backend("threads", workers, None)
     if out is not None:
         if out.suffix.lower() != ".nc":
@@ -294,7 +336,8 @@ def boundary_command(
     if plot is not None:
         check_figure_path(plot, overwrite=overwrite)
     result = stick_slip_boundary(zeta_axis, spec, gamma, lam_min=lam_min, lam_max=lam_max,
-                                 n_scan=scan, rtol=rtol, t_max=t_max, workers=workers)
+                                 n_scan=scan, rtol=rtol, t_max=t_max, workers=workers,
+                                 friction=law)
     warn_fitted_range(spec, zeta_axis.values)
     payload = result.to_dict()
     payload.update({"out": None, "plot": None})
@@ -313,11 +356,13 @@ def _print_boundary_table(p: dict[str, Any]) -> None:
     def fmt(x: float | None) -> str:
         return "-" if x is None else f"{x:.7g}"
 
-    analytic = [k for k in ("eq36", "eq39", "eq37") if p["rows"] and k in p["rows"][0]]
+    analytic = [k for k in ("eq36", "eq39", "eq37", "eq36_linear") if p["rows"] and k in p["rows"][0]]
+    names = {"eq36": "Eq. (36)", "eq39": "Eq. (39)", "eq37": "Eq. (37)", "eq36_linear": "Eq.36 z-d"}
     header = f"{'zeta':>10}  {'critical':>12}  " + "".join(
-        f"{'Eq. (' + k[2:] + ')':>12}  " for k in analytic) + "all crossings (lambda, kind)"
+        f"{names[k]:>12}  " for k in analytic) + "all crossings (lambda, kind)"
     lines = [
-        f"boundary    {p['dva']}, gamma={p['gamma']:g}, lambda in [{p['lam_min']:g}, "
+        f"boundary    {p['dva']}, gamma={p['gamma']:g}, friction {p['friction']}, "
+        f"lambda in [{p['lam_min']:g}, "
         f"{p['lam_max']:g}], {p['n_scan']} scan points, rtol={p['rtol']:g}, t_max={p['t_max']:g}",
         header,
     ]

@@ -5,6 +5,9 @@ Columns: ``lambda``, ``zeta``, ``verdict`` (the word), ``verdict_code``, ``certi
 ``amplitude``, ``stick_ratio``, ``max_velocity``, ``t_end``) and, with a foundation, its
 ``M``, ``K``, ``zeta_a`` at that ``zeta``. Floats are written to full precision
 (round-trip ``repr``); an empty field is a value that does not exist (no cycle, no period).
+
+A (lambda, delta) map has the columns ``lambda``, ``delta``, then the same variables, then
+its fixed ``zeta`` (and ``M``, ``K``, ``zeta_a`` with a foundation) in every row.
 """
 
 from __future__ import annotations
@@ -39,7 +42,7 @@ def _cell(value: Any) -> str:
 
 
 def write_map_csv(dataset: xr.Dataset, path: str | os.PathLike[str]) -> Path:
-    """Write an occurrence map (``lambda`` x ``zeta`` dataset) as CSV, atomically.
+    """Write an occurrence map (``lambda`` x ``zeta`` or ``lambda`` x ``delta``) as CSV, atomically.
 
     Parameters
     ----------
@@ -53,15 +56,24 @@ def write_map_csv(dataset: xr.Dataset, path: str | os.PathLike[str]) -> Path:
     pathlib.Path
     """
     target = Path(path)
+    second = "delta" if "delta" in dataset.dims else "zeta"
     lam = np.asarray(dataset["lambda"].values)
-    zeta = np.asarray(dataset["zeta"].values)
-    grid_vars = [str(n) for n, v in dataset.data_vars.items() if v.dims == ("lambda", "zeta")]
-    zeta_vars = [str(n) for n, v in dataset.data_vars.items() if v.dims == ("zeta",)]
+    zeta = np.asarray(dataset[second].values)
+    grid_vars = [str(n) for n, v in dataset.data_vars.items() if v.dims == ("lambda", second)]
+    if second == "zeta":
+        zeta_vars = [str(n) for n, v in dataset.data_vars.items() if v.dims == ("zeta",)]
+        constants: list[str] = []
+    else:  # the fixed zeta and its foundation, the same in every row
+        zeta_vars = []
+        constants = [_cell(float(dataset.attrs["zeta"]))] + [
+            _cell(np.asarray(v.values).item()) for v in dataset.data_vars.values() if v.dims == ()]
     words = {name: _meanings(dataset[name]) for name in _CODED if name in grid_vars}
-    header = ["lambda", "zeta"]
+    header = ["lambda", second]
     for name in grid_vars:
         header += [name, f"{name}_code"] if name == "verdict" else [name]
     header += zeta_vars
+    if second == "delta":
+        header += ["zeta"] + [str(n) for n, v in dataset.data_vars.items() if v.dims == ()]
     arrays = {name: np.asarray(dataset[name].values) for name in grid_vars + zeta_vars}
     with atomic_output(target) as tmp, open(tmp, "w", newline="") as fh:
         writer = csv.writer(fh)
@@ -78,5 +90,5 @@ def write_map_csv(dataset: xr.Dataset, path: str | os.PathLike[str]) -> Path:
                     else:
                         row.append(_cell(value))
                 row += [_cell(arrays[name][j]) for name in zeta_vars]
-                writer.writerow(row)
+                writer.writerow(row + constants)
     return target

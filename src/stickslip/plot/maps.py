@@ -6,6 +6,12 @@ circles steady sliding (the paper's convention) and crosses for undetermined cel
 grids show a categorical image. The closed-form boundaries are overlaid: Eq. (36) exact and
 Eq. (39) for the rigid base, Eq. (37) with ``zeta_eq`` for a foundation.
 
+A (lambda, delta) map (linear friction law of slope ``delta`` at one ``zeta``) has
+``lambda`` on the horizontal axis and ``delta`` on the vertical one; the overlays are the
+linear-stability threshold ``delta = delta_crit`` of steady sliding and, on the rigid base,
+the exact boundary ``lambda_c = critical_lambda_linear(zeta, delta)`` (Eq. 36 at
+``zeta - delta``).
+
 Follows the plotting contract of :mod:`stickslip.plot.figure`: every ``*_plot`` takes the
 data first and keyword-only options with ``ax=None``, draws, and returns a
 :class:`~stickslip.plot.figure.PlotResult`.
@@ -24,8 +30,10 @@ from matplotlib.patches import Patch
 from numpy.typing import NDArray
 
 from stickslip.analysis.dva import DvaSpec
-from stickslip.analysis.theory import analytic_boundaries
+from stickslip.analysis.stability import critical_weakening
+from stickslip.analysis.theory import analytic_boundaries, critical_lambda_linear
 from stickslip.model.parameters import Foundation
+from stickslip.model.structure import chain_structure
 from stickslip.plot.figure import PlotResult, new_axes
 from stickslip.sweep.occurrence import VERDICTS, OccurrenceMap, dva_from_config, stored_foundations
 
@@ -50,6 +58,8 @@ CURVE_STYLES: dict[str, dict[str, Any]] = {
     "eq36": {"color": "tab:blue", "ls": "-", "lw": 1.6},
     "eq39": {"color": "tab:green", "ls": "--", "lw": 1.6},
     "eq37": {"color": "tab:blue", "ls": "-", "lw": 1.6},
+    "eq36_linear": {"color": "tab:blue", "ls": "-", "lw": 1.6},
+    "delta_crit": {"color": "tab:orange", "ls": ":", "lw": 1.6},
 }
 #: Grids with more cells than this are drawn as an image by default.
 MAX_MARKERS = 2500
@@ -148,6 +158,56 @@ def analytic_curves_plot(
     return PlotResult(fig, [ax], artists)
 
 
+def _delta_overlays(
+    zeta: float,
+    foundation: Foundation | None,
+    delta_range: tuple[float, float],
+    *,
+    ax: Axes | None = None,
+    n_points: int = 300,
+) -> PlotResult:
+    """Overlays of a (lambda, delta) map: the stability threshold and the closed-form boundary.
+
+    ``delta = delta_crit`` (horizontal line): steady sliding is linearly stable below it
+    (:func:`stickslip.analysis.stability.critical_weakening`; ``delta_crit = zeta`` on the rigid
+    base). Rigid base only: the exact stick-slip boundary ``lambda_c(delta)`` of the linear law,
+    :func:`stickslip.analysis.theory.critical_lambda_linear` (Eq. 36 at ``zeta - delta``),
+    drawn where it is finite and positive.
+
+    Parameters
+    ----------
+    zeta : float
+        The map's fixed primary damping ratio.
+    foundation : Foundation or None
+        The map's foundation at ``zeta`` (``None``: rigid base).
+    delta_range : (float, float)
+        Interval of ``delta`` to draw the boundary over.
+    ax : matplotlib Axes, optional
+        Drawn into; a new figure is made when omitted.
+    n_points : int
+        Samples along ``delta``.
+
+    Returns
+    -------
+    PlotResult
+        The threshold line, then the boundary curve (rigid base).
+    """
+    fig, ax = new_axes(ax, figsize=MAP_SIZE)
+    structure = chain_structure(float(zeta), () if foundation is None else (foundation,))
+    d_crit = critical_weakening(structure)
+    artists: list[Any] = [ax.axhline(d_crit, label=f"$\\delta_{{crit}}$ = {d_crit:.4g}: steady "
+                                     "sliding unstable above", **CURVE_STYLES["delta_crit"])]
+    lo, hi = delta_range
+    if foundation is None and hi > lo:
+        deltas = np.linspace(lo, hi, n_points)
+        lam_c = np.array([critical_lambda_linear(float(zeta), float(d)) for d in deltas])
+        ok = np.isfinite(lam_c) & (lam_c > 0.0)
+        if ok.any():
+            artists += ax.plot(lam_c[ok], deltas[ok], label="Eq. (36) at $\\zeta - \\delta$ (exact)",
+                               **CURVE_STYLES["eq36_linear"])
+    return PlotResult(fig, [ax], artists)
+
+
 def occurrence_map_plot(
     data: OccurrenceMap | xr.Dataset,
     *,
@@ -174,12 +234,16 @@ def occurrence_map_plot(
         undetermined (paper Fig. 8); ``image``: a categorical image for dense grids;
         ``auto``: markers up to ``max_markers`` cells.
     analytic : bool
-        Overlay the closed-form boundaries (Eqs. 36 and 39, or Eq. 37 with ``zeta_eq``).
+        Overlay the closed-form boundaries (Eqs. 36 and 39, or Eq. 37 with ``zeta_eq``); for a
+        (lambda, delta) map the linear-stability threshold ``delta = delta_crit`` of steady
+        sliding and, on the rigid base, Eq. (36) at ``zeta - delta``
+        (:func:`~stickslip.analysis.theory.critical_lambda_linear`).
     legend : bool
         Add a legend (outside the axes, on the right).
     lam_log, zeta_log : bool, optional
         Log scale of each axis; by default log when the grid is log-spaced (for lambda
-        also when an explicit list spans more than a factor of 20).
+        also when an explicit list spans more than a factor of 20). ``zeta_log`` sets the
+        ``delta`` axis of a (lambda, delta) map.
     marker_size : float, optional
         Marker size in points (chosen from the grid density by default).
     max_markers : int
@@ -196,6 +260,10 @@ def occurrence_map_plot(
         raise ValueError(f"style={style!r} must be 'auto', 'markers' or 'image'")
     ds = data.dataset if isinstance(data, OccurrenceMap) else data
     fig, ax = new_axes(ax, figsize=MAP_SIZE)
+    if "delta" in ds.dims:
+        return _draw_delta_map(ds, fig, ax, style=style, analytic=analytic, legend=legend,
+                               lam_log=lam_log, delta_log=zeta_log, marker_size=marker_size,
+                               max_markers=max_markers, title=title)
     lam = np.asarray(ds["lambda"].values, dtype=np.float64)
     zeta = np.asarray(ds["zeta"].values, dtype=np.float64)
     verdict = np.asarray(ds["verdict"].transpose("lambda", "zeta").values)
@@ -203,17 +271,60 @@ def occurrence_map_plot(
     x_log = _is_log(zeta, str(ds["zeta"].attrs.get("spacing", "list")), zeta_log)
     if style == "auto":
         style = "markers" if verdict.size <= max_markers else "image"
+    artists, handles, x_edges, y_edges = _draw_cells(ax, zeta, lam, verdict, style, marker_size,
+                                                     x_log, y_log)
+    _set_scales(ax, x_log, y_log)
+    if analytic and "configuration" in ds.attrs:
+        dva = dva_from_config(json.loads(ds.attrs["configuration"]))
+        curves = analytic_curves_plot(dva, (float(zeta[0]), float(zeta[-1])), ax=ax, log=x_log,
+                                      resolved=(zeta, stored_foundations(ds))).artists
+        artists += curves
+        handles += curves
+    _set_limits(ax, zeta, x_edges, y_edges, x_log, style)
+    ax.set_xlabel(r"damping ratio $\zeta$")
+    ax.set_ylabel(r"$\lambda$")
+    if title is None:
+        title = f"{ds.attrs.get('dva', '')}, $\\gamma$ = {ds.attrs.get('gamma', '')}"
+    ax.set_title(title, fontsize="medium")
+    if legend and handles:
+        artists.append(ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0),
+                                 fontsize="small", frameon=False))
+    return PlotResult(fig, [ax], artists)
+
+
+def _set_scales(ax: Axes, x_log: bool, y_log: bool) -> None:
+    if y_log:
+        ax.set_yscale("log")
+    if x_log:
+        ax.set_xscale("log")
+
+
+def _set_limits(ax: Axes, x: FloatArray, x_edges: FloatArray, y_edges: FloatArray, x_log: bool,
+                style: str) -> None:
+    if style == "markers":
+        pad_x = 0.02 * (x_edges[-1] - x_edges[0])
+        ax.set_xlim(x[0] - pad_x if not x_log else x_edges[0],
+                    x[-1] + pad_x if not x_log else x_edges[-1])
+    else:
+        ax.set_xlim(x_edges[0], x_edges[-1])
+    ax.set_ylim(y_edges[0], y_edges[-1])
+
+
+def _draw_cells(ax: Axes, x: FloatArray, y: FloatArray, verdict: NDArray[Any], style: str,
+                marker_size: float | None, x_log: bool, y_log: bool
+                ) -> tuple[list[Any], list[Any], FloatArray, FloatArray]:
+    """Markers or the categorical image of ``verdict`` (shape ``(y.size, x.size)``)."""
     artists: list[Any] = []
     handles: list[Any] = []
-    x_edges, y_edges = _edges(zeta, x_log), _edges(lam, y_log)
+    x_edges, y_edges = _edges(x, x_log), _edges(y, y_log)
     if style == "markers":
-        size = marker_size or float(np.clip(160.0 / max(lam.size, zeta.size), 2.0, 7.0))
-        zz, ll = np.meshgrid(zeta, lam)
+        size = marker_size or float(np.clip(160.0 / max(x.size, y.size), 2.0, 7.0))
+        xx, yy = np.meshgrid(x, y)
         for v in VERDICTS:
             mask = verdict == v.code
             if not mask.any():
                 continue
-            (line,) = ax.plot(zz[mask], ll[mask], ls="none", ms=size, mew=0.8, label=v.value,
+            (line,) = ax.plot(xx[mask], yy[mask], ls="none", ms=size, mew=0.8, label=v.value,
                               **MARKERS[v.value])
             artists.append(line)
             handles.append(line)
@@ -225,27 +336,36 @@ def occurrence_map_plot(
         present = set(np.unique(verdict).tolist())
         handles += [Patch(facecolor=COLORS[v.value], edgecolor="0.4", label=v.value)
                     for v in VERDICTS if v.code in present]
-    if y_log:
-        ax.set_yscale("log")
-    if x_log:
-        ax.set_xscale("log")
-    if analytic and "configuration" in ds.attrs:
-        dva = dva_from_config(json.loads(ds.attrs["configuration"]))
-        curves = analytic_curves_plot(dva, (float(zeta[0]), float(zeta[-1])), ax=ax, log=x_log,
-                                      resolved=(zeta, stored_foundations(ds))).artists
+    return artists, handles, x_edges, y_edges
+
+
+def _draw_delta_map(ds: xr.Dataset, fig: Any, ax: Axes, *, style: str, analytic: bool,
+                    legend: bool, lam_log: bool | None, delta_log: bool | None,
+                    marker_size: float | None, max_markers: int, title: str | None) -> PlotResult:
+    """:func:`occurrence_map_plot` of a (lambda, delta) map: lambda across, delta up."""
+    lam = np.asarray(ds["lambda"].values, dtype=np.float64)
+    delta = np.asarray(ds["delta"].values, dtype=np.float64)
+    verdict = np.asarray(ds["verdict"].transpose("delta", "lambda").values)
+    x_log = _is_log(lam, str(ds["lambda"].attrs.get("spacing", "list")), lam_log, lists=True)
+    y_log = _is_log(delta, str(ds["delta"].attrs.get("spacing", "list")), delta_log)
+    if style == "auto":
+        style = "markers" if verdict.size <= max_markers else "image"
+    artists, handles, x_edges, y_edges = _draw_cells(ax, lam, delta, verdict, style, marker_size,
+                                                     x_log, y_log)
+    _set_scales(ax, x_log, y_log)
+    zeta = float(ds.attrs["zeta"])
+    if analytic:
+        (foundation,) = stored_foundations(ds)
+        curves = _delta_overlays(zeta, foundation, (float(delta[0]), float(delta[-1])),
+                                   ax=ax).artists
         artists += curves
         handles += curves
-    if style == "markers":
-        pad_x = 0.02 * (x_edges[-1] - x_edges[0])
-        ax.set_xlim(zeta[0] - pad_x if not x_log else x_edges[0],
-                    zeta[-1] + pad_x if not x_log else x_edges[-1])
-    else:
-        ax.set_xlim(x_edges[0], x_edges[-1])
-    ax.set_ylim(y_edges[0], y_edges[-1])
-    ax.set_xlabel(r"damping ratio $\zeta$")
-    ax.set_ylabel(r"$\lambda$")
+    _set_limits(ax, lam, x_edges, y_edges, x_log, style)
+    ax.set_xlabel(r"$\lambda$")
+    ax.set_ylabel(r"friction slope $\delta$ (> 0 velocity weakening)")
     if title is None:
-        title = f"{ds.attrs.get('dva', '')}, $\\gamma$ = {ds.attrs.get('gamma', '')}"
+        title = (f"{ds.attrs.get('dva', '')}, $\\zeta$ = {zeta:g}, "
+                 f"$\\gamma$ = {ds.attrs.get('gamma', '')}, linear law")
     ax.set_title(title, fontsize="medium")
     if legend and handles:
         artists.append(ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0),

@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import numpy as np
@@ -24,6 +24,7 @@ from numpy.typing import NDArray
 from stickslip.analysis.dva import DvaSpec
 from stickslip.analysis.simulation import EngineOptions
 from stickslip.model._validate import non_negative
+from stickslip.model.friction import CoulombFriction, FrictionLaw
 from stickslip.model.parameters import Foundation
 from stickslip.model.structure import chain_structure
 
@@ -82,11 +83,51 @@ class StructureSet:
 
 @dataclass(frozen=True)
 class CellBatch:
-    """Cells to run: structure index and ``lambda`` of each, and ``gamma``."""
+    """Cells to run: structure index and ``lambda`` of each, ``gamma`` and the friction law.
+
+    ``laws``, when given, holds one friction law per cell (a (lambda, delta) map) and takes
+    the place of ``friction``.
+    """
 
     structure_index: IntArray
     lams: FloatArray
     gamma: float
+    friction: FrictionLaw = field(default_factory=CoulombFriction)
+    laws: tuple[FrictionLaw, ...] | None = None
+
+
+def band_tables(lams: FloatArray, gamma: float, friction: FrictionLaw | Sequence[FrictionLaw]
+                ) -> tuple[FloatArray, FloatArray, FloatArray, IntArray]:
+    """Padded per-cell band tables ``(edges, intercepts, slopes, n_bands)`` for ``run_cells``.
+
+    ``friction`` is the law of every cell, or a sequence of one law per cell. The Coulomb law
+    (of every cell) takes the kernel's own fast path; otherwise each distinct pair
+    ``(lambda, law)`` is tabulated once (cells sharing it share their table).
+    """
+    from stickslip.kernel.batch import coulomb_tables
+
+    gammas = np.full(lams.shape, float(gamma))
+    if isinstance(friction, CoulombFriction):
+        return coulomb_tables(lams, gammas)
+    per_cell = [friction] * lams.size if not isinstance(friction, Sequence) else list(friction)
+    if len(per_cell) != lams.size:
+        raise ValueError(f"{len(per_cell)} friction laws for {lams.size} cells")
+    index: dict[tuple[float, FrictionLaw], int] = {}
+    inverse = np.array([index.setdefault((float(lam), law), len(index))
+                        for lam, law in zip(lams.tolist(), per_cell, strict=True)], dtype=np.int64)
+    tables = [law.bands(lam, float(gamma)) for lam, law in index]
+    width = max((len(t[1]) for t in tables), default=1)
+    n_unique = len(tables)
+    edges = np.full((n_unique, width + 1), np.inf)
+    intercepts = np.zeros((n_unique, width))
+    slopes = np.zeros((n_unique, width))
+    n_bands = np.empty(n_unique, dtype=np.int64)
+    for i, (e, a, sl) in enumerate(tables):
+        n_bands[i] = len(a)
+        edges[i, : len(e)] = e
+        intercepts[i, : len(a)] = a
+        slopes[i, : len(sl)] = sl
+    return edges[inverse], intercepts[inverse], slopes[inverse], n_bands[inverse]
 
 
 def run_batch(
@@ -98,11 +139,12 @@ def run_batch(
     with the layouts ``F_*`` and ``I_*`` of :mod:`stickslip.kernel.engine`. This is also the
     task that Dask workers run, so it only takes plain, picklable data.
     """
-    from stickslip.kernel.batch import coulomb_tables, run_cells
+    from stickslip.kernel.batch import run_cells
 
     gammas = np.full(batch.lams.shape, float(batch.gamma))
     lams = np.ascontiguousarray(batch.lams, dtype=np.float64)
-    edges, intercepts, slopes, n_bands = coulomb_tables(lams, gammas)
+    laws = batch.friction if batch.laws is None else batch.laws
+    edges, intercepts, slopes, n_bands = band_tables(lams, batch.gamma, laws)
     with numba_threads(n_threads):
         float_summary, int_summary = run_cells(
             structures.masses,

@@ -9,6 +9,12 @@ neither could be certified before the time horizon, explicitly ``undetermined``.
 The result is an ``xarray.Dataset`` laid out as DESIGN.md section 6 asks (coordinates
 ``lambda`` and ``zeta``, CF flag attributes for the integer codes, provenance in the
 attributes) inside an :class:`OccurrenceMap`.
+
+A map may instead run over ``(lambda, delta)`` at one fixed ``zeta`` (issue 10, point 5):
+``delta = sigma W / (2 sqrt(m k))`` is the dimensionless slope of the linear friction law
+(:class:`~stickslip.model.friction.LinearFriction`), and each cell has the law
+``LinearFriction(delta_j)``. Everything else (chunks, backends, resume store, dataset
+layout) is shared: the second axis of the grid is ``zeta`` or ``delta``.
 """
 
 from __future__ import annotations
@@ -37,7 +43,7 @@ from stickslip.analysis.verdict import (
 from stickslip.io.provenance import package_version, provenance_attributes
 from stickslip.kernel import engine
 from stickslip.model._validate import non_negative, positive
-from stickslip.model.friction import CoulombFriction, FrictionLaw
+from stickslip.model.friction import CoulombFriction, FrictionLaw, LinearFriction
 from stickslip.model.initial import STARTUP_DESCRIPTION
 from stickslip.model.parameters import Foundation
 from stickslip.sweep.executors import (
@@ -102,6 +108,10 @@ class MapConfig:
         Engine limits of every cell.
     friction : FrictionLaw
         The friction law of every cell (default: the paper's Coulomb law).
+    delta : Axis, optional
+        Slopes ``delta`` of the linear friction law (dimensionless, finite): the grid is then
+        ``(lambda, delta)`` at the one value of ``zeta``, cell ``(i, j)`` has the law
+        ``LinearFriction(delta[j])`` and ``friction`` stays the Coulomb default.
     """
 
     lam: Axis
@@ -110,6 +120,7 @@ class MapConfig:
     gamma: float = 2.0
     options: EngineOptions = field(default_factory=EngineOptions)
     friction: FrictionLaw = field(default_factory=CoulombFriction)
+    delta: Axis | None = None
 
     def __post_init__(self) -> None:
         for value in self.lam.values.tolist():
@@ -117,6 +128,16 @@ class MapConfig:
         for value in self.zeta.values.tolist():
             non_negative("zeta", value)
         object.__setattr__(self, "gamma", non_negative("gamma", self.gamma))
+        if self.delta is not None:
+            if len(self.zeta) != 1:
+                raise ValueError(f"a (lambda, delta) map is at one fixed zeta; got {len(self.zeta)} "
+                                 "zeta values")
+            if not isinstance(self.friction, CoulombFriction):
+                raise ValueError("a (lambda, delta) map sets the linear law LinearFriction(delta) "
+                                 f"in every cell; it cannot also take the friction law "
+                                 f"{self.friction.describe()!r}")
+            for value in self.delta.values.tolist():
+                LinearFriction(value)  # finite, or a one-line ValueError
 
     @classmethod
     def create(
@@ -129,6 +150,7 @@ class MapConfig:
         options: EngineOptions | None = None,
         t_max: float | None = None,
         friction: FrictionLaw | None = None,
+        deltas: Axis | ArrayLike | None = None,
     ) -> MapConfig:
         """The configuration of :func:`occurrence_map` for these arguments (same parsing rules).
 
@@ -137,8 +159,22 @@ class MapConfig:
         """
         spec = DvaSpec.parse(dva) if isinstance(dva, str) else dva
         engine_options = (options or EngineOptions()).with_t_max(t_max)
+        if deltas is not None and friction is not None:
+            raise ValueError("deltas and friction exclude each other: a (lambda, delta) map has "
+                             "the linear law LinearFriction(delta) in every cell")
         return cls(as_axis(lams, "lambda"), as_axis(zetas, "zeta"), spec, gamma, engine_options,
-                   friction or CoulombFriction())
+                   friction or CoulombFriction(),
+                   None if deltas is None else as_axis(deltas, "delta"))
+
+    @property
+    def second(self) -> str:
+        """Name of the grid's second axis: ``"zeta"``, or ``"delta"`` for a (lambda, delta) map."""
+        return "zeta" if self.delta is None else "delta"
+
+    @property
+    def second_axis(self) -> Axis:
+        """The grid's second axis (:attr:`zeta` or :attr:`delta`)."""
+        return self.zeta if self.delta is None else self.delta
 
     @functools.cached_property
     def structures(self) -> StructureSet:
@@ -147,22 +183,30 @@ class MapConfig:
 
     @property
     def shape(self) -> tuple[int, int]:
-        """``(n_lambda, n_zeta)``."""
-        return len(self.lam), len(self.zeta)
+        """``(n_lambda, n_zeta)``, or ``(n_lambda, n_delta)``."""
+        return len(self.lam), len(self.second_axis)
 
     @property
     def n_cells(self) -> int:
         """Number of grid cells."""
-        return len(self.lam) * len(self.zeta)
+        return len(self.lam) * len(self.second_axis)
 
     def to_dict(self) -> dict[str, Any]:
         """The full resolved configuration, JSON-ready (floats kept to full precision).
 
-        The friction law appears only when it is not the paper's Coulomb law, so that the
-        configuration (and fingerprint) of a Coulomb map is what it was before friction laws.
+        The friction law appears only when it is not the paper's Coulomb law, and the
+        ``delta`` axis only for a (lambda, delta) map, so that the configuration (and
+        fingerprint) of a Coulomb map is what it was before friction laws.
         """
-        friction = {} if isinstance(self.friction, CoulombFriction) else {
+        friction: dict[str, Any] = {} if isinstance(self.friction, CoulombFriction) else {
             "friction": {**self.friction.to_dict(), "description": self.friction.describe()}}
+        if self.delta is not None:
+            friction = {
+                "friction": {"law": "linear", "delta": "per cell: the delta axis",
+                             "description": _DELTA_LAW},
+                "delta": _axis_dict(self.delta),
+                "axes": ["lambda", "delta"],
+            }
         return {
             **friction,
             "lambda": _axis_dict(self.lam),
@@ -189,15 +233,24 @@ class MapConfig:
         return hashlib.sha256(text.encode()).hexdigest()
 
     def batch(self, chunk: Chunk) -> CellBatch:
-        """The cells of ``chunk``: flat index ``c = i_lambda * n_zeta + j_zeta``."""
+        """The cells of ``chunk``: flat index ``c = i_lambda * n_second + j``.
+
+        A (lambda, zeta) map indexes the structure of ``zeta_j``; a (lambda, delta) map has
+        one structure and the law ``LinearFriction(delta_j)`` per cell.
+        """
         cells = np.arange(chunk.start, chunk.stop, dtype=np.int64)
-        n_zeta = len(self.zeta)
-        return CellBatch(
-            structure_index=cells % n_zeta,
-            lams=np.array(self.lam.values[cells // n_zeta]),
-            gamma=self.gamma,
-            friction=self.friction,
-        )
+        n_second = self.shape[1]
+        lams = np.array(self.lam.values[cells // n_second])
+        if self.delta is None:
+            return CellBatch(structure_index=cells % n_second, lams=lams, gamma=self.gamma,
+                             friction=self.friction)
+        deltas = self.delta.values[cells % n_second]
+        return CellBatch(structure_index=np.zeros(cells.size, dtype=np.int64), lams=lams,
+                         gamma=self.gamma, laws=tuple(LinearFriction(float(d)) for d in deltas))
+
+
+#: How the cells of a (lambda, delta) map are computed (``describe()`` of their laws).
+_DELTA_LAW = "linear, delta per cell (the delta axis), exact (floored at zero)"
 
 
 def _axis_dict(axis: Axis) -> dict[str, Any]:
@@ -205,15 +258,24 @@ def _axis_dict(axis: Axis) -> dict[str, Any]:
 
 
 def stored_foundations(dataset: xr.Dataset) -> list[Foundation | None]:
-    """The foundation at each ``zeta`` of a map dataset (``None`` everywhere for the rigid base)."""
+    """The foundation at each ``zeta`` of a map dataset (``None`` everywhere for the rigid base).
+
+    A (lambda, delta) map has one ``zeta``, hence one foundation.
+    """
+    n_zeta = int(dataset.sizes["zeta"]) if "zeta" in dataset.dims else 1
     if "foundation_mass_ratio" not in dataset:
-        return [None] * int(dataset.sizes["zeta"])
+        return [None] * n_zeta
     return [
         Foundation(float(m), float(k), float(c))
-        for m, k, c in zip(dataset["foundation_mass_ratio"].values,
-                           dataset["foundation_stiffness_ratio"].values,
-                           dataset["foundation_damping_ratio"].values, strict=True)
+        for m, k, c in zip(np.atleast_1d(dataset["foundation_mass_ratio"].values),
+                           np.atleast_1d(dataset["foundation_stiffness_ratio"].values),
+                           np.atleast_1d(dataset["foundation_damping_ratio"].values), strict=True)
     ]
+
+
+def map_axes(dataset: xr.Dataset) -> tuple[str, str]:
+    """``("lambda", "zeta")`` or ``("lambda", "delta")``: the dimensions of a map dataset."""
+    return ("lambda", "delta") if "delta" in dataset.dims else ("lambda", "zeta")
 
 
 def dva_from_config(configuration: dict[str, Any]) -> DvaSpec:
@@ -227,12 +289,14 @@ class OccurrenceMap:
     """Result of :func:`occurrence_map`: the dataset and how it was computed.
 
     Unpacks as ``lam, zeta, verdict = result`` (``verdict`` has shape
-    ``(n_lambda, n_zeta)`` and holds :attr:`Verdict.code` values).
+    ``(n_lambda, n_zeta)`` and holds :attr:`Verdict.code` values); a (lambda, delta) map
+    unpacks as ``lam, delta, verdict = result``.
 
     Attributes
     ----------
     dataset : xarray.Dataset
-        Coordinates ``lambda`` and ``zeta``; variables ``verdict``, ``certificate``,
+        Coordinates ``lambda`` and ``zeta`` (or ``lambda`` and ``delta``, the fixed ``zeta``
+        in the attribute ``zeta``); variables ``verdict``, ``certificate``,
         ``n_stick``, ``cycle_k``, ``period``, ``amplitude``, ``stick_ratio``,
         ``max_velocity``, ``t_end`` (DESIGN.md section 6).
     chunks_total, chunks_loaded, chunks_computed : int
@@ -255,7 +319,17 @@ class OccurrenceMap:
     backend: str = ""
 
     def __iter__(self) -> Iterator[NDArray[Any]]:
-        return iter((self.lam, self.zeta, self.verdict))
+        return iter((self.lam, self.second_values, self.verdict))
+
+    @property
+    def second(self) -> str:
+        """Name of the second axis: ``"zeta"``, or ``"delta"`` for a (lambda, delta) map."""
+        return map_axes(self.dataset)[1]
+
+    @property
+    def second_values(self) -> NDArray[np.float64]:
+        """Values of the second axis (:attr:`zeta` or :attr:`delta`)."""
+        return np.asarray(self.dataset[self.second].values)
 
     @property
     def lam(self) -> NDArray[np.float64]:
@@ -264,12 +338,20 @@ class OccurrenceMap:
 
     @property
     def zeta(self) -> NDArray[np.float64]:
-        """The ``zeta`` axis (dimensionless)."""
+        """The ``zeta`` axis (dimensionless); one value, the fixed one, for a (lambda, delta) map."""
+        if self.second == "delta":
+            return np.array([float(self.dataset.attrs["zeta"])])
         return np.asarray(self.dataset["zeta"].values)
 
     @property
+    def delta(self) -> NDArray[np.float64] | None:
+        """The ``delta`` axis of a (lambda, delta) map (dimensionless); ``None`` otherwise."""
+        return np.asarray(self.dataset["delta"].values) if self.second == "delta" else None
+
+    @property
     def verdict(self) -> NDArray[np.int8]:
-        """Verdict codes, shape ``(n_lambda, n_zeta)``: 0 steady, 1 stick-slip, 2 undetermined."""
+        """Verdict codes, shape ``(n_lambda, n_zeta)`` or ``(n_lambda, n_delta)``:
+        0 steady, 1 stick-slip, 2 undetermined, 3 slip-oscillation."""
         return np.asarray(self.dataset["verdict"].values)
 
     @property
@@ -310,10 +392,27 @@ class OccurrenceMap:
         """Fraction of cells without a certified verdict (increase ``t_max`` if large)."""
         return self.counts[Verdict.UNDETERMINED.value] / max(1, self.verdict.size)
 
-    def verdict_at(self, lam: float, zeta: float) -> Verdict:
-        """Verdict of the grid cell nearest to ``(lam, zeta)``."""
+    def verdict_at(self, lam: float, zeta: float | None = None, *,
+                   delta: float | None = None) -> Verdict:
+        """Verdict of the grid cell nearest to ``(lam, zeta)``, or to ``(lam, delta)``.
+
+        A (lambda, zeta) map takes ``zeta``; a (lambda, delta) map takes ``delta=`` (and
+        ``zeta`` only when it is the map's fixed value, or omitted).
+        """
         i = int(np.argmin(np.abs(self.lam - lam)))
-        j = int(np.argmin(np.abs(self.zeta - zeta)))
+        if self.second == "zeta":
+            if zeta is None or delta is not None:
+                raise ValueError("this map is over (lambda, zeta): give lam and zeta, not delta")
+            value = zeta
+        else:
+            fixed = float(self.zeta[0])
+            if delta is None:
+                raise ValueError(f"this map is over (lambda, delta) at zeta = {fixed:g}: "
+                                 "give lam and delta=")
+            if zeta is not None and not np.isclose(zeta, fixed, rtol=1e-12, atol=0.0):
+                raise ValueError(f"this map is at zeta = {fixed:g}, not {zeta:g}")
+            value = delta
+        j = int(np.argmin(np.abs(self.second_values - value)))
         return VERDICTS[int(self.verdict[i, j])]
 
     def to_netcdf(self, path: str | Path, *, overwrite: bool = True) -> Path:
@@ -329,10 +428,19 @@ class OccurrenceMap:
         return write_map_csv(self.dataset, path)
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary (counts, fractions, grid shape, chunks, fingerprint)."""
+        """JSON-ready summary (counts, fractions, grid shape and axes, chunks, fingerprint).
+
+        ``axes`` names the grid's dimensions; a (lambda, delta) map adds ``n_delta`` and the
+        fixed ``zeta``.
+        """
+        delta: dict[str, Any] = {}
+        if self.delta is not None:
+            delta = {"n_delta": int(self.delta.size), "zeta": float(self.zeta[0])}
         return {
+            "axes": list(map_axes(self.dataset)),
             "n_lambda": int(self.lam.size),
             "n_zeta": int(self.zeta.size),
+            **delta,
             "n_cells": int(self.verdict.size),
             "counts": self.counts,
             "stick_slip_fraction": self.stick_slip_fraction,
@@ -376,6 +484,7 @@ def occurrence_map(
     t_max: float | None = None,
     options: EngineOptions | None = None,
     friction: FrictionLaw | None = None,
+    deltas: Axis | ArrayLike | None = None,
     backend: Backend = "threads",
     workers: int | None = None,
     scheduler: str | None = None,
@@ -385,6 +494,9 @@ def occurrence_map(
     overwrite: bool = False,
 ) -> OccurrenceMap:
     """Classify every ``(lambda, zeta)`` cell of a grid by certified simulation (Figs. 8, 11).
+
+    With ``deltas`` the grid is ``(lambda, delta)`` at one ``zeta`` instead, each cell with
+    the linear friction law of its ``delta`` (issue 10, point 5).
 
     Parameters
     ----------
@@ -405,7 +517,12 @@ def occurrence_map(
         Engine limits (defaults of :class:`EngineOptions`).
     friction : FrictionLaw, optional
         Friction law of every cell (:mod:`stickslip.model.friction`); the paper's Coulomb law
-        by default. Cells may then also end in ``slip-oscillation``.
+        by default. Cells may then also end in ``slip-oscillation``. Not with ``deltas``.
+    deltas : Axis or array_like or str, optional
+        Slopes ``delta = sigma W / (2 sqrt(m k))`` of the linear law (dimensionless, > 0
+        velocity weakening), e.g. ``"-0.1:0.3:41"``: the map is then over ``(lambda, delta)``
+        with the law ``LinearFriction(delta)`` in each cell; ``zetas`` must hold exactly one
+        value (the fixed primary damping) and ``friction`` must be left out.
     backend : {"threads", "serial", "dask"}
         ``threads``: numba threads (``workers`` of them, all cores when None);
         ``serial``: one thread; ``dask``: a ``dask.distributed`` cluster at ``scheduler``
@@ -431,7 +548,7 @@ def occurrence_map(
     OccurrenceMap
     """
     config = MapConfig.create(lams, zetas, dva, gamma, options=options, t_max=t_max,
-                              friction=friction)
+                              friction=friction, deltas=deltas)
     backend = check_backend(backend, workers, scheduler)
     if chunk_size is not None and (isinstance(chunk_size, bool) or int(chunk_size) != chunk_size
                                    or chunk_size < 1):
@@ -499,7 +616,7 @@ def map_dataset(
     import xarray as xr
 
     shape = config.shape
-    dims = ("lambda", "zeta")
+    dims = ("lambda", config.second)
     status = int_summary[:, engine.I_STATUS].reshape(shape)
     data_vars: dict[str, Any] = {
         "verdict": (dims, verdict_codes(status), {
@@ -530,20 +647,35 @@ def map_dataset(
             ("foundation_damping_ratio", "damping_ratio", "foundation damping zeta_a = c_a / (2 sqrt(m k))"),
         ):
             values = np.array([getattr(f, attr) for f in foundations], dtype=np.float64)
-            data_vars[name] = (("zeta",), values, {"long_name": long_name, "units": "1"})
+            if config.delta is None:
+                data_vars[name] = (("zeta",), values, {"long_name": long_name, "units": "1"})
+            else:  # the one foundation of the fixed zeta
+                data_vars[name] = ((), values[0], {"long_name": long_name, "units": "1"})
     coords = {
         "lambda": ("lambda", np.array(config.lam.values), {
             "long_name": "lambda = (mu_s - mu_k) W / (V sqrt(m k))",
             "units": "1",
             "spacing": config.lam.spacing,
         }),
-        "zeta": ("zeta", np.array(config.zeta.values), {
+    }
+    if config.delta is None:
+        coords["zeta"] = ("zeta", np.array(config.zeta.values), {
             "long_name": "damping ratio zeta = c / (2 sqrt(m k))",
             "units": "1",
             "spacing": config.zeta.spacing,
-        }),
-    }
+        })
+    else:
+        coords["delta"] = ("delta", np.array(config.delta.values), {
+            "long_name": "friction slope delta = sigma W / (2 sqrt(m k)), > 0 velocity weakening",
+            "units": "1",
+            "spacing": config.delta.spacing,
+        })
     law = "" if isinstance(config.friction, CoulombFriction) else f", friction {config.friction.describe()}"
+    description = config.friction.describe()
+    if config.delta is not None:
+        zeta = float(config.zeta.values[0])
+        law = f", over (lambda, delta) at zeta = {zeta:g}, friction {_DELTA_LAW}"
+        description = _DELTA_LAW
     attrs: dict[str, Any] = provenance_attributes(
         f"stick-slip occurrence map, {config.dva.describe()}, gamma = {config.gamma:g}{law}",
         config.to_dict(),
@@ -556,8 +688,10 @@ def map_dataset(
         "t_max": config.options.t_max,
         "gamma": config.gamma,
         "dva": config.dva.describe(),
-        "friction": config.friction.describe(),
+        "friction": description,
         "config_fingerprint": fingerprint,
     })
+    if config.delta is not None:
+        attrs["zeta"] = float(config.zeta.values[0])
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 
