@@ -297,7 +297,13 @@ def response_peak(structure: Structure) -> ResponsePeak:
                 maxima.append(float(grid[2 + a]))
                 continue
             lo, hi = grid[1 + a], grid[1 + b]
-            root = brentq(scalar_slope, lo, hi, xtol=1e-15, rtol=4.0 * np.finfo(float).eps)
+            try:
+                root = brentq(scalar_slope, lo, hi, xtol=1e-15, rtol=4.0 * np.finfo(float).eps)
+            except ValueError:  # the slope is NaN in the bracket: refuse rather than guess
+                raise ValueError(
+                    f"the response peak near Omega={lo:.3g} cannot be located: the slope of "
+                    "H is not finite there (a nearly undamped resonance; add damping)"
+                ) from None
             maxima.append(float(root))
     if not maxima:  # monotone decreasing from the static value
         maxima.append(0.0)

@@ -10,6 +10,12 @@ from numpy.typing import NDArray
 from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
 
+#: Largest magnitude of an initial position or velocity (units ``V / omega_n`` and ``V``):
+#: the engine squares the state in its Lyapunov bound and multiplies it by matrices of
+#: entries up to 1e13, which stays finite below this. The startup state of the largest
+#: accepted parameters (``gamma lambda / K**2`` <= 1e24) is far inside it.
+MAX_STATE = 1e100
+
 STARTUP_DESCRIPTION = (
     "startup: the belt starts moving at tau = 0 with every spring at its natural length, "
     "the slider stuck to the belt (xi' = 1) and the foundation at rest"
@@ -43,6 +49,12 @@ class InitialState:
             )
         if not (np.all(np.isfinite(pos)) and np.all(np.isfinite(vel))):
             raise ValueError("initial state has NaN or infinite entries")
+        big = max(float(np.abs(pos).max(initial=0.0)), float(np.abs(vel).max(initial=0.0)))
+        if big > MAX_STATE:
+            raise ValueError(
+                f"initial state has an entry of magnitude {big:.3g}, beyond the supported "
+                f"{MAX_STATE:g} (its energy would overflow)"
+            )
         object.__setattr__(self, "position", pos)
         object.__setattr__(self, "velocity", vel)
 
