@@ -15,11 +15,19 @@ try:  # typer >= 0.25 ships its own copy of click
 except ImportError:  # pragma: no cover - older typer uses click itself
     from click import exceptions as click_exceptions  # type: ignore[no-redef]
 
+#: Shown by ``stickslip --help``; every command's own ``--help`` has an example too.
+HELP = """Predict and suppress stick-slip in sliding systems on elastic foundations.
+
+Example: stickslip simulate --lam 3 --zeta 0.1 --json
+
+Shell completion: stickslip --install-completion (or --show-completion to print the script).
+"""
+
 app = typer.Typer(
     name="stickslip",
-    help="Predict and suppress stick-slip in sliding systems on elastic foundations.",
+    help=HELP,
     no_args_is_help=True,
-    add_completion=False,
+    add_completion=True,  # Typer's --install-completion and --show-completion
     pretty_exceptions_enable=False,
 )
 
@@ -45,6 +53,7 @@ def _register() -> None:
     from stickslip.cli import (
         absorber_commands,
         app_command,
+        basin_command,
         design_command,
         map_commands,
         reproduce_command,
@@ -52,7 +61,7 @@ def _register() -> None:
     )
 
     for module in (simulate_command, absorber_commands, map_commands, design_command,
-                   reproduce_command, app_command):
+                   basin_command, reproduce_command, app_command):
         module.register(app)
 
 
@@ -75,7 +84,8 @@ def run(argv: list[str] | None = None) -> None:
 
 def _run(argv: list[str] | None) -> None:
     try:
-        result = app(args=argv, standalone_mode=False)
+        # the program name is fixed, so completion uses _STICKSLIP_COMPLETE however it is started
+        result = app(args=argv, prog_name="stickslip", standalone_mode=False)
     except click_exceptions.NoArgsIsHelpError:
         raise SystemExit(0) from None
     except click_exceptions.UsageError as exc:

@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from stickslip.kernel.engine import N_FLOAT, N_INT, run
+from stickslip.kernel.engine import N_FLOAT, N_INT, run, run_prepared
 from stickslip.kernel.linalg import gauss_solve
+from stickslip.kernel.system import prepare_bands
 
 
 @njit(cache=True)
@@ -69,3 +70,24 @@ def coulomb_tables(lams, gammas):
     slopes = np.zeros((n_cells, 1))
     n_bands = np.ones(n_cells, dtype=np.int64)
     return edges, intercepts, slopes, n_bands
+
+
+@njit(parallel=True, cache=True)
+def run_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0s, t_max,
+               max_events, cycle_tol, max_period):
+    """Run one system from many initial states ``z0s`` (shape ``(n_states, 2 n)``) in parallel.
+
+    The system is prepared once (:func:`stickslip.kernel.system.prepare_bands`) and shared by
+    the threads. Returns the float and integer summaries, shapes ``(n_states, N_FLOAT)`` and
+    ``(n_states, N_INT)`` (layouts of :mod:`stickslip.kernel.engine`).
+    """
+    prepared = prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
+    n_states = z0s.shape[0]
+    float_summary = np.empty((n_states, N_FLOAT))
+    int_summary = np.empty((n_states, N_INT), dtype=np.int64)
+    for c in prange(n_states):
+        result = run_prepared(mass, lam, gamma, edges, prepared, z0s[c], t_max, max_events,
+                              cycle_tol, max_period, False, False)
+        float_summary[c] = result[4]
+        int_summary[c] = result[5]
+    return float_summary, int_summary

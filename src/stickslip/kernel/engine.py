@@ -264,13 +264,25 @@ def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_m
     mode and state of every phase (only when ``record``), the breakaway times, the float
     and integer summaries (layouts ``F_*`` and ``I_*``) and the final state.
     """
+    prepared = prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
+    return run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle_tol,
+                        max_period, record, run_to_t_max)
+
+
+@njit(cache=True)
+def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle_tol, max_period,
+                 record, run_to_t_max):
+    """:func:`run` with the per-system data of :func:`prepare_bands` computed once.
+
+    Many runs of one system (basin stability: one system, many initial states) share the
+    matrix exponentials and certificates; ``prepared`` is only read, so threads may share it.
+    """
     n = mass.shape[0]
     nz = 2 * n
     m = nz + 1
     (ahat, phi, hstep, sig_rows, f_start, f_sign, f_offset, stick_row, lyap, kappa, n_lyap,
      ev_count, ev_next, ev_vel, _eq_mode, z_eq, lyap_lo, lyap_hi, margin, sec_mode,
-     sec_event) = prepare_bands(
-        mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
+     sec_event) = prepared
     cap = max_events + 1 if record else 1
     seg_t = np.empty(cap)
     seg_mode = np.empty(cap, dtype=np.int64)

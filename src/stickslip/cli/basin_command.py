@@ -1,0 +1,215 @@
+"""``stickslip basin``: certified verdicts for many disturbed starts (basin stability)."""
+
+from __future__ import annotations
+
+import csv
+import sys
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from stickslip.cli.console import BadInput, check_figure_path, check_output_path, parse_dva, print_json
+from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE
+
+BOX_HELP = ("sampling box, e.g. 'xi=-4:4,v=-3:1.5' (dimensionless, shifted: xi, v, xi_a, v_a) or, "
+            "with --config, 'x=-0.001:0.001,v=-0.02:0.02' (SI: m, m/s; x from where the spring is "
+            "relaxed, ground frame); unnamed columns keep their steady-sliding value")
+
+
+def parse_box(text: str) -> dict[str, tuple[float, float]]:
+    """``name=lo:hi,name=lo:hi`` to a dictionary of intervals."""
+    box: dict[str, tuple[float, float]] = {}
+    for item in text.split(","):
+        name, eq, interval = item.partition("=")
+        lo, colon, hi = interval.partition(":")
+        try:
+            if not (eq and colon):
+                raise ValueError
+            box[name.strip()] = (float(lo), float(hi))
+        except ValueError:
+            raise BadInput(f"--box {item.strip()!r} is not NAME=LO:HI") from None
+    return box
+
+
+def read_states(path: Path, names: list[str]) -> tuple[list[dict[str, str]], list[str], list[list[float]]]:
+    """Rows of ``--initial-states``: every row as read, the columns, and the state columns as numbers."""
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise BadInput(f"--initial-states {str(path)!r}: {exc.strerror}") from None
+    reader = csv.DictReader(line for line in text.splitlines() if line.strip() and not line.startswith("#"))
+    columns = list(reader.fieldnames or [])
+    missing = [c for c in names if c not in columns]
+    if missing:
+        raise BadInput(f"--initial-states {str(path)!r} lacks the columns {', '.join(missing)} "
+                       f"(needs {', '.join(names)})")
+    rows, values = [], []
+    for k, row in enumerate(reader, start=2):
+        try:
+            values.append([float(row[c]) for c in names])
+        except (TypeError, ValueError):
+            raise BadInput(f"--initial-states {str(path)!r}, line {k}: "
+                           f"not numbers in {', '.join(names)}") from None
+        rows.append(row)
+    if not rows:
+        raise BadInput(f"--initial-states {str(path)!r} has no rows")
+    return rows, columns, values
+
+
+def basin(
+    lam: Annotated[float | None, typer.Option("--lam", help="lambda > 0 (dimensionless system)")] = None,
+    zeta: Annotated[float | None, typer.Option("--zeta", help="damping ratio >= 0")] = None,
+    gamma: GAMMA = 2.0,
+    dva: DVA = "none",
+    k_scale: K_SCALE = 1.0,
+    friction: FRICTION = "coulomb",
+    config: Annotated[
+        Path | None, typer.Option("--config", help="machine.toml in physical units ([system], [friction])")
+    ] = None,
+    samples: Annotated[int, typer.Option("--samples", help="number of states drawn in --box")] = 10_000,
+    seed: Annotated[int, typer.Option("--seed", help="seed of the sampling")] = 0,
+    box: Annotated[str | None, typer.Option("--box", help=BOX_HELP)] = None,
+    initial_states: Annotated[
+        Path | None, typer.Option("--initial-states", help="CSV of states instead of sampling")
+    ] = None,
+    t_max: Annotated[float, typer.Option("--t-max", help="dimensionless horizon of each run")] = 5000.0,
+    workers: Annotated[int | None, typer.Option("--workers", help="numba threads (all cores)")] = None,
+    out: Annotated[Path | None, typer.Option("--out", help="folder for labels.csv and basin.nc")] = None,
+    plot: Annotated[Path | None, typer.Option("--plot", help="basin picture (.png, .pdf, .svg)")] = None,
+    overwrite: Annotated[bool, typer.Option("--overwrite", help="replace existing output files")] = False,
+    json: JSON = False,
+) -> None:
+    """Basin stability: a certified verdict for each of many initial states (disturbed starts).
+
+    Example: stickslip basin --lam 2.5 --zeta 0.1 --samples 20000 --box 'xi=-4:4,v=-3:1.5' --json
+    """
+    from stickslip.analysis.simulation import EngineOptions
+    from stickslip.model.friction import parse_friction
+    from stickslip.model.parameters import Slider
+    from stickslip.model.structure import chain_structure
+    from stickslip.sweep.basin import (
+        basin_stability,
+        physical_names,
+        sample_box,
+        state_names,
+        states_from_physical,
+        write_labels,
+    )
+
+    system = None
+    if config is not None:
+        if lam is not None or zeta is not None:
+            raise BadInput("give either --config (physical units) or --lam/--zeta, not both")
+        system = _system_from_config(config)
+        structure, slider = system.structure(), system.slider()
+    else:
+        if lam is None or zeta is None:
+            raise BadInput("give --lam and --zeta (dimensionless), or --config machine.toml")
+        slider = Slider(lam, gamma=gamma, friction=parse_friction(friction))
+        found = parse_dva(dva, zeta, k_scale)
+        structure = chain_structure(zeta, () if found is None else (found,))
+    options = EngineOptions(t_max=t_max)
+    n_dof = structure.n_dof
+    names = physical_names(n_dof) if system is not None else state_names(n_dof)
+    if box is not None and initial_states is not None:
+        raise BadInput("give either --box (sampling) or --initial-states, not both")
+    labels = None if out is None else out / "labels.csv"
+    dataset = None if out is None else out / "basin.nc"
+    for path in (labels, dataset):
+        if path is not None:
+            check_output_path(path, overwrite=overwrite, option="--out")
+    if plot is not None:
+        check_figure_path(plot, overwrite=overwrite)
+    rows = columns = None
+    if initial_states is not None:
+        rows, columns, values = read_states(initial_states, names)
+        import numpy as np
+
+        raw = np.array(values, dtype=np.float64)
+        states = states_from_physical(system, raw) if system is not None else raw
+    else:
+        intervals = parse_box(box) if box is not None else {names[0]: (-2.0, 2.0), names[n_dof]: (-2.0, 1.5)}
+        unknown = sorted(set(intervals) - set(names))
+        if unknown:
+            raise BadInput(f"--box columns {', '.join(unknown)} are not among {', '.join(names)}")
+        if system is not None:
+            states = _sample_physical(system, samples, intervals, seed)
+        else:
+            states = sample_box(structure, slider, samples, intervals, seed)
+    from stickslip.cli.map_commands import _ProgressBar
+
+    enabled = not json and sys.stderr.isatty()
+    with _ProgressBar(enabled, f"basin {len(states)} states", unit="samples") as bar:
+        result = basin_stability(structure, slider, states, options=options, workers=workers,
+                                 progress=bar)
+    payload = result.to_dict()
+    payload.update({"labels": None, "dataset": None, "plot": None})
+    if out is not None:
+        out.mkdir(parents=True, exist_ok=True)
+        assert labels is not None and dataset is not None
+        write_labels(result, labels, rows, columns)
+        from stickslip.io.netcdf import write_dataset
+
+        write_dataset(result.to_xarray(), dataset, overwrite=True)
+        payload.update({"labels": str(labels), "dataset": str(dataset)})
+    if plot is not None:
+        payload["plot"] = str(result.plot().savefig(plot))
+    if json:
+        print_json(payload)
+        return
+    _print_summary(payload)
+
+
+def _system_from_config(config: Path) -> Any:
+    from stickslip.cli.design_command import collect_inputs, read_friction_config
+    from stickslip.model.physical import PhysicalFoundation, PhysicalSystem
+
+    v = collect_inputs({}, config)
+    foundation = PhysicalFoundation(v["m_a"], v["k_a"], v["c_a"]) if "m_a" in v else None
+    return PhysicalSystem(m=v["m"], k=v["k"], c=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"], load=v["load"],
+                          speed=v["speed"], foundation=foundation, friction=read_friction_config(config))
+
+
+def _sample_physical(system: Any, samples: int, box: dict[str, tuple[float, float]], seed: int) -> Any:
+    """Uniform samples of a box in SI units (``x``, ``v``, ``x_a``, ``v_a``), made dimensionless.
+
+    A position ``x`` [m] from where the springs are relaxed is ``xi = x / L - shift`` with
+    ``L = V / omega_n`` and the kinetic-equilibrium shift of Eqs. (15)-(16); a velocity ``v``
+    [m/s] is ``xi' = v / V``. The map is affine per column, so uniform stays uniform.
+    """
+    from stickslip.sweep.basin import physical_names, sample_box, state_names
+
+    structure, slider = system.structure(), system.slider()
+    n = structure.n_dof
+    shift = slider.gamma * slider.lam * structure.kinetic_equilibrium_offset()
+    names, dimensionless = physical_names(n), state_names(n)
+    converted = {}
+    for name, (lo, hi) in box.items():
+        i = names.index(name)
+        if i < n:
+            scale = system.length_scale
+            converted[dimensionless[i]] = (lo / scale - shift[i], hi / scale - shift[i])
+        else:
+            converted[dimensionless[i]] = (lo / system.speed, hi / system.speed)
+    return sample_box(structure, slider, samples, converted, seed)
+
+
+def _print_summary(p: dict[str, Any]) -> None:
+    fr, se = p["fractions"], p["standard_errors"]
+    parts = [f"{k} {fr[k]:.4f} +- {se[k]:.4f}" for k in fr if fr[k] > 0.0]
+    lines = [
+        f"basin       {p['structure']} (lambda={p['lambda']:.6g}, zeta={p['zeta']:.6g}, "
+        f"gamma={p['gamma']:.6g}), friction {p['friction']}",
+        f"samples     {p['n']} in {p['elapsed_s']:.2f} s ({p['samples_per_second'] or 0:,.0f} samples/s)",
+        f"fractions   {', '.join(parts)} (binomial standard errors)",
+    ]
+    for key in ("labels", "dataset", "plot"):
+        if p[key]:
+            lines.append(f"{key:<11} {p[key]}")
+    typer.echo("\n".join(lines))
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``basin`` command to ``app``."""
+    app.command("basin")(basin)

@@ -1,0 +1,108 @@
+"""Basin stability (issue 13, point 1): certified verdicts for many initial states.
+
+Sources: every label must equal the verdict of :func:`stickslip.simulate` started from the same
+state (the engine is deterministic; the batch shares only the prepared matrices); the startup
+state of DESIGN.md section 1 in physical coordinates is ``x = 0`` (springs relaxed), ``v = V``;
+the binomial standard error ``sqrt(p (1 - p) / n)``; the certified safe region of
+:mod:`stickslip.analysis.disturbance` contains only steady sliding.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from stickslip import (
+    InitialState,
+    PhysicalSystem,
+    Slider,
+    Verdict,
+    elastic_foundation,
+    optimal_foundation_fit,
+    rigid_base,
+    simulate,
+    startup_state,
+)
+from stickslip.analysis.disturbance import safe_disturbance
+from stickslip.model.friction import StribeckFriction
+from stickslip.sweep.basin import basin_stability, equilibrium_state, sample_box, states_from_physical
+
+from .cli_helpers import run_cli
+
+SYSTEMS = [
+    ("rigid coulomb", rigid_base(0.1), Slider(2.5)),
+    ("rigid stribeck", rigid_base(0.1), Slider(2.0, friction=StribeckFriction(0.2, tolerance=1e-3))),
+    ("foundation", elastic_foundation(0.1, optimal_foundation_fit(0.1).scaled(0.5)), Slider(12.0)),
+]
+
+
+@pytest.mark.parametrize(("name", "structure", "slider"), SYSTEMS, ids=[s[0] for s in SYSTEMS])
+def test_labels_equal_single_simulations(name, structure, slider) -> None:  # type: ignore[no-untyped-def]
+    names = ["xi", "v"] if structure.n_dof == 1 else ["xi", "xi_a", "v", "v_a"]
+    box = {names[0]: (-4.0, 4.0), names[structure.n_dof]: (-3.0, 1.5)}
+    states = sample_box(structure, slider, 60, box, seed=5)
+    result = basin_stability(structure, slider, states, workers=2)
+    for state, code in zip(states, result.verdict, strict=True):
+        n = structure.n_dof
+        single = simulate(structure, slider, initial=InitialState(state[:n], state[n:]), record=False)
+        assert single.verdict.code == int(code), name
+    assert sum(result.fractions.values()) == pytest.approx(1.0)
+    p = result.fractions["stick-slip"]
+    assert result.standard_errors["stick-slip"] == pytest.approx(math.sqrt(p * (1 - p) / 60))
+
+
+def test_the_safe_region_holds_only_steady_sliding() -> None:
+    structure, slider = rigid_base(0.1), Slider(2.5)
+    result = basin_stability(structure, slider, sample_box(structure, slider, 3000,
+                                                           {"xi": (-4, 4), "v": (-3, 1.5)}, seed=2))
+    energy = 0.5 * result.states[:, 0] ** 2 + 0.5 * result.states[:, 1] ** 2
+    inside = energy < safe_disturbance(structure, slider).energy
+    assert inside.sum() > 100
+    assert np.all(result.verdict[inside] == Verdict.STEADY_SLIDING.code)
+    # bistable: the box holds both outcomes
+    assert 0.05 < result.fractions["steady-sliding"] < 0.95
+
+
+def test_physical_startup_state_maps_to_the_startup_state() -> None:
+    system = PhysicalSystem(m=2.0, k=5e4, c=20.0, mu_s=0.5, mu_k=0.3, load=150.0, speed=0.05)
+    state = states_from_physical(system, np.array([[0.0, 0.05]]))[0]
+    ref = startup_state(system.structure(), system.slider())
+    assert state == pytest.approx(np.concatenate([ref.position, ref.velocity]), abs=1e-12)
+    assert np.array_equal(equilibrium_state(system.structure(), system.slider()), np.zeros(2))
+
+
+def test_basin_command_writes_labels_in_input_order(tmp_path: Path,
+                                                    capsys: pytest.CaptureFixture[str]) -> None:
+    states = tmp_path / "states.csv"
+    states.write_text("id,xi,v\na,0.1,0.2\nb,3.5,-2.5\nc,-0.2,0.1\n")
+    code, out, err = run_cli(["basin", "--lam", "2.5", "--zeta", "0.1", "--initial-states", str(states),
+                              "--out", str(tmp_path / "run"), "--json"], capsys)
+    assert code == 0, err
+    payload = json.loads(out)
+    assert payload["n"] == 3 and set(payload) >= {"fractions", "standard_errors", "undetermined", "elapsed_s"}
+    with open(tmp_path / "run" / "labels.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert [r["id"] for r in rows] == ["a", "b", "c"]
+    expected = [
+        simulate(rigid_base(0.1), Slider(2.5), initial=InitialState([x], [v]), record=False).verdict.value
+        for x, v in ((0.1, 0.2), (3.5, -2.5), (-0.2, 0.1))
+    ]
+    assert [r["verdict"] for r in rows] == expected
+    assert (tmp_path / "run" / "basin.nc").exists()
+
+
+@pytest.mark.parametrize("args", [
+    ["--lam", "2", "--zeta", "0.1", "--box", "q=1:2"],
+    ["--lam", "2", "--zeta", "0.1", "--box", "xi=1"],
+    ["--lam", "2", "--zeta", "0.1", "--samples", "0"],
+    ["--lam", "2"],
+    ["--lam", "2", "--zeta", "0.1", "--initial-states", "/no/such.csv"],
+])
+def test_basin_bad_input_is_one_line(args: list[str], capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, err = run_cli(["basin", *args], capsys)
+    assert code == 2 and out == "" and len(err.strip().splitlines()) == 1 and "Traceback" not in err
