@@ -66,7 +66,8 @@ def store_path(out: Path) -> Path:
 class _ProgressBar:
     """A rich progress bar on stderr with cells per second and time left."""
 
-    def __init__(self, enabled: bool, label: str) -> None:
+    def __init__(self, enabled: bool, label: str, unit: str = "cells") -> None:
+        self._unit = unit
         self._bar: Any = None
         self._task: Any = None
         self._label = label
@@ -89,7 +90,7 @@ class _ProgressBar:
                 TextColumn("{task.description}"),
                 BarColumn(),
                 MofNCompleteColumn(),
-                TextColumn("cells  {task.fields[rate]} cells/s  left"),
+                TextColumn(f"{self._unit}  {{task.fields[rate]}} {self._unit}/s  left"),
                 TimeRemainingColumn(),
                 console=Console(stderr=True),
             )
