@@ -225,6 +225,14 @@ def test_boundary_bad_scan_bounds(x: float, here: Path, capsys: pytest.CaptureFi
     _check(["boundary", "--zeta", "0.1", "--json", "--lam-max", _text(x)], False, capsys, here)
 
 
+@FAST
+@given(n=COUNTS.filter(lambda n: n < 2 or n > 10_000_000))
+@example(n=10**12)
+def test_boundary_bad_scan_counts(n: int, here: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # --scan 1e12 used to attempt a 7 TiB allocation
+    _check(["boundary", "--zeta", "0.1", "--json", "--scan", str(n)], False, capsys, here)
+
+
 def test_map_too_large_for_memory_is_refused_before_writing(
         here: Path, capsys: pytest.CaptureFixture[str]) -> None:
     # 2e9 cells: refused with one line, no manifest, no lock, no output

@@ -46,6 +46,11 @@ if TYPE_CHECKING:
 
 FloatArray = NDArray[np.float64]
 
+#: Largest number of scan runs (scan points times zeta values): each is one simulation whose
+#: summaries (``N_FLOAT + N_INT`` numbers, 144 bytes) are held at once, so 1e7 runs already
+#: take 1.4 GB and hours; ``--scan 1e12`` used to attempt a 7 TiB allocation.
+MAX_SCAN_RUNS = 10_000_000
+
 _STEADY = Verdict.STEADY_SLIDING.code
 _STICK_SLIP = Verdict.STICK_SLIP.code
 _UNDETERMINED = Verdict.UNDETERMINED.code
@@ -332,6 +337,11 @@ def stick_slip_boundary(
         raise ValueError(f"lam_max={lam_max!r} must exceed lam_min={lam_min!r}")
     if isinstance(n_scan, bool) or int(n_scan) != n_scan or n_scan < 2:
         raise ValueError(f"n_scan={n_scan!r} must be a whole number of at least 2")
+    if n_scan * len(axis) > MAX_SCAN_RUNS:
+        raise ValueError(
+            f"n_scan={n_scan!r} at {len(axis)} zeta values is {n_scan * len(axis):,} scan runs, "
+            f"above the limit of {MAX_SCAN_RUNS:,} (their results are held in memory at once)"
+        )
     rtol = positive("rtol", rtol)
     if rtol >= 1.0:
         raise ValueError(f"rtol={rtol!r} must be below 1")
