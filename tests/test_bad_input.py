@@ -347,10 +347,10 @@ def test_accepted_command_creates_its_folder(here: Path, capsys: pytest.CaptureF
 def test_structure_refuses_complex_matrices() -> None:
     eye = np.eye(2)
     with pytest.raises(ValueError, match="complex") as info:
-        Structure(eye * (1 + 1j), eye, eye)
+        Structure(eye * (1 + 1j), eye, eye)  # type: ignore[arg-type]
     assert "\n" not in str(info.value)
     with pytest.raises(ValueError, match="complex"):
-        Structure(eye, eye, [[1.0, 0.5j], [-0.5j, 1.0]])
+        Structure(eye, eye, [[1.0, 0.5j], [-0.5j, 1.0]])  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="beyond"):
         Structure(eye, eye, eye * 1e200)
 

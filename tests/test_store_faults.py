@@ -19,13 +19,13 @@ from pathlib import Path
 
 import pytest
 
-from stickslip.sweep import occurrence_map
+from stickslip.sweep import OccurrenceMap, occurrence_map
 from stickslip.sweep.store import MANIFEST, StoreDamaged
 from tests.cli_helpers import run_cli
 from tests.sweep_helpers import LAMS, ZETAS, assert_same_map
 
 
-def _clean(tmp_path: Path) -> tuple[Path, object]:
+def _clean(tmp_path: Path) -> tuple[Path, OccurrenceMap]:
     store = tmp_path / "store"
     full = occurrence_map(LAMS, ZETAS, "none", chunk_size=4, store=store)
     assert len(list(store.glob("chunk-*.npz"))) == 8
@@ -79,10 +79,14 @@ def _drop_key(key: str) -> Callable[[Path], None]:
     return damage
 
 
+def _not_an_object(p: Path) -> None:
+    p.write_text("[1, 2, 3]")
+
+
 MANIFEST_DAMAGE: dict[str, Callable[[Path], None]] = {
     "truncated": _truncate,
     "empty": _empty,
-    "not-an-object": lambda p: p.write_text("[1, 2, 3]"),
+    "not-an-object": _not_an_object,
     "no-n_cells": _drop_key("n_cells"),
     "no-chunk_size": _drop_key("chunk_size"),
     "no-runs": _drop_key("runs"),
@@ -123,8 +127,6 @@ def test_cli_resume_over_damaged_store_warns_once_and_completes(
     clean = tmp_path / "clean.nc"
     code, _, err = run_cli([*args[:6], str(clean), *args[7:]], capsys)
     assert code == 0, err
-    from stickslip.sweep import OccurrenceMap
-
     assert_same_map(OccurrenceMap.from_netcdf(out).dataset, OccurrenceMap.from_netcdf(clean).dataset)
 
 
