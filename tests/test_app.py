@@ -156,6 +156,99 @@ def test_stick_slip_optimal_foundation_on_demand() -> None:
     assert not any("Stick-slip-optimal foundation:" in m.value for m in at.markdown)
 
 
+# ---- the friction law (issue 10, point 5) -------------------------------------------------
+
+def _design_stability(friction: Any) -> dict[str, Any]:
+    """Reference: the stability section of ``design_foundation`` for the default inputs."""
+    from stickslip import PhysicalSystem
+    from stickslip.analysis.design import design_foundation
+
+    system = PhysicalSystem(m=2.0, k=5e4, c=20.0, mu_s=0.5, mu_k=0.3, load=500.0, speed=0.05,
+                            friction=friction)
+    return dict(design_foundation(system).to_dict()["stability"])
+
+
+def test_linear_law_shows_the_stability_table_of_the_design_report() -> None:
+    from stickslip.app.streamlit_app import _fmt
+    from stickslip.model.physical import PhysicalFriction
+
+    at = _started()
+    at.selectbox(key="friction_law").set_value("linear").run()
+    assert at.text_input(key="slope").value == "0.02 s/m"
+    assert not at.exception and not at.error
+    # delta = sigma W / (2 sqrt(m k)) = 0.02 * 500 / (2 sqrt(1e5)) = 0.0158114
+    assert any(c.value.startswith("Friction law: linear, delta = 0.0158114") for c in at.caption)
+    (table,) = [d.value for d in at.dataframe]
+    expected = _design_stability(PhysicalFriction("linear", slope=0.02))
+    for row, key in (("rigid base", "rigid"), ("with foundation", "foundation")):
+        ref = expected[key]
+        assert table.loc[row, "stable"] == ("yes" if ref["stable"] else "no")
+        assert table.loc[row, "growth rate [1/s]"] == _fmt(ref["growth_rate"])
+        assert table.loc[row, "δ_crit"] == _fmt(ref["delta_crit"])
+        assert table.loc[row, "δ_local"] == _fmt(ref["delta_local"])
+        assert table.loc[row, "margin"] == _fmt(ref["margin"])
+        assert table.loc[row, "σ_crit [s/m]"] == _fmt(ref["sigma_crit"])
+    assert expected["rigid"]["delta_local"] == pytest.approx(0.02 * 500 / (2 * math.sqrt(1e5)))
+    (reading,) = [m.value for m in at.markdown if "stays stable" in m.value]
+    assert f"down to −{_fmt(expected['foundation']['sigma_crit'], 's/m')}" in reading
+    assert "\n" not in reading
+
+
+def test_bad_friction_slope_is_one_line_and_nothing_is_computed() -> None:
+    at = AppTest.from_file(str(APP), default_timeout=TIMEOUT)
+    at.session_state["friction_law"] = "linear"
+    at.session_state["slope"] = "2 kg"
+    at.run()
+    assert not at.exception
+    (message,) = [e.value for e in at.error]
+    assert message.startswith("Friction slope σ") and "wrong unit" in message and "s/m" in message
+    assert "\n" not in message
+    assert not at.metric and not at.table and not at.dataframe and not at.get("image")
+
+
+@pytest.mark.parametrize(
+    ("fields", "expected"),
+    [
+        ({"friction_law": "stribeck", "stribeck_velocity": "3 kg"}, "wrong unit"),
+        ({"friction_law": "stribeck", "mu_0": "0.6"}, "above μs"),
+        ({"friction_law": "stribeck", "exponent": ""}, "is empty"),
+        ({"friction_law": "table"}, "upload a CSV"),
+        ({"friction_law": "table", "friction_table": "v,f\n0,0.1\n"}, "columns v [m/s] and mu"),
+        ({"friction_law": "table", "friction_table": "v,mu\n0,x\n"}, "not two numbers"),
+        ({"friction_law": "table", "friction_table": "v,mu\n0,0.4\n0.1,-0.2\n"}, "negative"),
+    ],
+)
+def test_bad_friction_inputs_are_one_line(fields: dict[str, str], expected: str) -> None:
+    from stickslip.app import streamlit_app as web
+
+    raw = dict(web.DEFAULTS) | {k: d for k, (_, d) in web.FRICTION_INPUTS.items()} | fields
+    system, errors = web.parse_inputs(raw)
+    assert system is None and len(errors) == 1
+    assert expected in errors[0] and "\n" not in errors[0]
+
+
+def test_stribeck_and_table_inputs_convert_in_si() -> None:
+    from stickslip.app import streamlit_app as web
+    from stickslip.model.friction import StribeckFriction, TableFriction
+
+    base = dict(web.DEFAULTS) | {k: d for k, (_, d) in web.FRICTION_INPUTS.items()}
+    system, errors = web.parse_inputs(base | {"friction_law": "stribeck", "mu_0": "0.45"})
+    assert system is not None and not errors
+    law = system.slider().friction
+    # u_s = v_s / V = 0.5 / 0.05; r0 = (mu_0 - mu_k) / (mu_s - mu_k) = 0.15 / 0.2
+    assert isinstance(law, StribeckFriction)
+    assert law.velocity_ratio == pytest.approx(10.0) and law.mu0_ratio == pytest.approx(0.75)
+    curve = "v,mu\n0.0,0.45\n0.05,0.35\n0.5,0.3\n"
+    system, errors = web.parse_inputs(base | {"friction_law": "table", "friction_table": curve,
+                                              "friction_table_name": "tribometer.csv"})
+    assert system is not None and not errors
+    law = system.slider().friction
+    # u_i = v_i / V, f_i = (mu_i - mu_k) / (mu_s - mu_k)
+    assert isinstance(law, TableFriction)
+    assert law.u == pytest.approx((0.0, 1.0, 10.0)) and law.f == pytest.approx((0.75, 0.25, 0.0))
+    assert web.system_from_key(web.si_key(system)) == system
+
+
 # ---- the download contents (pure functions of the script) ---------------------------------
 
 @pytest.fixture(scope="module")

@@ -8,11 +8,18 @@ Python API (:func:`~stickslip.analysis.design.design_foundation`, :func:`~sticks
 :func:`~stickslip.analysis.tuning.optimal_foundation_stick_slip`); this script
 only lays out inputs and results. Invalid input shows one line per problem and nothing is
 computed.
+
+The friction law while sliding (issue 10, point 5) is chosen in the sidebar: ``coulomb`` (the
+paper's), ``linear`` (slope in s/m), ``stribeck`` or ``table`` (an uploaded CSV with columns
+``v`` [m/s] and ``mu``); its fields are the keys of the ``[friction]`` table of the TOML used by
+``stickslip design`` (:class:`~stickslip.model.physical.PhysicalFriction`, units parsed by
+``to_si``). The design report's stability section is shown as a table.
 """
 
 from __future__ import annotations
 
 import csv
+import dataclasses
 import io
 import json
 import math
@@ -42,8 +49,9 @@ from stickslip import (
 from stickslip.analysis.design import design_foundation
 from stickslip.analysis.dva import DvaSpec
 from stickslip.analysis.tuning import optimal_foundation_stick_slip
-from stickslip.model.physical import foundation_to_physical
-from stickslip.model.units import QUANTITIES, to_si
+from stickslip.model.friction import CoulombFriction, FrictionLaw, friction_csv_columns
+from stickslip.model.physical import PhysicalFriction, foundation_to_physical
+from stickslip.model.units import FRICTION_QUANTITIES, QUANTITIES, to_si
 from stickslip.plot.figure import new_grid
 from stickslip.plot.simulation import phase_portrait_plot, time_history_plot
 from stickslip.sweep import OccurrenceMap, occurrence_map
@@ -65,6 +73,27 @@ FOUNDATION_INPUTS: dict[str, tuple[str, str]] = {
 }
 DEFAULTS: dict[str, str] = {key: default for key, (_, default) in
                             (SYSTEM_INPUTS | FOUNDATION_INPUTS).items()}
+#: The friction laws of the selectbox (widget key ``friction_law``), the paper's first.
+FRICTION_LAWS = ("coulomb", "linear", "stribeck", "table")
+#: Widget key -> (label, default text) of the friction fields; the keys are those of the
+#: ``[friction]`` table (``FRICTION_QUANTITIES`` of ``to_si``). ``mu_0`` may stay empty (= mu_s).
+FRICTION_INPUTS: dict[str, tuple[str, str]] = {
+    "slope": ("Friction slope σ (μ = μk − σ v_r)", "0.02 s/m"),
+    "mu_0": ("μ0 at vanishing sliding speed (empty: μs)", ""),
+    "stribeck_velocity": ("Stribeck velocity v_s", "0.5 m/s"),
+    "exponent": ("Stribeck exponent n", "1"),
+    "viscous": ("Viscous slope σ_v", "0 s/m"),
+}
+#: The fields of each law.
+FRICTION_FIELDS: dict[str, tuple[str, ...]] = {
+    "coulomb": (),
+    "linear": ("slope",),
+    "stribeck": ("mu_0", "stribeck_velocity", "exponent", "viscous"),
+    "table": (),
+}
+#: Widget keys of the uploaded friction curve (its text and file name, in ``raw``).
+FRICTION_TABLE = "friction_table"
+FRICTION_TABLE_NAME = "friction_table_name"
 
 #: Occurrence map around the operating point: lambda from lam/SPAN to lam*SPAN (log-spaced),
 #: zeta from 0 to twice the operating zeta.
@@ -76,7 +105,7 @@ PLOT_HORIZON = (40.0, 3000.0)
 #: Samples of the exact trajectory per figure (every mode switch is added to them).
 PLOT_POINTS = 1500
 
-SiKey = tuple[tuple[str, float], ...]
+SiKey = tuple[tuple[str, Any], ...]
 FoundationKey = tuple[float, float, float]
 
 
@@ -98,14 +127,18 @@ def parse_inputs(raw: Mapping[str, str]) -> tuple[PhysicalSystem | None, list[st
     ----------
     raw : mapping
         Text of every field of :data:`SYSTEM_INPUTS` and :data:`FOUNDATION_INPUTS` (the three
-        foundation fields all empty for no existing foundation).
+        foundation fields all empty for no existing foundation); ``friction_law`` (one of
+        :data:`FRICTION_LAWS`, ``coulomb`` when absent) and the fields of that law
+        (:data:`FRICTION_FIELDS`), and for ``table`` the uploaded CSV text
+        (:data:`FRICTION_TABLE`, its file name in :data:`FRICTION_TABLE_NAME`).
 
     Returns
     -------
     system : PhysicalSystem or None
         ``None`` exactly when ``errors`` is not empty.
     errors : list of str
-        One line per bad input (wrong unit, not a number, non-positive, ``mu_k >= mu_s``).
+        One line per bad input (wrong unit, not a number, non-positive, ``mu_k >= mu_s``, a
+        friction law outside its range).
     """
     errors: list[str] = []
     values: dict[str, float] = {}
@@ -123,7 +156,9 @@ def parse_inputs(raw: Mapping[str, str]) -> tuple[PhysicalSystem | None, list[st
             values[key] = to_si(key, text)
         except ValueError as exc:
             errors.append(_field_error(key, labels[key], exc))
-    if errors:
+    friction, friction_errors = parse_friction_inputs(raw)
+    errors += friction_errors
+    if errors or friction is None:
         return None, errors
     try:
         foundation = None
@@ -131,19 +166,74 @@ def parse_inputs(raw: Mapping[str, str]) -> tuple[PhysicalSystem | None, list[st
             foundation = PhysicalFoundation(values["m_a"], values["k_a"], values["c_a"])
         system = PhysicalSystem(m=values["m"], k=values["k"], c=values["c"], mu_s=values["mu_s"],
                                 mu_k=values["mu_k"], load=values["load"], speed=values["speed"],
-                                foundation=foundation)
+                                foundation=foundation, friction=friction)
     except ValueError as exc:
         return None, [f"Invalid input: {exc}"]
+    if friction.mu_0 is not None and friction.mu_0 > system.mu_s:
+        return None, [f"{FRICTION_INPUTS['mu_0'][0]}: {friction.mu_0:g} is above μs = "
+                      f"{system.mu_s:g} (friction at vanishing speed is at most static friction)"]
+    try:
+        system.slider()  # the law in the engine's units: mu >= 0, ...
+    except ValueError as exc:
+        return None, ["Friction law: " + " ".join(str(exc).split())]
     return system, []
+
+
+def parse_friction_inputs(raw: Mapping[str, str]) -> tuple[PhysicalFriction | None, list[str]]:
+    """The friction law of the inputs in SI units, or one error line per bad friction field.
+
+    Only the fields of the chosen law are read (:data:`FRICTION_FIELDS`); values with units
+    go through ``to_si`` as in the ``[friction]`` table of ``stickslip design``.
+    """
+    law = str(raw.get("friction_law", "coulomb") or "coulomb").strip().lower()
+    if law not in FRICTION_LAWS:
+        return None, [f"Friction law {law!r} is not one of {', '.join(FRICTION_LAWS)}"]
+    errors: list[str] = []
+    values: dict[str, Any] = {"law": law}
+    for key in FRICTION_FIELDS[law]:
+        label = FRICTION_INPUTS[key][0]
+        text = str(raw.get(key, "")).strip()
+        if not text:
+            if key != "mu_0":
+                errors.append(f"{label} is empty")
+            continue
+        try:
+            values[key] = to_si(key, text)
+        except ValueError as exc:
+            errors.append(_field_error(key, label, exc))
+    if law == "table":
+        name = str(raw.get(FRICTION_TABLE_NAME, "") or "(uploaded)")
+        text = str(raw.get(FRICTION_TABLE, ""))
+        if not text.strip():
+            errors.append("Friction table: upload a CSV file with columns v [m/s] and mu")
+        else:
+            try:
+                header = next(line for line in text.splitlines()
+                              if line.strip() and not line.startswith("#"))
+                if "mu" not in [h.strip().lower() for h in header.split(",")]:
+                    raise ValueError(f"{name} needs columns v [m/s] and mu, got {header.strip()}")
+                v, mu = friction_csv_columns(text, name)
+                values["table_v"], values["table_mu"] = tuple(v), tuple(mu)
+            except ValueError as exc:
+                errors.append("Friction table: " + " ".join(str(exc).split()))
+    if errors:
+        return None, errors
+    try:
+        return PhysicalFriction(**values), []
+    except ValueError as exc:
+        return None, ["Friction law: " + " ".join(str(exc).split())]
 
 
 def si_key(system: PhysicalSystem) -> SiKey:
     """The SI inputs as a hashable key for the caches."""
-    items = [("m", system.m), ("k", system.k), ("c", system.c), ("mu_s", system.mu_s),
-             ("mu_k", system.mu_k), ("load", system.load), ("speed", system.speed)]
+    items: list[tuple[str, Any]] = [
+        ("m", system.m), ("k", system.k), ("c", system.c), ("mu_s", system.mu_s),
+        ("mu_k", system.mu_k), ("load", system.load), ("speed", system.speed)]
     if system.foundation is not None:
         f = system.foundation
         items += [("m_a", f.m_a), ("k_a", f.k_a), ("c_a", f.c_a)]
+    if system.friction.law != "coulomb":
+        items.append(("friction", dataclasses.astuple(system.friction)))
     return tuple(items)
 
 
@@ -151,8 +241,10 @@ def system_from_key(key: SiKey) -> PhysicalSystem:
     """Inverse of :func:`si_key`."""
     v = dict(key)
     foundation = PhysicalFoundation(v["m_a"], v["k_a"], v["c_a"]) if "m_a" in v else None
+    friction = PhysicalFriction(*v["friction"]) if "friction" in v else PhysicalFriction()
     return PhysicalSystem(m=v["m"], k=v["k"], c=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"],
-                          load=v["load"], speed=v["speed"], foundation=foundation)
+                          load=v["load"], speed=v["speed"], foundation=foundation,
+                          friction=friction)
 
 
 # ---------------------------------------------------------- computations (cached) --------
@@ -164,15 +256,17 @@ def design_report(key: SiKey) -> dict[str, Any]:
 
 
 @st.cache_data(show_spinner="Simulating the operating point...", max_entries=64)
-def operating_point_runs(lam: float, zeta: float, gamma: float,
-                         foundation: FoundationKey) -> dict[str, SimulationResult]:
+def operating_point_runs(lam: float, zeta: float, gamma: float, foundation: FoundationKey,
+                         friction: FrictionLaw | None = None) -> dict[str, SimulationResult]:
     """Rigid base and foundation runs from the startup state, recorded for the figures.
+
+    ``friction`` is the dimensionless law of the contact (the paper's Coulomb law by default).
 
     Both run to a common horizon: one and a half times the longer of the two times needed
     to certify the verdict (so a stick-slip cycle shows at least twice), within
     :data:`PLOT_HORIZON`.
     """
-    slider = Slider(lam, gamma=gamma)
+    slider = Slider(lam, gamma=gamma, friction=friction or CoulombFriction())
     structures = {"rigid base": rigid_base(zeta),
                   "with foundation": elastic_foundation(zeta, Foundation(*foundation))}
     certified = max(simulate(s, slider, record=False).t_end for s in structures.values())
@@ -182,19 +276,20 @@ def operating_point_runs(lam: float, zeta: float, gamma: float,
 
 
 @st.cache_data(show_spinner="Computing the occurrence maps...", max_entries=64)
-def occurrence_maps(lam: float, zeta: float, gamma: float,
-                    foundation: FoundationKey | None) -> dict[str, OccurrenceMap]:
+def occurrence_maps(lam: float, zeta: float, gamma: float, foundation: FoundationKey | None,
+                    friction: FrictionLaw | None = None) -> dict[str, OccurrenceMap]:
     """Verdicts on a ``lambda x zeta`` grid around the operating point (paper Figs. 8, 11).
 
     Two maps: the rigid base, and the foundation (the given one, fixed in SI units, or the
-    one of Eqs. 28-30 tuned at every ``zeta`` of the grid).
+    one of Eqs. 28-30 tuned at every ``zeta`` of the grid); every cell with the friction law
+    ``friction`` (dimensionless, as at the operating point).
     """
     n_lam, n_zeta = MAP_SHAPE
     lams = np.geomspace(lam / MAP_LAMBDA_SPAN, lam * MAP_LAMBDA_SPAN, n_lam)
     top = 2.0 * zeta if zeta > 0.0 else MAP_ZETA_FLOOR
     zetas = (np.arange(n_zeta) + 0.5) * (top / n_zeta)  # cell centres; edges 0 .. top
     dva = DvaSpec("optimal") if foundation is None else DvaSpec("explicit", Foundation(*foundation))
-    return {name: occurrence_map(lams, zetas, spec, gamma, backend="serial")
+    return {name: occurrence_map(lams, zetas, spec, gamma, friction=friction, backend="serial")
             for name, spec in (("rigid base", DvaSpec("none")), ("with foundation", dva))}
 
 
@@ -260,7 +355,11 @@ def occurrence_figure(maps: Mapping[str, OccurrenceMap], system: PhysicalSystem,
 
 def report_json(raw: Mapping[str, str], report: Mapping[str, Any],
                 runs: Mapping[str, SimulationResult], optimum: Mapping[str, Any] | None) -> str:
-    """The downloadable design report: inputs as typed, the design report, the two runs."""
+    """The downloadable design report: inputs as typed, the design report, the two runs.
+
+    The friction inputs are those of the chosen law (``friction_law`` and its fields, the
+    uploaded table's file name).
+    """
     summaries = {}
     for name, result in runs.items():
         summary = result.to_dict()
@@ -268,13 +367,21 @@ def report_json(raw: Mapping[str, str], report: Mapping[str, Any],
         summaries[name] = summary
     payload = {
         "stickslip_version": __version__,
-        "inputs": {key: raw.get(key, "") for key in DEFAULTS},
+        "inputs": {key: raw.get(key, "") for key in DEFAULTS} | _friction_inputs(raw),
         "initial_condition": STARTUP_DESCRIPTION,
         "design": dict(report),
         "operating_point": summaries,
         "stick_slip_optimal_foundation": dict(optimum) if optimum is not None else None,
     }
     return json.dumps(payload, indent=2, allow_nan=False)
+
+
+def _friction_inputs(raw: Mapping[str, str]) -> dict[str, str]:
+    law = str(raw.get("friction_law", "coulomb") or "coulomb")
+    out = {"friction_law": law} | {key: str(raw.get(key, "")) for key in FRICTION_FIELDS.get(law, ())}
+    if law == "table":
+        out[FRICTION_TABLE_NAME] = str(raw.get(FRICTION_TABLE_NAME, ""))
+    return out
 
 
 def history_csv(runs: Mapping[str, SimulationResult], system: PhysicalSystem,
@@ -320,6 +427,23 @@ def _input_widgets() -> dict[str, str]:
     for key, (label, default) in FOUNDATION_INPUTS.items():
         _, unit, what = QUANTITIES[key]
         raw[key] = side.text_input(label, value=default, key=key, help=f"{what} [{unit}]")
+    side.header("Friction law while sliding")
+    side.caption("coulomb: μ = μk (the paper's); linear: μ = μk − σ v_r; stribeck: falls from "
+                 "μ0 to μk around v_s; table: a measured curve μ(v). The [friction] table of "
+                 "'stickslip design'.")
+    law = side.selectbox("Friction law", FRICTION_LAWS, key="friction_law")
+    raw["friction_law"] = str(law)
+    for key in FRICTION_FIELDS[str(law)]:
+        label, default = FRICTION_INPUTS[key]
+        _, unit, what = FRICTION_QUANTITIES[key]
+        raw[key] = side.text_input(label, value=default, key=key,
+                                   help=what + (f" [{unit}]" if unit else " (dimensionless)"))
+    if law == "table":
+        uploaded = side.file_uploader("Measured friction curve (CSV: columns v [m/s], mu)",
+                                      type=["csv"], key=FRICTION_TABLE)
+        if uploaded is not None:
+            raw[FRICTION_TABLE] = uploaded.getvalue().decode("utf-8", errors="replace")
+            raw[FRICTION_TABLE_NAME] = str(uploaded.name)
     return raw
 
 
@@ -362,6 +486,33 @@ def _show_critical(report: Mapping[str, Any], system: PhysicalSystem) -> None:
         f"foundation (simulation): stick-slip below V_c = {_fmt(speed, 'm/s')} (operating at "
         f"{_fmt(system.speed, 'm/s')}) or above W_c = {_fmt(load, 'N')} (operating at "
         f"{_fmt(system.load, 'N')})."
+    )
+
+
+def _show_stability(report: Mapping[str, Any]) -> None:
+    """The design report's ``stability`` section: is steady sliding stable, and by how much."""
+    st.subheader("Stability of steady sliding")
+    st.caption(f"Friction law: {report['friction']}.")
+    stab = report.get("stability")
+    if not stab:
+        return
+    rows = {"rigid": "rigid base", "foundation": "with foundation"}
+    present = [k for k in rows if k in stab]
+    st.dataframe(pd.DataFrame({
+        "stable": ["yes" if stab[k]["stable"] else "no" for k in present],
+        "growth rate [1/s]": [_fmt(stab[k]["growth_rate"]) for k in present],
+        "δ_crit": [_fmt(stab[k]["delta_crit"]) for k in present],
+        "δ_local": [_fmt(stab[k]["delta_local"] + 0.0) for k in present],  # no "-0"
+        "margin": [_fmt(stab[k]["margin"]) for k in present],
+        "σ_crit [s/m]": [_fmt(stab[k]["sigma_crit"]) for k in present],
+    }, index=[rows[k] for k in present]), key="stability_table")
+    side = "foundation" if "foundation" in stab else present[0]
+    st.markdown(
+        f"Steady sliding stays stable for friction slopes dμ/dv_r down to "
+        f"−{_fmt(stab[side]['sigma_crit'], 's/m')} ({rows[side]}; "
+        + (f"rigid base −{_fmt(stab['rigid']['sigma_crit'], 's/m')}; " if side != "rigid" else "")
+        + f"this law's slope at the belt speed: "
+        f"{_fmt(-stab[side].get('sigma_local', 0.0) + 0.0, 's/m')})."
     )
 
 
@@ -457,6 +608,7 @@ def _show_results(raw: Mapping[str, str], system: PhysicalSystem) -> None:
     _show_verdicts(report)
     _show_critical(report, system)
     _show_foundation(report, system)
+    _show_stability(report)
     optimum = _show_stick_slip_optimum(report, system)
 
     f = report["foundation"]
@@ -465,14 +617,15 @@ def _show_results(raw: Mapping[str, str], system: PhysicalSystem) -> None:
     st.caption(f"Dimensionless: τ = ω_n t (1 unit = {_fmt(system.time_scale, 's')}), ξ in units of "
                f"V/ω_n = {_fmt(system.length_scale, 'm')} from the kinetic-friction equilibrium, "
                f"ξ' in units of V. Stick phases shaded.")
-    runs = operating_point_runs(lam, zeta, gamma, assessed)
+    law = system.slider().friction
+    runs = operating_point_runs(lam, zeta, gamma, assessed, law)
     for name, result in runs.items():
         side = "rigid" if name == "rigid base" else "foundation"
         st.pyplot(figure_of_run(result, f"{name}: {report['verdict'][side]['simulation']}"))
 
     st.subheader("Occurrence map around the operating point")
     given = assessed if system.foundation is not None else None
-    maps = occurrence_maps(lam, zeta, gamma, given)
+    maps = occurrence_maps(lam, zeta, gamma, given, law)
     st.pyplot(occurrence_figure(maps, system, lam, zeta))
     st.caption("Each cell is a certified simulation from the startup state at this γ. "
                + ("Right: the given foundation (fixed in SI units)." if given else

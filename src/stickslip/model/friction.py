@@ -277,6 +277,15 @@ def read_friction_csv_columns(path: str | Path) -> tuple[list[float], list[float
         text = p.read_text()
     except OSError as exc:
         raise ValueError(f"cannot read friction table {p}: {exc.strerror}") from None
+    return friction_csv_columns(text, str(p))
+
+
+def friction_csv_columns(text: str, p: str = "(text)") -> tuple[list[float], list[float]]:
+    """The ``v`` and ``mu`` (or ``f``) columns of a friction curve given as CSV text.
+
+    The rules of :func:`read_friction_csv_columns` (which reads a file through this); ``p``
+    names the source in error messages (an uploaded file's name, say).
+    """
     lines = [line for line in text.splitlines() if line.strip() and not line.startswith("#")]
     rows = list(csv.reader(lines))
     if len(rows) < 2:
