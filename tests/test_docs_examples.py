@@ -26,3 +26,14 @@ def test_friction_worked_example_runs_and_states_the_documented_verdicts(tmp_pat
     for name in ("friction_law.png", "friction_map.png", "friction_rigid_run.png",
                  "friction_stability_run.png"):
         assert (tmp_path / name).stat().st_size > 10_000
+
+
+def test_disturbance_worked_example_states_the_documented_numbers(tmp_path: Path) -> None:
+    proc = subprocess.run(
+        [sys.executable, str(ROOT / "docs" / "disturbances_example.py"), "--out", str(tmp_path),
+         "--samples", "4000"],
+        capture_output=True, text=True, timeout=600, check=True,
+    )
+    assert "from start-up: stick-slip" in proc.stdout
+    assert "a velocity kick below 20 mm/s" in proc.stdout
+    assert (tmp_path / "basin_rigid.png").stat().st_size > 10_000
