@@ -1,0 +1,67 @@
+"""``stickslip cycles``: the stick-slip cycles that exist at a point, whatever the start."""
+
+from __future__ import annotations
+
+from typing import Annotated, Any
+
+import typer
+
+from stickslip.cli.console import parse_dva, print_json
+from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE
+
+
+def cycles(
+    lam: Annotated[float, typer.Option("--lam", help="lambda > 0")],
+    zeta: Annotated[float, typer.Option("--zeta", help="damping ratio >= 0")],
+    gamma: GAMMA = 2.0,
+    dva: DVA = "none",
+    k_scale: K_SCALE = 1.0,
+    friction: FRICTION = "coulomb",
+    seeds: Annotated[int, typer.Option("--seeds", help="random starts that seed Newton's method")] = 24,
+    max_period: Annotated[int, typer.Option("--max-period", help="longest cycle, in stick phases")] = 2,
+    seed: Annotated[int, typer.Option("--seed", help="seed of the starts")] = 0,
+    json: JSON = False,
+) -> None:
+    """Stick-slip cycles at a point: fixed points of the breakaway return map, with stability.
+
+    Example: stickslip cycles --lam 15 --zeta 0.1 --dva optimal --json
+    """
+    from stickslip.analysis.cycles import find_cycles
+    from stickslip.cli.console import BadInput
+    from stickslip.model.friction import parse_friction
+    from stickslip.model.parameters import Slider
+    from stickslip.model.structure import chain_structure
+
+    if not 1 <= seeds <= 10_000:
+        raise BadInput(f"--seeds {seeds} must be from 1 to 10000")
+    if not 1 <= max_period <= 8:
+        raise BadInput(f"--max-period {max_period} must be from 1 to 8")
+    slider = Slider(lam, gamma=gamma, friction=parse_friction(friction))
+    found = parse_dva(dva, zeta, k_scale)
+    structure = chain_structure(zeta, () if found is None else (found,))
+    result = find_cycles(structure, slider, seeds=seeds, max_period=max_period, seed=seed)
+    payload = result.to_dict()
+    if json:
+        print_json(payload)
+        return
+    _print(payload)
+
+
+def _print(p: dict[str, Any]) -> None:
+    lines = [f"cycles      {p['structure']} (lambda={p['lambda']:.6g}, zeta={p['zeta']:.6g}, "
+             f"gamma={p['gamma']:.6g}), friction {p['friction']}"]
+    if not p["cycles"]:
+        lines.append(f"none found  from {p['n_seeds']} starts: every disturbed start ends in steady sliding "
+                     "or in no cycle of the periods searched")
+    for i, c in enumerate(p["cycles"], start=1):
+        mults = ", ".join(f"{m['abs']:.4g}" for m in c["multipliers"]) or "none (rigid base)"
+        lines.append(f"cycle {i}     period {c['period']:.6g}  amplitude {c['amplitude']:.6g}  "
+                     f"stick ratio {c['stick_ratio']:.4g}  {c['stick_phases']} stick phase(s)  "
+                     f"{'stable' if c['stable'] else 'UNSTABLE'} (|Floquet multipliers| {mults})")
+    lines.append(f"search      {p['n_seeds']} starts, {p['n_map_evaluations']} return-map evaluations")
+    typer.echo("\n".join(lines))
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``cycles`` command to ``app``."""
+    app.command("cycles")(cycles)
