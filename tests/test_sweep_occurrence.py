@@ -49,8 +49,9 @@ def test_dataset_layout_and_cf_attributes(optimal_serial: OccurrenceMap) -> None
     ds = optimal_serial.dataset
     assert ds["verdict"].dims == ("lambda", "zeta")
     assert ds["verdict"].dtype == np.int8
-    assert list(ds["verdict"].attrs["flag_values"]) == [0, 1, 2]
-    assert ds["verdict"].attrs["flag_meanings"] == "steady-sliding stick-slip undetermined"
+    # the codes of before the friction laws keep their meaning; slip-oscillation is added as 3
+    assert list(ds["verdict"].attrs["flag_values"]) == [0, 1, 2, 3]
+    assert ds["verdict"].attrs["flag_meanings"] == "steady-sliding stick-slip undetermined slip-oscillation"
     # every run status of the engine, in code order (RunStatus)
     meanings = ds["certificate"].attrs["flag_meanings"].split()
     assert meanings[:4] == ["certified-steady", "certified-cycle", "t-max", "max-events"]
@@ -93,7 +94,7 @@ def test_undetermined_is_an_explicit_code_never_nan() -> None:
     result = occurrence_map([5.0, 20.0], [0.1, 0.3], "optimal", t_max=0.5)
     assert np.all(result.verdict == Verdict.UNDETERMINED.code)
     assert np.all(result.dataset["certificate"].values == 3)  # t-max
-    assert result.counts == {"steady-sliding": 0, "stick-slip": 0, "undetermined": 4}
+    assert result.counts == {"steady-sliding": 0, "stick-slip": 0, "undetermined": 4, "slip-oscillation": 0}
     assert result.undetermined_fraction == 1.0
 
 
