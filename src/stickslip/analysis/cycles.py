@@ -127,14 +127,23 @@ class _ReturnMap:
         return np.concatenate([state[1:n], state[n + 1:]])
 
     def next_breakaways(self, state: FloatArray, count: int) -> list[FloatArray]:
-        """The full states of the next ``count`` breakaways after starting at ``state``."""
-        self.evaluations += 1
+        """The full states of the next ``count`` breakaways after starting at ``state``.
+
+        Empty when there are fewer: in particular when steady sliding is certified, after which
+        the slider never sticks again. A run that certifies its cycle early is continued (up
+        to the event budget) to reach ``count`` breakaways.
+        """
         n = self.n
-        result = simulate(self.structure, self.slider, initial=InitialState(state[:n], state[n:]),
-                          options=self.options, run_to_t_max=True)
-        # the start is itself a breakaway: the engine may register it at t = 0 or within
-        # rounding of it (its stick force equals lambda only to rounding); it is not "next"
-        times = [t for t in result.breakaway_times if t > 1e-9][:count]
+        initial = InitialState(state[:n], state[n:])
+        for run_on in (False, True):
+            self.evaluations += 1
+            result = simulate(self.structure, self.slider, initial=initial, options=self.options,
+                              run_to_t_max=run_on)
+            # the start is itself a breakaway: the engine may register it at t = 0 or within
+            # rounding of it (its stick force equals lambda only to rounding); it is not "next"
+            times = [t for t in result.breakaway_times if t > 1e-9][:count]
+            if len(times) >= count or result.verdict is not Verdict.STICK_SLIP:
+                break
         if len(times) < count:
             return []
         q, v, _ = result.state_at(np.array(times))
