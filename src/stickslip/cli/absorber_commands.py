@@ -59,7 +59,10 @@ def frf(
     overwrite: OVERWRITE = False,
     json: JSON = False,
 ) -> None:
-    """Frequency response H = k|X|/f of the slider under a harmonic force and its exact peak."""
+    """Frequency response H = k|X|/f of the slider under a harmonic force and its exact peak.
+
+    Example: stickslip frf --zeta 0.1 --dva optimal-exact --plot frf.png
+    """
     from stickslip.analysis.frequency_response import response_curves, response_peak
     from stickslip.model import rigid_base
 

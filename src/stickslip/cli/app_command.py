@@ -38,7 +38,10 @@ def app(
         bool, typer.Option("--headless", help="do not open a browser (servers, containers)")
     ] = False,
 ) -> None:
-    """Start the web app: design calculator, verdicts, maps and time histories in a browser."""
+    """Start the web app: design calculator, verdicts, maps and time histories in a browser.
+
+    Example: stickslip app --port 8600 --headless
+    """
     if importlib.util.find_spec("streamlit") is None:
         raise BadInput("streamlit is not installed; install the app extra: pip install stickslip[app]")
     process = subprocess.Popen(streamlit_command(port, headless))

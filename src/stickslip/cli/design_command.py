@@ -96,7 +96,12 @@ def design(
     ] = True,
     json: Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")] = False,
 ) -> None:
-    """Will it stick-slip, at which speed or load, and which foundation stops it (Fig. 16)."""
+    """Will it stick-slip, at which speed or load, and which foundation stops it (Fig. 16).
+
+    Example: stickslip design --m "2 kg" --k "50 kN/m" --mu-s 0.5 --mu-k 0.3 --load "500 N" --speed "5 cm/s"
+
+    The same keys, and a friction table, from a TOML file: stickslip design --config machine.toml
+    """
     from stickslip.analysis.design import design_foundation
     from stickslip.model.physical import PhysicalFoundation, PhysicalSystem
 

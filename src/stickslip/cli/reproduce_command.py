@@ -18,7 +18,10 @@ def reproduce(
     ] = "default",
     json: Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")] = False,
 ) -> None:
-    """Recompute every figure and claim of the paper; write report.md and report.html."""
+    """Recompute every figure and claim of the paper; write report.md and report.html.
+
+    Example: stickslip reproduce --out results --quality tiny
+    """
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
     from stickslip.reproduction.quality import quality as get_quality
