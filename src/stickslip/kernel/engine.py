@@ -244,6 +244,45 @@ def initial_mode(w, n, stick_row, lam, gamma, edges):
 
 
 @njit(cache=True)
+def _mismatch(ring_z, j, i):
+    """Largest difference between the states in slots ``j`` and ``i`` of a ring buffer."""
+    diff = 0.0
+    for c in range(ring_z.shape[1]):
+        diff = max(diff, abs(ring_z[j, c] - ring_z[i, c]))
+    return diff
+
+
+@njit(cache=True)
+def _record_cycle(fsum, isum, ring_t, interval, newest, ring, k, j, i, diff, scale, t):
+    """Write the summary of a certified cycle: the last ``k`` recorded intervals.
+
+    ``interval[p]`` holds the xi minimum and maximum, the largest velocity and the stick time
+    of the stretch ending at record ``p`` (a stick-slip cycle between breakaways, or a slip
+    oscillation between section crossings, whose stick time is 0).
+    """
+    period = ring_t[j] - ring_t[i]
+    xmin = np.inf
+    xmax = -np.inf
+    vmax = -np.inf
+    stick = 0.0
+    for back in range(k):
+        p = (newest - back) % ring
+        xmin = min(xmin, interval[p, 0])
+        xmax = max(xmax, interval[p, 1])
+        vmax = max(vmax, interval[p, 2])
+        stick += interval[p, 3]
+    fsum[F_PERIOD] = period
+    fsum[F_AMPLITUDE] = 0.5 * (xmax - xmin)
+    fsum[F_XI_MIN] = xmin
+    fsum[F_XI_MAX] = xmax
+    fsum[F_STICK_RATIO] = stick / period
+    fsum[F_CYCLE_MAX_VELOCITY] = vmax
+    fsum[F_CYCLE_MISMATCH] = diff / scale
+    isum[I_CYCLE_K] = k
+    fsum[F_T_CERTIFIED] = t
+
+
+@njit(cache=True)
 def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_max, max_events,
         cycle_tol, max_period, record, run_to_t_max):
     """Simulate from ``z0 = (q, v)`` until a verdict is certified, ``t_max`` or ``max_events``.
@@ -298,7 +337,7 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
     os_t = np.empty(ring)
     os_z = np.empty((ring, nz))
     os_stick = np.empty(ring, dtype=np.int64)
-    os_interval = np.empty((ring, 3))  # xi min, xi max, v max per section interval
+    os_interval = np.zeros((ring, 4))  # xi min, xi max, v max per section interval; no stick
     n_os = 0
     fsum = np.full(N_FLOAT, np.nan)
     isum = np.zeros(N_INT, dtype=np.int64)
@@ -458,31 +497,10 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
                 i = (n_bk - 1 - k) % ring
                 if bk_dir[i] != bk_dir[j]:
                     continue
-                diff = 0.0
-                for c in range(nz):
-                    diff = max(diff, abs(bk_z[j, c] - bk_z[i, c]))
+                diff = _mismatch(bk_z, j, i)
                 if diff <= cycle_tol * scale:
                     status = STATUS_CYCLE
-                    period = bk_t[j] - bk_t[i]
-                    xmin = np.inf
-                    xmax = -np.inf
-                    vmax = -np.inf
-                    stick = 0.0
-                    for back in range(k):
-                        p = (n_bk - 1 - back) % ring
-                        xmin = min(xmin, interval[p, 0])
-                        xmax = max(xmax, interval[p, 1])
-                        vmax = max(vmax, interval[p, 2])
-                        stick += interval[p, 3]
-                    fsum[F_PERIOD] = period
-                    fsum[F_AMPLITUDE] = 0.5 * (xmax - xmin)
-                    fsum[F_XI_MIN] = xmin
-                    fsum[F_XI_MAX] = xmax
-                    fsum[F_STICK_RATIO] = stick / period
-                    fsum[F_CYCLE_MAX_VELOCITY] = vmax
-                    fsum[F_CYCLE_MISMATCH] = diff / scale
-                    isum[I_CYCLE_K] = k
-                    fsum[F_T_CERTIFIED] = t
+                    _record_cycle(fsum, isum, bk_t, interval, n_bk - 1, ring, k, j, i, diff, scale, t)
                     break
         elif ev_next[mode, e_ev] != NEXT_BELT:
             # a friction band edge: the slider velocity is the edge's, the band changes
@@ -509,29 +527,11 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
                     i = (n_os - 1 - k) % ring
                     if os_stick[i] != os_stick[j]:
                         break  # a stick phase inside the stretch: not a slip oscillation
-                    diff = 0.0
-                    for c in range(nz):
-                        diff = max(diff, abs(os_z[j, c] - os_z[i, c]))
+                    diff = _mismatch(os_z, j, i)
                     if diff <= cycle_tol * scale:
                         status = STATUS_OSCILLATION
-                        period = os_t[j] - os_t[i]
-                        xmin = np.inf
-                        xmax = -np.inf
-                        vmax = -np.inf
-                        for back in range(k):
-                            p = (n_os - 1 - back) % ring
-                            xmin = min(xmin, os_interval[p, 0])
-                            xmax = max(xmax, os_interval[p, 1])
-                            vmax = max(vmax, os_interval[p, 2])
-                        fsum[F_PERIOD] = period
-                        fsum[F_AMPLITUDE] = 0.5 * (xmax - xmin)
-                        fsum[F_XI_MIN] = xmin
-                        fsum[F_XI_MAX] = xmax
-                        fsum[F_STICK_RATIO] = 0.0
-                        fsum[F_CYCLE_MAX_VELOCITY] = vmax
-                        fsum[F_CYCLE_MISMATCH] = diff / scale
-                        isum[I_CYCLE_K] = k
-                        fsum[F_T_CERTIFIED] = t
+                        _record_cycle(fsum, isum, os_t, os_interval, n_os - 1, ring, k, j, i, diff,
+                                      scale, t)
                         break
         else:
             w[n] = 1.0
