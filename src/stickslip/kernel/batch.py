@@ -44,8 +44,8 @@ def run_cells(masses, dampings, stiffnesses, structure_index, lams, gammas, edge
     ``(n_cells, N_INT)``, with the layouts of :mod:`stickslip.kernel.engine`.
     """
     n_cells = lams.shape[0]
-    fout = np.empty((n_cells, N_FLOAT))
-    iout = np.empty((n_cells, N_INT), dtype=np.int64)
+    float_summary = np.empty((n_cells, N_FLOAT))
+    int_summary = np.empty((n_cells, N_INT), dtype=np.int64)
     for c in prange(n_cells):
         s = structure_index[c]
         z0 = startup_vector(stiffnesses[s], lams[c], gammas[c])
@@ -53,9 +53,9 @@ def run_cells(masses, dampings, stiffnesses, structure_index, lams, gammas, edge
         result = run(masses[s], dampings[s], stiffnesses[s], lams[c], gammas[c],
                      edges[c, : nb + 1], intercepts[c, :nb], slopes[c, :nb], z0, t_max,
                      max_events, cycle_tol, max_period, False, False)
-        fout[c] = result[4]
-        iout[c] = result[5]
-    return fout, iout
+        float_summary[c] = result[4]
+        int_summary[c] = result[5]
+    return float_summary, int_summary
 
 
 def coulomb_tables(lams, gammas):

@@ -33,6 +33,9 @@ from stickslip.kernel.engine import N_FLOAT, N_INT
 STORE_FORMAT = "stickslip-map-store"
 STORE_VERSION = 1
 MANIFEST = "manifest.json"
+#: Array names inside a chunk file (part of the store format of STORE_VERSION 1).
+_FLOAT_KEY = "fout"
+_INT_KEY = "iout"
 _CHUNK_PREFIX = "chunk-"
 
 
@@ -140,25 +143,26 @@ class ChunkStore:
         try:
             with np.load(path, allow_pickle=False) as data:
                 fingerprint = str(data["fingerprint"])
-                fout = np.array(data["fout"], dtype=np.float64)
-                iout = np.array(data["iout"], dtype=np.int64)
+                float_summary = np.array(data[_FLOAT_KEY], dtype=np.float64)
+                int_summary = np.array(data[_INT_KEY], dtype=np.int64)
         except Exception as exc:  # truncated, empty, not a zip, missing arrays: all recomputed
             reason = " ".join(str(exc).split()) or type(exc).__name__
             _damaged(f"chunk file {str(path)!r} is unreadable ({reason}); computing it again")
             return None
         if fingerprint != self.fingerprint:
             raise StoreMismatch(f"chunk file {str(path)!r} belongs to another configuration")
-        if fout.shape != (size, N_FLOAT) or iout.shape != (size, N_INT):
-            _damaged(f"chunk file {str(path)!r} holds {fout.shape[0]} cells, expected {size}; "
+        if float_summary.shape != (size, N_FLOAT) or int_summary.shape != (size, N_INT):
+            _damaged(f"chunk file {str(path)!r} holds {float_summary.shape[0]} cells, expected {size}; "
                      "computing it again")
             return None
-        return fout, iout
+        return float_summary, int_summary
 
-    def save(self, index: int, fout: NDArray[np.float64], iout: NDArray[np.int64]) -> None:
+    def save(self, index: int, float_summary: NDArray[np.float64], int_summary: NDArray[np.int64]) -> None:
         """Write a finished chunk atomically."""
         atomic_write(
             self.chunk_path(index),
-            lambda fh: np.savez(fh, fingerprint=np.array(self.fingerprint), fout=fout, iout=iout),
+            lambda fh: np.savez(fh, fingerprint=np.array(self.fingerprint),
+                                **{_FLOAT_KEY: float_summary, _INT_KEY: int_summary}),
         )
 
     def record_run(self, loaded: int, computed: int, backend: str) -> None:
