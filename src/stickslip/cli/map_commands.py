@@ -315,6 +315,10 @@ def boundary_command(
     ] = False,
     plot: PLOT = None,
     friction: FRICTION = "coulomb",
+    criterion: Annotated[
+        str, typer.Option("--criterion", help="startup (the run from start-up, the paper's) or "
+                          "existence (a stick-slip cycle exists, whatever the start)")
+    ] = "startup",
     json: JSON = False,
 ) -> None:
     """Critical lambda against zeta: every verdict change, bisected to --rtol (Fig. 11a).
@@ -329,6 +333,8 @@ def boundary_command(
     _, zeta_axis = _parse_axes(None, zeta, None, zeta_spacing)
     spec = DvaSpec.parse(dva, k_scale)
     law = parse_friction(friction)
+    if criterion not in ("startup", "existence"):
+        raise BadInput(f"--criterion {criterion!r} must be 'startup' or 'existence'")
     check_backend("threads", workers, None)
     if out is not None:
         if out.suffix.lower() != ".nc":
@@ -338,7 +344,7 @@ def boundary_command(
         check_figure_path(plot, overwrite=overwrite)
     result = stick_slip_boundary(zeta_axis, spec, gamma, lam_min=lam_min, lam_max=lam_max,
                                  n_scan=scan, rtol=rtol, t_max=t_max, workers=workers,
-                                 friction=law)
+                                 friction=law, criterion=criterion)
     warn_fitted_range(spec, zeta_axis.values)
     payload = result.to_dict()
     payload.update({"out": None, "plot": None})
@@ -363,6 +369,7 @@ def _print_boundary_table(p: dict[str, Any]) -> None:
         f"{names[k]:>12}  " for k in analytic) + "all crossings (lambda, kind)"
     lines = [
         f"boundary    {p['dva']}, gamma={p['gamma']:g}, friction {p['friction']}, "
+        f"criterion {p['criterion']}, "
         f"lambda in [{p['lam_min']:g}, "
         f"{p['lam_max']:g}], {p['n_scan']} scan points, rtol={p['rtol']:g}, t_max={p['t_max']:g}",
         header,

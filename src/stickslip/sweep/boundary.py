@@ -96,6 +96,7 @@ class BoundaryResult:
     crossings: tuple[tuple[Crossing, ...], ...] = field(repr=False)
     foundations: tuple[Foundation | None, ...] = field(default=(), repr=False)
     friction: FrictionLaw = field(default_factory=CoulombFriction)
+    criterion: str = "startup"
     n_runs: int = 0
     elapsed: float = 0.0
 
@@ -153,8 +154,10 @@ class BoundaryResult:
         """The resolved configuration, JSON-ready (the friction law only when not Coulomb)."""
         friction = {} if isinstance(self.friction, CoulombFriction) else {
             "friction": {**self.friction.to_dict(), "description": self.friction.describe()}}
+        existence = {} if self.criterion == "startup" else {"criterion": self.criterion}
         return {
             **friction,
+            **existence,
             "zeta": {"spec": self.zeta.spec, "spacing": self.zeta.spacing,
                      "values": [float(v) for v in self.zeta.values]},
             "dva": {"text": self.dva.as_text(), "kind": self.dva.kind,
@@ -192,6 +195,7 @@ class BoundaryResult:
             rows.append(row)
         return {
             "dva": self.dva.describe(),
+            "criterion": self.criterion,
             "friction": self.friction.describe(),
             "gamma": self.gamma,
             "lam_min": self.lam_min,
@@ -295,6 +299,8 @@ def stick_slip_boundary(
     options: EngineOptions | None = None,
     workers: int | None = None,
     friction: FrictionLaw | None = None,
+    criterion: str = "startup",
+    existence_seeds: int = 8,
 ) -> BoundaryResult:
     """Every critical ``lambda`` in ``[lam_min, lam_max]`` at each ``zeta``, by scan and bisection.
 
@@ -320,6 +326,15 @@ def stick_slip_boundary(
         Numba threads (all cores when None).
     friction : FrictionLaw, optional
         Friction law of every run (the paper's Coulomb law by default).
+    criterion : {"startup", "existence"}
+        ``startup``: the verdict of the run from the startup state (the paper's question).
+        ``existence``: whether a stick-slip cycle exists at all, whatever the start
+        (:func:`stickslip.analysis.cycles.find_cycles`, seeded from ``existence_seeds`` random
+        starts): the boundary ``lambda_exist(zeta)`` above which a disturbance can lead to
+        lasting stick-slip. Runs one cycle search per point, serially (seconds each with a
+        foundation).
+    existence_seeds : int
+        Random starts of each cycle search (``existence`` only).
 
     Returns
     -------
@@ -350,9 +365,14 @@ def stick_slip_boundary(
     structures = StructureSet.resolve(spec, axis.values)
     n_zeta = len(axis)
 
+    if criterion not in ("startup", "existence"):
+        raise ValueError(f"criterion={criterion!r} must be 'startup' or 'existence'")
+
     def verdicts(index: NDArray[np.int64], lams: FloatArray) -> NDArray[np.int8]:
         if index.size == 0:
             return np.zeros(0, dtype=np.int8)
+        if criterion == "existence":
+            return _cycle_codes(structures, index, lams, gamma, law, engine_options, existence_seeds)
         _, int_summary = run_batch(structures, CellBatch(index, lams, gamma, law), engine_options, workers)
         return verdict_codes(int_summary[:, engine.I_STATUS])
 
@@ -383,6 +403,23 @@ def stick_slip_boundary(
         crossings=tuple(tuple(sorted(c, key=lambda x: x.lam)) for c in per_zeta),
         foundations=structures.foundations,
         friction=law,
+        criterion=criterion,
         n_runs=n_runs,
         elapsed=time.perf_counter() - started,
     )
+
+
+def _cycle_codes(structures: StructureSet, index: NDArray[np.int64], lams: FloatArray, gamma: float,
+                 law: FrictionLaw, options: EngineOptions, seeds: int) -> NDArray[np.int8]:
+    """Stick-slip code where a stick-slip cycle exists (whatever the start), steady code where none."""
+    from stickslip.analysis.cycles import find_cycles
+    from stickslip.model.parameters import Slider
+    from stickslip.model.structure import Structure
+
+    codes = np.empty(index.size, dtype=np.int8)
+    for c, (j, lam) in enumerate(zip(index, lams, strict=True)):
+        structure = Structure(structures.masses[j], structures.dampings[j], structures.stiffnesses[j])
+        found = find_cycles(structure, Slider(float(lam), gamma=gamma, friction=law), seeds=seeds,
+                            options=options)
+        codes[c] = Verdict.STICK_SLIP.code if found.cycles else Verdict.STEADY_SLIDING.code
+    return codes
