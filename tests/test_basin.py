@@ -106,3 +106,28 @@ def test_basin_command_writes_labels_in_input_order(tmp_path: Path,
 def test_basin_bad_input_is_one_line(args: list[str], capsys: pytest.CaptureFixture[str]) -> None:
     code, out, err = run_cli(["basin", *args], capsys)
     assert code == 2 and out == "" and len(err.strip().splitlines()) == 1 and "Traceback" not in err
+
+
+def test_basin_map_cells_and_the_start_up_boundary() -> None:
+    # sources: the map's definition (each cell = basin_stability on the fixed deviations) and
+    # Eq. (36): below the rigid-base critical lambda no cycle exists, so no disturbance can
+    # end in stick-slip
+    from stickslip import critical_lambda_exact, occurrence_map
+    from stickslip.sweep.basin import basin_map
+
+    lams, zetas = [0.5, 2.5, 6.0], [0.05, 0.2]
+    result = basin_map(lams, zetas, "none", samples=200, seed=3)
+    ds = result.dataset
+    assert ds["stick_slip_fraction"].dims == ("lambda", "zeta")
+    startup = occurrence_map(lams, zetas, "none")
+    assert np.array_equal(ds["startup_verdict"].values, startup.verdict)
+    rng = np.random.default_rng(3)
+    dev = {"xi": rng.uniform(-2.0, 2.0, 200), "v": rng.uniform(-2.0, 1.0, 200)}
+    for i, lam in enumerate(lams):
+        for j, zeta in enumerate(zetas):
+            states = np.column_stack([dev["xi"], dev["v"]])
+            cell = basin_stability(rigid_base(zeta), Slider(lam), states)
+            assert ds["stick_slip_fraction"].values[i, j] == cell.fractions["stick-slip"]
+            if lam < critical_lambda_exact(zeta):
+                assert ds["stick_slip_fraction"].values[i, j] == 0.0
+    assert result.plot().figure is not None

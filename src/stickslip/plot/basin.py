@@ -13,7 +13,7 @@ from stickslip.plot.maps import COLORS
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-    from stickslip.sweep.basin import BasinResult
+    from stickslip.sweep.basin import BasinMap, BasinResult
 
 
 def basin_plot(
@@ -76,4 +76,44 @@ def basin_plot(
                  f"$\\zeta$={data.structure.zeta:.3g}: stick-slip {fr['stick-slip']:.1%} of {data.n}")
     ax.set_title(title, fontsize=10)
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), markerscale=1.5)
+    return PlotResult(fig, [ax], artists)
+
+
+def basin_map_plot(
+    data: BasinMap,
+    *,
+    ax: Axes | None = None,
+    title: str | None = None,
+) -> PlotResult:
+    """Stick-slip fraction of the disturbance sample per cell, with the start-up region outlined.
+
+    Parameters
+    ----------
+    data : BasinMap
+        From :func:`stickslip.sweep.basin.basin_map`.
+    ax : matplotlib Axes, optional
+        Drawn into; a new figure otherwise.
+    title : str, optional
+        Axes title.
+    """
+    fig, ax = new_axes(ax)
+    ds = data.dataset
+    lam = np.asarray(ds["lambda"].values)
+    zeta = np.asarray(ds["zeta"].values)
+    fraction = np.asarray(ds["stick_slip_fraction"].transpose("lambda", "zeta").values)
+    startup = np.asarray(ds["startup_verdict"].transpose("lambda", "zeta").values)
+    mesh = ax.pcolormesh(zeta, lam, fraction, shading="nearest", cmap="magma_r", vmin=0.0, vmax=1.0)
+    bar = fig.colorbar(mesh, ax=ax)
+    bar.set_label("fraction of disturbed starts ending in stick-slip")
+    artists: list[Any] = [mesh]
+    if len(zeta) > 1 and len(lam) > 1:
+        artists.append(ax.contour(zeta, lam, (startup == 1).astype(float), levels=[0.5],
+                                  colors="tab:cyan", linewidths=1.6))
+        artists += ax.plot([], [], color="tab:cyan", label="start-up: stick-slip above")
+        ax.legend(fontsize=8, loc="lower right")
+    if len(lam) > 2 and np.all(lam > 0) and lam[-1] / lam[0] > 20:
+        ax.set_yscale("log")
+    ax.set_xlabel(r"damping ratio $\zeta$")
+    ax.set_ylabel(r"$\lambda$")
+    ax.set_title(title or "basin stability: disturbed starts", fontsize=10)
     return PlotResult(fig, [ax], artists)

@@ -285,3 +285,130 @@ def write_labels(result: BasinResult, path: str | Path, rows: Sequence[Mapping[s
         writer.writerow([row[c] for c in columns] + [VERDICTS[int(code)].value])
     atomic_write_text(path, buffer.getvalue())
     return Path(path)
+
+
+@dataclass
+class BasinMap:
+    """Result of :func:`basin_map`: the dataset and how long it took.
+
+    ``dataset`` has coordinates ``lambda`` and ``zeta`` and the variables
+    ``stick_slip_fraction`` (fraction of the fixed disturbance sample that ends in stick-slip),
+    ``standard_error`` (binomial), ``undetermined_fraction`` and ``startup_verdict`` (the verdict
+    from the start-up state, as in :func:`stickslip.occurrence_map`).
+    """
+
+    dataset: xr.Dataset
+    elapsed: float = 0.0
+
+    def to_netcdf(self, path: str | Path, *, overwrite: bool = True) -> Path:
+        """Write the dataset atomically; see :func:`stickslip.io.netcdf.write_dataset`."""
+        from stickslip.io.netcdf import write_dataset
+
+        return write_dataset(self.dataset, path, overwrite=overwrite)
+
+    def plot(self, **kwargs: Any) -> Any:
+        """The fractions with the start-up boundary, a ``PlotResult``; see
+        :func:`stickslip.plot.basin.basin_map_plot`."""
+        from stickslip.plot.basin import basin_map_plot
+
+        return basin_map_plot(self, **kwargs)
+
+
+def basin_map(
+    lams: Any,
+    zetas: Any,
+    dva: Any = "none",
+    gamma: float = 2.0,
+    *,
+    samples: int = 500,
+    box: Mapping[str, tuple[float, float]] | None = None,
+    seed: int = 0,
+    friction: Any = None,
+    options: EngineOptions | None = None,
+    workers: int | None = None,
+    progress: Progress | None = None,
+) -> BasinMap:
+    """Basin stability over a ``(lambda, zeta)`` grid, next to the start-up verdict (issue 13).
+
+    Every cell is disturbed by the same fixed sample of ``samples`` deviations from its own
+    steady sliding, drawn uniformly in ``box`` (deviations of the slider's ``xi`` and ``v``;
+    default ``xi`` in ``[-2, 2]``, ``v`` in ``[-2, 1]``, dimensionless) with ``seed``, so cells
+    differ only by their dynamics. Each state gets a certified verdict.
+
+    Parameters
+    ----------
+    lams, zetas : Axis, array_like or str
+        The grid (axis specs as in :func:`stickslip.occurrence_map`).
+    dva : DvaSpec or str
+        The foundation at each ``zeta``.
+    gamma : float
+        ``mu_k / (mu_s - mu_k)``.
+    samples, box, seed :
+        The fixed disturbance sample.
+    friction : FrictionLaw, optional
+        Friction law of every cell.
+    options : EngineOptions, optional
+        Engine limits of every run.
+    workers : int, optional
+        Numba threads.
+    progress : callable, optional
+        ``progress(done_cells, total_cells)``.
+    """
+    import xarray as xr
+
+    from stickslip.model.friction import CoulombFriction
+    from stickslip.sweep.occurrence import MapConfig, occurrence_map
+
+    started = time.perf_counter()
+    law = friction or CoulombFriction()
+    config = MapConfig.create(lams, zetas, dva, gamma, options=options, friction=law)
+    n = _count(samples)
+    box = dict(box or {"xi": (-2.0, 2.0), "v": (-2.0, 1.0)})
+    rng = np.random.default_rng(seed)
+    deviations = {name: rng.uniform(lo, hi, n) for name, (lo, hi) in box.items()}
+    startup = occurrence_map(config.lam, config.zeta, config.dva, config.gamma, options=config.options,
+                             friction=law, workers=workers)
+    shape = config.shape
+    fraction = np.empty(shape)
+    undetermined = np.empty(shape)
+    structures = config.structures
+    total = config.n_cells
+    done = 0
+    if progress is not None:
+        progress(0, total)
+    for j in range(shape[1]):
+        structure = Structure(structures.masses[j], structures.dampings[j], structures.stiffnesses[j])
+        names = state_names(structure.n_dof)
+        unknown = sorted(set(deviations) - set(names))
+        if unknown:
+            raise ValueError(f"box columns {', '.join(unknown)} are not among {', '.join(names)}")
+        for i, lam in enumerate(config.lam.values):
+            slider = Slider(float(lam), gamma=config.gamma, friction=law)
+            states = np.tile(equilibrium_state(structure, slider), (n, 1))
+            for name, values in deviations.items():
+                states[:, names.index(name)] += values
+            result = basin_stability(structure, slider, states, options=config.options, workers=workers)
+            fraction[i, j] = result.fractions[Verdict.STICK_SLIP.value]
+            undetermined[i, j] = result.fractions[Verdict.UNDETERMINED.value]
+            done += 1
+            if progress is not None:
+                progress(done, total)
+    dims = ("lambda", "zeta")
+    ds = xr.Dataset(
+        {
+            "stick_slip_fraction": (dims, fraction, {
+                "long_name": "fraction of the fixed disturbance sample ending in stick-slip", "units": "1"}),
+            "standard_error": (dims, np.sqrt(fraction * (1.0 - fraction) / n), {
+                "long_name": "binomial standard error of stick_slip_fraction", "units": "1"}),
+            "undetermined_fraction": (dims, undetermined, {
+                "long_name": "fraction of the sample without a certified verdict", "units": "1"}),
+            "startup_verdict": startup.dataset["verdict"],
+        },
+        coords={"lambda": startup.dataset["lambda"], "zeta": startup.dataset["zeta"]},
+        attrs=provenance_attributes(
+            f"basin stability map, {config.dva.describe()}, gamma = {config.gamma:g}",
+            {**config.to_dict(), "samples": n, "seed": seed,
+             "box": {k: list(v) for k, v in box.items()}},
+        ),
+    )
+    return BasinMap(ds, time.perf_counter() - started)
