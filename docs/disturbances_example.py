@@ -8,9 +8,11 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+import numpy as np
+
 from stickslip import PhysicalSystem, simulate
 from stickslip.analysis.disturbance import safe_disturbance
-from stickslip.sweep.basin import basin_stability, sample_box
+from stickslip.sweep.basin import basin_map, basin_stability, sample_box
 
 
 def main() -> None:
@@ -35,6 +37,15 @@ def main() -> None:
           f"({result.samples_per_second:,.0f} samples/s)")
     result.plot(marker_size=2.0).savefig(args.out / "basin_rigid.png")
     print(f"figure written to {args.out / 'basin_rigid.png'}")
+
+    # basin stability over the (lambda, zeta) plane: one fixed sample of knocks per cell
+    n_lam, n_zeta, n_knocks = (8, 4, 100) if args.samples < 10_000 else (24, 12, 400)
+    bmap = basin_map(np.geomspace(0.3, 20.0, n_lam), np.linspace(0.02, 0.3, n_zeta), "none",
+                     samples=n_knocks, seed=1)
+    column = bmap.dataset["stick_slip_fraction"].isel(**{"lambda": -1}).values
+    print("stick-slip fraction at lambda = 20 by zeta: "
+          + ", ".join(f"{z:.3g}: {f:.2f}" for z, f in zip(bmap.dataset["zeta"].values, column, strict=True)))
+    bmap.plot().savefig(args.out / "basin_map_rigid.png")
 
 
 if __name__ == "__main__":
