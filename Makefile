@@ -28,6 +28,9 @@ lint: $(STAMP)
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_engine.py --quick
 	$(BIN)/python benchmarks/bench_map.py
+	$(BIN)/python benchmarks/bench_friction.py
+	$(BIN)/python benchmarks/bench_basin.py
+	$(BIN)/python benchmarks/bench_startup.py
 
 clean-cache:
 	find src -name '*.nbi' -delete -o -name '*.nbc' -delete
