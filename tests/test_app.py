@@ -192,6 +192,10 @@ def test_linear_law_shows_the_stability_table_of_the_design_report() -> None:
     (reading,) = [m.value for m in at.markdown if "stays stable" in m.value]
     assert f"down to −{_fmt(expected['foundation']['sigma_crit'], 's/m')}" in reading
     assert "\n" not in reading
+    # the certified safe disturbance margin of the design report, one line per structure
+    margins = [m.value for m in at.markdown if m.value.startswith("Disturbances, ")]
+    assert margins == [f"Disturbances, {row}: {expected[key]['safe_disturbance']['sentence']}."
+                       for row, key in (("rigid base", "rigid"), ("with foundation", "foundation"))]
 
 
 def test_bad_friction_slope_is_one_line_and_nothing_is_computed() -> None:

@@ -514,6 +514,10 @@ def _show_stability(report: Mapping[str, Any]) -> None:
         + f"this law's slope at the belt speed: "
         f"{_fmt(-stab[side].get('sigma_local', 0.0) + 0.0, 's/m')})."
     )
+    for key in present:  # the certified safe disturbance margin (issue 13)
+        margin = stab[key].get("safe_disturbance")
+        if margin:
+            st.markdown(f"Disturbances, {rows[key]}: {margin['sentence']}.")
 
 
 def _show_foundation(report: Mapping[str, Any], system: PhysicalSystem) -> None:
