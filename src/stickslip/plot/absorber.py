@@ -10,7 +10,7 @@ data first and keyword-only options with ``ax=None``, draws, and returns a
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -199,16 +199,8 @@ def peak_response_plot(
     -------
     PlotResult
     """
-    fig, ax = new_axes(ax, figsize=PANEL_SIZE)
-    artists: list[Any] = ax.plot(curve.zeta, curve.h_max, label="exact optimum", **EXACT_STYLE)
-    if show_fit:
-        z = _fit_grid(curve.zeta)
-        artists += ax.plot(z, [peak_response_fit(v) for v in z], label="paper fit, Eq. (31)",
-                           **FIT_STYLE)
-    ax.set_xlabel(r"$\zeta$")
-    ax.set_ylabel(r"$H_{max}$")
-    ax.legend(fontsize="small", frameon=False)
-    return PlotResult(fig, [ax], artists)
+    return _exact_against_fit(curve.zeta, curve.h_max, "exact optimum", peak_response_fit,
+                              "paper fit, Eq. (31)", r"$H_{max}$", ax=ax, show_fit=show_fit)
 
 
 def equivalent_damping_plot(
@@ -228,18 +220,27 @@ def equivalent_damping_plot(
     -------
     PlotResult
     """
-    fig, ax = new_axes(ax, figsize=PANEL_SIZE)
-    artists: list[Any] = ax.plot(
-        curve.zeta, curve.zeta_eq, label=r"exact optimum, $1/(2H_{max})$", **EXACT_STYLE
-    )
-    z = _fit_grid(curve.zeta)
-    if show_fit:
-        artists += ax.plot(z, [equivalent_damping_fit(v) for v in z],
-                           label="paper fit, Eq. (33)", **FIT_STYLE)
+    result = _exact_against_fit(curve.zeta, curve.zeta_eq, r"exact optimum, $1/(2H_{max})$",
+                                equivalent_damping_fit, "paper fit, Eq. (33)", r"$\zeta_{eq}$",
+                                ax=ax, show_fit=show_fit)
     # Eq. (32) applied to the rigid base itself: 1/(2 H_max) = zeta sqrt(1 - zeta^2)
-    artists += ax.plot(z, z * np.sqrt(np.clip(1.0 - z * z, 0.0, None)), color="0.6", lw=0.8,
-                       ls=":", label=r"rigid base, $\zeta\sqrt{1-\zeta^2}$")
+    z = _fit_grid(curve.zeta)
+    result.artists += result.ax.plot(z, z * np.sqrt(np.clip(1.0 - z * z, 0.0, None)), color="0.6",
+                                     lw=0.8, ls=":", label=r"rigid base, $\zeta\sqrt{1-\zeta^2}$")
+    result.ax.legend(fontsize="small", frameon=False)
+    return result
+
+
+def _exact_against_fit(zeta: np.ndarray, exact: np.ndarray, exact_label: str,
+                       fit: Callable[[float], float], fit_label: str, ylabel: str, *,
+                       ax: Axes | None, show_fit: bool) -> PlotResult:
+    """One quantity of the exact optimum against ``zeta``, with the paper's fitted formula."""
+    fig, ax = new_axes(ax, figsize=PANEL_SIZE)
+    artists: list[Any] = ax.plot(zeta, exact, label=exact_label, **EXACT_STYLE)
+    if show_fit:
+        z = _fit_grid(zeta)
+        artists += ax.plot(z, [fit(v) for v in z], label=fit_label, **FIT_STYLE)
     ax.set_xlabel(r"$\zeta$")
-    ax.set_ylabel(r"$\zeta_{eq}$")
+    ax.set_ylabel(ylabel)
     ax.legend(fontsize="small", frameon=False)
     return PlotResult(fig, [ax], artists)

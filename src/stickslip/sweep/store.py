@@ -33,7 +33,8 @@ from stickslip.kernel.engine import N_FLOAT, N_INT
 STORE_FORMAT = "stickslip-map-store"
 STORE_VERSION = 1
 MANIFEST = "manifest.json"
-#: Array names inside a chunk file (part of the store format of STORE_VERSION 1).
+#: Array names inside a chunk file (part of the store format of STORE_VERSION 1; ``save``
+#: writes them by these names).
 _FLOAT_KEY = "fout"
 _INT_KEY = "iout"
 _CHUNK_PREFIX = "chunk-"
@@ -162,7 +163,7 @@ class ChunkStore:
         atomic_write(
             self.chunk_path(index),
             lambda fh: np.savez(fh, fingerprint=np.array(self.fingerprint),
-                                **{_FLOAT_KEY: float_summary, _INT_KEY: int_summary}),
+                                fout=float_summary, iout=int_summary),  # _FLOAT_KEY, _INT_KEY
         )
 
     def record_run(self, loaded: int, computed: int, backend: str) -> None:
