@@ -56,7 +56,6 @@ numpydoc_xref_param_type = False
 
 autosummary_generate = True
 autosummary_imported_members = True
-autodoc_default_options = {"members": False}
 autodoc_typehints = "none"
 
 intersphinx_mapping: dict[str, tuple[str, None]] = {}

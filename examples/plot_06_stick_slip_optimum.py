@@ -16,6 +16,7 @@ zeta = 0.1
 best = optimal_foundation_stick_slip(zeta, lam_max=20.0, rtol=1e-3, maxiter=6)
 print("stick-slip optimum:", best.foundation, f"onset lambda {best.lambda_crit:.3g}")
 print("absorber optimum:  ", best.reference, f"onset lambda {best.reference_lambda_crit:.3g}")
+# an onset of ``inf`` means no stick-slip up to ``lam_max`` (here 20)
 
 # %%
 # The two foundations at ``lambda = 10``.
