@@ -14,7 +14,7 @@ FIGURES = {"fig04", "fig05", "fig06", "fig07", "fig08", "fig10", "fig11", "fig12
            "fig14", "fig15", "fig16"}
 CLAIMS = {"fit-28-30", "fit-31", "definitions", "fig5", "fig7", "fig12-13", "phase", "narrowing",
           "inside-eq37", "rigid-map", "k-half-vs-double", "gamma", "undetermined", "eq34-35",
-          "eq39-vs-36", "fig16", "beyond-absorber"}
+          "eq39-vs-36", "fig16", "beyond-absorber", "beyond-absorber-disturbed"}
 
 
 def _check(out: Path, report_json: dict) -> None:
