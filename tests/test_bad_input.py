@@ -358,3 +358,17 @@ def test_structure_refuses_complex_matrices() -> None:
 def test_environment_untouched() -> None:
     # the suite runs in-process: nothing above may leak a changed working folder
     assert Path(os.getcwd()).exists()
+
+
+def test_tune_warns_outside_the_fitted_range(capsys: pytest.CaptureFixture[str]) -> None:
+    # Eqs. (28)-(31) are fitted on 0 <= zeta <= 0.4: one warning line on stderr, JSON intact
+    from stickslip.cli.main import run
+
+    for zeta, warned in (("0.5", True), ("0.2", False)):
+        try:
+            run(["tune", "--zeta", zeta, "--json"])
+        except SystemExit as exc:
+            assert not exc.code
+        out, err = capsys.readouterr()
+        json.loads(out)
+        assert (len(err.strip().splitlines()) == 1 and "0.4" in err) if warned else err == ""

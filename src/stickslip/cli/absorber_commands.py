@@ -156,6 +156,7 @@ def tune(
         raise BadInput(str(exc)) from None
     if objective not in ("absorber", "stick-slip", "stability"):
         raise BadInput(f"--objective {objective!r} must be 'absorber', 'stick-slip' or 'stability'")
+    warn_fitted_range("optimal", [zeta])  # every objective is compared with Eqs. (28)-(31)
     if objective == "stick-slip":
         _tune_stick_slip(zeta, gamma, mass_ratio, lam_max, json)
         return
