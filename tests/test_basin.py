@@ -131,3 +131,22 @@ def test_basin_map_cells_and_the_start_up_boundary() -> None:
             if lam < critical_lambda_exact(zeta):
                 assert ds["stick_slip_fraction"].values[i, j] == 0.0
     assert result.plot().figure is not None
+
+
+def test_basin_resumes_from_its_store(tmp_path: Path) -> None:
+    # a store of finished batches: a rerun with the same system and states reuses them (a deleted
+    # batch is recomputed) and gives the identical labels; other states are another configuration
+    from stickslip.sweep.store import StoreMismatch
+
+    structure, slider = rigid_base(0.1), Slider(2.5)
+    states = sample_box(structure, slider, 300, {"xi": (-4, 4), "v": (-3, 1.5)}, seed=4)
+    store = tmp_path / "basin.parts"
+    first = basin_stability(structure, slider, states, chunk_size=64, store=store)
+    chunks = sorted(store.glob("chunk-*.npz"))
+    assert len(chunks) == 5
+    chunks[2].unlink()
+    again = basin_stability(structure, slider, states, chunk_size=64, store=store)
+    assert np.array_equal(first.verdict, again.verdict)
+    assert np.array_equal(first.float_summary, again.float_summary, equal_nan=True)
+    with pytest.raises(StoreMismatch):
+        basin_stability(structure, slider, states[:200], chunk_size=64, store=store)

@@ -75,7 +75,9 @@ def basin(
     ] = None,
     t_max: Annotated[float, typer.Option("--t-max", help="dimensionless horizon of each run")] = 5000.0,
     workers: Annotated[int | None, typer.Option("--workers", help="numba threads (all cores)")] = None,
-    out: Annotated[Path | None, typer.Option("--out", help="folder for labels.csv and basin.nc")] = None,
+    out: Annotated[Path | None, typer.Option(
+        "--out", help="folder for labels.csv and basin.nc; an interrupted run resumes from "
+        "DIR/basin.parts")] = None,
     plot: Annotated[Path | None, typer.Option("--plot", help="basin picture (.png, .pdf, .svg)")] = None,
     overwrite: Annotated[bool, typer.Option("--overwrite", help="replace existing output files")] = False,
     json: JSON = False,
@@ -137,22 +139,30 @@ def basin(
             states = _sample_physical(system, samples, intervals, seed)
         else:
             states = sample_box(structure, slider, samples, intervals, seed)
+    from contextlib import nullcontext
+
     from stickslip.cli.map_commands import _ProgressBar
+    from stickslip.io.lock import output_lock
+    from stickslip.sweep.store import discard_store
 
     enabled = not json and sys.stderr.isatty()
-    with _ProgressBar(enabled, f"basin {len(states)} states", unit="samples") as bar:
-        result = basin_stability(structure, slider, states, options=options, workers=workers,
-                                 progress=bar)
-    payload = result.to_dict()
-    payload.update({"labels": None, "dataset": None, "plot": None})
+    store = None if out is None else out / "basin.parts"  # resume store, removed when done
     if out is not None:
-        out.mkdir(parents=True, exist_ok=True)
-        assert labels is not None and dataset is not None
-        write_labels(result, labels, rows, columns)
-        from stickslip.io.netcdf import write_dataset
+        out.mkdir(parents=True, exist_ok=True)  # every check passed: writing starts
+    with output_lock(labels) if labels is not None else nullcontext():
+        with _ProgressBar(enabled, f"basin {len(states)} states", unit="samples") as bar:
+            result = basin_stability(structure, slider, states, options=options, workers=workers,
+                                     progress=bar, store=store, overwrite=overwrite)
+        payload = result.to_dict()
+        payload.update({"labels": None, "dataset": None, "plot": None})
+        if out is not None:
+            assert labels is not None and dataset is not None and store is not None
+            write_labels(result, labels, rows, columns)
+            from stickslip.io.netcdf import write_dataset
 
-        write_dataset(result.to_xarray(), dataset, overwrite=True)
-        payload.update({"labels": str(labels), "dataset": str(dataset)})
+            write_dataset(result.to_xarray(), dataset, overwrite=True)
+            discard_store(store)
+            payload.update({"labels": str(labels), "dataset": str(dataset)})
     if plot is not None:
         payload["plot"] = str(result.plot().savefig(plot))
     if json:

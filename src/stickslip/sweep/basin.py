@@ -15,6 +15,8 @@ converts positions measured from where the springs are relaxed (m) and velocitie
 
 from __future__ import annotations
 
+import hashlib
+import json
 import math
 import time
 from collections.abc import Callable, Mapping, Sequence
@@ -189,12 +191,7 @@ class BasinResult:
             "long_name": "certified verdict from this initial state", **verdict_flag_attributes()})
         data["t_end"] = (("sample",), self.float_summary[:, engine.F_T_END], {
             "long_name": "dimensionless time at which the run stopped", "units": "1"})
-        configuration = {
-            "lambda": self.slider.lam, "gamma": self.slider.gamma, "zeta": self.structure.zeta,
-            "structure": self.structure.name, "mass": self.structure.mass.tolist(),
-            "damping": self.structure.damping.tolist(), "stiffness": self.structure.stiffness.tolist(),
-            "friction": self.slider.friction.to_dict(), "engine": self.options.to_dict(),
-        }
+        configuration = _configuration(self.structure, self.slider, self.options)
         attrs = provenance_attributes(f"basin stability, {self.structure.name}, lambda = "
                                       f"{self.slider.lam:g}", configuration)
         return xr.Dataset(data, coords={"sample": np.arange(self.n)}, attrs=attrs)
@@ -216,6 +213,8 @@ def basin_stability(
     workers: int | None = None,
     chunk_size: int = 4096,
     progress: Progress | None = None,
+    store: str | Path | None = None,
+    overwrite: bool = False,
 ) -> BasinResult:
     """Certified verdict for every initial state of one system, in parallel over numba threads.
 
@@ -234,6 +233,12 @@ def basin_stability(
         States per batch (unit of progress).
     progress : callable, optional
         ``progress(done, total)`` after every batch.
+    store : path, optional
+        Resume store folder (:class:`stickslip.sweep.store.ChunkStore`, as for maps): finished
+        batches are written there as they complete, and a later call with the same system,
+        options and states computes only the missing ones.
+    overwrite : bool
+        Discard a store of another configuration instead of raising ``StoreMismatch``.
     """
     from stickslip.kernel.batch import run_states
     from stickslip.sweep.executors import numba_threads
@@ -251,17 +256,34 @@ def basin_stability(
     n = z0s.shape[0]
     fsum = np.empty((n, engine.N_FLOAT))
     isum = np.empty((n, engine.N_INT), dtype=np.int64)
+    chunk_store = None
+    if store is not None:
+        from stickslip.sweep.store import ChunkStore
+
+        configuration = _configuration(structure, slider, opts)
+        configuration["states_sha256"] = hashlib.sha256(z0s.tobytes()).hexdigest()
+        fingerprint = hashlib.sha256(json.dumps(configuration, sort_keys=True).encode()).hexdigest()
+        chunk_store = ChunkStore(store, fingerprint, configuration, n, chunk_size, overwrite=overwrite)
+        chunk_size = chunk_store.chunk_size
+    done = 0
     if progress is not None:
         progress(0, n)
     with numba_threads(workers):
-        for start in range(0, n, chunk_size):
+        for index, start in enumerate(range(0, n, chunk_size)):
             stop = min(n, start + chunk_size)
-            fsum[start:stop], isum[start:stop] = run_states(
-                structure.mass, structure.damping, structure.stiffness, float(slider.lam),
-                float(slider.gamma), edges, intercepts, slopes, z0s[start:stop], float(opts.t_max),
-                int(opts.max_events), float(opts.cycle_tol), int(opts.max_period))
+            stored = chunk_store.load(index, stop - start) if chunk_store is not None else None
+            if stored is not None:
+                fsum[start:stop], isum[start:stop] = stored
+            else:
+                fsum[start:stop], isum[start:stop] = run_states(
+                    structure.mass, structure.damping, structure.stiffness, float(slider.lam),
+                    float(slider.gamma), edges, intercepts, slopes, z0s[start:stop], float(opts.t_max),
+                    int(opts.max_events), float(opts.cycle_tol), int(opts.max_period))
+                if chunk_store is not None:
+                    chunk_store.save(index, fsum[start:stop], isum[start:stop])
+            done = stop
             if progress is not None:
-                progress(stop, n)
+                progress(done, n)
     return BasinResult(structure, slider, opts, z0s, verdict_codes(isum[:, engine.I_STATUS]), fsum,
                        isum, time.perf_counter() - started)
 
@@ -412,3 +434,13 @@ def basin_map(
         ),
     )
     return BasinMap(ds, time.perf_counter() - started)
+
+
+def _configuration(structure: Structure, slider: Slider, options: EngineOptions) -> dict[str, Any]:
+    """The resolved configuration of a basin computation, JSON-ready (datasets, resume stores)."""
+    return {
+        "lambda": slider.lam, "gamma": slider.gamma, "zeta": structure.zeta,
+        "structure": structure.name, "mass": structure.mass.tolist(),
+        "damping": structure.damping.tolist(), "stiffness": structure.stiffness.tolist(),
+        "friction": slider.friction.to_dict(), "engine": options.to_dict(),
+    }
