@@ -38,6 +38,7 @@ from stickslip import Slider, elastic_foundation, rigid_base, simulate
 from stickslip.kernel.batch import coulomb_tables, run_cells
 from stickslip.model.friction import LinearFriction, StribeckFriction
 from stickslip.model.parameters import Foundation
+from stickslip.sweep.executors import band_tables
 
 
 def per_run() -> None:
@@ -62,17 +63,9 @@ def per_run() -> None:
 
 
 def _tables(cells: list[tuple[float, float]]):  # type: ignore[no-untyped-def]
-    tabs = [LinearFriction(d).bands(lam, 2.0) for lam, d in cells]
-    width = max(t[1].size for t in tabs)
-    n = len(cells)
-    edges = np.full((n, width + 1), np.inf)
-    intercepts = np.zeros((n, width))
-    slopes = np.zeros((n, width))
-    n_bands = np.empty(n, dtype=np.int64)
-    for c, (e, a, s) in enumerate(tabs):
-        edges[c, : e.size], intercepts[c, : a.size], slopes[c, : s.size] = e, a, s
-        n_bands[c] = a.size
-    return edges, intercepts, slopes, n_bands
+    """Per-cell band tables of the linear law at ``(lambda, delta)``, as the map executor builds them."""
+    lams = np.array([lam for lam, _ in cells])
+    return band_tables(lams, 2.0, [LinearFriction(d) for _, d in cells])
 
 
 def map_throughput() -> None:

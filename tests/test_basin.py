@@ -100,6 +100,7 @@ def test_basin_command_writes_labels_in_input_order(tmp_path: Path,
     ["--lam", "2", "--zeta", "0.1", "--box", "q=1:2"],
     ["--lam", "2", "--zeta", "0.1", "--box", "xi=1"],
     ["--lam", "2", "--zeta", "0.1", "--samples", "0"],
+    ["--lam", "2", "--zeta", "0.1", "--workers", "0"],
     ["--lam", "2"],
     ["--lam", "2", "--zeta", "0.1", "--initial-states", "/no/such.csv"],
 ])

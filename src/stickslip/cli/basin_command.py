@@ -112,6 +112,9 @@ def basin(
         found = parse_dva(dva, zeta, k_scale)
         structure = chain_structure(zeta, () if found is None else (found,))
     options = EngineOptions(t_max=t_max)
+    from stickslip.sweep.executors import check_backend
+
+    check_backend("threads", workers, None)  # --workers: a whole number of at least 1
     n_dof = structure.n_dof
     names = physical_names(n_dof) if system is not None else state_names(n_dof)
     if box is not None and initial_states is not None:
