@@ -29,7 +29,7 @@ from stickslip import (
     startup_state,
 )
 from stickslip.analysis.disturbance import safe_disturbance
-from stickslip.model.friction import StribeckFriction
+from stickslip.model.friction import LinearFriction, StribeckFriction
 from stickslip.sweep.basin import basin_stability, equilibrium_state, sample_box, states_from_physical
 
 from .cli_helpers import run_cli
@@ -151,3 +151,84 @@ def test_basin_resumes_from_its_store(tmp_path: Path) -> None:
     assert np.array_equal(first.float_summary, again.float_summary, equal_nan=True)
     with pytest.raises(StoreMismatch):
         basin_stability(structure, slider, states[:200], chunk_size=64, store=store)
+
+
+def test_basin_map_over_lambda_and_delta() -> None:
+    # sources: the map's definition (each cell = basin_stability of LinearFriction(delta) on the
+    # fixed deviations about the cell's own steady sliding, equilibrium_state); the start-up
+    # verdict is occurrence_map with deltas on the same grid; critical_lambda_linear: on the rigid
+    # base with mu = mu_k - sigma v_r every breakaway is the breakaway of Nakano's system with
+    # damping zeta_e = zeta - delta, so the boundary is Eq. (36) at zeta_e, for disturbed starts
+    # too (a disturbed start either never sticks, and decays to steady sliding when zeta_e > 0,
+    # or sticks and then breaks away at that one state)
+    from stickslip import occurrence_map
+    from stickslip.analysis.theory import critical_lambda_linear
+    from stickslip.model.friction import LinearFriction
+    from stickslip.sweep.basin import basin_map
+
+    zeta = 0.1
+    lams, deltas = [0.25, 0.4, 3.5, 6.0], [-0.05, 0.0, 0.05, 0.15]
+    result = basin_map(lams, [zeta], "none", samples=200, seed=3, deltas=deltas)
+    ds = result.dataset
+    assert ds["stick_slip_fraction"].dims == ("lambda", "delta") and result.second == "delta"
+    assert ds.attrs["zeta"] == zeta
+    startup = occurrence_map(lams, [zeta], "none", deltas=deltas)
+    assert np.array_equal(ds["startup_verdict"].values, startup.verdict)
+    rng = np.random.default_rng(3)
+    dev = np.column_stack([rng.uniform(-2.0, 2.0, 200), rng.uniform(-2.0, 1.0, 200)])
+    fraction = ds["stick_slip_fraction"].values
+    for i, lam in enumerate(lams):
+        for j, delta in enumerate(deltas):
+            slider = Slider(lam, friction=LinearFriction(delta))
+            # steady sliding moves with the law: K xi = F(1) - gamma lambda = -2 delta (Eq. 22)
+            eq = equilibrium_state(rigid_base(zeta), slider)
+            assert eq == pytest.approx([-2.0 * delta, 0.0], abs=1e-15)
+            cell = basin_stability(rigid_base(zeta), slider, eq + dev)
+            assert fraction[i, j] == cell.fractions["stick-slip"]
+            lam_c = critical_lambda_linear(zeta, delta)  # 2.057, 1.470, 0.911, 0 (zeta_e < 0)
+            if lam <= 0.5 * lam_c:
+                # well below Eq. (36) at zeta_e: no stick-slip cycle exists, whatever the start
+                assert fraction[i, j] == 0.0, (lam, delta)
+                assert startup.verdict_at(lam, delta=delta) == Verdict.STEADY_SLIDING
+            if lam >= 1.5 * lam_c:
+                # well above: the start-up ends on the cycle, and part of the box does too
+                # (measured 0.36, 0.515, 0.635 of this sample for delta = -0.05, 0, 0.05)
+                assert fraction[i, j] > 0.3, (lam, delta)
+                assert startup.verdict_at(lam, delta=delta) == Verdict.STICK_SLIP
+            if delta > zeta:
+                # zeta_e < 0: steady sliding is unstable (negative slip damping), so every
+                # disturbance grows until the slider sticks, then the cycle
+                assert fraction[i, j] == 1.0, (lam, delta)
+    # the rigid base is never bistable below its boundary: where the start-up slides steadily,
+    # no disturbance of the sample ends in stick-slip
+    steady = ds["startup_verdict"].values == Verdict.STEADY_SLIDING.code
+    assert steady.any() and np.all(fraction[steady] == 0.0)
+    assert result.to_dict()["disturbable_cells"] == 0
+    assert ds["undetermined_fraction"].values.max() == 0.0
+
+
+def test_basin_map_plot_names_the_second_axis() -> None:
+    # source: basin_map_plot labels the grid's second coordinate (issue 13, point 2)
+    from stickslip.sweep.basin import basin_map
+
+    by_zeta = basin_map([0.5, 3.0], [0.05, 0.2], "none", samples=20).plot()
+    assert "zeta" in by_zeta.axes[0].get_xlabel()
+    by_delta = basin_map([0.5, 3.0], [0.1], "none", samples=20, deltas=[0.0, 0.05]).plot()
+    ax = by_delta.axes[0]
+    assert "delta" in ax.get_xlabel() and "zeta" not in ax.get_xlabel()
+    assert "= 0.1" in ax.get_title()
+
+
+@pytest.mark.parametrize(("kwargs", "message"), [
+    ({"deltas": [0.0, 0.05], "zetas": [0.05, 0.1]}, "one fixed zeta"),
+    ({"deltas": [0.0], "friction": LinearFriction(0.1)}, "exclude each other"),
+    ({"box": {"xi_a": (-1.0, 1.0)}}, "not among"),
+    ({"box": {"xi": (1.0, -1.0)}}, "lo <= hi"),
+    ({"samples": 0}, "samples"),
+])
+def test_basin_map_rejects_bad_input_before_running(kwargs, message) -> None:  # type: ignore[no-untyped-def]
+    from stickslip.sweep.basin import basin_map
+
+    args = {"lams": [1.0], "zetas": [0.1], **kwargs}
+    with pytest.raises(ValueError, match=message):
+        basin_map(args.pop("lams"), args.pop("zetas"), "none", **args)

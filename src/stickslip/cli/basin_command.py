@@ -10,7 +10,17 @@ from typing import Annotated, Any
 import typer
 
 from stickslip.cli.console import BadInput, check_figure_path, check_output_path, parse_dva, print_json
-from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE
+from stickslip.cli.map_commands import WORKERS
+from stickslip.cli.options import (
+    BACKEND,
+    DVA,
+    FRICTION,
+    GAMMA,
+    JSON,
+    K_SCALE,
+    SCHEDULER,
+    SCHEDULER_TIMEOUT,
+)
 
 BOX_HELP = ("sampling box, e.g. 'xi=-4:4,v=-3:1.5' (dimensionless, shifted: xi, v, xi_a, v_a) or, "
             "with --config, 'x=-0.001:0.001,v=-0.02:0.02' (SI: m, m/s; x from where the spring is "
@@ -74,7 +84,10 @@ def basin(
         Path | None, typer.Option("--initial-states", help="CSV of states instead of sampling")
     ] = None,
     t_max: Annotated[float, typer.Option("--t-max", help="dimensionless horizon of each run")] = 5000.0,
-    workers: Annotated[int | None, typer.Option("--workers", help="numba threads (all cores)")] = None,
+    backend: BACKEND = None,
+    workers: WORKERS = None,
+    scheduler: SCHEDULER = None,
+    scheduler_timeout: SCHEDULER_TIMEOUT = 10.0,
     out: Annotated[Path | None, typer.Option(
         "--out", help="folder for labels.csv and basin.nc; an interrupted run resumes from "
         "DIR/basin.parts")] = None,
@@ -85,6 +98,11 @@ def basin(
     """Basin stability: a certified verdict for each of many initial states (disturbed starts).
 
     Example: stickslip basin --lam 2.5 --zeta 0.1 --samples 20000 --box 'xi=-4:4,v=-3:1.5' --json
+
+    On a Dask cluster (--backend dask: worker processes on this machine, or --scheduler ADDRESS),
+    resumable from DIR/basin.parts like a map:
+
+    Example: stickslip basin --lam 2.5 --zeta 0.1 --samples 200000 --backend dask --workers 2 --out run
     """
     from stickslip.analysis.simulation import EngineOptions
     from stickslip.model.friction import parse_friction
@@ -114,7 +132,9 @@ def basin(
     options = EngineOptions(t_max=t_max)
     from stickslip.sweep.executors import check_backend
 
-    check_backend("threads", workers, None)  # --workers: a whole number of at least 1
+    chosen = check_backend(backend or ("dask" if scheduler else "threads"), workers, scheduler)
+    if chosen == "dask":
+        _need_distributed()
     n_dof = structure.n_dof
     names = physical_names(n_dof) if system is not None else state_names(n_dof)
     if box is not None and initial_states is not None:
@@ -144,18 +164,20 @@ def basin(
             states = sample_box(structure, slider, samples, intervals, seed)
     from contextlib import nullcontext
 
-    from stickslip.cli.map_commands import _ProgressBar
+    from stickslip.cli.map_commands import _ProgressBar, _scheduler_context
     from stickslip.io.lock import output_lock
     from stickslip.sweep.store import discard_store
 
     enabled = not json and sys.stderr.isatty()
     store = None if out is None else out / "basin.parts"  # resume store, removed when done
+    reach = _scheduler_context(scheduler, scheduler_timeout)  # before any file is made
     if out is not None:
         out.mkdir(parents=True, exist_ok=True)  # every check passed: writing starts
-    with output_lock(labels) if labels is not None else nullcontext():
+    with output_lock(labels) if labels is not None else nullcontext(), reach:
         with _ProgressBar(enabled, f"basin {len(states)} states", unit="samples") as bar:
-            result = basin_stability(structure, slider, states, options=options, workers=workers,
-                                     progress=bar, store=store, overwrite=overwrite)
+            result = basin_stability(structure, slider, states, options=options, backend=chosen,
+                                     workers=workers, scheduler=scheduler, progress=bar, store=store,
+                                     overwrite=overwrite)
         payload = result.to_dict()
         payload.update({"labels": None, "dataset": None, "plot": None})
         if out is not None:
@@ -172,6 +194,14 @@ def basin(
         print_json(payload)
         return
     _print_summary(payload)
+
+
+def _need_distributed() -> None:
+    """The dask backend needs dask.distributed: say so in one line, before any file is made."""
+    import importlib.util
+
+    if importlib.util.find_spec("distributed") is None:
+        raise BadInput("the dask backend needs dask.distributed: pip install 'stickslip[dask]'")
 
 
 def _system_from_config(config: Path) -> Any:
@@ -209,12 +239,14 @@ def _sample_physical(system: Any, samples: int, box: dict[str, tuple[float, floa
 
 
 def _print_summary(p: dict[str, Any]) -> None:
-    fr, se = p["fractions"], p["standard_errors"]
+    fr, se, chunks = p["fractions"], p["standard_errors"], p["chunks"]
     parts = [f"{k} {fr[k]:.4f} +- {se[k]:.4f}" for k in fr if fr[k] > 0.0]
     lines = [
         f"basin       {p['structure']} (lambda={p['lambda']:.6g}, zeta={p['zeta']:.6g}, "
         f"gamma={p['gamma']:.6g}), friction {p['friction']}",
-        f"samples     {p['n']} in {p['elapsed_s']:.2f} s ({p['samples_per_second'] or 0:,.0f} samples/s)",
+        f"samples     {p['n']} in {p['elapsed_s']:.2f} s ({p['samples_per_second'] or 0:,.0f} samples/s) "
+        f"[{p['backend']}]" + (f", {chunks['loaded']} of {chunks['total']} chunks resumed"
+                               if chunks["loaded"] else ""),
         f"fractions   {', '.join(parts)} (binomial standard errors)",
     ]
     for key in ("labels", "dataset", "plot"):

@@ -54,6 +54,7 @@ def _register() -> None:
         absorber_commands,
         app_command,
         basin_command,
+        basin_map_command,
         cycles_command,
         design_command,
         map_commands,
@@ -62,7 +63,7 @@ def _register() -> None:
     )
 
     for module in (simulate_command, absorber_commands, map_commands, design_command,
-                   basin_command, cycles_command, reproduce_command, app_command):
+                   basin_command, basin_map_command, cycles_command, reproduce_command, app_command):
         module.register(app)
 
 

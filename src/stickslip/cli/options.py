@@ -31,3 +31,14 @@ FRICTION = Annotated[
         "stribeck:vs=V_S/V[,n=N][,viscous=D_V][,mu0=R0][,tol=TOL]",
     ),
 ]
+#: The backend options of resumable runs (``map``, ``basin``): same names, same help.
+BACKEND = Annotated[
+    str | None,
+    typer.Option("--backend", help="serial, threads (default) or dask (default with --scheduler)"),
+]
+SCHEDULER = Annotated[
+    str | None, typer.Option("--scheduler", help="address of a running Dask scheduler")
+]
+SCHEDULER_TIMEOUT = Annotated[
+    float, typer.Option("--scheduler-timeout", help="seconds allowed to reach the --scheduler (default 10)")
+]

@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from stickslip.analysis.verdict import VERDICTS
+from stickslip.analysis.verdict import VERDICTS, Verdict
 from stickslip.plot.figure import PlotResult, new_axes
 from stickslip.plot.maps import COLORS
 
@@ -79,6 +79,13 @@ def basin_plot(
     return PlotResult(fig, [ax], artists)
 
 
+#: Axis label of the grid's second coordinate of a basin map.
+_SECOND_LABELS = {
+    "zeta": r"damping ratio $\zeta$",
+    "delta": r"friction slope $\delta$ of the linear law (> 0: velocity weakening)",
+}
+
+
 def basin_map_plot(
     data: BasinMap,
     *,
@@ -87,6 +94,10 @@ def basin_map_plot(
 ) -> PlotResult:
     """Stick-slip fraction of the disturbance sample per cell, with the start-up region outlined.
 
+    ``lambda`` is drawn upwards (on a log scale when the grid spans more than a factor 20),
+    the second axis of the grid (``zeta``, or ``delta`` for a map over the slope of the linear
+    friction law at one ``zeta``) across.
+
     Parameters
     ----------
     data : BasinMap
@@ -94,26 +105,32 @@ def basin_map_plot(
     ax : matplotlib Axes, optional
         Drawn into; a new figure otherwise.
     title : str, optional
-        Axes title.
+        Axes title; by default it names the disturbed starts (and the fixed ``zeta`` of a
+        ``(lambda, delta)`` map).
     """
     fig, ax = new_axes(ax)
     ds = data.dataset
+    second = str(ds["stick_slip_fraction"].dims[1])
     lam = np.asarray(ds["lambda"].values)
-    zeta = np.asarray(ds["zeta"].values)
-    fraction = np.asarray(ds["stick_slip_fraction"].transpose("lambda", "zeta").values)
-    startup = np.asarray(ds["startup_verdict"].transpose("lambda", "zeta").values)
-    mesh = ax.pcolormesh(zeta, lam, fraction, shading="nearest", cmap="magma_r", vmin=0.0, vmax=1.0)
+    across = np.asarray(ds[second].values)
+    fraction = np.asarray(ds["stick_slip_fraction"].transpose("lambda", second).values)
+    startup = np.asarray(ds["startup_verdict"].transpose("lambda", second).values)
+    mesh = ax.pcolormesh(across, lam, fraction, shading="nearest", cmap="magma_r", vmin=0.0, vmax=1.0)
     bar = fig.colorbar(mesh, ax=ax)
     bar.set_label("fraction of disturbed starts ending in stick-slip")
     artists: list[Any] = [mesh]
-    if len(zeta) > 1 and len(lam) > 1:
-        artists.append(ax.contour(zeta, lam, (startup == 1).astype(float), levels=[0.5],
-                                  colors="tab:cyan", linewidths=1.6))
+    if len(across) > 1 and len(lam) > 1:
+        sticks = (startup == Verdict.STICK_SLIP.code).astype(float)
+        artists.append(ax.contour(across, lam, sticks, levels=[0.5], colors="tab:cyan", linewidths=1.6))
         artists += ax.plot([], [], color="tab:cyan", label="start-up: stick-slip above")
         ax.legend(fontsize=8, loc="lower right")
     if len(lam) > 2 and np.all(lam > 0) and lam[-1] / lam[0] > 20:
         ax.set_yscale("log")
-    ax.set_xlabel(r"damping ratio $\zeta$")
+    ax.set_xlabel(_SECOND_LABELS.get(second, second))
     ax.set_ylabel(r"$\lambda$")
-    ax.set_title(title or "basin stability: disturbed starts", fontsize=10)
+    if title is None:
+        title = "basin stability: disturbed starts"
+        if second == "delta":
+            title += f", $\\zeta$ = {float(ds.attrs['zeta']):g}"
+    ax.set_title(title, fontsize=10)
     return PlotResult(fig, [ax], artists)

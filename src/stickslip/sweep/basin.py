@@ -33,6 +33,15 @@ from stickslip.io.provenance import provenance_attributes
 from stickslip.kernel import engine
 from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
+from stickslip.sweep.executors import (
+    Backend,
+    Chunk,
+    check_backend,
+    default_chunk_size,
+    execute,
+    make_chunks,
+    numba_threads,
+)
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -40,10 +49,19 @@ if TYPE_CHECKING:
     from stickslip.model.physical import PhysicalSystem
 
 FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
 Progress = Callable[[int, int], None]
 
 #: Most samples of one basin computation (the summaries take about 150 bytes per sample).
 MAX_SAMPLES = 50_000_000
+
+#: States per chunk of the in-process backends when none is given (the unit of progress and
+#: of the resume store); the Dask backend cuts about 32 chunks (``default_chunk_size``).
+THREADS_CHUNK = 4096
+
+#: The disturbance box of :func:`basin_map` when none is given: deviations of the slider's
+#: ``xi`` and ``xi'`` from steady sliding (dimensionless, ``V / omega_n`` and ``V``).
+DEFAULT_MAP_BOX: dict[str, tuple[float, float]] = {"xi": (-2.0, 2.0), "v": (-2.0, 1.0)}
 
 
 def state_names(n_dof: int) -> list[str]:
@@ -78,17 +96,24 @@ def sample_box(structure: Structure, slider: Slider, n: int, box: Mapping[str, t
     named keep their steady-sliding value. Reproducible for a given ``seed``.
     """
     names = state_names(structure.n_dof)
-    unknown = sorted(set(box) - set(names))
-    if unknown:
-        raise ValueError(f"box columns {', '.join(unknown)} are not among {', '.join(names)}")
+    check_box(box, names)
     n = _count(n)
     states = np.tile(equilibrium_state(structure, slider), (n, 1))
     rng = np.random.default_rng(seed)
     for name, (lo, hi) in box.items():
-        if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi):
-            raise ValueError(f"box {name}={lo!r}:{hi!r} must be a finite interval with lo <= hi")
         states[:, names.index(name)] = rng.uniform(lo, hi, n)
     return states
+
+
+def check_box(box: Mapping[str, tuple[float, float]], names: Sequence[str]) -> None:
+    """Raise ``ValueError`` unless every column of ``box`` is in ``names`` and every interval
+    ``(lo, hi)`` is finite with ``lo <= hi``."""
+    unknown = sorted(set(box) - set(names))
+    if unknown:
+        raise ValueError(f"box columns {', '.join(unknown)} are not among {', '.join(names)}")
+    for name, (lo, hi) in box.items():
+        if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi):
+            raise ValueError(f"box {name}={lo!r}:{hi!r} must be a finite interval with lo <= hi")
 
 
 def _count(n: int) -> int:
@@ -129,6 +154,12 @@ class BasinResult:
         Verdict codes (:class:`~stickslip.analysis.verdict.Verdict`).
     float_summary, int_summary : ndarray
         The engine's per-run summaries (layouts of :mod:`stickslip.kernel.engine`).
+    elapsed : float
+        Wall-clock seconds of the call.
+    backend : str
+        The backend that ran it (``serial``, ``threads`` or ``dask``).
+    chunks_total, chunks_loaded : int
+        Chunks of the run, and how many of them were read from a resume store.
     """
 
     structure: Structure
@@ -139,6 +170,9 @@ class BasinResult:
     float_summary: FloatArray = field(repr=False)
     int_summary: NDArray[np.int64] = field(repr=False)
     elapsed: float = 0.0
+    backend: str = "threads"
+    chunks_total: int = 0
+    chunks_loaded: int = 0
 
     @property
     def n(self) -> int:
@@ -161,7 +195,8 @@ class BasinResult:
         return self.n / self.elapsed if self.elapsed > 0 else None
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary: ``n``, ``fractions``, ``standard_errors``, ``undetermined``, time."""
+        """JSON-ready summary: ``n``, ``fractions``, ``standard_errors``, ``undetermined``, time,
+        backend and chunks (``total``, ``loaded`` from a resume store, ``computed``)."""
         return {
             "n": self.n,
             "fractions": self.fractions,
@@ -169,6 +204,9 @@ class BasinResult:
             "undetermined": int(np.count_nonzero(self.verdict == Verdict.UNDETERMINED.code)),
             "elapsed_s": self.elapsed,
             "samples_per_second": self.samples_per_second,
+            "backend": self.backend,
+            "chunks": {"total": self.chunks_total, "loaded": self.chunks_loaded,
+                       "computed": self.chunks_total - self.chunks_loaded},
             "lambda": self.slider.lam,
             "zeta": self.structure.zeta,
             "gamma": self.slider.gamma,
@@ -204,19 +242,66 @@ class BasinResult:
         return basin_plot(self, **kwargs)
 
 
+@dataclass(frozen=True)
+class BasinSystem:
+    """One system made ready for :func:`run_state_batch`: plain arrays, so Dask can send it.
+
+    ``mass``, ``damping``, ``stiffness`` are the dimensionless matrices of the structure,
+    ``lam`` and ``gamma`` the paper's ratios, ``edges``, ``intercepts``, ``slopes`` the band
+    table of the friction law at them (:meth:`FrictionLaw.bands`), tabulated once.
+    """
+
+    mass: FloatArray
+    damping: FloatArray
+    stiffness: FloatArray
+    lam: float
+    gamma: float
+    edges: FloatArray
+    intercepts: FloatArray
+    slopes: FloatArray
+
+    @classmethod
+    def prepare(cls, structure: Structure, slider: Slider) -> BasinSystem:
+        """The arrays of ``structure`` and the band table of ``slider.friction``."""
+        edges, intercepts, slopes = slider.friction.bands(slider.lam, slider.gamma)
+        return cls(structure.mass, structure.damping, structure.stiffness, float(slider.lam),
+                   float(slider.gamma), edges, intercepts, slopes)
+
+
+def run_state_batch(system: BasinSystem, states: FloatArray, options: EngineOptions,
+                    n_threads: int | None = None) -> tuple[FloatArray, IntArray]:
+    """Run ``system`` from every row of ``states`` on ``n_threads`` numba threads (all when None).
+
+    The per-chunk task of :func:`basin_stability` (for
+    :func:`stickslip.sweep.executors.execute`, on every backend): ``run_states`` of
+    :mod:`stickslip.kernel.batch`. Returns the float and integer summaries, shapes
+    ``(n, N_FLOAT)`` and ``(n, N_INT)``.
+    """
+    from stickslip.kernel.batch import run_states
+
+    with numba_threads(n_threads):
+        float_summary, int_summary = run_states(
+            system.mass, system.damping, system.stiffness, system.lam, system.gamma, system.edges,
+            system.intercepts, system.slopes, states, float(options.t_max), int(options.max_events),
+            float(options.cycle_tol), int(options.max_period))
+    return float_summary, int_summary
+
+
 def basin_stability(
     structure: Structure,
     slider: Slider,
     states: FloatArray,
     *,
     options: EngineOptions | None = None,
+    backend: Backend = "threads",
     workers: int | None = None,
-    chunk_size: int = 4096,
+    scheduler: str | None = None,
+    chunk_size: int | None = None,
     progress: Progress | None = None,
     store: str | Path | None = None,
     overwrite: bool = False,
 ) -> BasinResult:
-    """Certified verdict for every initial state of one system, in parallel over numba threads.
+    """Certified verdict for every initial state of one system, on numba threads or Dask.
 
     Parameters
     ----------
@@ -227,23 +312,31 @@ def basin_stability(
         :func:`states_from_physical`).
     options : EngineOptions, optional
         Horizon and budgets of every run.
+    backend : {"threads", "serial", "dask"}
+        As for maps (:func:`stickslip.occurrence_map`, :func:`stickslip.sweep.executors.execute`):
+        ``threads``: ``workers`` numba threads (all cores when None); ``serial``: one thread;
+        ``dask``: a ``dask.distributed`` cluster at ``scheduler``, or a ``LocalCluster`` of
+        ``workers`` single-threaded processes on 127.0.0.1. The labels are identical across
+        backends (every state is an independent, deterministic run).
     workers : int, optional
-        Numba threads (all cores when None).
-    chunk_size : int
-        States per batch (unit of progress).
+        Threads (``threads``) or worker processes (``dask`` without ``scheduler``); >= 1.
+    scheduler : str, optional
+        Address of a running Dask scheduler (``dask`` only).
+    chunk_size : int, optional
+        States per chunk (unit of progress, of Dask tasks and of the resume store); default
+        :data:`THREADS_CHUNK` in process, about 32 chunks with Dask. An existing store keeps
+        its own chunk size.
     progress : callable, optional
-        ``progress(done, total)`` after every batch.
+        ``progress(done, total)`` at the start and after every chunk (in completion order).
     store : path, optional
         Resume store folder (:class:`stickslip.sweep.store.ChunkStore`, as for maps): finished
-        batches are written there as they complete, and a later call with the same system,
-        options and states computes only the missing ones.
+        chunks are written there as they complete, and a later call with the same system,
+        options and states computes only the missing ones, on any backend.
     overwrite : bool
         Discard a store of another configuration instead of raising ``StoreMismatch``.
     """
-    from stickslip.kernel.batch import run_states
-    from stickslip.sweep.executors import numba_threads
-
     opts = options or EngineOptions()
+    backend = check_backend(backend, workers, scheduler)
     z0s = np.ascontiguousarray(states, dtype=np.float64)
     n_dof = structure.n_dof
     if z0s.ndim != 2 or z0s.shape[1] != 2 * n_dof:
@@ -251,9 +344,14 @@ def basin_stability(
     _count(z0s.shape[0])
     if not np.all(np.isfinite(z0s)):
         raise ValueError("initial states have NaN or infinite entries")
-    edges, intercepts, slopes = slider.friction.bands(slider.lam, slider.gamma)
+    if chunk_size is not None and (isinstance(chunk_size, bool) or int(chunk_size) != chunk_size
+                                   or chunk_size < 1):
+        raise ValueError(f"chunk_size={chunk_size!r} must be a whole number of at least 1")
+    system = BasinSystem.prepare(structure, slider)
     started = time.perf_counter()
     n = z0s.shape[0]
+    if chunk_size is None:
+        chunk_size = default_chunk_size(n, backend) if backend == "dask" else THREADS_CHUNK
     fsum = np.empty((n, engine.N_FLOAT))
     isum = np.empty((n, engine.N_INT), dtype=np.int64)
     chunk_store = None
@@ -263,29 +361,33 @@ def basin_stability(
         configuration = _configuration(structure, slider, opts)
         configuration["states_sha256"] = hashlib.sha256(z0s.tobytes()).hexdigest()
         fingerprint = hashlib.sha256(json.dumps(configuration, sort_keys=True).encode()).hexdigest()
-        chunk_store = ChunkStore(store, fingerprint, configuration, n, chunk_size, overwrite=overwrite)
+        chunk_store = ChunkStore(store, fingerprint, configuration, n, int(chunk_size), overwrite=overwrite)
         chunk_size = chunk_store.chunk_size
-    done = 0
+    chunks = make_chunks(n, int(chunk_size))
+    missing: list[Chunk] = []
+    for chunk in chunks:
+        stored = chunk_store.load(chunk.index, chunk.size) if chunk_store is not None else None
+        if stored is None:
+            missing.append(chunk)
+        else:
+            fsum[chunk.start:chunk.stop], isum[chunk.start:chunk.stop] = stored
+    done = n - sum(c.size for c in missing)
     if progress is not None:
-        progress(0, n)
-    with numba_threads(workers):
-        for index, start in enumerate(range(0, n, chunk_size)):
-            stop = min(n, start + chunk_size)
-            stored = chunk_store.load(index, stop - start) if chunk_store is not None else None
-            if stored is not None:
-                fsum[start:stop], isum[start:stop] = stored
-            else:
-                fsum[start:stop], isum[start:stop] = run_states(
-                    structure.mass, structure.damping, structure.stiffness, float(slider.lam),
-                    float(slider.gamma), edges, intercepts, slopes, z0s[start:stop], float(opts.t_max),
-                    int(opts.max_events), float(opts.cycle_tol), int(opts.max_period))
-                if chunk_store is not None:
-                    chunk_store.save(index, fsum[start:stop], isum[start:stop])
-            done = stop
-            if progress is not None:
-                progress(done, n)
+        progress(done, n)
+    batches = [(c, z0s[c.start:c.stop]) for c in missing]
+    for chunk, f_chunk, i_chunk in execute(system, batches, opts, backend=backend, workers=workers,
+                                           scheduler=scheduler, task=run_state_batch):
+        fsum[chunk.start:chunk.stop], isum[chunk.start:chunk.stop] = f_chunk, i_chunk
+        if chunk_store is not None:
+            chunk_store.save(chunk.index, f_chunk, i_chunk)
+        done += chunk.size
+        if progress is not None:
+            progress(done, n)
+    if chunk_store is not None:
+        chunk_store.record_run(len(chunks) - len(missing), len(missing), backend)
     return BasinResult(structure, slider, opts, z0s, verdict_codes(isum[:, engine.I_STATUS]), fsum,
-                       isum, time.perf_counter() - started)
+                       isum, time.perf_counter() - started, backend, len(chunks),
+                       len(chunks) - len(missing))
 
 
 def write_labels(result: BasinResult, path: str | Path, rows: Sequence[Mapping[str, Any]] | None = None,
@@ -313,14 +415,63 @@ def write_labels(result: BasinResult, path: str | Path, rows: Sequence[Mapping[s
 class BasinMap:
     """Result of :func:`basin_map`: the dataset and how long it took.
 
-    ``dataset`` has coordinates ``lambda`` and ``zeta`` and the variables
-    ``stick_slip_fraction`` (fraction of the fixed disturbance sample that ends in stick-slip),
-    ``standard_error`` (binomial), ``undetermined_fraction`` and ``startup_verdict`` (the verdict
-    from the start-up state, as in :func:`stickslip.occurrence_map`).
+    ``dataset`` has coordinates ``lambda`` and ``zeta`` (or ``lambda`` and ``delta`` for a map
+    over the slope of the linear friction law at one ``zeta``, kept in ``attrs["zeta"]``) and
+    the variables ``stick_slip_fraction`` (fraction of the fixed disturbance sample that ends
+    in stick-slip), ``standard_error`` (binomial), ``undetermined_fraction`` and
+    ``startup_verdict`` (the verdict from the start-up state, as in
+    :func:`stickslip.occurrence_map` on the same grid).
     """
 
     dataset: xr.Dataset
     elapsed: float = 0.0
+
+    @property
+    def second(self) -> str:
+        """Name of the grid's second axis: ``"zeta"`` or ``"delta"``."""
+        return str(self.dataset["stick_slip_fraction"].dims[1])
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready summary of the map.
+
+        Keys: ``axes``, ``n_lambda``, ``n_zeta`` or ``n_delta`` (and the fixed ``zeta``),
+        ``n_cells``, ``samples``, ``seed``, ``box``, ``startup_counts`` (cells per start-up
+        verdict), ``mean_stick_slip_fraction``, ``max_stick_slip_fraction``,
+        ``max_undetermined_fraction``, ``disturbable_cells`` (cells whose start-up ends in
+        steady sliding although part of the disturbance sample ends in stick-slip: bistable
+        cells that the start-up verdict calls safe), ``elapsed_s``, ``samples_per_second``,
+        ``dva``, ``gamma``, ``friction``, ``t_max``.
+        """
+        ds = self.dataset
+        fraction = np.asarray(ds["stick_slip_fraction"].values)
+        startup = np.asarray(ds["startup_verdict"].values)
+        configuration = json.loads(ds.attrs["configuration"])
+        n_cells = int(fraction.size)
+        samples = int(configuration["samples"])
+        second: dict[str, Any] = {f"n_{self.second}": int(ds[self.second].size)}
+        if self.second == "delta":
+            second["zeta"] = float(ds.attrs["zeta"])
+        disturbable = (startup == Verdict.STEADY_SLIDING.code) & (fraction > 0.0)
+        return {
+            "axes": ["lambda", self.second],
+            "n_lambda": int(ds["lambda"].size),
+            **second,
+            "n_cells": n_cells,
+            "samples": samples,
+            "seed": configuration["seed"],
+            "box": configuration["box"],
+            "startup_counts": {v.value: int(np.count_nonzero(startup == v.code)) for v in VERDICTS},
+            "mean_stick_slip_fraction": float(fraction.mean()),
+            "max_stick_slip_fraction": float(fraction.max()),
+            "max_undetermined_fraction": float(np.asarray(ds["undetermined_fraction"].values).max()),
+            "disturbable_cells": int(np.count_nonzero(disturbable)),
+            "elapsed_s": self.elapsed,
+            "samples_per_second": n_cells * samples / self.elapsed if self.elapsed > 0 else None,
+            "dva": ds.attrs["dva"],
+            "gamma": configuration["gamma"],
+            "friction": ds.attrs["friction"],
+            "t_max": configuration["engine"]["t_max"],
+        }
 
     def to_netcdf(self, path: str | Path, *, overwrite: bool = True) -> Path:
         """Write the dataset atomically; see :func:`stickslip.io.netcdf.write_dataset`."""
@@ -346,64 +497,83 @@ def basin_map(
     box: Mapping[str, tuple[float, float]] | None = None,
     seed: int = 0,
     friction: Any = None,
+    deltas: Any = None,
     options: EngineOptions | None = None,
     workers: int | None = None,
     progress: Progress | None = None,
 ) -> BasinMap:
-    """Basin stability over a ``(lambda, zeta)`` grid, next to the start-up verdict (issue 13).
+    """Basin stability over a ``(lambda, zeta)`` or ``(lambda, delta)`` grid, next to the
+    start-up verdict (issue 13, point 2).
 
     Every cell is disturbed by the same fixed sample of ``samples`` deviations from its own
-    steady sliding, drawn uniformly in ``box`` (deviations of the slider's ``xi`` and ``v``;
-    default ``xi`` in ``[-2, 2]``, ``v`` in ``[-2, 1]``, dimensionless) with ``seed``, so cells
-    differ only by their dynamics. Each state gets a certified verdict.
+    steady sliding, drawn uniformly in ``box`` with ``seed``, so cells differ only by their
+    dynamics. Each state gets a certified verdict (:func:`basin_stability`).
 
     Parameters
     ----------
     lams, zetas : Axis, array_like or str
-        The grid (axis specs as in :func:`stickslip.occurrence_map`).
+        The grid (axis specs as in :func:`stickslip.occurrence_map`): ``lambda > 0`` and
+        damping ratios ``zeta >= 0``, dimensionless. With ``deltas``, ``zetas`` holds the one
+        fixed ``zeta``.
     dva : DvaSpec or str
         The foundation at each ``zeta``.
     gamma : float
-        ``mu_k / (mu_s - mu_k)``.
-    samples, box, seed :
-        The fixed disturbance sample.
+        ``mu_k / (mu_s - mu_k)``, dimensionless.
+    samples : int
+        Disturbances per cell (1 to :data:`MAX_SAMPLES`).
+    box : mapping of str to (float, float), optional
+        Intervals of the deviations from steady sliding, by column of :func:`state_names`
+        (``xi``, ``v``, ``xi_a``, ``v_a``; positions in ``V / omega_n``, velocities in ``V``);
+        unnamed columns are not disturbed. Default :data:`DEFAULT_MAP_BOX`.
+    seed : int
+        Seed of the disturbance sample (drawn column after column, in the order of
+        :func:`state_names`: ``xi`` before ``v``).
     friction : FrictionLaw, optional
-        Friction law of every cell.
+        Friction law of every cell (the paper's Coulomb law by default); not with ``deltas``.
+    deltas : Axis, array_like or str, optional
+        Slopes ``delta = sigma W / (2 sqrt(m k))`` of the linear law (dimensionless, > 0
+        velocity weakening): the map is then over ``(lambda, delta)`` at the one ``zeta``,
+        cell ``(i, j)`` with the law ``LinearFriction(delta_j)``, as in
+        :func:`stickslip.occurrence_map`.
     options : EngineOptions, optional
         Engine limits of every run.
     workers : int, optional
-        Numba threads.
+        Numba threads (all cores when None).
     progress : callable, optional
         ``progress(done_cells, total_cells)``.
     """
     import xarray as xr
 
-    from stickslip.model.friction import CoulombFriction
-    from stickslip.sweep.occurrence import MapConfig, occurrence_map
+    from stickslip.model.friction import LinearFriction
+    from stickslip.sweep.occurrence import _DELTA_LAW, MapConfig, occurrence_map
 
     started = time.perf_counter()
-    law = friction or CoulombFriction()
-    config = MapConfig.create(lams, zetas, dva, gamma, options=options, friction=law)
+    config = MapConfig.create(lams, zetas, dva, gamma, options=options, friction=friction, deltas=deltas)
+    check_backend("threads", workers, None)
     n = _count(samples)
-    box = dict(box or {"xi": (-2.0, 2.0), "v": (-2.0, 1.0)})
-    rng = np.random.default_rng(seed)
-    deviations = {name: rng.uniform(lo, hi, n) for name, (lo, hi) in box.items()}
+    box = dict(DEFAULT_MAP_BOX if box is None else box)
+    structures = config.structures
+    names = state_names(structures.n_dof)
+    check_box(box, names)
+    rng = np.random.default_rng(seed)  # columns drawn in the order of state_names, whatever box's
+    deviations = {name: rng.uniform(*box[name], n) for name in names if name in box}
+    by_delta = config.delta is not None
     startup = occurrence_map(config.lam, config.zeta, config.dva, config.gamma, options=config.options,
-                             friction=law, workers=workers)
+                             friction=None if by_delta else config.friction, deltas=config.delta,
+                             workers=workers)
     shape = config.shape
     fraction = np.empty(shape)
     undetermined = np.empty(shape)
-    structures = config.structures
     total = config.n_cells
     done = 0
     if progress is not None:
         progress(0, total)
     for j in range(shape[1]):
-        structure = Structure(structures.masses[j], structures.dampings[j], structures.stiffnesses[j])
-        names = state_names(structure.n_dof)
-        unknown = sorted(set(deviations) - set(names))
-        if unknown:
-            raise ValueError(f"box columns {', '.join(unknown)} are not among {', '.join(names)}")
+        # a (lambda, zeta) map: the structure of zeta_j and one law; (lambda, delta): the one
+        # structure and the linear law of delta_j
+        at = 0 if by_delta else j
+        law = LinearFriction(float(config.second_axis.values[j])) if by_delta else config.friction
+        structure = Structure(structures.masses[at], structures.dampings[at], structures.stiffnesses[at])
         for i, lam in enumerate(config.lam.values):
             slider = Slider(float(lam), gamma=config.gamma, friction=law)
             states = np.tile(equilibrium_state(structure, slider), (n, 1))
@@ -415,7 +585,14 @@ def basin_map(
             done += 1
             if progress is not None:
                 progress(done, total)
-    dims = ("lambda", "zeta")
+    dims = ("lambda", config.second)
+    title = f"basin stability map, {config.dva.describe()}, gamma = {config.gamma:g}"
+    extra: dict[str, Any] = {}
+    if by_delta:
+        fixed = float(config.zeta.values[0])
+        title += f", over (lambda, delta) at zeta = {fixed:g}, friction {_DELTA_LAW}"
+        extra = {"zeta": fixed}
+    law_text = _DELTA_LAW if by_delta else config.friction.describe()
     ds = xr.Dataset(
         {
             "stick_slip_fraction": (dims, fraction, {
@@ -426,12 +603,14 @@ def basin_map(
                 "long_name": "fraction of the sample without a certified verdict", "units": "1"}),
             "startup_verdict": startup.dataset["verdict"],
         },
-        coords={"lambda": startup.dataset["lambda"], "zeta": startup.dataset["zeta"]},
-        attrs=provenance_attributes(
-            f"basin stability map, {config.dva.describe()}, gamma = {config.gamma:g}",
-            {**config.to_dict(), "samples": n, "seed": seed,
-             "box": {k: list(v) for k, v in box.items()}},
-        ),
+        coords={name: startup.dataset[name] for name in dims},
+        attrs={
+            **provenance_attributes(title, {**config.to_dict(), "samples": n, "seed": seed,
+                                            "box": {k: list(v) for k, v in box.items()}}),
+            "dva": config.dva.describe(),
+            "friction": law_text,
+            **extra,
+        },
     )
     return BasinMap(ds, time.perf_counter() - started)
 

@@ -5,6 +5,10 @@ Every cell is one certified simulation from the startup state (``run_cells`` of
 the float and integer summaries of a cell do not depend on the backend, the number of
 threads or the chunking: the backends return bit-identical arrays.
 
+Basin stability (:func:`stickslip.sweep.basin.basin_stability`) runs through the same
+machinery with its own per-chunk task (many initial states of one system, ``execute(...,
+task=...)``): the same backends, chunks, progress and resume store.
+
 The grid is cut into chunks of consecutive cells. A backend yields each chunk as soon as
 it is finished (in completion order for Dask), which is what lets the caller report
 progress and write the chunk to a resume store.
@@ -13,10 +17,10 @@ progress and write the chunk to a resume store.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Any, Literal, TypeAlias, TypeVar, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -32,6 +36,11 @@ FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 Backend = Literal["serial", "threads", "dask"]
 BACKENDS: tuple[Backend, ...] = ("serial", "threads", "dask")
+S = TypeVar("S")
+B = TypeVar("B")
+#: The work of one chunk: ``task(shared, batch, options, n_threads) -> (float_summary,
+#: int_summary)`` (see :func:`execute`).
+ChunkTask: TypeAlias = Callable[[S, B, EngineOptions, int | None], tuple[FloatArray, IntArray]]
 
 #: Cells handed to one numba thread at a time: the cost of a cell varies by orders of
 #: magnitude (a certified steady state can come after one phase, a cycle near the boundary
@@ -246,21 +255,22 @@ def check_backend(backend: str, workers: int | None, scheduler: str | None) -> B
 
 
 def execute(
-    structures: StructureSet,
-    batches: Sequence[tuple[Chunk, CellBatch]],
+    structures: S,
+    batches: Sequence[tuple[Chunk, B]],
     options: EngineOptions,
     *,
     backend: Backend = "threads",
     workers: int | None = None,
     scheduler: str | None = None,
+    task: ChunkTask[S, B] | None = None,
 ) -> Iterator[tuple[Chunk, FloatArray, IntArray]]:
     """Run every batch and yield ``(chunk, float_summary, int_summary)`` as each one finishes.
 
     Parameters
     ----------
-    structures : StructureSet
-        The structures the batches index into.
-    batches : sequence of (Chunk, CellBatch)
+    structures : StructureSet, or what ``task`` takes
+        The data every batch shares (sent once to every Dask worker).
+    batches : sequence of (Chunk, CellBatch), or of (Chunk, what ``task`` takes)
         The work, one batch per chunk.
     options : EngineOptions
         Engine limits.
@@ -268,24 +278,37 @@ def execute(
         ``serial``: one numba thread. ``threads``: ``workers`` numba threads (all cores
         when None). ``dask``: a ``dask.distributed`` client connected to ``scheduler``, or a
         ``LocalCluster`` of ``workers`` single-threaded worker processes on 127.0.0.1.
+    workers : int, optional
+        Numba threads (``threads``) or worker processes (``dask`` without ``scheduler``).
+    scheduler : str, optional
+        Address of a running Dask scheduler (``dask`` only).
+    task : callable, optional
+        The work of one chunk, ``task(structures, batch, options, n_threads) ->
+        (float_summary, int_summary)``, run on ``n_threads`` numba threads (1 on a Dask
+        worker); a module-level function, so that Dask can send it. Default
+        :func:`run_batch`, the cells of a map (``structures`` a :class:`StructureSet`, each
+        batch a :class:`CellBatch`); basin stability passes its own (many initial states of
+        one system).
     """
+    run = task if task is not None else cast("ChunkTask[S, B]", run_batch)
     if not batches:
         return
     if backend == "dask":
-        yield from _execute_dask(structures, batches, options, workers, scheduler)
+        yield from _execute_dask(structures, batches, options, workers, scheduler, run)
         return
     n_threads = 1 if backend == "serial" else workers
     for chunk, batch in batches:
-        float_summary, int_summary = run_batch(structures, batch, options, n_threads)
+        float_summary, int_summary = run(structures, batch, options, n_threads)
         yield chunk, float_summary, int_summary
 
 
 def _execute_dask(
-    structures: StructureSet,
-    batches: Sequence[tuple[Chunk, CellBatch]],
+    structures: S,
+    batches: Sequence[tuple[Chunk, B]],
     options: EngineOptions,
     workers: int | None,
     scheduler: str | None,
+    task: ChunkTask[S, B],
 ) -> Iterator[tuple[Chunk, FloatArray, IntArray]]:
     try:
         from distributed import Client, LocalCluster, as_completed
@@ -297,7 +320,7 @@ def _execute_dask(
         [shared] = client.scatter([structures], broadcast=True)
         futures: dict[Any, Chunk] = {}
         for chunk, batch in batches:
-            future = client.submit(run_batch, shared, batch, options, 1, pure=False)
+            future = client.submit(task, shared, batch, options, 1, pure=False)
             futures[future] = chunk
         try:
             for future in as_completed(futures):
@@ -310,7 +333,7 @@ def _execute_dask(
 #: Default bound, in seconds, on reaching a Dask scheduler: TCP connection, its handshake and
 #: the client's registration. Set ``stickslip.scheduler-timeout`` in the Dask configuration
 #: (``dask.config.set``, or the environment variable ``DASK_STICKSLIP__SCHEDULER_TIMEOUT``)
-#: to change it; ``stickslip map --scheduler-timeout`` does.
+#: to change it; ``--scheduler-timeout`` of ``stickslip map`` and ``stickslip basin`` does.
 SCHEDULER_TIMEOUT_S = 10.0
 
 #: Longest first message accepted from a scheduler: its handshake is under a hundred bytes.
