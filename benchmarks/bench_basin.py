@@ -10,6 +10,10 @@ oracle (tests/oracle.py and tests/friction_oracle.py: DOP853, rtol = atol = 1e-1
 max_step 0.05, the exact law) integrates the first ``--oracle-samples`` of them over a
 horizon of 100 and labels a state stick-slip when a stick phase starts in it. The ratio of
 samples per second and the agreement of the labels on the common states are printed.
+
+The engine side is the command's own path: 1-DOF runs stop at their first stick phase and
+take the rest from the start-up run (``stickslip.kernel.batch.run_states``; checked against
+full runs in tests/test_basin_shortcut.py).
 """
 
 from __future__ import annotations

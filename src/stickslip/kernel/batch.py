@@ -5,9 +5,29 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from stickslip.kernel.engine import N_FLOAT, N_INT, run, run_prepared
+from stickslip.kernel.engine import (
+    F_MAX_VELOCITY,
+    F_T_CERTIFIED,
+    F_T_END,
+    F_T_LAST_STICK,
+    I_N_BREAKAWAY,
+    I_N_SEGMENTS,
+    I_N_STEPS,
+    I_N_STICK,
+    I_STATUS,
+    N_FLOAT,
+    N_INT,
+    STATUS_CYCLE,
+    STATUS_OSCILLATION,
+    STATUS_STEADY,
+    STATUS_STUCK,
+    STATUS_T_MAX,
+    mode_at_belt_speed,
+    run,
+    run_prepared,
+)
 from stickslip.kernel.linalg import gauss_solve
-from stickslip.kernel.system import prepare_bands
+from stickslip.kernel.system import STICK, prepare_bands
 
 
 @njit(cache=True)
@@ -74,20 +94,93 @@ def coulomb_tables(lams, gammas):
 
 @njit(parallel=True, cache=True)
 def run_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0s, t_max,
-               max_events, cycle_tol, max_period):
+               max_events, cycle_tol, max_period, join_startup=True):
     """Run one system from many initial states ``z0s`` (shape ``(n_states, 2 n)``) in parallel.
 
     The system is prepared once (:func:`stickslip.kernel.system.prepare_bands`) and shared by
     the threads. Returns the float and integer summaries, shapes ``(n_states, N_FLOAT)`` and
     ``(n_states, N_INT)`` (layouts of :mod:`stickslip.kernel.engine`).
+
+    With ``join_startup`` and a single degree of freedom, each state is run only until its
+    first stick phase, whose continuation is then taken from the start-up run
+    (:func:`join_startup_summary`); other systems, and ``join_startup=False``, run every state
+    to its own verdict. The shortcut's summaries carry no velocity maximum (NaN), and a slip
+    oscillation certified before any stick has no amplitude (NaN; see
+    :func:`~stickslip.kernel.engine.run_prepared`); verdicts, periods, certificate times,
+    and the cycles of stick-slip runs (the start-up run's) are complete.
+
+    Why this is exact (one degree of freedom, any friction law): while stuck, the slider moves
+    with the belt, ``v = 1`` and ``xi' = 1`` while the stick force of Eq. (20),
+    ``S = K xi + C v = K xi + C`` (shifted coordinates), stays between the static limits
+    ``-lambda (1 + 2 gamma)`` and ``lambda``. The stick state is fixed by ``xi`` alone, ``xi``
+    grows at unit rate and ``S`` with it (``K > 0``), so every stick phase ends where
+    ``S = lambda``: at the same breakaway state, onto slip-I. Two stick
+    states at ``xi_1 <= xi_2`` are the same motion shifted in time by ``xi_2 - xi_1``. The
+    start-up state (``startup_vector``: ``v = 1``, spring at the kinetic offset) is such a
+    stick state, so a state that sticks at time ``t_s`` in ``xi_s`` continues exactly as the
+    start-up run does from time ``xi_s - xi_startup``: same verdict, same cycle (period,
+    amplitude, stick ratio), and every later time shifted by
+    ``t_s + xi_startup - xi_s``.
     """
     prepared = prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
     n_states = z0s.shape[0]
     float_summary = np.empty((n_states, N_FLOAT))
     int_summary = np.empty((n_states, N_INT), dtype=np.int64)
+    nz = z0s.shape[1]
+    shortcut = join_startup and nz == 2
+    startup = startup_vector(stiffness, lam, gamma)
+    if shortcut:
+        stick_row = prepared[7]
+        shortcut = mode_at_belt_speed(np.array([startup[0], startup[1], 1.0]), stick_row, lam,
+                                      gamma) == STICK
+    startup_f = np.empty(N_FLOAT)
+    startup_i = np.empty(N_INT, dtype=np.int64)
+    if shortcut:
+        canonical = run_prepared(mass, lam, gamma, edges, prepared, startup, t_max, max_events,
+                                 cycle_tol, max_period, False, False, False)
+        startup_f[:] = canonical[4]
+        startup_i[:] = canonical[5]
     for c in prange(n_states):
         result = run_prepared(mass, lam, gamma, edges, prepared, z0s[c], t_max, max_events,
-                              cycle_tol, max_period, False, False)
+                              cycle_tol, max_period, False, False, shortcut)
         float_summary[c] = result[4]
         int_summary[c] = result[5]
+        if shortcut and result[5][I_STATUS] == STATUS_STUCK:
+            join_startup_summary(float_summary[c], int_summary[c], result[6][0], startup[0],
+                                 startup_f, startup_i, t_max)
     return float_summary, int_summary
+
+
+@njit(cache=True)
+def join_startup_summary(fsum, isum, xi_stuck, xi_startup, startup_f, startup_i, t_max):
+    """Complete, in place, the summaries of a run that stopped at its first stick phase.
+
+    ``fsum``, ``isum``: the stopped run's summaries (``F_T_END`` the time ``t_s`` the stick
+    phase began, in ``xi_stuck``); ``startup_f``, ``startup_i``: those of the start-up run
+    (stick state at ``xi_startup``). The joined run is the stopped one, then the start-up
+    run's motion from its time ``xi_stuck - xi_startup`` on (see :func:`run_states`): its
+    verdict, cycle and certificate are the start-up run's, its times are shifted by
+    ``t_s + xi_startup - xi_stuck``, and its counts add (the shared stick phase and segment
+    counted once). The horizon ``t_max`` applies to the joined time: a certificate that comes
+    later is not one, as in a direct run (the event budget applies to each part).
+    """
+    shift = fsum[F_T_END] + xi_startup - xi_stuck
+    n_stick = isum[I_N_STICK] + startup_i[I_N_STICK] - 1
+    n_bk = isum[I_N_BREAKAWAY] + startup_i[I_N_BREAKAWAY]
+    n_seg = isum[I_N_SEGMENTS] + startup_i[I_N_SEGMENTS] - 1
+    n_steps = isum[I_N_STEPS] + startup_i[I_N_STEPS]
+    fsum[:] = startup_f
+    isum[:] = startup_i
+    fsum[F_MAX_VELOCITY] = np.nan  # not tracked before the stick phase (run_prepared)
+    fsum[F_T_END] = startup_f[F_T_END] + shift
+    fsum[F_T_LAST_STICK] = startup_f[F_T_LAST_STICK] + shift
+    fsum[F_T_CERTIFIED] = startup_f[F_T_CERTIFIED] + shift
+    isum[I_N_STICK] = n_stick
+    isum[I_N_BREAKAWAY] = n_bk
+    isum[I_N_SEGMENTS] = n_seg
+    isum[I_N_STEPS] = n_steps
+    certified = (isum[I_STATUS] == STATUS_STEADY or isum[I_STATUS] == STATUS_CYCLE
+                 or isum[I_STATUS] == STATUS_OSCILLATION)
+    if certified and fsum[F_T_CERTIFIED] > t_max:
+        isum[I_STATUS] = STATUS_T_MAX
+        fsum[F_T_END] = t_max

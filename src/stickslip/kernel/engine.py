@@ -45,6 +45,10 @@ STATUS_MAX_EVENTS = 4
 STATUS_MAX_STEPS = 5
 #: a slip oscillation (periodic, never sticking) certified by a repeating section state
 STATUS_OSCILLATION = 6
+#: kernel-internal: a ``stop_at_stick`` run reached its first stick phase (see
+#: :func:`stickslip.kernel.batch.run_states`, which replaces it by the verdict of the stick
+#: phase's continuation; it never leaves the kernel)
+STATUS_STUCK = 7
 
 #: Bound on sub-steps per run. A very stiff or heavily damped structure needs tiny steps
 #: (h ||A|| <= 1/2); this keeps such a run to seconds, ending with a reported status.
@@ -158,7 +162,7 @@ def _polynomials(sig_rows, start, sign, offset, u, row, coef):
 
 @njit(cache=True)
 def first_reach(sig_rows, start, sign, offset, sig0, sig1, w0, h, ahat, u, have_u, row, coef,
-                bp, departing):
+                bp, departing, quick=False):
     """First ``s`` in ``[0, h]`` where the event function ``g`` reaches 0.
 
     ``departing``: the state has just left ``g = 0`` (a breakaway onto a slip mode whose
@@ -170,6 +174,13 @@ def first_reach(sig_rows, start, sign, offset, sig0, sig1, w0, h, ahat, u, have_
     ``g`` stays negative on the step. The cheap test (endpoint signs of ``g`` to ``g'''``)
     proves most steps event-free; the others are split into monotone pieces so that a
     graze (``g`` touching 0 between two negative end values) is found at its extremum.
+
+    ``quick`` (the runs of :func:`stickslip.kernel.batch.run_states` that stop at the first
+    stick): when the end signs of ``g'``, ``g''`` and ``g'''`` agree, ``g`` is monotone on the
+    step (the cheap test's argument), so the search for monotone pieces is skipped and
+    Newton's iteration starts from the left end's tangent; the Taylor vectors use
+    reciprocals (:func:`~stickslip.kernel.polynomial.taylor_vectors`). The root is the same
+    to rounding; the other runs keep the engine's historical arithmetic bit for bit.
     """
     g0 = sign * sig0[start] + offset
     g1 = sign * sig1[start] + offset
@@ -178,9 +189,17 @@ def first_reach(sig_rows, start, sign, offset, sig0, sig1, w0, h, ahat, u, have_
     if g0 <= 0.0 and _taylor_bounds(sig0, sig1, start, sign, offset, h)[1] < 0.0:
         return np.inf
     if have_u[0] == 0:
-        taylor_vectors(ahat, w0, u)
+        taylor_vectors(ahat, w0, u, quick)
         have_u[0] = 1
     _polynomials(sig_rows, start, sign, offset, u, row, coef)
+    if quick and _no_sign_change(sig0, sig1, start):
+        ga = coef[0, 0]
+        gb = poly_value(coef, 0, h)
+        if gb >= 0.0 and gb > ga:
+            if ga >= 0.0:
+                return np.inf if departing else 0.0
+            return monotone_root(coef, 0, 0.0, h, ga, gb, -ga / coef[1, 0])
+        return np.inf
     npts = monotone_breakpoints(coef, 0.0, h, bp)
     ga = poly_value(coef, 0, bp[0])
     for i in range(npts - 1):
@@ -305,16 +324,27 @@ def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_m
     """
     prepared = prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
     return run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle_tol,
-                        max_period, record, run_to_t_max)
+                        max_period, record, run_to_t_max, False)
 
 
 @njit(cache=True)
 def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle_tol, max_period,
-                 record, run_to_t_max):
+                 record, run_to_t_max, stop_at_stick):
     """:func:`run` with the per-system data of :func:`prepare_bands` computed once.
 
     Many runs of one system (basin stability: one system, many initial states) share the
     matrix exponentials and certificates; ``prepared`` is only read, so threads may share it.
+
+    With ``stop_at_stick`` the run ends with the kernel-internal status ``STATUS_STUCK`` as
+    soon as a stick phase begins (or at once when ``z0`` is a stick state), unless a verdict
+    was certified before; ``F_T_END`` is then the time the stick phase began and the final
+    state is the stick state. For a single degree of freedom every stick phase ends at the
+    same breakaway state, so the rest of the motion is known from one run
+    (:func:`stickslip.kernel.batch.run_states`). Such a run is the basin's hot loop, so it
+    does not track extremes (half the cost of a step in a narrow friction band):
+    ``F_MAX_VELOCITY`` is NaN, and so are the amplitude, ``xi`` range and largest velocity
+    of a slip oscillation it certifies (its period is exact); and its event search is the
+    ``quick`` one of :func:`first_reach` (the same roots to rounding).
     """
     n = mass.shape[0]
     nz = 2 * n
@@ -384,7 +414,9 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
     fresh = True  # the signature of w must be recomputed (at the start and after events)
     just_broke_away = False  # the first step after a breakaway (see first_reach)
     departing = False
-    while True:
+    if stop_at_stick and mode == STICK:
+        status = STATUS_STUCK
+    while status != STATUS_STUCK:
         if mode_kind(mode) == SLIP_I and status == STATUS_RUNNING and lyapunov_applies(
                 mode_band(mode), lyap_lo, lyap_hi, n_lyap):
             last_bound, certified = lyapunov_bound(w, z_eq, lyap, kappa, n_lyap, mode_band(mode),
@@ -409,7 +441,7 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
         have_u[0] = 0
         if t + h > t_max:
             h = t_max - t
-            taylor_vectors(ahat[mode], w, u)
+            taylor_vectors(ahat[mode], w, u, stop_at_stick)
             have_u[0] = 1
             taylor_state(u, h, w1)
         else:
@@ -424,16 +456,17 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
         for e in range(ev_count[mode]):
             s = first_reach(sig_rows[mode], f_start[mode, e], f_sign[mode, e], f_offset[mode, e],
                             sig0, sig1, w, h, ahat[mode], u, have_u, row, coef, bp,
-                            departing and ev_next[mode, e] == NEXT_BELT)
+                            departing and ev_next[mode, e] == NEXT_BELT, stop_at_stick)
             if s < s_ev:
                 s_ev = s
                 e_ev = e
         if e_ev >= 0:
             if have_u[0] == 0:
-                taylor_vectors(ahat[mode], w, u)
+                taylor_vectors(ahat[mode], w, u, stop_at_stick)
                 have_u[0] = 1
             taylor_state(u, s_ev, w_end)
-            signature(sig_rows[mode], w_end, sig1)
+            if not stop_at_stick:  # the value ranges are not tracked (sig1 is only theirs)
+                signature(sig_rows[mode], w_end, sig1)
             s_end = s_ev
         else:
             w_end[:] = w1
@@ -448,7 +481,7 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             os_xmin = min(os_xmin, w[0])
             os_xmax = max(os_xmax, w_end[0])
             os_vmax = max(os_vmax, 1.0)
-        else:
+        elif not stop_at_stick:
             lo, hi = value_range(sig_rows[mode], f_start[mode, F_XI], sig0, sig1, w, s_end,
                                  ahat[mode], u, have_u, row, coef, bp, cur_xmin, cur_xmax)
             cur_xmin = min(cur_xmin, lo)
@@ -540,6 +573,8 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
                 n_stick += 1
                 stick_start = t
                 t_last_stick = t
+                if stop_at_stick and status == STATUS_RUNNING:
+                    status = STATUS_STUCK
         if new_mode != mode:
             if mode == STICK and t == stick_start:
                 n_stick -= 1  # a stick phase of zero duration is a touch, not a phase
@@ -555,6 +590,8 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             n_seg += 1
         if (status == STATUS_CYCLE or status == STATUS_OSCILLATION) and not run_to_t_max:
             break
+        if status == STATUS_STUCK:
+            break
         if n_ev >= max_events:
             if status == STATUS_RUNNING:
                 status = STATUS_MAX_EVENTS
@@ -562,6 +599,14 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
 
     fsum[F_LYAPUNOV_BOUND] = last_bound
     fsum[F_MAX_VELOCITY] = max_v
+    if stop_at_stick:
+        # extremes are not tracked: the velocity maximum, and a slip oscillation's xi range
+        fsum[F_MAX_VELOCITY] = np.nan
+        if status == STATUS_OSCILLATION:
+            fsum[F_AMPLITUDE] = np.nan
+            fsum[F_XI_MIN] = np.nan
+            fsum[F_XI_MAX] = np.nan
+            fsum[F_CYCLE_MAX_VELOCITY] = np.nan
     fsum[F_T_END] = t
     fsum[F_T_LAST_STICK] = t_last_stick
     isum[I_STATUS] = status

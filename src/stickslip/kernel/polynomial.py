@@ -24,18 +24,29 @@ MAX_BREAKPOINTS = 8
 N_POLYNOMIALS = DERIVATIVE_DEPTH + 2
 
 
+#: ``1/k`` for ``k = 0..TAYLOR_DEGREE`` (entry 0 unused)
+RECIPROCALS = np.array([0.0] + [1.0 / k for k in range(1, TAYLOR_DEGREE + 1)])
+
+
 @njit(cache=True)
-def taylor_vectors(ahat: np.ndarray, w: np.ndarray, u: np.ndarray) -> None:
-    """Fill ``u[k] = ahat^k w / k!`` for ``k = 0..TAYLOR_DEGREE``."""
+def taylor_vectors(ahat: np.ndarray, w: np.ndarray, u: np.ndarray, reciprocal: bool = False) -> None:
+    """Fill ``u[k] = ahat^k w / k!`` for ``k = 0..TAYLOR_DEGREE``.
+
+    With ``reciprocal`` the division by ``k`` is a multiplication by the rounded ``1/k``
+    (cheaper; the same accuracy, one more rounding per term). Runs that must stay
+    bit-identical to the engine's history (the start-up runs of the paper's Coulomb law)
+    divide.
+    """
     m = w.shape[0]
     for i in range(m):
         u[0, i] = w[i]
     for k in range(1, TAYLOR_DEGREE + 1):
+        inv = RECIPROCALS[k]
         for i in range(m):
             acc = 0.0
             for j in range(m):
                 acc += ahat[i, j] * u[k - 1, j]
-            u[k, i] = acc / k
+            u[k, i] = acc * inv if reciprocal else acc / k
 
 
 @njit(cache=True)
@@ -79,18 +90,20 @@ def poly_value(coef: np.ndarray, j: int, s: float) -> float:
 
 
 @njit(cache=True)
-def monotone_root(coef: np.ndarray, j: int, lo: float, hi: float, flo: float, fhi: float) -> float:
+def monotone_root(coef: np.ndarray, j: int, lo: float, hi: float, flo: float, fhi: float,
+                  guess: float = np.nan) -> float:
     """Root of the monotone polynomial ``g^(j)`` on ``[lo, hi]`` where it changes sign.
 
     Safeguarded Newton iteration (bisection whenever Newton leaves the bracket) down to
-    the resolution of double precision.
+    the resolution of double precision, from ``guess`` when it lies inside the bracket,
+    else from the secant point.
     """
     if flo == 0.0:
         return lo
     if fhi == 0.0:
         return hi
     negative_low = flo < 0.0
-    x = lo - flo * (hi - lo) / (fhi - flo)
+    x = guess if lo < guess < hi else lo - flo * (hi - lo) / (fhi - flo)
     if not (lo < x < hi):
         x = 0.5 * (lo + hi)
     for _ in range(200):
