@@ -218,3 +218,17 @@ def test_newton_converges_quadratically_with_the_exact_jacobian(case: str) -> No
         if after > 1e-13:
             assert after <= 1.0 * before**2, residuals
     assert residuals[-1] <= 1e-11 * max(1.0, float(np.max(np.abs(solution[0]))))
+
+
+def test_stribeck_cycle_at_the_default_tolerance() -> None:
+    # a default Stribeck interpolant has about 100 bands, so a cycle has hundreds of band
+    # events: the return map's event budget scales with the bands (RETURN_EVENTS per band).
+    # Rigid base: the breakaway state is unique, so the one cycle is the start-up run's
+    # (same period to the cycle tolerance, EngineOptions.cycle_tol = 1e-9)
+    structure = rigid_base(0.1)
+    slider = Slider(2.0, friction=StribeckFriction(0.2))
+    search = find_cycles(structure, slider, seeds=4)
+    assert len(search.cycles) == 1
+    startup = simulate(structure, slider, record=False)
+    assert startup.verdict is Verdict.STICK_SLIP
+    assert search.cycles[0].period == pytest.approx(startup.period, rel=1e-8)

@@ -16,6 +16,11 @@ non-trivial Floquet multipliers (the stick phase removes the slider's own coordi
 rigid-base cycle has none and is stable as soon as it exists). Every reported cycle is then
 certified by a run of :func:`stickslip.simulate` started on it (its breakaway state repeats),
 which also gives the period, amplitude and stick ratio.
+
+Known limit: the section is the breakaway onto slip-I (``S = lambda``). A cycle whose stick
+phases can also end onto slip-II (``S = -lambda (1 + 2 gamma)``, possible with a foundation)
+is evaluated on the wrong section; such a "fixed point" fails the certifying run and is not
+reported, so the search can miss that cycle but never reports a false one.
 """
 
 from __future__ import annotations
@@ -35,7 +40,9 @@ from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
 
 FloatArray = NDArray[np.float64]
-#: Events allowed between two breakaways of the return map (a cycle has a handful).
+#: Events allowed per friction band in a run of the return map: a stick-slip cycle crosses
+#: each band edge a few times, and a run spans at most ``2 max_period + 1`` breakaways (the
+#: Coulomb law, one band: 400 events; a Stribeck interpolant of 100 bands: 40,000).
 RETURN_EVENTS = 400
 
 
@@ -115,11 +122,11 @@ class _ReturnMap:
 
     def __init__(self, structure: Structure, slider: Slider, options: EngineOptions) -> None:
         self.structure, self.slider = structure, slider
-        self.options = EngineOptions(t_max=options.t_max, max_events=RETURN_EVENTS)
+        _edges, intercepts, slopes = slider.friction.bands(float(slider.lam), float(slider.gamma))
+        self.options = EngineOptions(t_max=options.t_max, max_events=RETURN_EVENTS * len(intercepts))
         self.n = structure.n_dof
         self.evaluations = 0
         n2 = 2 * self.n
-        _edges, intercepts, slopes = slider.friction.bands(float(slider.lam), float(slider.gamma))
         ahat, stick_row = mode_matrices(
             np.ascontiguousarray(structure.mass, dtype=np.float64),
             np.ascontiguousarray(structure.damping, dtype=np.float64),
