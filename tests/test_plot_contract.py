@@ -26,14 +26,15 @@ from stickslip.analysis.frequency_response import response_curves
 from stickslip.analysis.simulation import SimulationResult, simulate
 from stickslip.analysis.theory import optimal_foundation_fit
 from stickslip.analysis.tuning import TuningCurve, tune_foundation, tuning_curve
-from stickslip.model import Slider, elastic_foundation
-from stickslip.plot import absorber, design, maps, simulation
+from stickslip.model import Slider, elastic_foundation, rigid_base
+from stickslip.plot import absorber, basin, design, maps, simulation
 from stickslip.plot.figure import PlotResult
 from stickslip.reproduction.steps_design import EXAMPLE
 from stickslip.sweep import stick_slip_boundary
+from stickslip.sweep.basin import BasinMap, BasinResult, basin_map, basin_stability, sample_box
 from stickslip.sweep.occurrence import OccurrenceMap, occurrence_map
 
-PLOT_MODULES: tuple[ModuleType, ...] = (simulation, absorber, maps, design)
+PLOT_MODULES: tuple[ModuleType, ...] = (simulation, absorber, maps, design, basin)
 # arguments that select the data and may be given by position (everything else keyword-only)
 DATA_ARGUMENTS = {"optimal_parameter_plot": 2, "analytic_curves_plot": 2}
 
@@ -77,8 +78,21 @@ def report() -> DesignReport:
 
 
 @pytest.fixture(scope="module")
+def basin_result() -> BasinResult:
+    structure, slider = rigid_base(0.1), Slider(2.5)
+    states = sample_box(structure, slider, 200, {"xi": (-4.0, 4.0), "v": (-3.0, 1.5)}, seed=1)
+    return basin_stability(structure, slider, states)
+
+
+@pytest.fixture(scope="module")
+def basin_grid() -> BasinMap:
+    return basin_map("log:0.5:5:3", [0.05, 0.2], samples=40)
+
+
+@pytest.fixture(scope="module")
 def cases(run: SimulationResult, curve: TuningCurve, occurrence: OccurrenceMap, boundary: Any,
-          report: DesignReport) -> dict[str, tuple[Callable[..., PlotResult], tuple[Any, ...], int]]:
+          report: DesignReport, basin_result: BasinResult,
+          basin_grid: BasinMap) -> dict[str, tuple[Callable[..., PlotResult], tuple[Any, ...], int]]:
     """Every public ``*_plot``: (function, positional data, number of axes it draws into)."""
     curves = response_curves(0.1, optimal_foundation_fit(0.1))
     return {
@@ -94,6 +108,8 @@ def cases(run: SimulationResult, curve: TuningCurve, occurrence: OccurrenceMap, 
         "occurrence_map_plot": (maps.occurrence_map_plot, (occurrence,), 1),
         "boundary_plot": (maps.boundary_plot, (boundary,), 1),
         "design_flowchart_plot": (design.design_flowchart_plot, (report,), 1),
+        "basin_plot": (basin.basin_plot, (basin_result,), 1),
+        "basin_map_plot": (basin.basin_map_plot, (basin_grid,), 1),
     }
 
 
@@ -152,7 +168,8 @@ def test_unknown_keyword_is_a_type_error(name: str, cases: dict[str, Any]) -> No
 
 def test_results_plot_by_delegating(run: SimulationResult, curve: TuningCurve,
                                     occurrence: OccurrenceMap, boundary: Any,
-                                    report: DesignReport) -> None:
+                                    report: DesignReport, basin_result: BasinResult,
+                                    basin_grid: BasinMap) -> None:
     results: list[tuple[Any, dict[str, Any], int]] = [
         (run, {}, 3),
         (occurrence, {}, 1),
@@ -164,6 +181,8 @@ def test_results_plot_by_delegating(run: SimulationResult, curve: TuningCurve,
         (curve, {"kind": "equivalent-damping"}, 1),
         (tune_foundation(0.1), {}, 1),
         (report, {}, 1),
+        (basin_result, {}, 1),
+        (basin_grid, {}, 1),
     ]
     for result, kwargs, n_axes in results:
         out = result.plot(**kwargs)

@@ -25,7 +25,17 @@ from stickslip.cli.console import (
     save_plot,
     warn_fitted_range,
 )
-from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE, PLOT
+from stickslip.cli.options import (
+    BACKEND,
+    DVA,
+    FRICTION,
+    GAMMA,
+    JSON,
+    K_SCALE,
+    PLOT,
+    SCHEDULER,
+    SCHEDULER_TIMEOUT,
+)
 
 LAM_SPEC = Annotated[
     str,
@@ -138,21 +148,13 @@ def map_command(
     t_max: T_MAX = None,
     csv: Annotated[Path | None, typer.Option("--csv", help="also write one CSV row per cell")] = None,
     plot: PLOT = None,
-    backend: Annotated[
-        str | None,
-        typer.Option("--backend", help="serial, threads (default) or dask (default with --scheduler)"),
-    ] = None,
+    backend: BACKEND = None,
     workers: WORKERS = None,
-    scheduler: Annotated[
-        str | None, typer.Option("--scheduler", help="address of a running Dask scheduler")
-    ] = None,
+    scheduler: SCHEDULER = None,
     chunk_size: Annotated[
         int | None, typer.Option("--chunk-size", help="cells per chunk (progress, tasks, resume)")
     ] = None,
-    scheduler_timeout: Annotated[
-        float, typer.Option("--scheduler-timeout",
-                            help="seconds allowed to reach the --scheduler (default 10)")
-    ] = 10.0,
+    scheduler_timeout: SCHEDULER_TIMEOUT = 10.0,
     overwrite: Annotated[
         bool, typer.Option("--overwrite", help="replace an existing --out, --csv or --plot file, "
                            "or a resume store of another configuration")
