@@ -11,6 +11,7 @@ from numba import njit
 
 from stickslip.kernel.linalg import dot, matvec
 from stickslip.kernel.polynomial import (
+    DERIVATIVE_DEPTH,
     MAX_BREAKPOINTS,
     N_POLYNOMIALS,
     TAYLOR_DEGREE,
@@ -151,13 +152,13 @@ def _taylor_bounds(sig0, sig1, start, sign, offset, h):
 
 
 @njit(cache=True)
-def _polynomials(sig_rows, start, sign, offset, u, row, coef):
-    """Taylor coefficients of the functional and its derivatives over the current step."""
+def _polynomials(sig_rows, start, sign, offset, u, row, coef, depth=DERIVATIVE_DEPTH + 1):
+    """Taylor coefficients of the functional and its first ``depth`` derivatives over the step."""
     m = row.shape[0]
     for i in range(m):
         row[i] = sign * sig_rows[start, i]
     row[m - 1] += offset
-    functional_polynomials(u, row, coef)
+    functional_polynomials(u, row, coef, depth)
 
 
 @njit(cache=True)
@@ -191,15 +192,18 @@ def first_reach(sig_rows, start, sign, offset, sig0, sig1, w0, h, ahat, u, have_
     if have_u[0] == 0:
         taylor_vectors(ahat, w0, u, quick)
         have_u[0] = 1
-    _polynomials(sig_rows, start, sign, offset, u, row, coef)
     if quick and _no_sign_change(sig0, sig1, start):
+        _polynomials(sig_rows, start, sign, offset, u, row, coef, 1)  # g and g' (Newton)
         ga = coef[0, 0]
         gb = poly_value(coef, 0, h)
         if gb >= 0.0 and gb > ga:
             if ga >= 0.0:
                 return np.inf if departing else 0.0
-            return monotone_root(coef, 0, 0.0, h, ga, gb, -ga / coef[1, 0])
+            slope = coef[1, 0]
+            tangent = -ga / slope if slope != 0.0 else np.nan  # Newton's first point from s = 0
+            return monotone_root(coef, 0, 0.0, h, ga, gb, tangent)
         return np.inf
+    _polynomials(sig_rows, start, sign, offset, u, row, coef)
     npts = monotone_breakpoints(coef, 0.0, h, bp)
     ga = poly_value(coef, 0, bp[0])
     for i in range(npts - 1):

@@ -61,8 +61,9 @@ def taylor_state(u: np.ndarray, s: float, out: np.ndarray) -> None:
 
 
 @njit(cache=True)
-def functional_polynomials(u: np.ndarray, row: np.ndarray, coef: np.ndarray) -> None:
-    """Coefficients of ``g(s) = row . w(s)`` and its first four derivatives.
+def functional_polynomials(u: np.ndarray, row: np.ndarray, coef: np.ndarray,
+                           depth: int = DERIVATIVE_DEPTH + 1) -> None:
+    """Coefficients of ``g(s) = row . w(s)`` and its first ``depth`` (default four) derivatives.
 
     ``coef[j, k]`` is the coefficient of ``s^k`` in ``g^(j)``.
     """
@@ -72,7 +73,7 @@ def functional_polynomials(u: np.ndarray, row: np.ndarray, coef: np.ndarray) -> 
         for i in range(m):
             acc += row[i] * u[k, i]
         coef[0, k] = acc
-    for j in range(1, DERIVATIVE_DEPTH + 2):
+    for j in range(1, depth + 1):
         for k in range(TAYLOR_DEGREE + 1):
             if k + 1 <= TAYLOR_DEGREE:
                 coef[j, k] = (k + 1) * coef[j - 1, k + 1]
