@@ -1,6 +1,6 @@
 """Benchmark: basin stability (samples per second) against a solve_ivp oracle, in one run.
 
-    .venv/bin/python benchmarks/bench_basin.py [--samples 20000] [--oracle-samples 40]
+    .venv/bin/python benchmarks/bench_basin.py [--samples 20000] [--oracle-samples 40] [--repeats 3]
 
 Two bistable rigid-base cases (issue 13, point 6): the paper's Coulomb law (zeta = 0.1,
 lambda = 2.5) and a Stribeck law (zeta = 0.1, lambda = 2, v_s/V = 0.2, n = 1, tolerance
@@ -53,6 +53,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--samples", type=int, default=20_000)
     parser.add_argument("--oracle-samples", type=int, default=40)
+    parser.add_argument("--repeats", type=int, default=3, help="engine runs per case (the best counts)")
     args = parser.parse_args()
     structure = rigid_base(0.1)
     cases = [
@@ -65,7 +66,10 @@ def main() -> None:
     for name, slider in cases:
         states = sample_box(structure, slider, args.samples, {"xi": (-4.0, 4.0), "v": (-3.0, 1.5)}, seed=1)
         basin_stability(structure, slider, states[:64])  # compile / load the cache
-        result = basin_stability(structure, slider, states)
+        # best of --repeats, as timeit does: the machine is shared, and the best run is the
+        # one least disturbed by other work (every run computes the same labels)
+        results = [basin_stability(structure, slider, states) for _ in range(args.repeats)]
+        result = min(results, key=lambda r: r.elapsed)
         engine_rate = args.samples / result.elapsed
         start = time.perf_counter()
         labels = [oracle_label(structure, slider, s) for s in states[: args.oracle_samples]]
