@@ -101,6 +101,38 @@ def test_horizon_applies_to_the_joined_clock() -> None:
     status_join, status_full = short[0][1][:, engine.I_STATUS], short[1][1][:, engine.I_STATUS]
     assert (status_full == engine.STATUS_T_MAX).sum() > 10
     np.testing.assert_array_equal(status_join, status_full)
+    (f_join, i_join), (f_full, i_full) = short
+    # a run cut by the horizon ends at it and reports no cycle, joined or not
+    cut = status_full == engine.STATUS_T_MAX
+    np.testing.assert_array_equal(f_join[cut, engine.F_T_END], t_max)
+    np.testing.assert_array_equal(f_full[cut, engine.F_T_END], t_max)
+    assert np.isnan(f_join[cut, engine.F_PERIOD]).all() and np.isnan(f_full[cut, engine.F_PERIOD]).all()
+    np.testing.assert_array_equal(i_join[:, engine.I_CYCLE_K], i_full[:, engine.I_CYCLE_K])
+    np.testing.assert_allclose(f_join[~cut, engine.F_T_CERTIFIED], f_full[~cut, engine.F_T_CERTIFIED],
+                               rtol=1e-9, atol=1e-9)
+
+
+def test_start_up_run_gets_the_time_a_joined_clock_runs_ahead_by() -> None:
+    # a state stuck at the far end of the stick range (just below the breakaway) joins the
+    # start-up run late in its stick phase: its clock runs ahead of the start-up run's, and
+    # with a horizon just above its own certificate the start-up run alone (certified later
+    # on its clock) would be cut; it is given the extra time (run_states)
+    structure, slider = rigid_base(0.1), CASES["coulomb"]
+    edges, intercepts, slopes = slider.friction.bands(slider.lam, slider.gamma)
+    args = (structure.mass, structure.damping, structure.stiffness, slider.lam, slider.gamma,
+            edges, intercepts, slopes)
+    # breakaway at S = xi + 2 zeta = lambda (stick force of Eq. 20, rigid base): xi_b = lambda - 0.2
+    near_breakaway = np.array([[slider.lam - 0.2 - 1e-3, 1.0]])
+    full = run_states(*args, near_breakaway, T_MAX, MAX_EVENTS, CYCLE_TOL, MAX_PERIOD, False)
+    t_cert = float(full[0][0, engine.F_T_CERTIFIED])
+    assert full[1][0, engine.I_STATUS] == engine.STATUS_CYCLE
+    startup = run_states(*args, np.array([[-slider.gamma * slider.lam, 1.0]]), T_MAX, MAX_EVENTS,
+                         CYCLE_TOL, MAX_PERIOD, False)
+    assert startup[0][0, engine.F_T_CERTIFIED] > t_cert + 1.0  # the start-up run certifies later
+    for t_max in (t_cert * (1 + 1e-9), t_cert * (1 - 1e-9)):
+        joined = run_states(*args, near_breakaway, t_max, MAX_EVENTS, CYCLE_TOL, MAX_PERIOD, True)
+        direct = run_states(*args, near_breakaway, t_max, MAX_EVENTS, CYCLE_TOL, MAX_PERIOD, False)
+        assert joined[1][0, engine.I_STATUS] == direct[1][0, engine.I_STATUS]
 
 
 def test_no_shortcut_with_a_foundation() -> None:

@@ -6,10 +6,18 @@ import numpy as np
 from numba import njit, prange
 
 from stickslip.kernel.engine import (
+    F_AMPLITUDE,
+    F_CYCLE_MAX_VELOCITY,
+    F_CYCLE_MISMATCH,
     F_MAX_VELOCITY,
+    F_PERIOD,
+    F_STICK_RATIO,
     F_T_CERTIFIED,
     F_T_END,
     F_T_LAST_STICK,
+    F_XI_MAX,
+    F_XI_MIN,
+    I_CYCLE_K,
     I_N_BREAKAWAY,
     I_N_SEGMENTS,
     I_N_STEPS,
@@ -129,14 +137,18 @@ def run_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, 
     nz = z0s.shape[1]
     shortcut = join_startup and nz == 2
     startup = startup_vector(stiffness, lam, gamma)
+    stick_row = prepared[7]
     if shortcut:
-        stick_row = prepared[7]
-        shortcut = mode_at_belt_speed(np.array([startup[0], startup[1], 1.0]), stick_row, lam,
-                                      gamma) == STICK
+        shortcut = stick_row[0] > 0.0 and mode_at_belt_speed(
+            np.array([startup[0], startup[1], 1.0]), stick_row, lam, gamma) == STICK
     startup_f = np.empty(N_FLOAT)
     startup_i = np.empty(N_INT, dtype=np.int64)
     if shortcut:
-        canonical = run_prepared(mass, lam, gamma, edges, prepared, startup, t_max, max_events,
+        # a joined clock runs behind the start-up run's by at most one stick phase, whose
+        # length is at most the static range over the stick force's rate, lambda (2 + 2 gamma)
+        # / K: the start-up run gets that much more time, so the horizon is the joined one's
+        t_longer = t_max + lam * (2.0 + 2.0 * gamma) / stick_row[0]
+        canonical = run_prepared(mass, lam, gamma, edges, prepared, startup, t_longer, max_events,
                                  cycle_tol, max_period, False, False, False)
         startup_f[:] = canonical[4]
         startup_i[:] = canonical[5]
@@ -162,7 +174,8 @@ def join_startup_summary(fsum, isum, xi_stuck, xi_startup, startup_f, startup_i,
     verdict, cycle and certificate are the start-up run's, its times are shifted by
     ``t_s + xi_startup - xi_stuck``, and its counts add (the shared stick phase and segment
     counted once). The horizon ``t_max`` applies to the joined time: a certificate that comes
-    later is not one, as in a direct run (the event budget applies to each part).
+    later is not one, as in a direct run (the start-up run was given the extra time a joined
+    clock can lag by); the event budget applies to each part.
     """
     shift = fsum[F_T_END] + xi_startup - xi_stuck
     n_stick = isum[I_N_STICK] + startup_i[I_N_STICK] - 1
@@ -181,6 +194,11 @@ def join_startup_summary(fsum, isum, xi_stuck, xi_startup, startup_f, startup_i,
     isum[I_N_STEPS] = n_steps
     certified = (isum[I_STATUS] == STATUS_STEADY or isum[I_STATUS] == STATUS_CYCLE
                  or isum[I_STATUS] == STATUS_OSCILLATION)
-    if certified and fsum[F_T_CERTIFIED] > t_max:
+    if (certified and fsum[F_T_CERTIFIED] > t_max) or fsum[F_T_END] > t_max:
+        # the horizon comes first on the joined clock: no certificate, as in a direct run
         isum[I_STATUS] = STATUS_T_MAX
+        isum[I_CYCLE_K] = 0
+        for column in (F_PERIOD, F_AMPLITUDE, F_XI_MIN, F_XI_MAX, F_STICK_RATIO,
+                       F_CYCLE_MAX_VELOCITY, F_CYCLE_MISMATCH, F_T_CERTIFIED):
+            fsum[column] = np.nan
         fsum[F_T_END] = t_max
