@@ -47,6 +47,16 @@ def main() -> None:
           + ", ".join(f"{z:.3g}: {f:.2f}" for z, f in zip(bmap.dataset["zeta"].values, column, strict=True)))
     bmap.plot().savefig(args.out / "basin_map_rigid.png")
 
+    # over (lambda, delta) at zeta = 0.1: the linear law's slope delta > 0 weakens friction
+    n_delta = 6 if args.samples < 10_000 else 12
+    dmap = basin_map(np.geomspace(0.3, 10.0, n_lam), [0.1], "none", samples=n_knocks, seed=1,
+                     deltas=np.linspace(-0.1, 0.2, n_delta))
+    column = dmap.dataset["stick_slip_fraction"].isel(**{"lambda": -1}).values
+    print("stick-slip fraction at lambda = 10 by delta: "
+          + ", ".join(f"{d:.3g}: {f:.2f}" for d, f in zip(dmap.dataset["delta"].values, column, strict=True)))
+    dmap.plot().savefig(args.out / "basin_map_delta.png")
+    print(f"figure written to {args.out / 'basin_map_delta.png'}")
+
 
 if __name__ == "__main__":
     main()

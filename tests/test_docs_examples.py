@@ -37,3 +37,10 @@ def test_disturbance_worked_example_states_the_documented_numbers(tmp_path: Path
     assert "from start-up: stick-slip" in proc.stdout
     assert "a velocity kick below 20 mm/s" in proc.stdout
     assert (tmp_path / "basin_rigid.png").stat().st_size > 10_000
+    # the (lambda, delta) map: friction that weakens faster lets more knocks start stick-slip
+    # (docs/disturbances.md; at delta > zeta steady sliding is unstable, every knock sticks)
+    prefix = "stick-slip fraction at lambda = 10 by delta"
+    line = next(x for x in proc.stdout.splitlines() if x.startswith(prefix))
+    fractions = [float(pair.split(": ")[1]) for pair in line.split("delta: ")[1].split(", ")]
+    assert fractions == sorted(fractions) and fractions[-1] == 1.0 and fractions[0] < 0.5
+    assert (tmp_path / "basin_map_delta.png").stat().st_size > 10_000
