@@ -10,7 +10,6 @@ command line is one line on stderr, exit code 2 and no file (DESIGN.md section 5
 from __future__ import annotations
 
 import json
-from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -24,13 +23,6 @@ from stickslip.sweep.basin import basin_stability, sample_box
 from .cli_helpers import run_cli
 
 distributed = pytest.importorskip("distributed")
-
-
-@pytest.fixture(scope="module")
-def cluster() -> Iterator[object]:
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  host="127.0.0.1", dashboard_address="127.0.0.1:0") as local:
-        yield local
 
 
 def _address(cluster: object) -> str:

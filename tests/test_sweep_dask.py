@@ -2,21 +2,12 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-
 import pytest
 
 from stickslip.sweep import occurrence_map
 from tests.sweep_helpers import LAMS, ZETAS, assert_same_map
 
 distributed = pytest.importorskip("distributed")
-
-
-@pytest.fixture(scope="module")
-def cluster() -> Iterator[object]:
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  host="127.0.0.1", dashboard_address="127.0.0.1:0") as local:
-        yield local
 
 
 def test_dask_cluster_is_bit_identical_to_serial(cluster: object) -> None:

@@ -19,7 +19,6 @@ from stickslip.cli.console import (
     check_figure_path,
     check_grid_memory,
     check_output_path,
-    check_run_limits,
     print_json,
     save_plot,
     warn_fitted_range,
@@ -73,31 +72,14 @@ def basin_map_command(
     """
     from contextlib import nullcontext
 
-    from stickslip.analysis.dva import DvaSpec
     from stickslip.cli.basin_command import parse_box
-    from stickslip.cli.map_commands import _parse_axes, _ProgressBar
+    from stickslip.cli.map_commands import _ProgressBar, grid_config
     from stickslip.io.lock import output_lock
-    from stickslip.model.friction import CoulombFriction, parse_friction
     from stickslip.sweep.basin import DEFAULT_MAP_BOX, MAX_SAMPLES, basin_map, check_box, state_names
     from stickslip.sweep.executors import check_backend
-    from stickslip.sweep.occurrence import MapConfig
 
-    lam_axis, zeta_axis = _parse_axes(lam, zeta, lam_spacing, zeta_spacing)
-    law = parse_friction(friction)
-    delta_axis = None
-    if delta is not None:
-        from stickslip.sweep.grid import Axis
-
-        if not isinstance(law, CoulombFriction):
-            raise BadInput(f"--delta sets the linear law linear:DELTA in every cell; it cannot be "
-                           f"combined with --friction {friction}")
-        if len(zeta_axis) != 1:
-            raise BadInput(f"--delta maps over (lambda, delta) at one zeta: give exactly one "
-                           f"--zeta value, not {len(zeta_axis)} ({zeta})")
-        delta_axis = Axis.parse(delta, "delta")
-    config = MapConfig.create(lam_axis, zeta_axis, DvaSpec.parse(dva, k_scale), gamma, t_max=t_max,
-                              friction=None if delta_axis is not None else law, deltas=delta_axis)
-    check_run_limits(float(config.lam.values.max()), config.gamma)
+    config, law = grid_config(lam, zeta, lam_spacing, zeta_spacing, delta, dva, k_scale, gamma,
+                              t_max, friction)
     check_backend("threads", workers, None)  # --workers: a whole number of at least 1
     if not 1 <= samples <= MAX_SAMPLES:
         raise BadInput(f"--samples {samples} must be from 1 to {MAX_SAMPLES:,}")
@@ -122,7 +104,7 @@ def basin_map_command(
         with _ProgressBar(enabled, f"basin-map {shape[0]}x{shape[1]}, {samples} samples per cell") as bar:
             result = basin_map(config.lam, config.zeta, config.dva, config.gamma, samples=samples,
                                box=intervals, seed=seed,
-                               friction=None if delta_axis is not None else law, deltas=config.delta,
+                               friction=law, deltas=config.delta,
                                options=config.options, workers=workers, progress=bar)
         payload = result.to_dict()
         payload.update({"out": None, "plot": None})

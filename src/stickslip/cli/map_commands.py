@@ -68,6 +68,38 @@ def _parse_axes(lam: str | None, zeta: str, lam_spacing: str | None, zeta_spacin
     return lam_axis, Axis.parse(zeta, "zeta", zeta_spacing)
 
 
+def grid_config(lam: str | None, zeta: str, lam_spacing: str | None, zeta_spacing: str | None,
+                delta: str | None, dva: str, k_scale: float, gamma: float, t_max: float | None,
+                friction: str) -> tuple[Any, Any]:
+    """The grid of ``map`` and ``basin-map`` from their options: ``(MapConfig, law or None)``.
+
+    With ``--delta`` the grid is ``(lambda, delta)`` at one ``--zeta`` and every cell has the
+    linear law ``linear:DELTA`` (the returned law is then None); otherwise every cell has
+    ``--friction``. Bad combinations and out-of-range values are one-line ``BadInput``.
+    """
+    from stickslip.analysis.dva import DvaSpec
+    from stickslip.model.friction import CoulombFriction, parse_friction
+    from stickslip.sweep.grid import Axis
+    from stickslip.sweep.occurrence import MapConfig
+
+    lam_axis, zeta_axis = _parse_axes(lam, zeta, lam_spacing, zeta_spacing)
+    law = parse_friction(friction)
+    delta_axis = None
+    if delta is not None:
+        if not isinstance(law, CoulombFriction):
+            raise BadInput(f"--delta sets the linear law linear:DELTA in every cell; it cannot be "
+                           f"combined with --friction {friction}")
+        if len(zeta_axis) != 1:
+            raise BadInput(f"--delta maps over (lambda, delta) at one zeta: give exactly one "
+                           f"--zeta value, not {len(zeta_axis)} ({zeta})")
+        delta_axis = Axis.parse(delta, "delta")
+    cell_law = None if delta_axis is not None else law
+    config = MapConfig.create(lam_axis, zeta_axis, DvaSpec.parse(dva, k_scale), gamma, t_max=t_max,
+                              friction=cell_law, deltas=delta_axis)
+    check_run_limits(float(config.lam.values.max()), config.gamma)
+    return config, cell_law
+
+
 def store_path(out: Path) -> Path:
     """The resume store of an output file: ``OUT.parts`` next to it."""
     return out.with_name(out.name + ".parts")
@@ -176,30 +208,13 @@ def map_command(
 
     Example: stickslip map --lam log:0.1:50:100 --delta -0.1:0.3:41 --zeta 0.1 --out dmap.nc
     """
-    from stickslip.analysis.dva import DvaSpec
     from stickslip.io.lock import output_lock
     from stickslip.sweep.executors import check_backend
-    from stickslip.sweep.occurrence import MapConfig, OccurrenceMap, occurrence_map
+    from stickslip.sweep.occurrence import OccurrenceMap, occurrence_map
     from stickslip.sweep.store import discard_store
 
-    lam_axis, zeta_axis = _parse_axes(lam, zeta, lam_spacing, zeta_spacing)
-    from stickslip.model.friction import CoulombFriction, parse_friction
-
-    law = parse_friction(friction)
-    delta_axis = None
-    if delta is not None:
-        from stickslip.sweep.grid import Axis
-
-        if not isinstance(law, CoulombFriction):
-            raise BadInput(f"--delta sets the linear law linear:DELTA in every cell; it cannot be "
-                           f"combined with --friction {friction}")
-        if len(zeta_axis) != 1:
-            raise BadInput(f"--delta maps over (lambda, delta) at one zeta: give exactly one "
-                           f"--zeta value, not {len(zeta_axis)} ({zeta})")
-        delta_axis = Axis.parse(delta, "delta")
-    config = MapConfig.create(lam_axis, zeta_axis, DvaSpec.parse(dva, k_scale), gamma, t_max=t_max,
-                              friction=None if delta_axis is not None else law, deltas=delta_axis)
-    check_run_limits(float(config.lam.values.max()), config.gamma)
+    config, law = grid_config(lam, zeta, lam_spacing, zeta_spacing, delta, dva, k_scale, gamma,
+                              t_max, friction)
     chosen = check_backend(backend or ("dask" if scheduler else "threads"), workers, scheduler)
     if chunk_size is not None and chunk_size < 1:
         raise BadInput(f"--chunk-size {chunk_size} must be at least 1")
@@ -225,8 +240,7 @@ def map_command(
             with _ProgressBar(enabled, f"map {config.shape[0]}x{config.shape[1]}") as bar:
                 result = occurrence_map(config.lam, config.zeta, config.dva, config.gamma,
                                         options=config.options,
-                                        friction=None if delta_axis is not None else law,
-                                        deltas=delta_axis, backend=chosen, workers=workers,
+                                        friction=law, deltas=config.delta, backend=chosen, workers=workers,
                                         scheduler=scheduler, chunk_size=chunk_size, progress=bar,
                                         store=store, overwrite=overwrite)
             result.to_netcdf(out, overwrite=True)

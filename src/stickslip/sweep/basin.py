@@ -35,10 +35,11 @@ from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
 from stickslip.sweep.executors import (
     Backend,
-    Chunk,
     check_backend,
+    check_chunk_size,
     default_chunk_size,
     execute,
+    load_stored,
     make_chunks,
     numba_threads,
 )
@@ -344,9 +345,7 @@ def basin_stability(
     _count(z0s.shape[0])
     if not np.all(np.isfinite(z0s)):
         raise ValueError("initial states have NaN or infinite entries")
-    if chunk_size is not None and (isinstance(chunk_size, bool) or int(chunk_size) != chunk_size
-                                   or chunk_size < 1):
-        raise ValueError(f"chunk_size={chunk_size!r} must be a whole number of at least 1")
+    check_chunk_size(chunk_size)
     system = BasinSystem.prepare(structure, slider)
     started = time.perf_counter()
     n = z0s.shape[0]
@@ -364,13 +363,7 @@ def basin_stability(
         chunk_store = ChunkStore(store, fingerprint, configuration, n, int(chunk_size), overwrite=overwrite)
         chunk_size = chunk_store.chunk_size
     chunks = make_chunks(n, int(chunk_size))
-    missing: list[Chunk] = []
-    for chunk in chunks:
-        stored = chunk_store.load(chunk.index, chunk.size) if chunk_store is not None else None
-        if stored is None:
-            missing.append(chunk)
-        else:
-            fsum[chunk.start:chunk.stop], isum[chunk.start:chunk.stop] = stored
+    missing = load_stored(chunk_store, chunks, fsum, isum)
     done = n - sum(c.size for c in missing)
     if progress is not None:
         progress(done, n)

@@ -20,7 +20,7 @@ import math
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Any, Literal, TypeAlias, TypeVar, cast
+from typing import TYPE_CHECKING, Any, Literal, TypeAlias, TypeVar, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -31,6 +31,9 @@ from stickslip.model._validate import non_negative
 from stickslip.model.friction import CoulombFriction, FrictionLaw
 from stickslip.model.parameters import Foundation
 from stickslip.model.structure import chain_structure
+
+if TYPE_CHECKING:
+    from stickslip.sweep.store import ChunkStore
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -211,6 +214,29 @@ class Chunk:
     def size(self) -> int:
         """Number of cells."""
         return self.stop - self.start
+
+
+def check_chunk_size(chunk_size: Any) -> None:
+    """Refuse a ``chunk_size`` that is not a whole number of at least 1 (None is the default)."""
+    if chunk_size is not None and (isinstance(chunk_size, bool) or int(chunk_size) != chunk_size
+                                   or chunk_size < 1):
+        raise ValueError(f"chunk_size={chunk_size!r} must be a whole number of at least 1")
+
+
+def load_stored(store: ChunkStore | None, chunks: Sequence[Chunk], float_summary: FloatArray,
+                int_summary: IntArray) -> list[Chunk]:
+    """Fill the rows of the chunks a resume store holds; return the chunks still to compute.
+
+    Without a store every chunk is still to compute.
+    """
+    missing: list[Chunk] = []
+    for chunk in chunks:
+        stored = store.load(chunk.index, chunk.size) if store is not None else None
+        if stored is None:
+            missing.append(chunk)
+        else:
+            float_summary[chunk.start:chunk.stop], int_summary[chunk.start:chunk.stop] = stored
+    return missing
 
 
 def make_chunks(n_cells: int, chunk_size: int) -> list[Chunk]:

@@ -52,8 +52,10 @@ from stickslip.sweep.executors import (
     Chunk,
     StructureSet,
     check_backend,
+    check_chunk_size,
     default_chunk_size,
     execute,
+    load_stored,
     make_chunks,
 )
 from stickslip.sweep.grid import Axis, as_axis
@@ -550,9 +552,7 @@ def occurrence_map(
     config = MapConfig.create(lams, zetas, dva, gamma, options=options, t_max=t_max,
                               friction=friction, deltas=deltas)
     backend = check_backend(backend, workers, scheduler)
-    if chunk_size is not None and (isinstance(chunk_size, bool) or int(chunk_size) != chunk_size
-                                   or chunk_size < 1):
-        raise ValueError(f"chunk_size={chunk_size!r} must be a whole number of at least 1")
+    check_chunk_size(chunk_size)
     started = time.perf_counter()
     n_cells = config.n_cells
     size = int(chunk_size) if chunk_size is not None else default_chunk_size(n_cells, backend)
@@ -565,13 +565,7 @@ def occurrence_map(
     chunks = make_chunks(n_cells, size)
     float_summary = np.full((n_cells, engine.N_FLOAT), np.nan)
     int_summary = np.zeros((n_cells, engine.N_INT), dtype=np.int64)
-    missing: list[Chunk] = []
-    for chunk in chunks:
-        stored = chunk_store.load(chunk.index, chunk.size) if chunk_store is not None else None
-        if stored is None:
-            missing.append(chunk)
-        else:
-            float_summary[chunk.start:chunk.stop], int_summary[chunk.start:chunk.stop] = stored
+    missing = load_stored(chunk_store, chunks, float_summary, int_summary)
     done = n_cells - sum(c.size for c in missing)
     if progress is not None:
         progress(done, n_cells)
