@@ -180,7 +180,7 @@ def first_reach(sig_rows, start, sign, offset, sig0, sig1, w0, h, ahat, u, have_
     stick): when the end signs of ``g'``, ``g''`` and ``g'''`` agree, ``g`` is monotone on the
     step (the cheap test's argument), so the search for monotone pieces is skipped and
     Newton's iteration starts from the left end's tangent; the Taylor vectors use
-    reciprocals (:func:`~stickslip.kernel.polynomial.taylor_vectors`). The root is the same
+    their quick form (:func:`~stickslip.kernel.polynomial.taylor_vectors`). The root is the same
     to rounding; the other runs keep the engine's historical arithmetic bit for bit.
     """
     g0 = sign * sig0[start] + offset

@@ -29,24 +29,28 @@ RECIPROCALS = np.array([0.0] + [1.0 / k for k in range(1, TAYLOR_DEGREE + 1)])
 
 
 @njit(cache=True)
-def taylor_vectors(ahat: np.ndarray, w: np.ndarray, u: np.ndarray, reciprocal: bool = False) -> None:
+def taylor_vectors(ahat: np.ndarray, w: np.ndarray, u: np.ndarray, quick: bool = False) -> None:
     """Fill ``u[k] = ahat^k w / k!`` for ``k = 0..TAYLOR_DEGREE``.
 
-    With ``reciprocal`` the division by ``k`` is a multiplication by the rounded ``1/k``
-    (cheaper; the same accuracy, one more rounding per term). Runs that must stay
-    bit-identical to the engine's history (the start-up runs of the paper's Coulomb law)
-    divide.
+    ``quick`` (an engine matrix: the affine flow augmented by a constant coordinate, so the
+    last row of ``ahat`` is zero and ``u[k, -1] = 0`` for ``k >= 1``): that row is not
+    computed, and the division by ``k`` is a multiplication by the rounded ``1/k`` (the same
+    accuracy, one more rounding per term). Runs that must stay bit-identical to the engine's
+    history (the start-up runs of the paper's Coulomb law) divide.
     """
     m = w.shape[0]
     for i in range(m):
         u[0, i] = w[i]
+    rows = m - 1 if quick else m
     for k in range(1, TAYLOR_DEGREE + 1):
         inv = RECIPROCALS[k]
-        for i in range(m):
+        for i in range(rows):
             acc = 0.0
             for j in range(m):
                 acc += ahat[i, j] * u[k - 1, j]
-            u[k, i] = acc * inv if reciprocal else acc / k
+            u[k, i] = acc * inv if quick else acc / k
+        if quick:
+            u[k, m - 1] = 0.0
 
 
 @njit(cache=True)
