@@ -156,6 +156,35 @@ def test_stick_slip_optimal_foundation_on_demand() -> None:
     assert not any("Stick-slip-optimal foundation:" in m.value for m in at.markdown)
 
 
+def test_disturbed_starts_on_demand() -> None:
+    # issue 13: basin stability of the machine without and with its foundation, on demand
+    from stickslip import Slider, rigid_base
+    from stickslip.app.streamlit_app import BASIN_SAMPLES, BASIN_V, BASIN_XI
+    from stickslip.sweep.basin import basin_stability, sample_box
+
+    at = _started()
+    images = len(at.get("image"))
+    at.button(key="sample_basin").click().run()
+    assert not at.exception and not at.error
+    table = at.table[-1].value
+    assert list(table.index) == ["rigid base", "with foundation"]
+    assert len(at.get("image")) == images + 2  # one basin figure per machine
+    # reference: basin_stability on the same knocks of the default machine's rigid base
+    # (lambda = (mu_s - mu_k) W / (V sqrt(m k)), zeta = c / (2 sqrt(m k)), gamma = mu_k /
+    # (mu_s - mu_k), Eqs. 19-22; Coulomb law, steady sliding at xi = 0)
+    lam = 0.2 * 500 / (0.05 * math.sqrt(2 * 5e4))
+    structure, slider = rigid_base(20.0 / (2 * math.sqrt(2 * 5e4))), Slider(lam, gamma=1.5)
+    states = sample_box(structure, slider, BASIN_SAMPLES, {"xi": (-BASIN_XI, BASIN_XI), "v": BASIN_V},
+                        seed=1)
+    reference = basin_stability(structure, slider, states)
+    assert table.loc["rigid base", "ends in stick-slip"] == (
+        f"{reference.fractions['stick-slip']:.3f} ± {reference.standard_errors['stick-slip']:.3f}")
+    assert 0.0 < reference.fractions["stick-slip"] < 1.0  # the default machine is bistable
+    # another damping is another machine: its basin is not shown until asked for
+    at.text_input(key="c").set_value("30 N*s/m").run()
+    assert len(at.get("image")) == images
+
+
 # ---- the friction law (issue 10, point 5) -------------------------------------------------
 
 def _design_stability(friction: Any) -> dict[str, Any]:

@@ -41,6 +41,7 @@ from stickslip import (
     PhysicalSystem,
     SimulationResult,
     Slider,
+    Structure,
     __version__,
     elastic_foundation,
     rigid_base,
@@ -55,6 +56,7 @@ from stickslip.model.units import FRICTION_QUANTITIES, QUANTITIES, to_si
 from stickslip.plot.figure import new_grid
 from stickslip.plot.simulation import phase_portrait_plot, time_history_plot
 from stickslip.sweep import OccurrenceMap, occurrence_map
+from stickslip.sweep.basin import BasinResult, basin_stability, equilibrium_state, sample_box
 
 #: Widget key -> (label, default text). The keys are the quantity names of ``to_si``.
 SYSTEM_INPUTS: dict[str, tuple[str, str]] = {
@@ -102,6 +104,11 @@ MAP_LAMBDA_SPAN = 10.0
 MAP_ZETA_FLOOR = 0.05  # zeta range used when the slider has no damping
 #: Time horizon of the time-history figures, dimensionless tau.
 PLOT_HORIZON = (40.0, 3000.0)
+#: Disturbed starts per basin, and their box about steady sliding (dimensionless, the knocks of
+#: docs/disturbances.md): ``xi - xi_eq`` in units of V/omega_n, ``xi'`` in units of V.
+BASIN_SAMPLES = 4000
+BASIN_XI = 6.0
+BASIN_V = (-4.0, 1.5)
 #: Samples of the exact trajectory per figure (every mode switch is added to them).
 PLOT_POINTS = 1500
 
@@ -267,12 +274,36 @@ def operating_point_runs(lam: float, zeta: float, gamma: float, foundation: Foun
     :data:`PLOT_HORIZON`.
     """
     slider = Slider(lam, gamma=gamma, friction=friction or CoulombFriction())
-    structures = {"rigid base": rigid_base(zeta),
-                  "with foundation": elastic_foundation(zeta, Foundation(*foundation))}
+    structures = _structures(zeta, foundation)
     certified = max(simulate(s, slider, record=False).t_end for s in structures.values())
     horizon = min(max(PLOT_HORIZON[0], 1.5 * certified), PLOT_HORIZON[1])
     return {name: simulate(s, slider, t_max=horizon, run_to_t_max=True)
             for name, s in structures.items()}
+
+
+def _structures(zeta: float, foundation: FoundationKey) -> dict[str, Structure]:
+    """The machine without and with its foundation (dimensionless)."""
+    return {"rigid base": rigid_base(zeta),
+            "with foundation": elastic_foundation(zeta, Foundation(*foundation))}
+
+
+@st.cache_data(show_spinner="Sampling disturbed starts...", max_entries=16)
+def basin_runs(lam: float, zeta: float, gamma: float, foundation: FoundationKey,
+               friction: FrictionLaw | None = None) -> dict[str, BasinResult]:
+    """Certified verdicts of :data:`BASIN_SAMPLES` disturbed starts, without and with the foundation.
+
+    The starts are uniform in ``xi - xi_eq`` in ``[-BASIN_XI, BASIN_XI]`` and ``xi'`` in
+    :data:`BASIN_V` about steady sliding (the foundation, if any, at its steady-sliding
+    state), with one seed, so both machines are knocked alike (issue 13; ``stickslip basin``).
+    """
+    slider = Slider(lam, gamma=gamma, friction=friction or CoulombFriction())
+    results = {}
+    for name, structure in _structures(zeta, foundation).items():
+        xi_eq = float(equilibrium_state(structure, slider)[0])
+        box = {"xi": (xi_eq - BASIN_XI, xi_eq + BASIN_XI), "v": BASIN_V}
+        states = sample_box(structure, slider, BASIN_SAMPLES, box, seed=1)
+        results[name] = basin_stability(structure, slider, states)
+    return results
 
 
 @st.cache_data(show_spinner="Computing the occurrence maps...", max_entries=64)
@@ -575,6 +606,39 @@ def _show_stick_slip_optimum(report: Mapping[str, Any], system: PhysicalSystem
         return opt
 
 
+def _show_disturbances(report: Mapping[str, Any], system: PhysicalSystem,
+                       foundation: FoundationKey) -> None:
+    """Basin stability of the machine without and with its foundation, on demand."""
+    with st.expander("Disturbances: which knocks start stick-slip (beyond the paper)"):
+        st.markdown(
+            f"From the start-up the verdict is one state's. A machine is also knocked: this "
+            f"samples {BASIN_SAMPLES:,} starts about steady sliding (position within "
+            f"±{_fmt(BASIN_XI * system.length_scale, 'm')}, velocity "
+            f"{_fmt(BASIN_V[0] * system.speed, 'm/s')} to {_fmt(BASIN_V[1] * system.speed, 'm/s')} "
+            f"in the ground frame) and gives each a certified verdict. Inside the drawn ellipse "
+            f"the Lyapunov certificate proves that no knock can start stick-slip."
+        )
+        law = system.slider().friction
+        key = (report["lambda"], report["zeta"], report["gamma"], foundation, law)
+        if st.button("Sample the disturbed starts", key="sample_basin"):
+            st.session_state["basin"] = (key, basin_runs(*key))
+        stored = st.session_state.get("basin")
+        if stored is None or stored[0] != key:
+            return
+        results = stored[1]
+        _table(list(results), {
+            "ends in stick-slip": [f"{r.fractions['stick-slip']:.3f} ± {r.standard_errors['stick-slip']:.3f}"
+                                   for r in results.values()],
+            "ends in steady sliding": [f"{r.fractions['steady-sliding']:.3f}" for r in results.values()],
+            "undetermined": [f"{r.fractions['undetermined']:.3f}" for r in results.values()],
+        })
+        for column, (name, result) in zip(st.columns(len(results)), results.items(), strict=True):
+            column.pyplot(result.plot(marker_size=2.0, title=name).figure)
+        st.caption(f"Dimensionless: ξ in units of V/ω_n = {_fmt(system.length_scale, 'm')} from the "
+                   f"kinetic-friction equilibrium, ξ' in units of V = {_fmt(system.speed, 'm/s')}; "
+                   "with the foundation, the foundation mass starts at rest in its steady state.")
+
+
 def main() -> None:
     """Lay out the page; the script body that Streamlit runs on every interaction."""
     st.set_page_config(page_title="stickslip: stick-slip design", layout="wide")
@@ -634,6 +698,8 @@ def _show_results(raw: Mapping[str, str], system: PhysicalSystem) -> None:
     st.caption("Each cell is a certified simulation from the startup state at this γ. "
                + ("Right: the given foundation (fixed in SI units)." if given else
                   "Right: the foundation of Eqs. (28)-(30) tuned at each ζ of the grid."))
+
+    _show_disturbances(report, system, assessed)
 
     st.subheader("Download")
     col1, col2 = st.columns(2)
