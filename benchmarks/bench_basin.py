@@ -55,6 +55,9 @@ def main() -> None:
     parser.add_argument("--oracle-samples", type=int, default=40)
     parser.add_argument("--repeats", type=int, default=3, help="engine runs per case (the best counts)")
     args = parser.parse_args()
+    for name in ("samples", "oracle_samples", "repeats"):
+        if getattr(args, name) < 1:
+            parser.error(f"--{name.replace('_', '-')} {getattr(args, name)} must be at least 1")
     structure = rigid_base(0.1)
     cases = [
         ("coulomb", Slider(2.5)),
