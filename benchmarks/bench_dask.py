@@ -20,7 +20,7 @@ import time
 
 from distributed import Client, LocalCluster
 
-from stickslip.analysis.dva import DvaSpec
+from stickslip.model.dva import DvaSpec
 from stickslip.sweep import Axis, occurrence_map
 
 

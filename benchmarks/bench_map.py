@@ -33,8 +33,9 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
 from oracle import oracle_simulate
-from stickslip.analysis.dva import DvaSpec
+from stickslip.analysis.dva import resolve_dva
 from stickslip.model import startup_state
+from stickslip.model.dva import DvaSpec
 from stickslip.model.parameters import Slider
 from stickslip.model.structure import chain_structure
 from stickslip.sweep import Axis, occurrence_map
@@ -99,7 +100,7 @@ def main(argv: list[str] | None = None) -> int:
             run_batch(structures, batch, settings, 1)
             times.append(time.perf_counter() - t0)
         t_end = float(ds["t_end"][i, j])
-        structure = chain_structure(zeta_j, (dva.resolve(zeta_j),))  # type: ignore[arg-type]
+        structure = chain_structure(zeta_j, (resolve_dva(dva, zeta_j),))  # type: ignore[arg-type]
         start = startup_state(structure, Slider(lam_i, gamma=2.0))
         t0 = time.perf_counter()
         oracle_simulate(structure.mass, structure.damping, structure.stiffness, lam_i, 2.0,

@@ -26,7 +26,7 @@ from stickslip import (
 )
 from stickslip.analysis.design import stability_margin
 from stickslip.analysis.stability import critical_weakening, steady_sliding_stability
-from stickslip.analysis.tuning import optimal_foundation_stability
+from stickslip.analysis.stability_tuning import optimal_foundation_stability
 from stickslip.model.friction import evaluate_bands
 from stickslip.model.physical import foundation_to_physical, physical_friction_from_config
 

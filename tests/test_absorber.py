@@ -26,8 +26,14 @@ import matplotlib
 import numpy as np
 import pytest
 
+from stickslip.analysis import absorber_tuning as tuning
 from stickslip.analysis import frequency_response as frequency_response_module
-from stickslip.analysis import tuning
+from stickslip.analysis.absorber_tuning import (
+    TuningResult,
+    optimal_foundation_exact,
+    tune_foundation,
+    tuning_curve,
+)
 from stickslip.analysis.frequency_response import (
     ResponsePeak,
     equivalent_damping,
@@ -36,6 +42,7 @@ from stickslip.analysis.frequency_response import (
     response_curves,
     response_peak,
 )
+from stickslip.analysis.peak_minimiser import minimise_peak
 from stickslip.analysis.theory import (
     equivalent_damping_fit,
     optimal_damping_ratio_fit,
@@ -43,13 +50,6 @@ from stickslip.analysis.theory import (
     optimal_mass_ratio_fit,
     optimal_stiffness_ratio_fit,
     peak_response_fit,
-)
-from stickslip.analysis.tuning import (
-    TuningResult,
-    minimise_peak,
-    optimal_foundation_exact,
-    tune_foundation,
-    tuning_curve,
 )
 from stickslip.model import Foundation, Structure, chain_structure, elastic_foundation, rigid_base
 

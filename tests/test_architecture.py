@@ -1,17 +1,21 @@
-"""The layers import one way (DESIGN.md section 3, issue 9), read from the source with ``ast``.
+"""The layers import one way (DESIGN.md section 3, issues 9 and 17), read from the source with ``ast``.
 
     model -> kernel -> analysis -> io -> sweep -> plot -> reproduction -> cli | app
 
-A module may import, at module level, only from its own layer or from layers below it; cli and
-app are siblings and never import each other. The one exception runs back up lazily: a result
-object's ``plot`` method imports its plotting function inside the method (python-control's
-pattern). No import cycle between files at module level. The kernel imports no plotting, data
-or command-line library. Each failure names the offending file, line and import.
+A module may import, at module level or inside a function, only from its own layer or from
+layers below it; cli and app are siblings and never import each other. The one exception runs
+back up lazily: a result class's ``plot`` method imports its plotting function inside the method
+(python-control's pattern). ``from stickslip import X`` (or from a subpackage face) counts as an
+import of the module that defines ``X``, read from the face's ``_EXPORTS`` table or its own
+imports. No import cycle between files, counting imports inside functions and type-only imports
+too (a result's ``plot`` method aside). The kernel imports no plotting, data or command-line
+library. Each failure names the offending file, line and import.
 """
 
 from __future__ import annotations
 
 import ast
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -31,66 +35,101 @@ class Import:
     line: int
     function: str | None  # enclosing function name when not at module level
     type_only: bool  # inside ``if TYPE_CHECKING:``
+    result_plot: bool = False  # inside a method named ``plot`` of a class
 
     def where(self) -> str:
         scope = f" (inside {self.function})" if self.function else ""
         return f"{self.source}:{self.line} imports {self.target}{scope}"
 
 
-def _module_name(path: Path) -> str:
-    parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+def _module_name(path: Path, package: Path = PACKAGE) -> str:
+    parts = path.relative_to(package.parent).with_suffix("").parts
     if parts[-1] == "__init__":
         parts = parts[:-1]
     return ".".join(parts)
 
 
-def _resolve(node: ast.ImportFrom, source: str, is_package: bool) -> list[str]:
-    if node.level:
-        base = source.split(".")
-        base = base if is_package else base[:-1]
-        base = base[: len(base) - node.level + 1]
-        module = ".".join(base + ([node.module] if node.module else []))
-    else:
-        module = node.module or ""
-    if node.module is None or module == "stickslip" or module.count(".") == 1:
-        # ``from stickslip.reproduction import steps_maps`` imports a module
-        return [f"{module}.{a.name}" if f"{module}.{a.name}" in ALL_MODULES else module
-                for a in node.names]
-    return [module]
+def _faces(package: Path) -> dict[str, dict[str, str]]:
+    """Package -> {public name: defining module}, from each ``__init__``'s ``_EXPORTS`` and imports."""
+    faces: dict[str, dict[str, str]] = {}
+    for init in package.rglob("__init__.py"):
+        name = _module_name(init, package)
+        table: dict[str, str] = {}
+        for node in ast.walk(ast.parse(init.read_text(encoding="utf-8"))):
+            target = node.target if isinstance(node, ast.AnnAssign) else (
+                node.targets[0] if isinstance(node, ast.Assign) and len(node.targets) == 1 else None)
+            if (isinstance(target, ast.Name) and target.id == "_EXPORTS"
+                    and isinstance(getattr(node, "value", None), ast.Dict)):
+                table.update(ast.literal_eval(node.value))  # type: ignore[union-attr, arg-type]
+            elif isinstance(node, ast.ImportFrom) and node.module and not node.level:
+                table.update({alias.asname or alias.name: node.module for alias in node.names})
+        faces[name] = table
+    return faces
 
 
-def _collect(path: Path) -> list[Import]:
-    source = _module_name(path)
-    tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
-    found: list[Import] = []
+class Scanner:
+    """The imports of every file of a package tree (``PACKAGE`` or a scratch copy)."""
 
-    def visit(node: ast.AST, function: str | None, type_only: bool) -> None:
-        for child in ast.iter_child_nodes(node):
-            if isinstance(child, ast.If) and "TYPE_CHECKING" in ast.unparse(child.test):
-                for grandchild in child.body:
-                    visit(ast.Module(body=[grandchild], type_ignores=[]), function, True)
-                for grandchild in child.orelse:
-                    visit(ast.Module(body=[grandchild], type_ignores=[]), function, type_only)
-                continue
-            if isinstance(child, ast.Import):
-                for alias in child.names:
-                    found.append(Import(source, alias.name, child.lineno, function, type_only))
-            elif isinstance(child, ast.ImportFrom):
-                for target in _resolve(child, source, path.name == "__init__.py"):
-                    found.append(Import(source, target, child.lineno, function, type_only))
-            elif isinstance(child, (ast.FunctionDef, ast.AsyncFunctionDef)):
-                visit(child, function or child.name, type_only)
-            else:
-                visit(child, function, type_only)
+    def __init__(self, package: Path) -> None:
+        self.package = package
+        self.files = sorted(package.rglob("*.py"))
+        self.modules = {_module_name(p, package) for p in self.files}
+        self.faces = _faces(package)
 
-    visit(tree, None, False)
-    return found
+    def resolve(self, node: ast.ImportFrom, source: str, is_package: bool) -> list[str]:
+        if node.level:
+            base = source.split(".")
+            base = base if is_package else base[:-1]
+            base = base[: len(base) - node.level + 1]
+            module = ".".join(base + ([node.module] if node.module else []))
+        else:
+            module = node.module or ""
+        targets = []
+        for alias in node.names:
+            if f"{module}.{alias.name}" in self.modules:  # ``from stickslip.plot import absorber``
+                targets.append(f"{module}.{alias.name}")
+            else:  # a name of a package face resolves to the module that defines it
+                targets.append(self.faces.get(module, {}).get(alias.name, module))
+        return targets
 
+    def collect(self, path: Path) -> list[Import]:
+        source = _module_name(path, self.package)
+        tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+        found: list[Import] = []
+        is_package = path.name == "__init__.py"
 
-FILES = sorted(PACKAGE.rglob("*.py"))
-ALL_MODULES = {_module_name(p) for p in FILES}
-IMPORTS = [imp for path in FILES for imp in _collect(path)]
-INTERNAL = [imp for imp in IMPORTS if imp.target.startswith("stickslip.")]
+        def visit(node: ast.AST, function: str | None, type_only: bool, in_class: bool,
+                  result_plot: bool) -> None:
+            for child in ast.iter_child_nodes(node):
+                if isinstance(child, ast.If) and "TYPE_CHECKING" in ast.unparse(child.test):
+                    for grandchild in child.body:
+                        visit(ast.Module(body=[grandchild], type_ignores=[]), function, True,
+                              in_class, result_plot)
+                    for grandchild in child.orelse:
+                        visit(ast.Module(body=[grandchild], type_ignores=[]), function, type_only,
+                              in_class, result_plot)
+                    continue
+                if isinstance(child, ast.Import):
+                    for alias in child.names:
+                        found.append(Import(source, alias.name, child.lineno, function, type_only,
+                                            result_plot))
+                elif isinstance(child, ast.ImportFrom):
+                    for target in self.resolve(child, source, is_package):
+                        found.append(Import(source, target, child.lineno, function, type_only,
+                                            result_plot))
+                elif isinstance(child, ast.ClassDef):
+                    visit(child, function, type_only, True, result_plot)
+                elif isinstance(child, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                    plot_method = in_class and function is None and child.name == "plot"
+                    visit(child, function or child.name, type_only, False, result_plot or plot_method)
+                else:
+                    visit(child, function, type_only, in_class, result_plot)
+
+        visit(tree, None, False, False, False)
+        return found
+
+    def imports(self) -> list[Import]:
+        return [imp for path in self.files for imp in self.collect(path)]
 
 
 def _layer(module: str) -> str | None:
@@ -98,33 +137,28 @@ def _layer(module: str) -> str | None:
     return parts[1] if len(parts) > 1 and parts[1] in RANK else None
 
 
-def test_the_scan_sees_the_package() -> None:
-    # guards against a vacuous pass: the scan must find the layers and many imports
-    assert {_layer(m) for m in ALL_MODULES} >= set(LAYERS)
-    assert len(INTERNAL) > 100
-
-
-def test_imports_go_down_the_layers() -> None:
+def upward_imports(imports: Iterable[Import]) -> list[str]:
+    """Every import that runs back up the layers, except a result class's lazy ``plot``."""
     bad = []
-    for imp in INTERNAL:
+    for imp in imports:
         src, dst = _layer(imp.source), _layer(imp.target)
         if src is None or dst is None or (RANK[dst] <= RANK[src] and {src, dst} != {"cli", "app"}):
             continue
         if {src, dst} == {"cli", "app"} and src != dst:
             bad.append(f"{imp.where()}: cli and app are siblings")
             continue
-        lazy_plot = imp.function == "plot" and dst == "plot" and not imp.type_only
+        lazy_plot = imp.result_plot and dst == "plot" and imp.function is not None and not imp.type_only
         if not lazy_plot:
             bad.append(f"{imp.where()}: {src} may not import from {dst} (layers: {' -> '.join(LAYERS)})")
-    assert not bad, "imports that run back up the layers:\n" + "\n".join(bad)
+    return bad
 
 
-def test_no_import_cycle_between_files_at_module_level() -> None:
-    graph: dict[str, set[str]] = {m: set() for m in ALL_MODULES}
-    for imp in INTERNAL:
-        if imp.function is None and not imp.type_only and imp.target in graph:
+def import_cycles(imports: Iterable[Import], modules: set[str]) -> list[list[str]]:
+    """Cycles between files, counting function-level and type-only imports (not result ``plot``s)."""
+    graph: dict[str, set[str]] = {m: set() for m in modules}
+    for imp in imports:
+        if imp.target in graph and not imp.result_plot and imp.target != imp.source:
             graph[imp.source].add(imp.target)
-    # packages import their submodules (and vice versa through re-exports): only files count
     state: dict[str, int] = {}
     stack: list[str] = []
     cycles: list[list[str]] = []
@@ -143,7 +177,37 @@ def test_no_import_cycle_between_files_at_module_level() -> None:
     for module in sorted(graph):
         if module not in state:
             dfs(module)
-    assert not cycles, "module-level import cycles:\n" + "\n".join(" -> ".join(c) for c in cycles)
+    return cycles
+
+
+SCAN = Scanner(PACKAGE)
+ALL_MODULES = SCAN.modules
+IMPORTS = SCAN.imports()
+INTERNAL = [imp for imp in IMPORTS if imp.target.startswith("stickslip.")]
+# package faces re-export their files (and ``stickslip`` lazily imports every layer): only the
+# files' own imports form cycles
+FILE_MODULES = {m for m in ALL_MODULES if m not in SCAN.faces}
+
+
+def test_the_scan_sees_the_package() -> None:
+    # guards against a vacuous pass: the scan must find the layers, many imports at both levels,
+    # the lazy plot methods and the names imported from the package face
+    assert {_layer(m) for m in ALL_MODULES} >= set(LAYERS)
+    assert len(INTERNAL) > 100
+    assert sum(imp.function is not None for imp in INTERNAL) > 50
+    assert sum(imp.result_plot for imp in INTERNAL) >= 5
+    assert SCAN.faces["stickslip"]["simulate"] == "stickslip.analysis.simulation"
+
+
+def test_imports_go_down_the_layers() -> None:
+    bad = upward_imports(INTERNAL)
+    assert not bad, "imports that run back up the layers:\n" + "\n".join(bad)
+
+
+def test_no_import_cycle_between_files() -> None:
+    internal = [imp for imp in INTERNAL if imp.source in FILE_MODULES]
+    cycles = import_cycles(internal, FILE_MODULES)
+    assert not cycles, "import cycles:\n" + "\n".join(" -> ".join(c) for c in cycles)
 
 
 @pytest.mark.parametrize("library", FORBIDDEN_IN_KERNEL)
@@ -153,18 +217,44 @@ def test_kernel_imports_arrays_only(library: str) -> None:
     assert not bad, f"the kernel must not import {library}:\n" + "\n".join(bad)
 
 
-def test_checker_catches_an_upward_import(tmp_path: Path) -> None:
-    # the checker itself: an upward import in a scratch file is reported with its line
-    fake = PACKAGE / "model" / "zz_probe_upward.py"
-    fake.write_text("from stickslip.sweep.grid import Axis\n", encoding="utf-8")
-    try:
-        imports = _collect(fake)
-    finally:
-        fake.unlink()
-    [imp] = imports
-    assert imp.source == "stickslip.model.zz_probe_upward" and imp.target == "stickslip.sweep.grid"
-    assert RANK[_layer(imp.target) or ""] > RANK[_layer(imp.source) or ""]
-    assert "zz_probe_upward:1 imports stickslip.sweep.grid" in imp.where()
+def test_checker_catches_upward_imports_and_cycles(tmp_path: Path) -> None:
+    # the checker itself on a scratch package: what it must report and what it must let pass
+    root = tmp_path / "stickslip"
+    for layer in ("model", "analysis", "sweep", "plot"):
+        (root / layer).mkdir(parents=True)
+        (root / layer / "__init__.py").write_text("", encoding="utf-8")
+    (root / "__init__.py").write_text(
+        '_EXPORTS: dict[str, str] = {"Axis": "stickslip.sweep.grid"}\n', encoding="utf-8")
+    (root / "sweep" / "grid.py").write_text("class Axis: ...\n", encoding="utf-8")
+    (root / "plot" / "drawing.py").write_text("def drawing_plot(r): ...\n", encoding="utf-8")
+    (root / "model" / "probe.py").write_text(
+        "from stickslip import Axis\n"  # 1: upward through the face
+        "def helper():\n"
+        "    from stickslip.sweep import grid\n"  # 3: upward inside a function
+        "def plot():\n"
+        "    from stickslip.plot.drawing import drawing_plot\n"  # 5: free function, not a method
+        "class Result:\n"
+        "    def plot(self):\n"
+        "        from stickslip.plot.drawing import drawing_plot\n"  # 8: allowed, lazy result plot
+        "    def table(self):\n"
+        "        from stickslip.plot.drawing import drawing_plot\n",  # 10: other method: refused
+        encoding="utf-8")
+    (root / "analysis" / "one.py").write_text(
+        "def f():\n    from stickslip.analysis.two import g\n", encoding="utf-8")
+    (root / "analysis" / "two.py").write_text(
+        "from typing import TYPE_CHECKING\n"
+        "if TYPE_CHECKING:\n    from stickslip.analysis.one import f\n", encoding="utf-8")
+    scan = Scanner(root)
+    imports = [imp for imp in scan.imports() if imp.target.startswith("stickslip.")]
+    bad = upward_imports(imports)
+    reported = sorted(int(line.split(":")[1].split()[0]) for line in bad)
+    assert reported == [1, 3, 5, 10], bad
+    assert any("probe:1 imports stickslip.sweep.grid" in line for line in bad)
+    files = {m for m in scan.modules if m not in scan.faces}
+    cycles = import_cycles([imp for imp in imports if imp.source in files], files)
+    assert [c[0] for c in cycles] == ["stickslip.analysis.one"], cycles
+    # the real tree's Result.plot methods are exempt only because they are methods named plot
+    assert not any(imp.result_plot for imp in imports if imp.line in (1, 3, 5, 10))
 
 
 def test_public_api_is_flat_and_complete() -> None:

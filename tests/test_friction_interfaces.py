@@ -31,8 +31,8 @@ from stickslip import (
     stick_slip_boundary,
 )
 from stickslip.analysis.stability import critical_weakening, routh_hurwitz_2dof
+from stickslip.analysis.stability_tuning import optimal_foundation_stability
 from stickslip.analysis.theory import critical_lambda_linear
-from stickslip.analysis.tuning import optimal_foundation_stability
 from stickslip.model.friction import (
     CoulombFriction,
     LinearFriction,

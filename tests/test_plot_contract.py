@@ -21,11 +21,11 @@ import pytest
 from matplotlib.figure import Figure
 from matplotlib.patches import FancyBboxPatch, Polygon
 
+from stickslip.analysis.absorber_tuning import TuningCurve, tune_foundation, tuning_curve
 from stickslip.analysis.design import DesignReport, design_foundation
 from stickslip.analysis.frequency_response import response_curves
 from stickslip.analysis.simulation import SimulationResult, simulate
 from stickslip.analysis.theory import optimal_foundation_fit
-from stickslip.analysis.tuning import TuningCurve, tune_foundation, tuning_curve
 from stickslip.model import Slider, elastic_foundation, rigid_base
 from stickslip.plot import absorber, basin, design, maps, simulation
 from stickslip.plot.figure import PlotResult

@@ -8,9 +8,9 @@ import pytest
 
 from stickslip import Foundation, Slider, Verdict, elastic_foundation, simulate
 from stickslip.analysis.critical import lowest_onset
-from stickslip.analysis.dva import DvaSpec
+from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
 from stickslip.analysis.theory import optimal_foundation_fit
-from stickslip.analysis.tuning import optimal_foundation_stick_slip
+from stickslip.model.dva import DvaSpec
 from stickslip.sweep import stick_slip_boundary
 
 

@@ -10,12 +10,13 @@ import pytest
 from matplotlib.figure import Figure
 
 from stickslip import Foundation, Slider, Verdict, chain_structure, simulate
-from stickslip.analysis.dva import DvaSpec
+from stickslip.analysis.dva import resolve_dva
 from stickslip.analysis.theory import (
     critical_lambda_approx,
     critical_lambda_exact,
     equivalent_damping_fit,
 )
+from stickslip.model.dva import DvaSpec
 from stickslip.sweep import stick_slip_boundary
 
 #: A lightly damped, soft foundation whose stick-slip set along lambda at zeta = 0.1 is two
@@ -24,7 +25,7 @@ TWO_BAND = DvaSpec("explicit", Foundation(1.0, 0.7, 0.02))
 
 
 def _verdict(dva: DvaSpec, lam: float, zeta: float) -> Verdict:
-    foundation = dva.resolve(zeta)
+    foundation = resolve_dva(dva, zeta)
     structure = chain_structure(zeta, () if foundation is None else (foundation,))
     return simulate(structure, Slider(lam, gamma=2.0), record=False).verdict
 

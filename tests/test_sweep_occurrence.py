@@ -12,9 +12,10 @@ import xarray as xr
 from matplotlib.figure import Figure
 
 from stickslip import RunStatus, Slider, Verdict, chain_structure, simulate
-from stickslip.analysis.dva import DvaSpec
+from stickslip.analysis.dva import resolve_dva
 from stickslip.analysis.theory import critical_lambda_exact
 from stickslip.model import STARTUP_DESCRIPTION
+from stickslip.model.dva import DvaSpec
 from stickslip.sweep import Axis, ChunkStore, OccurrenceMap, StoreMismatch, occurrence_map
 from tests.sweep_helpers import LAMS, ZETAS, assert_same_map
 
@@ -37,7 +38,7 @@ def test_cells_equal_single_simulations(optimal_serial: OccurrenceMap) -> None:
     spec = DvaSpec("optimal")
     for i, j in [(0, 0), (3, 2), (5, 4), (4, 1)]:
         lam, zeta = float(ds["lambda"][i]), float(ds["zeta"][j])
-        run = simulate(chain_structure(zeta, (spec.resolve(zeta),)), Slider(lam, gamma=2.0),
+        run = simulate(chain_structure(zeta, (resolve_dva(spec, zeta),)), Slider(lam, gamma=2.0),
                        record=False)
         assert optimal_serial.verdict_at(lam, zeta) is run.verdict
         assert int(ds["n_stick"][i, j]) == run.n_stick

@@ -63,7 +63,7 @@ _EXPORTS: dict[str, str] = {
     "critical_lambda_approx": "stickslip.analysis.theory",
     "stick_slip_period": "stickslip.analysis.theory",
     "stick_slip_amplitude_ratio": "stickslip.analysis.theory",
-    "analytic_boundaries": "stickslip.analysis.theory",
+    "analytic_boundaries": "stickslip.analysis.analytic_boundary",
     # analysis: absorber frequency response and tuning
     "frequency_response": "stickslip.analysis.frequency_response",
     "response_peak": "stickslip.analysis.frequency_response",
@@ -71,17 +71,17 @@ _EXPORTS: dict[str, str] = {
     "equivalent_damping": "stickslip.analysis.frequency_response",
     "response_curves": "stickslip.analysis.frequency_response",
     "ResponseCurves": "stickslip.analysis.frequency_response",
-    "tune_foundation": "stickslip.analysis.tuning",
-    "TuningResult": "stickslip.analysis.tuning",
-    "optimal_foundation_exact": "stickslip.analysis.tuning",
-    "tuning_curve": "stickslip.analysis.tuning",
-    "TuningCurve": "stickslip.analysis.tuning",
-    "optimal_foundation_stick_slip": "stickslip.analysis.tuning",
-    "StickSlipTuning": "stickslip.analysis.tuning",
+    "tune_foundation": "stickslip.analysis.absorber_tuning",
+    "TuningResult": "stickslip.analysis.absorber_tuning",
+    "optimal_foundation_exact": "stickslip.analysis.absorber_tuning",
+    "tuning_curve": "stickslip.analysis.absorber_tuning",
+    "TuningCurve": "stickslip.analysis.absorber_tuning",
+    "optimal_foundation_stick_slip": "stickslip.analysis.stick_slip_tuning",
+    "StickSlipTuning": "stickslip.analysis.stick_slip_tuning",
     # analysis: critical lambda, foundation choices, design procedure
     "lowest_onset": "stickslip.analysis.critical",
     "Crossing": "stickslip.analysis.critical",
-    "DvaSpec": "stickslip.analysis.dva",
+    "DvaSpec": "stickslip.model.dva",
     "design_foundation": "stickslip.analysis.design",
     "DesignReport": "stickslip.analysis.design",
     # sweep: maps and boundaries over parameter space
@@ -168,9 +168,16 @@ def __getattr__(name: str) -> Any:
 
 if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     __version__: str
+    from stickslip.analysis.absorber_tuning import (
+        TuningCurve,
+        TuningResult,
+        optimal_foundation_exact,
+        tune_foundation,
+        tuning_curve,
+    )
+    from stickslip.analysis.analytic_boundary import analytic_boundaries
     from stickslip.analysis.critical import Crossing, lowest_onset
     from stickslip.analysis.design import DesignReport, design_foundation
-    from stickslip.analysis.dva import DvaSpec
     from stickslip.analysis.frequency_response import (
         ResponseCurves,
         ResponsePeak,
@@ -180,8 +187,8 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         response_peak,
     )
     from stickslip.analysis.simulation import EngineOptions, SimulationResult, TimeHistory, simulate
+    from stickslip.analysis.stick_slip_tuning import StickSlipTuning, optimal_foundation_stick_slip
     from stickslip.analysis.theory import (
-        analytic_boundaries,
         critical_lambda_approx,
         critical_lambda_exact,
         equivalent_damping_fit,
@@ -190,16 +197,8 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         stick_slip_amplitude_ratio,
         stick_slip_period,
     )
-    from stickslip.analysis.tuning import (
-        StickSlipTuning,
-        TuningCurve,
-        TuningResult,
-        optimal_foundation_exact,
-        optimal_foundation_stick_slip,
-        tune_foundation,
-        tuning_curve,
-    )
     from stickslip.analysis.verdict import Mode, RunStatus, Verdict
+    from stickslip.model.dva import DvaSpec
     from stickslip.model.initial import STARTUP_DESCRIPTION, InitialState, startup_state
     from stickslip.model.parameters import Foundation, Slider
     from stickslip.model.physical import PhysicalFoundation, PhysicalSystem

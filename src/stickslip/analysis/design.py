@@ -18,6 +18,8 @@ from typing import Any
 from stickslip.analysis.critical import lowest_onset
 from stickslip.analysis.simulation import simulate
 from stickslip.analysis.theory import (
+    FITTED_ZETA_RANGE,
+    MAX_DESIGN_ZETA,
     critical_lambda_approx,
     critical_lambda_exact,
     equivalent_damping_fit,
@@ -33,11 +35,6 @@ from stickslip.model.physical import (
     foundation_to_physical,
 )
 from stickslip.model.structure import Structure, elastic_foundation, rigid_base
-
-#: Largest primary damping ratio the design procedure accepts; Eqs. (28)-(33) are fitted on
-#: ``0 <= zeta <= 0.4`` and results between 0.4 and this bound carry a warning.
-MAX_DESIGN_ZETA = 0.9
-FITTED_ZETA_RANGE = 0.4
 
 
 @dataclass(frozen=True)
@@ -264,7 +261,7 @@ def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -
 def _stick_slip_optimum(system: PhysicalSystem, zeta: float, gamma: float,
                         lam: float) -> dict[str, Any]:
     """The stick-slip-optimal foundation in SI units, beside the absorber optimum."""
-    from stickslip.analysis.tuning import optimal_foundation_stick_slip
+    from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
 
     result = optimal_foundation_stick_slip(zeta, gamma, lam_max=max(100.0, 4.0 * lam))
     phys = foundation_to_physical(result.foundation, system.m, system.k)

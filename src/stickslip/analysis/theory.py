@@ -1,36 +1,63 @@
 """Closed forms of the paper, each with its equation number.
 
 All quantities are dimensionless. The fitted formulas (Eqs. 28-31, 33) are the paper's
-cubic fits to Harik and Issa's numerical optimum; :mod:`stickslip.analysis.tuning`
+cubic fits to Harik and Issa's numerical optimum; :mod:`stickslip.analysis.absorber_tuning`
 computes the optimum itself. Eqs. (34)-(36) are exact for the 1DOF Coulomb system
-(Nakano); Eqs. (37)-(39) are the paper's simplified boundary.
+(Nakano); Eqs. (37)-(39) are the paper's simplified boundary. The ranges on which the fits
+hold (:data:`FITTED_ZETA_RANGE`, :data:`MAX_DESIGN_ZETA`) live here with them.
 
-:func:`analytic_boundaries` evaluates the boundaries that apply to a foundation choice along
-``zeta``: for the rigid base Eq. (36) (exact) and Eq. (39); with a foundation Eq. (37) with
-the equivalent damping ratio ``zeta_eq`` of the equivalent 1DOF system (Fig. 9). For the
-paper's fitted optimum (Eqs. 28-30, ``K`` not scaled) ``zeta_eq`` is Eq. (33); for any other
-foundation it is Eq. (32), ``1 / (2 H_max)`` with the exact peak of the foundation's
-frequency response (:func:`equivalent_damping_ratio` makes that choice, in one place).
+Which of these boundaries apply to a foundation choice is
+:func:`stickslip.analysis.analytic_boundary.analytic_boundaries`.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import NDArray
 
 from stickslip.model._validate import non_negative, positive
 from stickslip.model.parameters import Foundation
-from stickslip.model.structure import chain_structure
-
-if TYPE_CHECKING:
-    from stickslip.analysis.dva import DvaSpec
 
 FloatArray = NDArray[np.float64]
+
+MAX_DESIGN_ZETA = 0.9
+"""Largest primary damping ratio at which the fitted forms (Eqs. 28-33) are used at all, by the
+design procedure, the tuning and ``optimal`` foundations; above it they are refused."""
+FITTED_ZETA_RANGE = 0.4
+"""Upper end of ``0 <= zeta <= 0.4``, the range on which Eqs. (28)-(33) are fitted; results
+between it and :data:`MAX_DESIGN_ZETA` are extrapolations and carry a warning."""
+MAX_TUNING_ZETA = MAX_DESIGN_ZETA
+"""Largest primary damping ratio accepted by the tuning (the frequency response itself takes any
+``zeta``): the same bound as the design procedure's."""
+
+
+def check_fitted_zeta(zeta: float) -> float:
+    """Refuse ``zeta`` above :data:`MAX_DESIGN_ZETA` for the fitted optimum (Eqs. 28-30).
+
+    The fit is defined on ``0 <= zeta <= FITTED_ZETA_RANGE`` (0.4); between that and
+    ``MAX_DESIGN_ZETA`` (0.9) it is extrapolated and callers warn
+    (:func:`stickslip.analysis.dva.fitted_zeta_warning`), above it is refused, as the tuning and
+    the design procedure do.
+
+    Parameters
+    ----------
+    zeta : float
+        Primary damping ratio, dimensionless.
+
+    Returns
+    -------
+    float
+        ``zeta`` as a float, when ``0 <= zeta <= MAX_DESIGN_ZETA``; otherwise ``ValueError``.
+    """
+    z = non_negative("zeta", zeta)
+    if z > MAX_DESIGN_ZETA:
+        raise ValueError(
+            f"zeta={zeta!r} is above {MAX_DESIGN_ZETA}: the fitted optimal foundation "
+            "(Eqs. 28-30, fitted for zeta <= 0.4) is not defined there"
+        )
+    return z
 
 
 def _cubic(zeta: float, a3: float, a2: float, a1: float, a0: float) -> float:
@@ -148,103 +175,6 @@ def critical_lambda_approx(zeta: float) -> float:
 def stick_slip_predicted(lam: float, zeta: float) -> bool:
     """True when the criterion of Eq. (38) fails, i.e. ``(1 - z)^5 lam^2 / z >= 4 pi``."""
     return positive("lambda", lam) >= critical_lambda_approx(zeta)
-
-
-ZETA_EQ_FIT = "Eq. (33), fitted optimum"
-ZETA_EQ_PEAK = "Eq. (32), 1/(2 H_max) of the frequency response"
-
-
-@dataclass(frozen=True)
-class AnalyticBoundary:
-    """One closed-form critical-lambda curve: stick-slip above ``lam`` (dimensionless).
-
-    Attributes
-    ----------
-    key : str
-        ``eq36``, ``eq39`` or ``eq37``.
-    label : str
-        Legend text naming the equation.
-    zeta, lam : ndarray
-        Primary damping ratio and critical lambda (``inf`` where no stick-slip is predicted).
-    zeta_eq : ndarray or None
-        Equivalent damping ratio used by Eq. (37); None for the rigid-base curves.
-    """
-
-    key: str
-    label: str
-    zeta: FloatArray
-    lam: FloatArray
-    zeta_eq: FloatArray | None = None
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready (non-finite values become None)."""
-        def clean(values: FloatArray) -> list[float | None]:
-            return [float(v) if math.isfinite(v) else None for v in values]
-
-        out: dict[str, Any] = {"label": self.label, "zeta": clean(self.zeta), "lambda": clean(self.lam)}
-        if self.zeta_eq is not None:
-            out["zeta_eq"] = clean(self.zeta_eq)
-        return out
-
-
-def equivalent_damping_ratio(
-    dva: DvaSpec, zeta: float, foundation: Foundation | None = None
-) -> tuple[float, str] | None:
-    """``zeta_eq`` of the equivalent 1DOF model (Fig. 9) at primary damping ``zeta``, and its source.
-
-    Eq. (33) for the fitted optimum (``optimal``, ``K`` unscaled), otherwise Eq. (32),
-    ``1 / (2 H_max)``, from the exact frequency response. None for the rigid base (Eq. 39
-    uses ``zeta`` itself). ``foundation``, when
-    given, is ``dva`` already resolved at ``zeta`` (resolving ``optimal-exact`` is an
-    optimisation of several seconds).
-    """
-    if dva.kind == "none":
-        return None
-    if dva.kind == "optimal" and dva.k_scale == 1.0:
-        return equivalent_damping_fit(zeta), ZETA_EQ_FIT
-    if foundation is None:
-        foundation = dva.resolve(zeta)
-    assert foundation is not None  # kind is not "none"
-    structure = chain_structure(zeta, (foundation,))
-    from stickslip.analysis.frequency_response import equivalent_damping  # scipy: load on use
-
-    return float(equivalent_damping(structure)), ZETA_EQ_PEAK
-
-
-def analytic_boundaries(
-    dva: DvaSpec, zetas: ArrayLike, foundations: Sequence[Foundation | None] | None = None
-) -> list[AnalyticBoundary]:
-    """The closed-form boundaries that apply to ``dva``, evaluated at ``zetas``.
-
-    Parameters
-    ----------
-    dva : DvaSpec
-        ``none`` gives Eq. (36) (exact) and Eq. (39); a foundation gives Eq. (37) with
-        ``zeta_eq`` (empty list when ``zeta_eq`` cannot be computed in this build).
-    zetas : array_like
-        Primary damping ratios, dimensionless, >= 0.
-    foundations : sequence of Foundation, optional
-        ``dva`` already resolved at each of ``zetas`` (as stored in a map or boundary).
-    """
-    z = np.asarray(zetas, dtype=np.float64).reshape(-1)
-    if dva.kind == "none":
-        return [
-            AnalyticBoundary("eq36", "Eq. (36), exact", z,
-                             np.array([critical_lambda_exact(v) for v in z])),
-            AnalyticBoundary("eq39", "Eq. (39)", z,
-                             np.array([critical_lambda_approx(v) for v in z])),
-        ]
-    resolved = list(foundations) if foundations is not None else [None] * z.size
-    if len(resolved) != z.size:
-        raise ValueError(f"{len(resolved)} foundations given for {z.size} zeta values")
-    pairs = [equivalent_damping_ratio(dva, float(v), f) for v, f in zip(z, resolved, strict=True)]
-    if any(p is None for p in pairs):
-        return []
-    zeta_eq = np.array([p[0] for p in pairs if p is not None])
-    source = pairs[0][1] if pairs and pairs[0] is not None else ZETA_EQ_FIT
-    label = f"Eq. (37), zeta_eq from {source.split(',')[0]}"
-    lam = np.array([critical_lambda_approx(v) for v in zeta_eq])
-    return [AnalyticBoundary("eq37", label, z, lam, zeta_eq)]
 
 
 def critical_lambda_linear(zeta: float, delta: float) -> float:

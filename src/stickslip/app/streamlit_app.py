@@ -48,8 +48,8 @@ from stickslip import (
     simulate,
 )
 from stickslip.analysis.design import design_foundation
-from stickslip.analysis.dva import DvaSpec
-from stickslip.analysis.tuning import optimal_foundation_stick_slip
+from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
+from stickslip.model.dva import DvaSpec
 from stickslip.model.friction import CoulombFriction, FrictionLaw, friction_csv_columns
 from stickslip.model.physical import PhysicalFriction, foundation_to_physical
 from stickslip.model.units import FRICTION_QUANTITIES, QUANTITIES, to_si

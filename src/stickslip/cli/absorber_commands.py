@@ -140,7 +140,8 @@ def tune(
 
     Example: stickslip tune --zeta 0.1 --objective stability --json
     """
-    from stickslip.analysis.tuning import MAX_TUNING_ZETA, tune_foundation
+    from stickslip.analysis.absorber_tuning import tune_foundation
+    from stickslip.analysis.theory import MAX_TUNING_ZETA
     from stickslip.model._validate import at_most, non_negative, positive, ratio
 
     zeta = _zeta(zeta)
@@ -200,7 +201,7 @@ def _mass_bounds(zeta: float, mass_ratio: float | None) -> tuple[float, float]:
 
 
 def _tune_stability(zeta: float, mass_ratio: float | None, json: bool) -> None:
-    from stickslip.analysis.tuning import optimal_foundation_stability
+    from stickslip.analysis.stability_tuning import optimal_foundation_stability
 
     bounds = _mass_bounds(zeta, mass_ratio)
     payload = optimal_foundation_stability(zeta, mass_ratio_bounds=bounds).to_dict()
@@ -227,7 +228,7 @@ def _tune_stability(zeta: float, mass_ratio: float | None, json: bool) -> None:
 
 def _tune_stick_slip(zeta: float, gamma: float, mass_ratio: float | None, lam_max: float,
                      json: bool) -> None:
-    from stickslip.analysis.tuning import optimal_foundation_stick_slip
+    from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
 
     bounds = _mass_bounds(zeta, mass_ratio)
     result = optimal_foundation_stick_slip(zeta, gamma, mass_ratio_bounds=bounds, lam_max=lam_max)

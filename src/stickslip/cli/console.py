@@ -37,9 +37,10 @@ def parse_dva(text: str, zeta: float, k_scale: float = 1.0) -> Foundation | None
     ``optimal-exact`` the numerical optimum of the absorber; ``M,K,ZETA_A`` explicit values.
     ``k_scale`` multiplies ``K`` (paper Figs. 11-15); it requires a foundation.
     """
-    from stickslip.analysis.dva import DvaSpec
+    from stickslip.analysis.dva import resolve_dva
+    from stickslip.model.dva import DvaSpec
 
-    return DvaSpec.parse(text, k_scale).resolve(zeta)
+    return resolve_dva(DvaSpec.parse(text, k_scale), zeta)
 
 
 def max_events_limit() -> int:
@@ -123,7 +124,8 @@ def warn_fitted_range(spec: Any, zetas: Any) -> None:
     ``spec`` is a :class:`~stickslip.analysis.dva.DvaSpec` or the ``--dva`` text. Call it
     after every check has passed, so that a rejected command prints only its error line.
     """
-    from stickslip.analysis.dva import DvaSpec, fitted_zeta_warning
+    from stickslip.analysis.dva import fitted_zeta_warning
+    from stickslip.model.dva import DvaSpec
 
     if isinstance(spec, str):
         spec = DvaSpec.parse(spec)

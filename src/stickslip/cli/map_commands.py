@@ -77,7 +77,7 @@ def grid_config(lam: str | None, zeta: str, lam_spacing: str | None, zeta_spacin
     linear law ``linear:DELTA`` (the returned law is then None); otherwise every cell has
     ``--friction``. Bad combinations and out-of-range values are one-line ``BadInput``.
     """
-    from stickslip.analysis.dva import DvaSpec
+    from stickslip.model.dva import DvaSpec
     from stickslip.model.friction import CoulombFriction, parse_friction
     from stickslip.sweep.grid import Axis
     from stickslip.sweep.occurrence import MapConfig
@@ -341,7 +341,7 @@ def boundary_command(
 
     Example: stickslip boundary --zeta 0.01:0.4:8 --dva none --friction linear:0.02 --json
     """
-    from stickslip.analysis.dva import DvaSpec
+    from stickslip.model.dva import DvaSpec
     from stickslip.model.friction import parse_friction
     from stickslip.sweep.boundary import stick_slip_boundary
     from stickslip.sweep.executors import check_backend

@@ -26,8 +26,8 @@ from stickslip.analysis.theory import (
 from stickslip.plot.figure import PlotResult, new_axes, new_grid
 
 if TYPE_CHECKING:
+    from stickslip.analysis.absorber_tuning import TuningCurve
     from stickslip.analysis.frequency_response import ResponseCurves
-    from stickslip.analysis.tuning import TuningCurve
 
 EXACT_STYLE: dict[str, Any] = {"color": "black", "marker": "o", "ms": 4, "mfc": "white", "lw": 0.8}
 FIT_STYLE: dict[str, Any] = {"color": "tab:red", "lw": 1.4}

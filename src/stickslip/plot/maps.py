@@ -29,9 +29,10 @@ from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.patches import Patch
 from numpy.typing import NDArray
 
-from stickslip.analysis.dva import DvaSpec
+from stickslip.analysis.analytic_boundary import analytic_boundaries
 from stickslip.analysis.stability import critical_weakening
-from stickslip.analysis.theory import analytic_boundaries, critical_lambda_linear
+from stickslip.analysis.theory import critical_lambda_linear
+from stickslip.model.dva import DvaSpec
 from stickslip.model.parameters import Foundation
 from stickslip.model.structure import chain_structure
 from stickslip.plot.figure import PlotResult, new_axes

@@ -6,9 +6,9 @@ from pathlib import Path
 
 import numpy as np
 
+from stickslip.analysis.absorber_tuning import tuning_curve
 from stickslip.analysis.frequency_response import response_curves
 from stickslip.analysis.theory import optimal_foundation_fit, peak_response_fit
-from stickslip.analysis.tuning import tuning_curve
 from stickslip.model.structure import elastic_foundation
 from stickslip.reproduction.claims import Claim
 from stickslip.reproduction.outputs import save_columns, save_figure

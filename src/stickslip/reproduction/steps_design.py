@@ -7,7 +7,7 @@ import math
 from pathlib import Path
 
 from stickslip.analysis.design import design_foundation
-from stickslip.analysis.tuning import optimal_foundation_stick_slip
+from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
 from stickslip.model.physical import PhysicalSystem
 from stickslip.reproduction.claims import Claim
 from stickslip.reproduction.outputs import save_figure

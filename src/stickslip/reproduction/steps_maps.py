@@ -8,12 +8,12 @@ from typing import Any
 
 import numpy as np
 
-from stickslip.analysis.dva import DvaSpec
 from stickslip.analysis.theory import (
     critical_lambda_approx,
     critical_lambda_exact,
     equivalent_damping_fit,
 )
+from stickslip.model.dva import DvaSpec
 from stickslip.reproduction.claims import Claim
 from stickslip.reproduction.outputs import save_figure
 from stickslip.reproduction.quality import Quality

@@ -28,14 +28,15 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from stickslip.analysis.analytic_boundary import analytic_boundaries
 from stickslip.analysis.critical import Crossing, bisect_crossings, scan_brackets
-from stickslip.analysis.dva import DvaSpec
 from stickslip.analysis.simulation import EngineOptions
-from stickslip.analysis.theory import analytic_boundaries, critical_lambda_linear
+from stickslip.analysis.theory import critical_lambda_linear
 from stickslip.analysis.verdict import Verdict, verdict_codes, verdict_flag_attributes
 from stickslip.io.provenance import package_version, provenance_attributes
 from stickslip.kernel import engine
 from stickslip.model._validate import at_most, non_negative, positive
+from stickslip.model.dva import DvaSpec
 from stickslip.model.friction import CoulombFriction, FrictionLaw, LinearFriction
 from stickslip.model.parameters import Foundation
 from stickslip.sweep.executors import CellBatch, StructureSet, run_batch

@@ -25,9 +25,10 @@ from typing import TYPE_CHECKING, Any, Literal, TypeAlias, TypeVar, cast
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.dva import DvaSpec
+from stickslip.analysis.dva import resolve_dva
 from stickslip.analysis.simulation import EngineOptions
 from stickslip.model._validate import non_negative
+from stickslip.model.dva import DvaSpec
 from stickslip.model.friction import CoulombFriction, FrictionLaw
 from stickslip.model.parameters import Foundation
 from stickslip.model.structure import chain_structure
@@ -72,7 +73,7 @@ class StructureSet:
         for value in z.tolist():
             non_negative("zeta", value)
         try:
-            foundations = tuple(dva.resolve(float(value)) for value in z)
+            foundations = tuple(resolve_dva(dva, float(value)) for value in z)
         except ImportError as exc:
             raise ValueError(f"--dva {dva.as_text()} is not available in this build: {exc}") from None
         structures = [

@@ -31,7 +31,6 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from stickslip.analysis.dva import DvaSpec
 from stickslip.analysis.simulation import EngineOptions
 from stickslip.analysis.verdict import (
     VERDICTS,
@@ -43,6 +42,7 @@ from stickslip.analysis.verdict import (
 from stickslip.io.provenance import package_version, provenance_attributes
 from stickslip.kernel import engine
 from stickslip.model._validate import non_negative, positive
+from stickslip.model.dva import DvaSpec
 from stickslip.model.friction import CoulombFriction, FrictionLaw, LinearFriction
 from stickslip.model.initial import STARTUP_DESCRIPTION
 from stickslip.model.parameters import Foundation
