@@ -38,9 +38,6 @@ CodeArray = NDArray[np.int8]
 #: (a group is one curve, e.g. one ``zeta``); called once per bisection round.
 Classifier = Callable[[IntArray, FloatArray], CodeArray]
 
-_STEADY = Verdict.STEADY_SLIDING.code
-_STICK_SLIP = Verdict.STICK_SLIP.code
-_UNDETERMINED = Verdict.UNDETERMINED.code
 
 
 @dataclass(frozen=True)
@@ -82,7 +79,8 @@ def scan_brackets(lams: FloatArray, codes: CodeArray) -> list[tuple[float, float
 
     Undetermined scan points are skipped: their certified neighbours bracket across them.
     """
-    known = [(float(lam), int(c)) for lam, c in zip(lams, codes, strict=True) if c != _UNDETERMINED]
+    known = [(float(lam), int(c)) for lam, c in zip(lams, codes, strict=True)
+             if c != Verdict.UNDETERMINED.code]
     return [(lo, hi, v_lo) for (lo, v_lo), (hi, v_hi) in itertools.pairwise(known) if v_lo != v_hi]
 
 
@@ -108,7 +106,7 @@ def bisect_crossings(
         codes = classify(np.array([b[0] for b in active], dtype=np.int64), mids)
         n_runs += mids.size
         for b, mid, code in zip(active, mids, codes, strict=True):
-            if code == _UNDETERMINED:
+            if code == Verdict.UNDETERMINED.code:
                 b[4] = False
             elif code == b[3]:
                 b[1] = float(mid)
@@ -116,7 +114,8 @@ def bisect_crossings(
                 b[2] = float(mid)
         active = [b for b in active if b[4] and not _narrow(b[1], b[2], rtol)]
     crossings = [
-        (int(j), Crossing(math.sqrt(lo * hi), lo, hi, onset=v_lo == _STEADY, converged=bool(ok)))
+        (int(j), Crossing(math.sqrt(lo * hi), lo, hi, onset=v_lo == Verdict.STEADY_SLIDING.code,
+                          converged=bool(ok)))
         for j, lo, hi, v_lo, ok in state
     ]
     return crossings, n_runs
@@ -174,12 +173,12 @@ def lowest_onset(
                         dtype=np.int8)
 
     lo = lam_min
-    if verdict_code(structure, lo, gamma, opts) == _STICK_SLIP:
+    if verdict_code(structure, lo, gamma, opts) == Verdict.STICK_SLIP.code:
         return lo
     hi = lo * growth
-    while verdict_code(structure, hi, gamma, opts) != _STICK_SLIP:
+    while verdict_code(structure, hi, gamma, opts) != Verdict.STICK_SLIP.code:
         if hi >= lam_max:
             return math.inf
         lo, hi = hi, min(hi * growth, lam_max)
-    [(_, crossing)], _ = bisect_crossings(classify, [(0, lo, hi, _STEADY)], rtol)
+    [(_, crossing)], _ = bisect_crossings(classify, [(0, lo, hi, Verdict.STEADY_SLIDING.code)], rtol)
     return crossing.lam

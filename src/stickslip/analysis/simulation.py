@@ -413,14 +413,13 @@ def simulate(
     n_bands = bands[1].size
     description = slider.friction.describe() + (f" ({n_bands} bands)" if n_bands > 1 else "")
     stability = steady_sliding_stability(structure, slider)
+    verdict = status.verdict
     if status is RunStatus.CERTIFIED_STEADY and n_bands == 1:
-        verdict = Verdict.STEADY_SLIDING
         certificate = (
             f"Lyapunov bound: |xi'| <= {fsum[engine.F_LYAPUNOV_BOUND]:.6g} < 1 for all "
             f"tau >= {fsum[engine.F_T_CERTIFIED]:.6g} in slip-I, so the slider never sticks again"
         )
     elif status is RunStatus.CERTIFIED_STEADY:
-        verdict = Verdict.STEADY_SLIDING
         certificate = (
             f"Lyapunov bound about steady sliding: |xi'| <= {fsum[engine.F_LYAPUNOV_BOUND]:.6g} "
             f"for all tau >= {fsum[engine.F_T_CERTIFIED]:.6g}, so the sliding speed u = 1 - xi' "
@@ -428,20 +427,17 @@ def simulate(
             f"never sticks again"
         )
     elif status is RunStatus.CERTIFIED_OSCILLATION:
-        verdict = Verdict.SLIP_OSCILLATION
         certificate = (
             f"Poincare-section state repeats after {int(isum[engine.I_CYCLE_K])} crossing(s) "
             f"to {fsum[engine.F_CYCLE_MISMATCH]:.1e} (relative) with no stick phase; period "
             f"{fsum[engine.F_PERIOD]:.6g}, amplitude {fsum[engine.F_AMPLITUDE]:.6g}"
         )
     elif status is RunStatus.CERTIFIED_CYCLE:
-        verdict = Verdict.STICK_SLIP
         certificate = (
             f"breakaway state repeats after {int(isum[engine.I_CYCLE_K])} stick phase(s) "
             f"to {fsum[engine.F_CYCLE_MISMATCH]:.1e} (relative)"
         )
     else:
-        verdict = Verdict.UNDETERMINED
         certificate = ""
     return SimulationResult(
         structure=structure,

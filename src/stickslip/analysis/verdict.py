@@ -86,6 +86,23 @@ class RunStatus(Enum):
         """Short machine-readable name, e.g. ``t-max``."""
         return self.name.lower().replace("_", "-")
 
+    @property
+    def verdict(self) -> Verdict:
+        """The verdict this status certifies; ``undetermined`` for a status that is no certificate.
+
+        The one mapping from run status to verdict (:data:`CERTIFIED_VERDICTS`): a time horizon,
+        an event budget or a step budget is never rounded to a verdict.
+        """
+        return CERTIFIED_VERDICTS.get(self, Verdict.UNDETERMINED)
+
+
+#: The certificates and the verdict each one proves; every other status is ``undetermined``.
+CERTIFIED_VERDICTS: dict[RunStatus, Verdict] = {
+    RunStatus.CERTIFIED_STEADY: Verdict.STEADY_SLIDING,
+    RunStatus.CERTIFIED_CYCLE: Verdict.STICK_SLIP,
+    RunStatus.CERTIFIED_OSCILLATION: Verdict.SLIP_OSCILLATION,
+}
+
 
 #: Verdicts in the order of their integer codes (``Verdict.code``).
 VERDICTS: tuple[Verdict, ...] = tuple(sorted(Verdict, key=lambda v: v.code))
@@ -114,10 +131,19 @@ def verdict_codes(status: NDArray[np.integer[Any]]) -> NDArray[np.int8]:
     """Verdict code of each run status: steady 0, stick-slip cycle 1, slip oscillation 3, else 2.
 
     Anything that is not a certificate (time horizon, event budget, an unknown status) is
-    ``undetermined``: never rounded to a verdict.
+    ``undetermined``: never rounded to a verdict. The array form of :attr:`RunStatus.verdict`.
+
+    Parameters
+    ----------
+    status : ndarray of int
+        Run-status codes (:attr:`RunStatus.code`), any shape.
+
+    Returns
+    -------
+    ndarray of int8
+        Verdict codes (:attr:`Verdict.code`), same shape.
     """
     codes = np.full(np.shape(status), Verdict.UNDETERMINED.code, dtype=np.int8)
-    codes[status == RunStatus.CERTIFIED_STEADY.code] = Verdict.STEADY_SLIDING.code
-    codes[status == RunStatus.CERTIFIED_CYCLE.code] = Verdict.STICK_SLIP.code
-    codes[status == RunStatus.CERTIFIED_OSCILLATION.code] = Verdict.SLIP_OSCILLATION.code
+    for certificate, verdict in CERTIFIED_VERDICTS.items():
+        codes[status == certificate.code] = verdict.code
     return codes

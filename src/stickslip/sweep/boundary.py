@@ -52,9 +52,6 @@ FloatArray = NDArray[np.float64]
 #: take 1.4 GB and hours; ``--scan 1e12`` used to attempt a 7 TiB allocation.
 MAX_SCAN_RUNS = 10_000_000
 
-_STEADY = Verdict.STEADY_SLIDING.code
-_STICK_SLIP = Verdict.STICK_SLIP.code
-_UNDETERMINED = Verdict.UNDETERMINED.code
 
 
 @dataclass(frozen=True)
@@ -111,8 +108,8 @@ class BoundaryResult:
         """
         out = np.full(len(self.zeta), np.nan)
         for j, row in enumerate(self.scan_verdict):
-            known = row[row != _UNDETERMINED]
-            if known.size == 0 or known[0] == _STICK_SLIP:
+            known = row[row != Verdict.UNDETERMINED.code]
+            if known.size == 0 or known[0] == Verdict.STICK_SLIP.code:
                 continue
             onsets = [c.lam for c in self.crossings[j] if c.onset]
             out[j] = onsets[0] if onsets else math.inf
@@ -122,10 +119,10 @@ class BoundaryResult:
         """Per ``zeta``, why :attr:`critical_lambda` is not a plain number (else ``""``)."""
         out = []
         for j, row in enumerate(self.scan_verdict):
-            known = row[row != _UNDETERMINED]
+            known = row[row != Verdict.UNDETERMINED.code]
             if known.size == 0:
                 out.append("every scan run was undetermined; increase t_max")
-            elif known[0] == _STICK_SLIP:
+            elif known[0] == Verdict.STICK_SLIP.code:
                 out.append(f"stick-slip already at lam_min={self.lam_min:g}")
             elif not any(c.onset for c in self.crossings[j]):
                 out.append(f"no stick-slip in [{self.lam_min:g}, {self.lam_max:g}]")
@@ -189,7 +186,7 @@ class BoundaryResult:
                 "crossings": [c.to_dict() for c in self.crossings[j]],
                 "undetermined_scan_points": [
                     float(v) for v, code in zip(self.scan_lambda, self.scan_verdict[j], strict=True)
-                    if code == _UNDETERMINED
+                    if code == Verdict.UNDETERMINED.code
                 ],
             }
             row.update({key: values[j] for key, values in analytic.items()})
