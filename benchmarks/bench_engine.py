@@ -50,7 +50,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
 from oracle import OracleResult, oracle_simulate
-from stickslip.analysis.simulation import simulate
+from stickslip.analysis.simulation import EngineOptions, simulate
 from stickslip.analysis.theory import optimal_foundation_fit
 from stickslip.model import Slider, elastic_foundation, startup_state
 
@@ -113,7 +113,7 @@ def run_case(case: Case, args: argparse.Namespace) -> dict[str, Any]:
     res = None
     for _ in range(args.repeats):
         t0 = time.perf_counter()
-        res = simulate(structure, slider, t_max=case.t_max)
+        res = simulate(structure, slider, options=EngineOptions(t_max=case.t_max))
         times.append(time.perf_counter() - t0)
     assert res is not None
     t_engine = statistics.median(times)
@@ -213,7 +213,7 @@ def main(argv: list[str] | None = None) -> int:
     c0 = cases[0]
     st0 = elastic_foundation(c0.zeta, optimal_foundation_fit(c0.zeta))
     t0 = time.perf_counter()
-    simulate(st0, Slider(c0.lam, gamma=args.gamma), t_max=c0.t_max)
+    simulate(st0, Slider(c0.lam, gamma=args.gamma), options=EngineOptions(t_max=c0.t_max))
     t_warm = time.perf_counter() - t0
     print(f"engine warm-up (JIT compile or cache load): {t_warm:.2f} s")
     print(

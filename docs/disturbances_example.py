@@ -23,7 +23,8 @@ def main() -> None:
     args.out.mkdir(parents=True, exist_ok=True)
 
     # the design worked example's machine at a lower speed: above the rigid-base boundary
-    system = PhysicalSystem(m=2.0, k=5e4, c=63.25, mu_s=0.5, mu_k=0.3, load=150.0, speed=0.02)
+    system = PhysicalSystem(mass=2.0, stiffness=5e4, damping=63.25,
+                            mu_s=0.5, mu_k=0.3, load=150.0, speed=0.02)
     structure, slider = system.structure(), system.slider()
     print(f"lambda = {slider.lam:.4g}, zeta = {system.zeta:.4g}")
     print(f"from start-up: {simulate(structure, slider, record=False).verdict.value}")

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from stickslip import (
+    EngineOptions,
     PhysicalSystem,
     Slider,
     elastic_foundation,
@@ -48,7 +49,7 @@ v,mu
 0.400,0.318
 """
 
-MACHINE = dict(m=2.0, k=5e4, c=20.0, mu_s=0.5, mu_k=0.3, load=150.0, speed=0.05)
+MACHINE = dict(mass=2.0, stiffness=5e4, damping=20.0, mu_s=0.5, mu_k=0.3, load=150.0, speed=0.05)
 
 
 def main() -> None:
@@ -79,7 +80,8 @@ def main() -> None:
     runs = {}
     for name, structure in structures.items():
         horizon = 1500.0 if name == "stability" else 400.0  # the soft foundation loads up slowly
-        runs[name] = simulate(structure, slider, t_max=horizon, run_to_t_max=True)  # for figures
+        runs[name] = simulate(structure, slider, options=EngineOptions(t_max=horizon),
+                              run_to_t_max=True)  # for figures
         verdict = simulate(structure, slider, record=False)  # default horizon
         coulomb = simulate(structure, Slider(slider.lam, gamma=slider.gamma), record=False)
         stab = steady_sliding_stability(structure, slider)
@@ -93,7 +95,7 @@ def main() -> None:
         print(f"{name:10s} growth rate {m['growth_rate']:+.4g} 1/s, tolerated friction slope "
               f"-{m['sigma_crit']:.4g} s/m, the curve's slope at V: -{m['sigma_local']:.4g} s/m")
     for name, found in (("recommended (Eqs. 28-30)", fit), ("stability-optimal", stable)):
-        phys = foundation_to_physical(found, system.m, system.k)
+        phys = foundation_to_physical(found, system.mass, system.stiffness)
         print(f"{name} foundation: m_a = {phys.m_a:.4g} kg, k_a = {phys.k_a:.4g} N/m, "
               f"c_a = {phys.c_a:.4g} N s/m")
 

@@ -14,7 +14,7 @@ import matplotlib.pyplot as plt
 
 from stickslip import PhysicalSystem, design_foundation
 
-machine = PhysicalSystem(m=2.0, k=50e3, c=20.0, mu_s=0.5, mu_k=0.3, load=500.0, speed=0.2)
+machine = PhysicalSystem(mass=2.0, stiffness=50e3, damping=20.0, mu_s=0.5, mu_k=0.3, load=500.0, speed=0.2)
 report = design_foundation(machine)
 print(f"lambda = {report.lam:.3f}, zeta = {report.zeta:.4f}, zeta_eq = {report.zeta_eq:.4f}")
 print("recommended foundation (SI):", report.recommended)

@@ -192,7 +192,7 @@ def _design_stability(friction: Any) -> dict[str, Any]:
     from stickslip import PhysicalSystem
     from stickslip.analysis.design import design_foundation
 
-    system = PhysicalSystem(m=2.0, k=5e4, c=20.0, mu_s=0.5, mu_k=0.3, load=500.0, speed=0.05,
+    system = PhysicalSystem(mass=2.0, stiffness=5e4, damping=20.0, mu_s=0.5, mu_k=0.3, load=500.0, speed=0.05,
                             friction=friction)
     return dict(design_foundation(system).to_dict()["stability"])
 

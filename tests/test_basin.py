@@ -69,7 +69,7 @@ def test_the_safe_region_holds_only_steady_sliding() -> None:
 
 
 def test_physical_startup_state_maps_to_the_startup_state() -> None:
-    system = PhysicalSystem(m=2.0, k=5e4, c=20.0, mu_s=0.5, mu_k=0.3, load=150.0, speed=0.05)
+    system = PhysicalSystem(mass=2.0, stiffness=5e4, damping=20.0, mu_s=0.5, mu_k=0.3, load=150.0, speed=0.05)
     state = states_from_physical(system, np.array([[0.0, 0.05]]))[0]
     ref = startup_state(system.structure(), system.slider())
     assert state == pytest.approx(np.concatenate([ref.position, ref.velocity]), abs=1e-12)

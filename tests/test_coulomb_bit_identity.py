@@ -33,7 +33,7 @@ def test_coulomb_results_are_bit_identical(case: dict) -> None:
     fsum = [float.fromhex(x) for x in case["fsum"]]
     isum = case["isum"]
     assert result.status.code == isum[0]
-    assert (result.n_stick, result.cycle_k, result.n_breakaway, result.n_steps) == (
+    assert (result.n_stick, result.cycle_length, result.n_breakaway, result.n_steps) == (
         isum[1], isum[2], isum[3], isum[5])
     found = [result.lyapunov_bound, result.period, result.amplitude, result.xi_range[0],
              result.xi_range[1], result.stick_ratio, result.cycle_max_velocity, result.max_velocity,

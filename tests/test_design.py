@@ -22,7 +22,7 @@ from stickslip.model.units import to_si
 from tests.cli_helpers import run_cli as _cli
 
 # a 2 kg slider on 50 kN/m with 20 N s/m, mu_s = 0.5, mu_k = 0.3, 500 N, 5 cm/s
-SYSTEM = PhysicalSystem(m=2.0, k=50e3, c=20.0, mu_s=0.5, mu_k=0.3, load=500.0, speed=0.05)
+SYSTEM = PhysicalSystem(mass=2.0, stiffness=50e3, damping=20.0, mu_s=0.5, mu_k=0.3, load=500.0, speed=0.05)
 
 
 @pytest.mark.parametrize(
@@ -134,7 +134,7 @@ def test_design_refuses_an_overdamped_slider(capsys: pytest.CaptureFixture[str])
 
 def test_design_warns_outside_the_fitted_range() -> None:
     # zeta = 0.6 lies outside 0 <= zeta <= 0.4, where Eqs. (28)-(33) were fitted
-    system = PhysicalSystem(m=2.0, k=50e3, c=2 * 0.6 * math.sqrt(2.0 * 50e3), mu_s=0.5,
+    system = PhysicalSystem(mass=2.0, stiffness=50e3, damping=2 * 0.6 * math.sqrt(2.0 * 50e3), mu_s=0.5,
                             mu_k=0.3, load=500.0, speed=0.05)
     report = design_foundation(system)
     assert report.warnings and "outside the range" in report.warnings[0]

@@ -93,7 +93,7 @@ def test_unstable_steady_sliding_has_no_margin() -> None:
 
 def test_margin_in_physical_units() -> None:
     # energy in m V^2, kick in V, displacement in V / omega_n (Eqs. 15-18)
-    system = PhysicalSystem(m=2.0, k=5e4, c=20.0, mu_s=0.5, mu_k=0.3, load=150.0, speed=0.05)
+    system = PhysicalSystem(mass=2.0, stiffness=5e4, damping=20.0, mu_s=0.5, mu_k=0.3, load=150.0, speed=0.05)
     margin = safe_disturbance(system.structure(), system.slider())
     phys = margin.physical(system)
     assert phys["velocity_kick_m_s"] == pytest.approx(margin.velocity_kick * 0.05)

@@ -97,7 +97,7 @@ def test_max_events_is_a_reported_status() -> None:
 
 def test_t_max_is_a_reported_status() -> None:
     structure = chain_structure(0.05, ())
-    result = simulate(structure, Slider(3.0), t_max=2.0)
+    result = simulate(structure, Slider(3.0), options=EngineOptions(t_max=2.0))
     assert result.status is RunStatus.T_MAX
     assert result.t_end == 2.0
     assert result.certificate == ""

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from stickslip import Slider, Verdict, elastic_foundation, rigid_base, simulate
+from stickslip import EngineOptions, Slider, Verdict, elastic_foundation, rigid_base, simulate
 from stickslip.model import TableFriction
 from stickslip.model.parameters import Foundation
 from tests.friction_oracle import friction_oracle_simulate
@@ -40,7 +40,8 @@ def test_a_decaying_oscillation_is_not_a_slip_oscillation() -> None:
     # the Poincare section is a band edge at a positive distance from u = 1, so the shrinking
     # motion is never taken for a periodic one
     structure = elastic_foundation(0.1, Foundation(1.5, 1.0, 0.5))
-    r = simulate(structure, Slider(0.45, friction=TABLE), run_to_t_max=True, t_max=400.0)
+    r = simulate(structure, Slider(0.45, friction=TABLE), run_to_t_max=True,
+                 options=EngineOptions(t_max=400.0))
     assert r.verdict is Verdict.STEADY_SLIDING
 
 

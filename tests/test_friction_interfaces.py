@@ -146,7 +146,8 @@ def test_stability_tuning_respects_its_bounds() -> None:
 
 def test_physical_friction_converts_with_the_design_definitions(tmp_path: Path) -> None:
     # delta = sigma W / (2 sqrt(m k)); u = v / V; f = (mu - mu_k) / (mu_s - mu_k)
-    base = {"m": 2.0, "k": 5e4, "c": 20.0, "mu_s": 0.5, "mu_k": 0.3, "load": 150.0, "speed": 0.05}
+    base = {"mass": 2.0, "stiffness": 5e4, "damping": 20.0, "mu_s": 0.5, "mu_k": 0.3, "load": 150.0,
+            "speed": 0.05}
     linear = physical_friction_from_config({"law": "linear", "slope": "0.02 s/m"})
     slider = PhysicalSystem(**base, friction=linear).slider()
     assert slider.friction == LinearFriction(0.02 * 150.0 / (2 * math.sqrt(2.0 * 5e4)))

@@ -103,7 +103,7 @@ def test_startup_state_matches_design_formula() -> None:
 
 def test_physical_system_groups() -> None:
     # definitions after Eq. (27); a 2 kg slider on 50 kN/m, mu_s = 0.5, mu_k = 0.3
-    p = PhysicalSystem(m=2.0, k=50e3, c=20.0, mu_s=0.5, mu_k=0.3, load=100.0, speed=0.1,
+    p = PhysicalSystem(mass=2.0, stiffness=50e3, damping=20.0, mu_s=0.5, mu_k=0.3, load=100.0, speed=0.1,
                        foundation=PhysicalFoundation(m_a=3.0, k_a=40e3, c_a=300.0))
     s = p.slider()
     root_mk = math.sqrt(2.0 * 50e3)
@@ -120,7 +120,7 @@ def test_physical_system_groups() -> None:
 
 def test_physical_rejects_mu_k_not_below_mu_s() -> None:
     with pytest.raises(ValueError, match=r"mu_k=0\.5 must be smaller than mu_s=0\.5"):
-        PhysicalSystem(m=1, k=1, c=0, mu_s=0.5, mu_k=0.5, load=1, speed=1)
+        PhysicalSystem(mass=1, stiffness=1, damping=0, mu_s=0.5, mu_k=0.5, load=1, speed=1)
 
 
 @given(

@@ -24,7 +24,7 @@ from matplotlib.patches import FancyBboxPatch, Polygon
 from stickslip.analysis.absorber_tuning import TuningCurve, tune_foundation, tuning_curve
 from stickslip.analysis.design import DesignReport, design_foundation
 from stickslip.analysis.frequency_response import response_curves
-from stickslip.analysis.simulation import SimulationResult, simulate
+from stickslip.analysis.simulation import EngineOptions, SimulationResult, simulate
 from stickslip.analysis.theory import optimal_foundation_fit
 from stickslip.model import Slider, elastic_foundation, rigid_base
 from stickslip.plot import absorber, basin, design, maps, simulation
@@ -54,7 +54,7 @@ def _no_global_state() -> Iterator[None]:
 @pytest.fixture(scope="module")
 def run() -> SimulationResult:
     structure = elastic_foundation(0.05, optimal_foundation_fit(0.05).scaled(0.5))
-    return simulate(structure, Slider(3.0), t_max=60.0, run_to_t_max=True)
+    return simulate(structure, Slider(3.0), options=EngineOptions(t_max=60.0), run_to_t_max=True)
 
 
 @pytest.fixture(scope="module")

@@ -40,7 +40,7 @@ def test_rigid_base_boundary_equals_eq_36_root() -> None:
         print(f"zeta={zeta:<5} boundary {found:.10g} | Eq. (36) {exact:.10g} | digits {digits:.1f}")
         assert abs(found / exact - 1.0) <= 1e-6
         assert len(crossings) == 1 and crossings[0].onset and crossings[0].converged
-        assert crossings[0].hi - crossings[0].lo <= 1e-6 * crossings[0].lo
+        assert crossings[0].lam_above - crossings[0].lam_below <= 1e-6 * crossings[0].lam_below
 
 
 def test_non_monotone_boundary_is_found_whole() -> None:
@@ -51,10 +51,10 @@ def test_non_monotone_boundary_is_found_whole() -> None:
     assert all(c.converged for c in crossings)
     # each crossing separates the two verdicts, checked by independent single runs
     for c in crossings:
-        below, above = _verdict(TWO_BAND, c.lo, zeta), _verdict(TWO_BAND, c.hi, zeta)
+        below, above = _verdict(TWO_BAND, c.lam_below, zeta), _verdict(TWO_BAND, c.lam_above, zeta)
         assert (below, above) == ((Verdict.STEADY_SLIDING, Verdict.STICK_SLIP) if c.onset
                                   else (Verdict.STICK_SLIP, Verdict.STEADY_SLIDING))
-        assert c.hi / c.lo - 1.0 <= 1e-7
+        assert c.lam_above / c.lam_below - 1.0 <= 1e-7
     assert result.critical_lambda[0] == crossings[0].lam
     assert 0.40 < crossings[0].lam < 0.43 and 0.47 < crossings[1].lam < 0.50
     assert 0.77 < crossings[2].lam < 0.80

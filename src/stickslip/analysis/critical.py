@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -48,8 +49,10 @@ class Crossing:
     ----------
     lam : float
         Location, the geometric midpoint of the final bracket (dimensionless).
-    lo, hi : float
-        Final bracket: the verdict on the ``lo`` side differs from the ``hi`` side.
+    lam_below, lam_above : float
+        Final bracket, ``lam_below < lam < lam_above``: the verdict at ``lam_below`` differs
+        from the one at ``lam_above``. ``lo`` and ``hi`` are their former names (deprecated,
+        one release); the JSON keys stay ``lo`` and ``hi``.
     onset : bool
         True when stick-slip lies above (steady sliding below), False for the reverse.
     converged : bool
@@ -57,14 +60,26 @@ class Crossing:
     """
 
     lam: float
-    lo: float
-    hi: float
+    lam_below: float
+    lam_above: float
     onset: bool
     converged: bool
 
+    @property
+    def lo(self) -> float:
+        """Deprecated name of :attr:`lam_below`."""
+        warnings.warn("Crossing.lo is deprecated: use lam_below", DeprecationWarning, stacklevel=2)
+        return self.lam_below
+
+    @property
+    def hi(self) -> float:
+        """Deprecated name of :attr:`lam_above`."""
+        warnings.warn("Crossing.hi is deprecated: use lam_above", DeprecationWarning, stacklevel=2)
+        return self.lam_above
+
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready."""
-        return {"lambda": self.lam, "lo": self.lo, "hi": self.hi,
+        """JSON-ready: ``lambda``, the bracket ``lo`` and ``hi``, ``kind`` and ``converged``."""
+        return {"lambda": self.lam, "lo": self.lam_below, "hi": self.lam_above,
                 "kind": "onset" if self.onset else "end", "converged": self.converged}
 
 

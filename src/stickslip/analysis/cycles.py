@@ -413,7 +413,7 @@ def find_cycles(
                 continue
             certified = simulate(structure, slider, initial=InitialState(full[:n], full[n:]),
                                  options=opts, record=False)
-            if certified.verdict is not Verdict.STICK_SLIP or certified.cycle_k != k:
+            if certified.verdict is not Verdict.STICK_SLIP or certified.cycle_length != k:
                 continue
             multipliers = (np.asarray(np.linalg.eigvals(jac), dtype=np.complex128) if jac.size
                            else np.zeros(0, dtype=np.complex128))

@@ -106,7 +106,7 @@ class DesignReport:
             "recommended_foundation": {"m_a": r.m_a, "k_a": r.k_a, "c_a": r.c_a,
                                        "source": "Fig. 16 procedure: Eqs. (28)-(30)"},
             "system": {
-                "m": self.system.m, "k": self.system.k, "c": self.system.c,
+                "m": self.system.mass, "k": self.system.stiffness, "c": self.system.damping,
                 "mu_s": self.system.mu_s, "mu_k": self.system.mu_k,
                 "load": self.system.load, "speed": self.system.speed,
                 "natural_frequency_rad_s": self.system.natural_frequency,
@@ -162,14 +162,14 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
     lam, zeta, gamma = slider.lam, system.zeta, slider.gamma
     if zeta > MAX_DESIGN_ZETA:
         raise ValueError(
-            f"zeta={zeta:.4g} (c={system.c:g} N s/m) is above {MAX_DESIGN_ZETA}: the slider is "
+            f"zeta={zeta:.4g} (c={system.damping:g} N s/m) is above {MAX_DESIGN_ZETA}: the slider is "
             "so damped that the design procedure (Eqs. 28-33, fitted for zeta <= 0.4) does not apply"
         )
     recommended_dimless = optimal_foundation_fit(zeta)
-    recommended = foundation_to_physical(recommended_dimless, system.m, system.k)
+    recommended = foundation_to_physical(recommended_dimless, system.mass, system.stiffness)
     if system.foundation is not None:
         foundation = system.foundation
-        dimensionless = foundation_to_dimensionless(foundation, system.m, system.k)
+        dimensionless = foundation_to_dimensionless(foundation, system.mass, system.stiffness)
         source = "existing foundation (given)"
         from stickslip.analysis.frequency_response import equivalent_damping
 
@@ -239,7 +239,7 @@ def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -
     from stickslip.analysis.stability import critical_weakening, steady_sliding_stability
 
     slider = system.slider()
-    per_slope = 2.0 * math.sqrt(system.m * system.k) / system.load
+    per_slope = 2.0 * math.sqrt(system.mass * system.stiffness) / system.load
     out: dict[str, Any] = {"units": {"growth_rate": "1/s", "sigma": "s/m"}}
     for name, structure in structures.items():
         stab = steady_sliding_stability(structure, slider)
@@ -264,7 +264,7 @@ def _stick_slip_optimum(system: PhysicalSystem, zeta: float, gamma: float,
     from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
 
     result = optimal_foundation_stick_slip(zeta, gamma, lam_max=max(100.0, 4.0 * lam))
-    phys = foundation_to_physical(result.foundation, system.m, system.k)
+    phys = foundation_to_physical(result.foundation, system.mass, system.stiffness)
     crit = _critical(system, result.lambda_crit)
     return {
         "m_a": phys.m_a, "k_a": phys.k_a, "c_a": phys.c_a,

@@ -83,7 +83,7 @@ class SafeDisturbance:
     def physical(self, system: PhysicalSystem) -> dict[str, float]:
         """The margins in SI units: energy in J, velocity kick in m/s, displacement in m."""
         return {
-            "energy_J": self.energy * system.m * system.speed**2,
+            "energy_J": self.energy * system.mass * system.speed**2,
             "velocity_kick_m_s": self.velocity_kick * system.speed,
             "displacement_m": self.displacement * system.length_scale,
         }

@@ -23,6 +23,7 @@ how it was computed (``friction_description``) and the linear stability of stead
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
@@ -68,6 +69,10 @@ class SimulationResult:
         What proves the verdict (empty when undetermined).
     n_stick : int
         Number of stick phases in the run, including the initial one of the startup state.
+    cycle_length : int
+        Number of stick phases (for a slip oscillation: Poincare-section crossings) in one
+        period of the certified cycle; 0 without a cycle. ``cycle_k`` is its former name
+        (deprecated, one release); datasets and JSON keep the key ``cycle_k``.
     period, amplitude, stick_ratio : float
         Of the certified cycle: period in ``tau``, half the peak-to-peak of ``xi``, and the
         fraction of the period spent stuck. NaN without a cycle.
@@ -92,7 +97,7 @@ class SimulationResult:
     certificate: str
     n_stick: int
     n_breakaway: int
-    cycle_k: int
+    cycle_length: int
     period: float
     amplitude: float
     xi_range: tuple[float, float]
@@ -113,6 +118,13 @@ class SimulationResult:
     growth_rate: float = math.nan
     steady_sliding_stable: bool = False
     friction_bands: tuple[FloatArray, FloatArray, FloatArray] | None = field(default=None, repr=False)
+
+    @property
+    def cycle_k(self) -> int:
+        """Deprecated name of :attr:`cycle_length`."""
+        warnings.warn("SimulationResult.cycle_k is deprecated: use cycle_length",
+                      DeprecationWarning, stacklevel=2)
+        return self.cycle_length
 
     @property
     def event_times(self) -> FloatArray:
@@ -232,7 +244,7 @@ class SimulationResult:
             "period": num(self.period),
             "amplitude": num(self.amplitude),
             "stick_ratio": num(self.stick_ratio),
-            "cycle_k": self.cycle_k if self.cycle_k > 0 else None,
+            "cycle_k": self.cycle_length if self.cycle_length > 0 else None,
             "cycle_mismatch": num(self.cycle_mismatch),
             "lyapunov_bound": num(self.lyapunov_bound),
             "max_velocity": num(self.max_velocity),
@@ -375,9 +387,11 @@ def simulate(
         Defaults to the startup state (belt starts, springs relaxed, slider stuck,
         foundation at rest); see :func:`stickslip.model.startup_state`.
     options : EngineOptions, optional
-        Horizon, event budget and cycle tolerance (defaults of :class:`EngineOptions`).
+        Horizon ``t_max`` (dimensionless time ``tau``), event budget and cycle tolerance
+        (defaults of :class:`EngineOptions`): the one way to set the horizon.
     t_max : float, optional
-        Dimensionless time horizon (``tau``); overrides ``options.t_max``.
+        Deprecated (one release, ``DeprecationWarning``): pass
+        ``options=EngineOptions(t_max=...)``. Overrides ``options.t_max`` meanwhile.
     record : bool
         Keep the phase list (needed for dense output and plots).
     run_to_t_max : bool
@@ -387,7 +401,11 @@ def simulate(
     Returns
     -------
     SimulationResult
+        Verdict, certificate, cycle data and (with ``record``) the trajectory.
     """
+    if t_max is not None:
+        warnings.warn("simulate(..., t_max=T) is deprecated: pass options=EngineOptions(t_max=T)",
+                      DeprecationWarning, stacklevel=2)
     opts = (options or EngineOptions()).with_t_max(t_max)
     friction_range(slider.lam, slider.gamma)  # 2 gamma lambda must not overflow (issue 12)
     if initial is None:
@@ -449,7 +467,7 @@ def simulate(
         certificate=certificate,
         n_stick=int(isum[engine.I_N_STICK]),
         n_breakaway=int(isum[engine.I_N_BREAKAWAY]),
-        cycle_k=int(isum[engine.I_CYCLE_K]),
+        cycle_length=int(isum[engine.I_CYCLE_K]),
         period=float(fsum[engine.F_PERIOD]),
         amplitude=float(fsum[engine.F_AMPLITUDE]),
         xi_range=(float(fsum[engine.F_XI_MIN]), float(fsum[engine.F_XI_MAX])),

@@ -35,6 +35,7 @@ from numpy.typing import NDArray
 
 from stickslip import (
     STARTUP_DESCRIPTION,
+    EngineOptions,
     Foundation,
     Mode,
     PhysicalFoundation,
@@ -171,9 +172,9 @@ def parse_inputs(raw: Mapping[str, str]) -> tuple[PhysicalSystem | None, list[st
         foundation = None
         if given_foundation:
             foundation = PhysicalFoundation(values["m_a"], values["k_a"], values["c_a"])
-        system = PhysicalSystem(m=values["m"], k=values["k"], c=values["c"], mu_s=values["mu_s"],
-                                mu_k=values["mu_k"], load=values["load"], speed=values["speed"],
-                                foundation=foundation, friction=friction)
+        system = PhysicalSystem(mass=values["m"], stiffness=values["k"], damping=values["c"],
+                                mu_s=values["mu_s"], mu_k=values["mu_k"], load=values["load"],
+                                speed=values["speed"], foundation=foundation, friction=friction)
     except ValueError as exc:
         return None, [f"Invalid input: {exc}"]
     if friction.mu_0 is not None and friction.mu_0 > system.mu_s:
@@ -234,7 +235,7 @@ def parse_friction_inputs(raw: Mapping[str, str]) -> tuple[PhysicalFriction | No
 def si_key(system: PhysicalSystem) -> SiKey:
     """The SI inputs as a hashable key for the caches."""
     items: list[tuple[str, Any]] = [
-        ("m", system.m), ("k", system.k), ("c", system.c), ("mu_s", system.mu_s),
+        ("m", system.mass), ("k", system.stiffness), ("c", system.damping), ("mu_s", system.mu_s),
         ("mu_k", system.mu_k), ("load", system.load), ("speed", system.speed)]
     if system.foundation is not None:
         f = system.foundation
@@ -249,7 +250,7 @@ def system_from_key(key: SiKey) -> PhysicalSystem:
     v = dict(key)
     foundation = PhysicalFoundation(v["m_a"], v["k_a"], v["c_a"]) if "m_a" in v else None
     friction = PhysicalFriction(*v["friction"]) if "friction" in v else PhysicalFriction()
-    return PhysicalSystem(m=v["m"], k=v["k"], c=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"],
+    return PhysicalSystem(mass=v["m"], stiffness=v["k"], damping=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"],
                           load=v["load"], speed=v["speed"], foundation=foundation,
                           friction=friction)
 
@@ -277,7 +278,7 @@ def operating_point_runs(lam: float, zeta: float, gamma: float, foundation: Foun
     structures = _structures(zeta, foundation)
     certified = max(simulate(s, slider, record=False).t_end for s in structures.values())
     horizon = min(max(PLOT_HORIZON[0], 1.5 * certified), PLOT_HORIZON[1])
-    return {name: simulate(s, slider, t_max=horizon, run_to_t_max=True)
+    return {name: simulate(s, slider, options=EngineOptions(t_max=horizon), run_to_t_max=True)
             for name, s in structures.items()}
 
 
@@ -358,7 +359,7 @@ def occurrence_figure(maps: Mapping[str, OccurrenceMap], system: PhysicalSystem,
     fig = Figure(figsize=(11.0, 4.6), layout="constrained")
     axes = fig.subplots(1, len(maps), sharey=True, squeeze=False)[0]
     speed_times_lam = lam * system.speed
-    root_mk = math.sqrt(system.m * system.k)
+    root_mk = math.sqrt(system.mass * system.stiffness)
 
     def reciprocal(x: NDArray[np.float64]) -> NDArray[np.float64]:
         x = np.asarray(x, dtype=np.float64)
@@ -584,8 +585,8 @@ def _show_stick_slip_optimum(report: Mapping[str, Any], system: PhysicalSystem
         if stored is None or stored[0] != key:
             return None
         opt = stored[1]
-        phys = foundation_to_physical(Foundation(opt["M"], opt["K"], opt["zeta_a"]), system.m,
-                                      system.k)
+        phys = foundation_to_physical(Foundation(opt["M"], opt["K"], opt["zeta_a"]), system.mass,
+                                      system.stiffness)
         ref = opt["absorber_optimum"]
 
         def onset(lam_c: float | None) -> str:

@@ -210,8 +210,9 @@ def _system_from_config(config: Path) -> Any:
 
     v = collect_inputs({}, config)
     foundation = PhysicalFoundation(v["m_a"], v["k_a"], v["c_a"]) if "m_a" in v else None
-    return PhysicalSystem(m=v["m"], k=v["k"], c=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"], load=v["load"],
-                          speed=v["speed"], foundation=foundation, friction=read_friction_config(config))
+    return PhysicalSystem(mass=v["m"], stiffness=v["k"], damping=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"],
+                          load=v["load"], speed=v["speed"], foundation=foundation,
+                          friction=read_friction_config(config))
 
 
 def _sample_physical(system: Any, samples: int, box: dict[str, tuple[float, float]], seed: int) -> Any:

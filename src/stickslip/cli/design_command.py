@@ -111,7 +111,7 @@ def design(
     foundation = None
     if "m_a" in v:
         foundation = PhysicalFoundation(v["m_a"], v["k_a"], v["c_a"])
-    system = PhysicalSystem(m=v["m"], k=v["k"], c=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"],
+    system = PhysicalSystem(mass=v["m"], stiffness=v["k"], damping=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"],
                             load=v["load"], speed=v["speed"], foundation=foundation,
                             friction=read_friction_config(config))
     report = design_foundation(system, stick_slip_optimum=stick_slip_optimum)

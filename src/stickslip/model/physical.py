@@ -7,6 +7,7 @@ Everything here is in SI units: kg, N/m, N s/m, N, m/s. Units given as text ("2 
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -116,18 +117,18 @@ class PhysicalFriction:
         return CoulombFriction()
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class PhysicalSystem:
     """The sliding system of the paper's Fig. 1 in SI units.
 
     Parameters
     ----------
-    m : float
-        Slider mass, kg (> 0).
-    k : float
-        Stiffness of the spring holding the slider, N/m (> 0).
-    c : float
-        Damping coefficient of the slider's dashpot, N s/m (>= 0).
+    mass : float
+        Slider mass ``m``, kg (> 0).
+    stiffness : float
+        Stiffness ``k`` of the spring holding the slider, N/m (> 0).
+    damping : float
+        Damping coefficient ``c`` of the slider's dashpot, N s/m (>= 0).
     mu_s, mu_k : float
         Static and kinetic friction coefficients, ``mu_s > mu_k >= 0``.
     load : float
@@ -138,11 +139,17 @@ class PhysicalSystem:
         The elastic foundation; ``None`` is the rigid base.
     friction : PhysicalFriction
         The friction law while sliding (default: the paper's Coulomb law, ``mu = mu_k``).
+
+    Notes
+    -----
+    The keywords ``m``, ``k``, ``c`` and the attributes of those names are the former
+    spelling of ``mass``, ``stiffness``, ``damping``; they still work for one release, with a
+    ``DeprecationWarning``.
     """
 
-    m: float
-    k: float
-    c: float
+    mass: float
+    stiffness: float
+    damping: float
     mu_s: float
     mu_k: float
     load: float
@@ -150,10 +157,36 @@ class PhysicalSystem:
     foundation: PhysicalFoundation | None = None
     friction: PhysicalFriction = PhysicalFriction()
 
+    def __init__(self, mass: float | None = None, stiffness: float | None = None,
+                 damping: float | None = None, mu_s: float | None = None, mu_k: float | None = None,
+                 load: float | None = None, speed: float | None = None,
+                 foundation: PhysicalFoundation | None = None,
+                 friction: PhysicalFriction = PhysicalFriction(), **former: float) -> None:
+        values: dict[str, float | None] = {
+            "mass": mass, "stiffness": stiffness, "damping": damping, "mu_s": mu_s,
+            "mu_k": mu_k, "load": load, "speed": speed,
+        }
+        for old, given in former.items():
+            if old not in _FORMER_NAMES:
+                raise TypeError(f"PhysicalSystem() got an unexpected keyword argument {old!r}")
+            new = _FORMER_NAMES[old]
+            _warn_former(old, new)
+            if values[new] is not None:
+                raise TypeError(f"PhysicalSystem() got both {new}= and its former name {old}=")
+            values[new] = given
+        missing = [name for name, entry in values.items() if entry is None]
+        if missing:
+            raise TypeError(f"PhysicalSystem() missing {', '.join(missing)}")
+        for name, entry in values.items():
+            object.__setattr__(self, name, entry)
+        object.__setattr__(self, "foundation", foundation)
+        object.__setattr__(self, "friction", friction)
+        self.__post_init__()
+
     def __post_init__(self) -> None:
-        object.__setattr__(self, "m", positive("m", self.m))
-        object.__setattr__(self, "k", positive("k", self.k))
-        object.__setattr__(self, "c", non_negative("c", self.c))
+        object.__setattr__(self, "mass", positive("m", self.mass))
+        object.__setattr__(self, "stiffness", positive("k", self.stiffness))
+        object.__setattr__(self, "damping", non_negative("c", self.damping))
         object.__setattr__(self, "mu_s", positive("mu_s", self.mu_s))
         object.__setattr__(self, "mu_k", non_negative("mu_k", self.mu_k))
         object.__setattr__(self, "load", positive("load W", self.load))
@@ -165,9 +198,27 @@ class PhysicalSystem:
             )
 
     @property
+    def m(self) -> float:
+        """Deprecated name of :attr:`mass`, kg."""
+        _warn_former("m", "mass")
+        return self.mass
+
+    @property
+    def k(self) -> float:
+        """Deprecated name of :attr:`stiffness`, N/m."""
+        _warn_former("k", "stiffness")
+        return self.stiffness
+
+    @property
+    def c(self) -> float:
+        """Deprecated name of :attr:`damping`, N s/m."""
+        _warn_former("c", "damping")
+        return self.damping
+
+    @property
     def natural_frequency(self) -> float:
         """``omega_n = sqrt(k / m)``, rad/s (Eq. 18)."""
-        return math.sqrt(self.k / self.m)
+        return math.sqrt(self.stiffness / self.mass)
 
     @property
     def time_scale(self) -> float:
@@ -182,22 +233,22 @@ class PhysicalSystem:
     @property
     def force_scale(self) -> float:
         """Newtons per unit of dimensionless force, ``V sqrt(m k)``."""
-        return self.speed * math.sqrt(self.m * self.k)
+        return self.speed * math.sqrt(self.mass * self.stiffness)
 
     def slider(self) -> Slider:
         """Dimensionless ``lambda``, ``gamma`` and friction law of the contact (after Eq. 27)."""
-        root_mk = math.sqrt(self.m * self.k)
+        root_mk = math.sqrt(self.mass * self.stiffness)
         return Slider(
             (self.mu_s - self.mu_k) * self.load / (self.speed * root_mk),
             gamma=self.mu_k / (self.mu_s - self.mu_k),
-            friction=self.friction.dimensionless(self.m, self.k, self.mu_s, self.mu_k, self.load,
+            friction=self.friction.dimensionless(self.mass, self.stiffness, self.mu_s, self.mu_k, self.load,
                                                  self.speed),
         )
 
     @property
     def zeta(self) -> float:
         """Primary damping ratio ``zeta = c / (2 sqrt(m k))``, dimensionless (Section 2.3)."""
-        return self.c / (2.0 * math.sqrt(self.m * self.k))
+        return self.damping / (2.0 * math.sqrt(self.mass * self.stiffness))
 
     def structure(self) -> Structure:
         """The dimensionless structure: rigid base, or the slider on its foundation (Fig. 1)."""
@@ -208,17 +259,17 @@ class PhysicalSystem:
         """Dimensionless ``M``, ``K``, ``zeta_a`` of the foundation, or ``None`` (rigid base)."""
         if self.foundation is None:
             return None
-        return foundation_to_dimensionless(self.foundation, self.m, self.k)
+        return foundation_to_dimensionless(self.foundation, self.mass, self.stiffness)
 
     def speed_for_lambda(self, lam: float) -> float:
         """Belt speed ``V`` (m/s) at which ``lambda`` takes the value ``lam``."""
         lam = positive("lambda", lam)
-        return (self.mu_s - self.mu_k) * self.load / (lam * math.sqrt(self.m * self.k))
+        return (self.mu_s - self.mu_k) * self.load / (lam * math.sqrt(self.mass * self.stiffness))
 
     def load_for_lambda(self, lam: float) -> float:
         """Normal load ``W`` (N) at which ``lambda`` takes the value ``lam``."""
         lam = positive("lambda", lam)
-        return lam * self.speed * math.sqrt(self.m * self.k) / (self.mu_s - self.mu_k)
+        return lam * self.speed * math.sqrt(self.mass * self.stiffness) / (self.mu_s - self.mu_k)
 
     @classmethod
     def from_dimensionless(
@@ -247,15 +298,23 @@ class PhysicalSystem:
         if foundation is not None:
             phys_foundation = foundation_to_physical(foundation, m, k)
         return cls(
-            m=m,
-            k=k,
-            c=2.0 * non_negative("zeta", zeta) * root_mk,
+            mass=m,
+            stiffness=k,
+            damping=2.0 * non_negative("zeta", zeta) * root_mk,
             mu_s=mu_s,
             mu_k=mu_k,
             load=load,
             speed=speed,
             foundation=phys_foundation,
         )
+
+
+_FORMER_NAMES = {"m": "mass", "k": "stiffness", "c": "damping"}
+
+
+def _warn_former(old: str, new: str) -> None:
+    warnings.warn(f"PhysicalSystem.{old} is deprecated: use PhysicalSystem.{new}",
+                  DeprecationWarning, stacklevel=3)
 
 
 def foundation_to_dimensionless(foundation: PhysicalFoundation, m: float, k: float) -> Foundation:

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 from matplotlib.figure import Figure
 
-from stickslip.analysis.simulation import SimulationResult, simulate
+from stickslip.analysis.simulation import EngineOptions, SimulationResult, simulate
 from stickslip.analysis.theory import optimal_foundation_fit
 from stickslip.analysis.verdict import Verdict
 from stickslip.model import Slider, elastic_foundation
@@ -37,7 +37,7 @@ def run_case(lam: float, zeta: float, k_scale: float, t_max: float, gamma: float
     """Simulate the fitted optimal foundation (Eqs. 28-30) with ``K`` scaled by ``k_scale``."""
     structure = elastic_foundation(zeta, optimal_foundation_fit(zeta).scaled(k_scale))
     slider = Slider(lam, gamma=gamma)
-    result = simulate(structure, slider, t_max=t_max, run_to_t_max=True)
+    result = simulate(structure, slider, options=EngineOptions(t_max=t_max), run_to_t_max=True)
     verdict = simulate(structure, slider, record=False).verdict
     tag = {1.0: "K_opt", 2.0: "2 K_opt", 0.5: "K_opt/2"}.get(k_scale, f"{k_scale:g} K_opt")
     return Run(f"{tag}, lambda={lam:g}", k_scale, lam, zeta, result, verdict)

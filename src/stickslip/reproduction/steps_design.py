@@ -14,7 +14,7 @@ from stickslip.reproduction.outputs import save_figure
 from stickslip.reproduction.report import FigureRecord
 
 #: The worked example: a 2 kg slider on 50 kN/m, 20 N s/m, mu_s 0.5, mu_k 0.3, 150 N, 5 cm/s.
-EXAMPLE = PhysicalSystem(m=2.0, k=50e3, c=20.0, mu_s=0.5, mu_k=0.3, load=150.0, speed=0.05)
+EXAMPLE = PhysicalSystem(mass=2.0, stiffness=50e3, damping=20.0, mu_s=0.5, mu_k=0.3, load=150.0, speed=0.05)
 
 
 def design_example(out_dir: Path) -> tuple[list[FigureRecord], list[Claim]]:

@@ -219,7 +219,7 @@ class BoundaryResult:
         converged = np.zeros(shape, dtype=np.int8)
         for j, row in enumerate(self.crossings):
             for k, c in enumerate(row):
-                lam[j, k], lo[j, k], hi[j, k] = c.lam, c.lo, c.hi
+                lam[j, k], lo[j, k], hi[j, k] = c.lam, c.lam_below, c.lam_above
                 kind[j, k] = 1 if c.onset else 0
                 converged[j, k] = int(c.converged)
         nan_note = "NaN (the _FillValue) where this zeta has fewer crossings"
