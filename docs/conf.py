@@ -88,9 +88,10 @@ sphinx_gallery_conf = {
 # The API reference: one autosummary entry per public name, grouped by the layer that defines
 # it (from ``stickslip._EXPORTS``), written before Sphinx reads the sources.
 _GROUPS = {
-    "model": "Model: parameters, structures, initial states, physical units",
-    "analysis": "Analysis: simulation, verdicts, closed forms, absorber, tuning, design",
-    "sweep": "Sweeps: occurrence maps and boundaries",
+    "model": "Model: parameters, structures, friction laws, initial states, physical units",
+    "analysis": "Analysis: simulation, verdicts, closed forms, absorber, tuning, stability, design",
+    "io": "Reading and writing datasets",
+    "sweep": "Sweeps: occurrence maps, boundaries and basins",
     "plot": "Plotting",
     "reproduction": "Reproduction of the paper",
 }

@@ -267,3 +267,37 @@ def test_public_api_is_flat_and_complete() -> None:
     from importlib import metadata
 
     assert stickslip.__version__ == metadata.version("stickslip")
+
+
+FACES = ["stickslip.model", "stickslip.analysis", "stickslip.io", "stickslip.sweep", "stickslip.plot",
+         "stickslip.reproduction"]
+
+
+@pytest.mark.parametrize("package", FACES)
+def test_subpackage_faces_are_lazy_and_complete(package: str) -> None:
+    # one style: a lazy ``_EXPORTS`` table that agrees with ``__all__``, each name being the object
+    # its defining module holds; importing the face imports none of its modules
+    import importlib
+    import sys
+
+    face = importlib.import_module(package)
+    init = PACKAGE.joinpath(*package.split(".")[1:], "__init__.py")
+    eager = [imp.where() for imp in SCAN.collect(init)
+             if imp.target.startswith("stickslip.") and not imp.type_only
+             and imp.target != "stickslip._lazy"]
+    assert not eager, f"{package} imports eagerly:\n" + "\n".join(eager)
+    assert set(face.__all__) == set(face._EXPORTS)
+    for name, module in face._EXPORTS.items():
+        assert getattr(face, name) is getattr(importlib.import_module(module), name), name
+    assert package in sys.modules
+
+
+def test_the_flat_api_offers_what_users_reach_for() -> None:
+    # the names issue 17 found only in subpackages are now in ``stickslip`` itself
+    import stickslip
+
+    for name in ("CoulombFriction", "LinearFriction", "StribeckFriction", "TableFriction",
+                 "parse_friction", "read_friction_table", "basin_stability", "basin_map",
+                 "find_cycles", "read_dataset", "optimal_foundation_stability", "safe_disturbance",
+                 "steady_sliding_stability", "resolve_dva", "DvaSpec"):
+        assert name in stickslip.__all__, name

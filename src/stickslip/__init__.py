@@ -11,9 +11,12 @@ The public API is flat: everything a user needs is imported from ``stickslip`` i
     result.verdict, result.period, result.plot()
 
 The subpackages underneath (``model``, ``kernel``, ``analysis``, ``io``, ``sweep``, ``plot``,
-``reproduction``, ``cli``, ``app``) are the implementation; their layout may change between
-versions. Names are loaded on first use, so ``import stickslip`` stays fast and pulls in
-neither numba, scipy, xarray nor matplotlib until they are needed.
+``reproduction``, ``cli``, ``app``) are the implementation. Each subpackage's face (its
+``__init__``) lists, in ``__all__``, the names it offers beyond the flat API; every other
+module-level name, and the whole of ``kernel``, ``cli`` and ``app``, is private: it may change
+between versions without a deprecation period. Names are loaded on first use, so
+``import stickslip`` stays fast and pulls in neither numba, scipy, xarray nor matplotlib until
+they are needed.
 """
 
 from __future__ import annotations
@@ -46,7 +49,18 @@ _EXPORTS: dict[str, str] = {
     "STARTUP_DESCRIPTION": "stickslip.model.initial",
     "PhysicalSystem": "stickslip.model.physical",
     "PhysicalFoundation": "stickslip.model.physical",
+    "PhysicalFriction": "stickslip.model.physical",
+    "foundation_to_dimensionless": "stickslip.model.physical",
+    "foundation_to_physical": "stickslip.model.physical",
     "to_si": "stickslip.model.units",
+    # model: friction laws and foundation choices
+    "CoulombFriction": "stickslip.model.friction",
+    "LinearFriction": "stickslip.model.friction",
+    "StribeckFriction": "stickslip.model.friction",
+    "TableFriction": "stickslip.model.friction",
+    "parse_friction": "stickslip.model.friction",
+    "read_friction_table": "stickslip.model.friction",
+    "DvaSpec": "stickslip.model.dva",
     # analysis: one simulation and its verdict
     "simulate": "stickslip.analysis.simulation",
     "EngineOptions": "stickslip.analysis.simulation",
@@ -55,15 +69,18 @@ _EXPORTS: dict[str, str] = {
     "Verdict": "stickslip.analysis.verdict",
     "RunStatus": "stickslip.analysis.verdict",
     "Mode": "stickslip.analysis.verdict",
-    # analysis: closed forms of the paper
+    # analysis: closed forms of the paper and the boundaries of a foundation choice
     "optimal_foundation_fit": "stickslip.analysis.theory",
     "peak_response_fit": "stickslip.analysis.theory",
     "equivalent_damping_fit": "stickslip.analysis.theory",
     "critical_lambda_exact": "stickslip.analysis.theory",
     "critical_lambda_approx": "stickslip.analysis.theory",
+    "critical_lambda_linear": "stickslip.analysis.theory",
     "stick_slip_period": "stickslip.analysis.theory",
     "stick_slip_amplitude_ratio": "stickslip.analysis.theory",
+    "resolve_dva": "stickslip.analysis.dva",
     "analytic_boundaries": "stickslip.analysis.analytic_boundary",
+    "AnalyticBoundary": "stickslip.analysis.analytic_boundary",
     # analysis: absorber frequency response and tuning
     "frequency_response": "stickslip.analysis.frequency_response",
     "response_peak": "stickslip.analysis.frequency_response",
@@ -78,19 +95,40 @@ _EXPORTS: dict[str, str] = {
     "TuningCurve": "stickslip.analysis.absorber_tuning",
     "optimal_foundation_stick_slip": "stickslip.analysis.stick_slip_tuning",
     "StickSlipTuning": "stickslip.analysis.stick_slip_tuning",
-    # analysis: critical lambda, foundation choices, design procedure
+    "optimal_foundation_stability": "stickslip.analysis.stability_tuning",
+    "StabilityTuning": "stickslip.analysis.stability_tuning",
+    # analysis: onsets, cycles, stability of steady sliding, disturbances, design
     "lowest_onset": "stickslip.analysis.critical",
     "Crossing": "stickslip.analysis.critical",
-    "DvaSpec": "stickslip.model.dva",
+    "find_cycles": "stickslip.analysis.cycles",
+    "cycle_exists": "stickslip.analysis.cycles",
+    "Cycle": "stickslip.analysis.cycles",
+    "CycleSearch": "stickslip.analysis.cycles",
+    "steady_sliding_stability": "stickslip.analysis.stability",
+    "SteadySlidingStability": "stickslip.analysis.stability",
+    "critical_weakening": "stickslip.analysis.stability",
+    "safe_disturbance": "stickslip.analysis.disturbance",
+    "SafeDisturbance": "stickslip.analysis.disturbance",
     "design_foundation": "stickslip.analysis.design",
     "DesignReport": "stickslip.analysis.design",
-    # sweep: maps and boundaries over parameter space
+    "stability_margin": "stickslip.analysis.design",
+    # io: datasets on disk
+    "read_dataset": "stickslip.io.netcdf",
+    "write_dataset": "stickslip.io.netcdf",
+    "write_map_csv": "stickslip.io.csv",
+    # sweep: maps, boundaries and basins over parameter or state space
     "Axis": "stickslip.sweep.grid",
     "occurrence_map": "stickslip.sweep.occurrence",
     "OccurrenceMap": "stickslip.sweep.occurrence",
     "MapConfig": "stickslip.sweep.occurrence",
     "stick_slip_boundary": "stickslip.sweep.boundary",
     "BoundaryResult": "stickslip.sweep.boundary",
+    "basin_stability": "stickslip.sweep.basin",
+    "BasinResult": "stickslip.sweep.basin",
+    "basin_map": "stickslip.sweep.basin",
+    "BasinMap": "stickslip.sweep.basin",
+    "sample_box": "stickslip.sweep.basin",
+    "equilibrium_state": "stickslip.sweep.basin",
     # plot: the common return type of every *_plot function
     "PlotResult": "stickslip.plot.figure",
     # reproduction of the paper
@@ -99,59 +137,92 @@ _EXPORTS: dict[str, str] = {
 
 __all__ = [
     "STARTUP_DESCRIPTION",
+    "AnalyticBoundary",
     "Axis",
+    "BasinMap",
+    "BasinResult",
     "BoundaryResult",
+    "CoulombFriction",
     "Crossing",
+    "Cycle",
+    "CycleSearch",
     "DesignReport",
     "DvaSpec",
     "EngineOptions",
     "Foundation",
     "InitialState",
+    "LinearFriction",
     "MapConfig",
     "Mode",
     "OccurrenceMap",
     "PhysicalFoundation",
+    "PhysicalFriction",
     "PhysicalSystem",
     "PlotResult",
     "ResponseCurves",
     "ResponsePeak",
     "RunStatus",
+    "SafeDisturbance",
     "SimulationResult",
     "Slider",
+    "StabilityTuning",
+    "SteadySlidingStability",
     "StickSlipTuning",
+    "StribeckFriction",
     "Structure",
+    "TableFriction",
     "TimeHistory",
     "TuningCurve",
     "TuningResult",
     "Verdict",
     "__version__",
     "analytic_boundaries",
+    "basin_map",
+    "basin_stability",
     "chain_structure",
     "critical_lambda_approx",
     "critical_lambda_exact",
+    "critical_lambda_linear",
+    "critical_weakening",
+    "cycle_exists",
     "design_foundation",
     "elastic_foundation",
+    "equilibrium_state",
     "equivalent_damping",
     "equivalent_damping_fit",
+    "find_cycles",
+    "foundation_to_dimensionless",
+    "foundation_to_physical",
     "frequency_response",
     "lowest_onset",
     "occurrence_map",
     "optimal_foundation_exact",
     "optimal_foundation_fit",
+    "optimal_foundation_stability",
     "optimal_foundation_stick_slip",
+    "parse_friction",
     "peak_response_fit",
+    "read_dataset",
+    "read_friction_table",
     "reproduce",
+    "resolve_dva",
     "response_curves",
     "response_peak",
     "rigid_base",
+    "safe_disturbance",
+    "sample_box",
     "simulate",
+    "stability_margin",
     "startup_state",
+    "steady_sliding_stability",
     "stick_slip_amplitude_ratio",
     "stick_slip_boundary",
     "stick_slip_period",
     "to_si",
     "tune_foundation",
     "tuning_curve",
+    "write_dataset",
+    "write_map_csv",
 ]
 
 
@@ -175,9 +246,12 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         tune_foundation,
         tuning_curve,
     )
-    from stickslip.analysis.analytic_boundary import analytic_boundaries
+    from stickslip.analysis.analytic_boundary import AnalyticBoundary, analytic_boundaries
     from stickslip.analysis.critical import Crossing, lowest_onset
-    from stickslip.analysis.design import DesignReport, design_foundation
+    from stickslip.analysis.cycles import Cycle, CycleSearch, cycle_exists, find_cycles
+    from stickslip.analysis.design import DesignReport, design_foundation, stability_margin
+    from stickslip.analysis.disturbance import SafeDisturbance, safe_disturbance
+    from stickslip.analysis.dva import resolve_dva
     from stickslip.analysis.frequency_response import (
         ResponseCurves,
         ResponsePeak,
@@ -187,10 +261,17 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         response_peak,
     )
     from stickslip.analysis.simulation import EngineOptions, SimulationResult, TimeHistory, simulate
+    from stickslip.analysis.stability import (
+        SteadySlidingStability,
+        critical_weakening,
+        steady_sliding_stability,
+    )
+    from stickslip.analysis.stability_tuning import StabilityTuning, optimal_foundation_stability
     from stickslip.analysis.stick_slip_tuning import StickSlipTuning, optimal_foundation_stick_slip
     from stickslip.analysis.theory import (
         critical_lambda_approx,
         critical_lambda_exact,
+        critical_lambda_linear,
         equivalent_damping_fit,
         optimal_foundation_fit,
         peak_response_fit,
@@ -198,14 +279,38 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         stick_slip_period,
     )
     from stickslip.analysis.verdict import Mode, RunStatus, Verdict
+    from stickslip.io.csv import write_map_csv
+    from stickslip.io.netcdf import read_dataset, write_dataset
     from stickslip.model.dva import DvaSpec
+    from stickslip.model.friction import (
+        CoulombFriction,
+        LinearFriction,
+        StribeckFriction,
+        TableFriction,
+        parse_friction,
+        read_friction_table,
+    )
     from stickslip.model.initial import STARTUP_DESCRIPTION, InitialState, startup_state
     from stickslip.model.parameters import Foundation, Slider
-    from stickslip.model.physical import PhysicalFoundation, PhysicalSystem
+    from stickslip.model.physical import (
+        PhysicalFoundation,
+        PhysicalFriction,
+        PhysicalSystem,
+        foundation_to_dimensionless,
+        foundation_to_physical,
+    )
     from stickslip.model.structure import Structure, chain_structure, elastic_foundation, rigid_base
     from stickslip.model.units import to_si
     from stickslip.plot.figure import PlotResult
     from stickslip.reproduction.run import reproduce
+    from stickslip.sweep.basin import (
+        BasinMap,
+        BasinResult,
+        basin_map,
+        basin_stability,
+        equilibrium_state,
+        sample_box,
+    )
     from stickslip.sweep.boundary import BoundaryResult, stick_slip_boundary
     from stickslip.sweep.grid import Axis
     from stickslip.sweep.occurrence import MapConfig, OccurrenceMap, occurrence_map

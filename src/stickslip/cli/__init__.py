@@ -1,0 +1,1 @@
+"""Private: the ``stickslip`` command line (Typer). Its contract is the commands, not this code."""

@@ -1,7 +1,8 @@
-"""Model layer: parameters, structures, physical units and initial conditions.
+"""Model layer: parameters, structures, friction laws, foundation choices, units, initial states.
 
 Names load on first use (PEP 562), so that importing one light module of this layer (for
 example :mod:`stickslip.model.units` for the command line's help text) does not import numpy.
+Every name of ``__all__`` is public, the rest is private.
 """
 
 from __future__ import annotations
@@ -20,6 +21,12 @@ _EXPORTS: dict[str, str] = {
     "StribeckFriction": "stickslip.model.friction",
     "TableFriction": "stickslip.model.friction",
     "read_friction_table": "stickslip.model.friction",
+    "parse_friction": "stickslip.model.friction",
+    "FRICTION_SYNTAX": "stickslip.model.friction",
+    "DvaSpec": "stickslip.model.dva",
+    "DVA_SYNTAX": "stickslip.model.dva",
+    "PhysicalFriction": "stickslip.model.physical",
+    "physical_friction_from_config": "stickslip.model.physical",
     "Foundation": "stickslip.model.parameters",
     "Slider": "stickslip.model.parameters",
     "PhysicalFoundation": "stickslip.model.physical",
@@ -34,13 +41,17 @@ _EXPORTS: dict[str, str] = {
 }
 
 __all__ = [
+    "DVA_SYNTAX",
+    "FRICTION_SYNTAX",
     "STARTUP_DESCRIPTION",
     "CoulombFriction",
+    "DvaSpec",
     "Foundation",
     "FrictionLaw",
     "InitialState",
     "LinearFriction",
     "PhysicalFoundation",
+    "PhysicalFriction",
     "PhysicalSystem",
     "Slider",
     "StribeckFriction",
@@ -50,6 +61,8 @@ __all__ = [
     "elastic_foundation",
     "foundation_to_dimensionless",
     "foundation_to_physical",
+    "parse_friction",
+    "physical_friction_from_config",
     "read_friction_table",
     "rigid_base",
     "startup_state",
@@ -61,21 +74,26 @@ __getattr__, __dir__ = lazy_exports(__name__, globals(), _EXPORTS)
 
 
 if TYPE_CHECKING:  # pragma: no cover
+    from stickslip.model.dva import DVA_SYNTAX, DvaSpec
     from stickslip.model.friction import (
+        FRICTION_SYNTAX,
         CoulombFriction,
         FrictionLaw,
         LinearFriction,
         StribeckFriction,
         TableFriction,
+        parse_friction,
         read_friction_table,
     )
     from stickslip.model.initial import STARTUP_DESCRIPTION, InitialState, startup_state
     from stickslip.model.parameters import Foundation, Slider
     from stickslip.model.physical import (
         PhysicalFoundation,
+        PhysicalFriction,
         PhysicalSystem,
         foundation_to_dimensionless,
         foundation_to_physical,
+        physical_friction_from_config,
     )
     from stickslip.model.structure import Structure, chain_structure, elastic_foundation, rigid_base
     from stickslip.model.units import to_si

@@ -492,7 +492,16 @@ def parse_friction(text: str) -> FrictionLaw:
       (default 0), ``mu0 = (mu_0 - mu_k)/(mu_s - mu_k)`` (default 1) and the law tolerance
       ``tol`` in units of lambda (default 1e-4).
 
-    Raises ``ValueError`` with one line naming the text and what is expected.
+    Parameters
+    ----------
+    text : str
+        The law as text, one of the forms above (all values dimensionless).
+
+    Returns
+    -------
+    FrictionLaw
+        The law. A ``ValueError`` names the text and what is expected, in the model's words
+        (the command line adds its flag name).
     """
     raw = str(text).strip()
     kind, _, arg = raw.partition(":")
@@ -503,7 +512,7 @@ def parse_friction(text: str) -> FrictionLaw:
         try:
             return LinearFriction(float(arg))
         except ValueError:
-            raise ValueError(f"--friction {raw!r}: linear needs a number, e.g. linear:0.05") from None
+            raise ValueError(f"friction law {raw!r}: linear needs a number, e.g. linear:0.05") from None
     if kind == "table" and arg:
         return read_friction_table(arg.strip())
     if kind == "stribeck" and arg:
@@ -514,16 +523,16 @@ def parse_friction(text: str) -> FrictionLaw:
             key, eq, value = item.partition("=")
             key = key.strip().lower()
             if not eq or key not in names:
-                raise ValueError(f"--friction {raw!r}: {item.strip()!r} is not one of "
+                raise ValueError(f"friction law {raw!r}: {item.strip()!r} is not one of "
                                  f"{', '.join(k + '=...' for k in names)}")
             try:
                 values[names[key]] = float(value)
             except ValueError:
-                raise ValueError(f"--friction {raw!r}: {key}={value.strip()!r} is not a number") from None
+                raise ValueError(f"friction law {raw!r}: {key}={value.strip()!r} is not a number") from None
         if "velocity_ratio" not in values:
-            raise ValueError(f"--friction {raw!r}: stribeck needs vs=V_S/V, e.g. stribeck:vs=0.5")
+            raise ValueError(f"friction law {raw!r}: stribeck needs vs=V_S/V, e.g. stribeck:vs=0.5")
         return StribeckFriction(**values)
-    raise ValueError(f"--friction {raw!r} is not one of: {FRICTION_SYNTAX}")
+    raise ValueError(f"friction law {raw!r} is not one of: {FRICTION_SYNTAX}")
 
 
 @functools.lru_cache(maxsize=64)
