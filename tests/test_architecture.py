@@ -301,3 +301,38 @@ def test_the_flat_api_offers_what_users_reach_for() -> None:
                  "find_cycles", "read_dataset", "optimal_foundation_stability", "safe_disturbance",
                  "steady_sliding_stability", "resolve_dva", "DvaSpec"):
         assert name in stickslip.__all__, name
+
+
+@pytest.mark.parametrize("layer", ["model", "analysis"])
+def test_public_functions_document_parameters_and_returns(layer: str) -> None:
+    # numpydoc sections on every public module-level function of the layer (issue 17, point 6);
+    # a function without arguments needs no Parameters section
+    bad = []
+    for path in sorted((PACKAGE / layer).glob("*.py")):
+        if path.name.startswith("_") and path.name != "__init__.py":
+            continue
+        for node in ast.parse(path.read_text(encoding="utf-8")).body:
+            if not isinstance(node, ast.FunctionDef) or node.name.startswith("_"):
+                continue
+            doc = ast.get_docstring(node) or ""
+            wanted = ["Returns"] + (["Parameters"] if node.args.args or node.args.kwonlyargs else [])
+            missing = [s for s in wanted if f"{s}\n{'-' * len(s)}" not in doc]
+            if missing:
+                bad.append(f"{path.name}:{node.lineno} {node.name} lacks {', '.join(missing)}")
+    assert not bad, "\n".join(bad)
+
+
+def test_no_file_over_600_lines_and_no_long_function_without_a_reason() -> None:
+    # one concept per module (issue 17, point 2), for the layers this test's author owns
+    bad = []
+    for path in sorted([*PACKAGE.joinpath("analysis").glob("*.py"), *PACKAGE.joinpath("model").glob("*.py")]):
+        text = path.read_text(encoding="utf-8")
+        if text.count("\n") > 600:
+            bad.append(f"{path.name}: {text.count(chr(10))} lines")
+        lines = text.splitlines()
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, ast.FunctionDef) and (node.end_lineno or 0) - node.lineno + 1 > 120:
+                before = lines[node.lineno - 2] if node.lineno >= 2 else ""
+                if not before.strip().startswith("#"):
+                    bad.append(f"{path.name}:{node.lineno} {node.name} is over 120 lines, no comment why")
+    assert not bad, "\n".join(bad)

@@ -296,6 +296,11 @@ def optimal_foundation_exact(zeta: float) -> Foundation:
     ----------
     zeta : float
         Primary damping ratio, dimensionless, ``0 <= zeta <= 0.9``.
+
+    Returns
+    -------
+    Foundation
+        The exact optimum ``(M, K, zeta_a)``, dimensionless.
     """
     return tune_foundation(zeta).foundation
 

@@ -78,6 +78,20 @@ def equivalent_damping_ratio(
     uses ``zeta`` itself). ``foundation``, when
     given, is ``dva`` already resolved at ``zeta`` (resolving ``optimal-exact`` is an
     optimisation of several seconds).
+
+    Parameters
+    ----------
+    dva : DvaSpec
+        The foundation choice.
+    zeta : float
+        Primary damping ratio ``c / (2 sqrt(m k))``, dimensionless, >= 0.
+    foundation : Foundation, optional
+        ``dva`` already resolved at ``zeta``.
+
+    Returns
+    -------
+    tuple of (float, str) or None
+        ``zeta_eq`` and the equation it comes from; None for the rigid base.
     """
     if dva.kind == "none":
         return None
@@ -106,6 +120,11 @@ def analytic_boundaries(
         Primary damping ratios, dimensionless, >= 0.
     foundations : sequence of Foundation, optional
         ``dva`` already resolved at each of ``zetas`` (as stored in a map or boundary).
+
+    Returns
+    -------
+    list of AnalyticBoundary
+        One curve per applicable equation (critical ``lambda`` against ``zeta``).
     """
     z = np.asarray(zetas, dtype=np.float64).reshape(-1)
     if dva.kind == "none":

@@ -93,6 +93,18 @@ def scan_brackets(lams: FloatArray, codes: CodeArray) -> list[tuple[float, float
     """Brackets ``(lo, hi, verdict at lo)`` between consecutive certified scan points that differ.
 
     Undetermined scan points are skipped: their certified neighbours bracket across them.
+
+    Parameters
+    ----------
+    lams : ndarray
+        Increasing scan points of ``lambda``.
+    codes : ndarray of int
+        Verdict codes at ``lams`` (:attr:`Verdict.code`).
+
+    Returns
+    -------
+    list of (float, float, int)
+        Each bracket ``(lo, hi, verdict code at lo)``, undetermined points skipped.
     """
     known = [(float(lam), int(c)) for lam, c in zip(lams, codes, strict=True)
              if c != Verdict.UNDETERMINED.code]
@@ -109,6 +121,20 @@ def bisect_crossings(
     Each round classifies the midpoints of every open bracket with one call, so a parallel
     classifier runs them as one batch. Returns the ``(group, Crossing)`` pairs in the order
     of ``brackets`` and the number of runs made.
+
+    Parameters
+    ----------
+    classify : callable
+        ``classify(group, lams)``: verdict codes of the runs at ``lams[i]`` in group ``group[i]``.
+    brackets : sequence of (int, float, float, int)
+        ``(group, lo, hi, verdict code at lo)``.
+    rtol : float
+        Relative width at which a bracket is narrow enough.
+
+    Returns
+    -------
+    list of (int, Crossing), int
+        The ``(group, Crossing)`` pairs in the order of ``brackets`` and the number of runs.
     """
     rtol = positive("rtol", rtol)
     if rtol >= 1.0:
@@ -137,7 +163,24 @@ def bisect_crossings(
 
 
 def verdict_code(structure: Structure, lam: float, gamma: float, options: EngineOptions) -> int:
-    """Certified verdict code of one run from the startup state (raises on a spent step budget)."""
+    """Certified verdict code of one run from the startup state (raises on a spent step budget).
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless mass, damping and stiffness matrices, contact on DOF 0.
+    lam : float
+        ``lambda = (mu_s - mu_k) W / (V sqrt(m k))``, dimensionless, > 0.
+    gamma : float
+        ``mu_k / (mu_s - mu_k)``, dimensionless.
+    options : EngineOptions
+        Horizon, event budget and cycle tolerance.
+
+    Returns
+    -------
+    int
+        :attr:`Verdict.code` of the run.
+    """
     result = simulate(structure, Slider(lam, gamma=gamma), options=options, record=False)
     if result.status is RunStatus.MAX_STEPS:
         raise ValueError(f"lambda={lam:g}: {result.status.message}")
@@ -177,6 +220,12 @@ def lowest_onset(
         Relative width of the final bracket.
     options : EngineOptions, optional
         Engine limits of every run.
+
+    Returns
+    -------
+    float
+        The onset, dimensionless: ``lam_min`` if that already stick-slips, ``inf`` if nothing up
+        to ``lam_max`` does.
     """
     lam_min = positive("lam_min", lam_min)
     if growth <= 1.0:

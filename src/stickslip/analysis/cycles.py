@@ -380,6 +380,11 @@ def find_cycles(
         Random seed of the seeding.
     options : EngineOptions, optional
         Horizon of the seeding runs.
+
+    Returns
+    -------
+    CycleSearch
+        The distinct cycles found, each with its period, amplitude and Floquet multipliers.
     """
     opts = options or EngineOptions()
     n = structure.n_dof
@@ -427,6 +432,21 @@ def find_cycles(
 
 
 def cycle_exists(structure: Structure, slider: Slider, **kwargs: Any) -> bool:
-    """True when :func:`find_cycles` finds at least one stick-slip cycle."""
+    """True when :func:`find_cycles` finds at least one stick-slip cycle.
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless mass, damping and stiffness matrices, contact on DOF 0.
+    slider : Slider
+        The frictional contact: ``lambda``, ``gamma`` and the friction law.
+    **kwargs
+        Keywords of :func:`find_cycles`.
+
+    Returns
+    -------
+    bool
+        Whether a stick-slip cycle was found.
+    """
     return len(find_cycles(structure, slider, **kwargs).cycles) > 0
 

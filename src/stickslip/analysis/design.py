@@ -157,6 +157,11 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
         Also search the foundation that maximises the simulated stick-slip onset (with the
         mass bounded by the recommended ``m_a``) and report it in SI units, with its critical
         speed and load (a few seconds more).
+
+    Returns
+    -------
+    DesignReport
+        Verdicts, critical values (theory and simulation) and the foundations, in SI units.
     """
     slider = system.slider()
     lam, zeta, gamma = slider.lam, system.zeta, slider.gamma
@@ -234,6 +239,18 @@ def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -
     ``delta_crit - delta_local`` (positive: stable). ``safe_disturbance``: the largest knock
     about steady sliding certified never to start stick-slip
     (:func:`stickslip.analysis.disturbance.safe_disturbance`), in J, m/s and m.
+
+    Parameters
+    ----------
+    system : PhysicalSystem
+        The machine in SI units.
+    structures : dict of str to Structure
+        The structures to assess, by name (e.g. ``rigid`` and ``foundation``).
+
+    Returns
+    -------
+    dict
+        Per structure the keys above, plus ``units``.
     """
     from stickslip.analysis.disturbance import safe_disturbance
     from stickslip.analysis.stability import critical_weakening, steady_sliding_stability

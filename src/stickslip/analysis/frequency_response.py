@@ -233,6 +233,16 @@ def local_maxima_estimate(structure: Structure) -> tuple[FloatArray, FloatArray]
     Between consecutive stationary points ``H`` is monotone, so a stationary point is a
     maximum when ``H`` there is at least ``H`` at its neighbours (``H -> 0`` as
     ``Omega -> inf``). Cheap; :func:`response_peak` gives the bracketed, refined values.
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless mass, damping and stiffness matrices, contact on DOF 0.
+
+    Returns
+    -------
+    Omega, H : ndarray
+        Frequency ratios and heights of the local maxima of ``H(Omega)``.
     """
     st = _stationary(structure)
     if st.undamped is not None:
@@ -250,6 +260,16 @@ def peak_estimate(structure: Structure) -> float:
 
     An error ``d`` in a stationary point changes ``H`` there by ``O(d^2)``, so this agrees
     with :func:`response_peak` to rounding.
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless mass, damping and stiffness matrices, contact on DOF 0.
+
+    Returns
+    -------
+    float
+        The largest local maximum ``H_max``, dimensionless.
     """
     return float(local_maxima_estimate(structure)[1].max())
 
@@ -408,6 +428,11 @@ def response_curves(
         The elastic foundation; None draws the rigid base only.
     omega : array_like, optional
         Frequency ratios; default 2001 points on ``[0, 2]`` plus the exact peak frequency.
+
+    Returns
+    -------
+    ResponseCurves
+        The curves and their peaks.
     """
     zeta = non_negative("zeta", zeta)
     structure = rigid_base(zeta) if foundation is None else elastic_foundation(zeta, foundation)

@@ -363,6 +363,35 @@ class EngineOptions:
         }
 
 
+def _certificate_text(status: RunStatus, n_bands: int, fsum: FloatArray,
+                      isum: NDArray[np.int64]) -> str:
+    """What proves the verdict of a run, in words (empty for an undetermined run)."""
+    if status is RunStatus.CERTIFIED_STEADY and n_bands == 1:
+        return (
+            f"Lyapunov bound: |xi'| <= {fsum[engine.F_LYAPUNOV_BOUND]:.6g} < 1 for all "
+            f"tau >= {fsum[engine.F_T_CERTIFIED]:.6g} in slip-I, so the slider never sticks again"
+        )
+    if status is RunStatus.CERTIFIED_STEADY:
+        return (
+            f"Lyapunov bound about steady sliding: |xi'| <= {fsum[engine.F_LYAPUNOV_BOUND]:.6g} "
+            f"for all tau >= {fsum[engine.F_T_CERTIFIED]:.6g}, so the sliding speed u = 1 - xi' "
+            f"stays inside the friction bands where the Lyapunov function holds and the slider "
+            f"never sticks again"
+        )
+    if status is RunStatus.CERTIFIED_OSCILLATION:
+        return (
+            f"Poincare-section state repeats after {int(isum[engine.I_CYCLE_K])} crossing(s) "
+            f"to {fsum[engine.F_CYCLE_MISMATCH]:.1e} (relative) with no stick phase; period "
+            f"{fsum[engine.F_PERIOD]:.6g}, amplitude {fsum[engine.F_AMPLITUDE]:.6g}"
+        )
+    if status is RunStatus.CERTIFIED_CYCLE:
+        return (
+            f"breakaway state repeats after {int(isum[engine.I_CYCLE_K])} stick phase(s) "
+            f"to {fsum[engine.F_CYCLE_MISMATCH]:.1e} (relative)"
+        )
+    return ""
+
+
 def simulate(
     structure: Structure,
     slider: Slider,
@@ -432,31 +461,7 @@ def simulate(
     description = slider.friction.describe() + (f" ({n_bands} bands)" if n_bands > 1 else "")
     stability = steady_sliding_stability(structure, slider)
     verdict = status.verdict
-    if status is RunStatus.CERTIFIED_STEADY and n_bands == 1:
-        certificate = (
-            f"Lyapunov bound: |xi'| <= {fsum[engine.F_LYAPUNOV_BOUND]:.6g} < 1 for all "
-            f"tau >= {fsum[engine.F_T_CERTIFIED]:.6g} in slip-I, so the slider never sticks again"
-        )
-    elif status is RunStatus.CERTIFIED_STEADY:
-        certificate = (
-            f"Lyapunov bound about steady sliding: |xi'| <= {fsum[engine.F_LYAPUNOV_BOUND]:.6g} "
-            f"for all tau >= {fsum[engine.F_T_CERTIFIED]:.6g}, so the sliding speed u = 1 - xi' "
-            f"stays inside the friction bands where the Lyapunov function holds and the slider "
-            f"never sticks again"
-        )
-    elif status is RunStatus.CERTIFIED_OSCILLATION:
-        certificate = (
-            f"Poincare-section state repeats after {int(isum[engine.I_CYCLE_K])} crossing(s) "
-            f"to {fsum[engine.F_CYCLE_MISMATCH]:.1e} (relative) with no stick phase; period "
-            f"{fsum[engine.F_PERIOD]:.6g}, amplitude {fsum[engine.F_AMPLITUDE]:.6g}"
-        )
-    elif status is RunStatus.CERTIFIED_CYCLE:
-        certificate = (
-            f"breakaway state repeats after {int(isum[engine.I_CYCLE_K])} stick phase(s) "
-            f"to {fsum[engine.F_CYCLE_MISMATCH]:.1e} (relative)"
-        )
-    else:
-        certificate = ""
+    certificate = _certificate_text(status, n_bands, fsum, isum)
     return SimulationResult(
         structure=structure,
         slider=slider,

@@ -62,14 +62,42 @@ class SteadySlidingStability:
 
 
 def linearised_damping(structure: Structure, slope: float) -> FloatArray:
-    """Damping matrix of the linearisation: ``C + slope e_0 e_0'``."""
+    """Damping matrix of the linearisation: ``C + slope e_0 e_0'``.
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless mass, damping and stiffness matrices, contact on DOF 0.
+    slope : float
+        Friction slope ``dF/du`` at the belt speed (``u = 1``), dimensionless; it adds to the
+        damping of DOF 0.
+
+    Returns
+    -------
+    ndarray
+        The damping matrix with the friction slope on DOF 0.
+    """
     c = np.array(structure.damping, dtype=np.float64)
     c[0, 0] += slope
     return c
 
 
 def slip_matrix(structure: Structure, slope: float) -> FloatArray:
-    """First-order matrix ``[[0, I], [-M^-1 K, -M^-1 (C + slope e_0 e_0')]]`` of slip-I."""
+    """First-order matrix ``[[0, I], [-M^-1 K, -M^-1 (C + slope e_0 e_0')]]`` of slip-I.
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless mass, damping and stiffness matrices, contact on DOF 0.
+    slope : float
+        Friction slope ``dF/du`` at the belt speed (``u = 1``), dimensionless; it adds to the
+        damping of DOF 0.
+
+    Returns
+    -------
+    ndarray, shape (2n, 2n)
+        The first-order system matrix.
+    """
     n = structure.n_dof
     minv = np.linalg.inv(structure.mass)
     a = np.zeros((2 * n, 2 * n))
@@ -84,6 +112,18 @@ def routh_hurwitz_1dof(zeta: float, delta_local: float) -> bool:
 
     The characteristic polynomial ``s^2 + 2 (zeta - delta_loc) s + 1`` is Hurwitz iff all its
     coefficients are positive (Routh-Hurwitz for degree 2).
+
+    Parameters
+    ----------
+    zeta : float
+        Primary damping ratio ``c / (2 sqrt(m k))``, dimensionless, >= 0.
+    delta_local : float
+        Local weakening at the belt speed, dimensionless.
+
+    Returns
+    -------
+    bool
+        True when steady sliding is asymptotically stable.
     """
     return zeta - delta_local > 0.0
 
@@ -99,6 +139,16 @@ def quartic_coefficients(mass: FloatArray, damping: FloatArray, stiffness: Float
     * ``a2 = M00 K11 + C00 C11 + K00 M11 - 2 M01 K01 - C01^2``
     * ``a1 = C00 K11 + K00 C11 - 2 C01 K01``
     * ``a0 = K00 K11 - K01^2``.
+
+    Parameters
+    ----------
+    mass, damping, stiffness : ndarray, shape (2, 2)
+        Dimensionless matrices.
+
+    Returns
+    -------
+    ndarray, shape (5,)
+        ``(a4, a3, a2, a1, a0)``.
     """
     m, c, k = mass, damping, stiffness
     return np.array([
@@ -120,6 +170,16 @@ def routh_hurwitz_quartic(coefficients: FloatArray) -> bool:
     * ``a_i > 0`` for all ``i``,
     * ``a3 a2 - a4 a1 > 0`` (Hurwitz determinant ``D2``),
     * ``a1 (a3 a2 - a4 a1) - a3^2 a0 > 0`` (``D3``).
+
+    Parameters
+    ----------
+    coefficients : ndarray, shape (5,)
+        ``(a4, a3, a2, a1, a0)``.
+
+    Returns
+    -------
+    bool
+        True when every root has a negative real part.
     """
     a4, a3, a2, a1, a0 = (float(x) for x in coefficients)
     if min(a4, a3, a2, a1, a0) <= 0.0:
@@ -135,6 +195,19 @@ def routh_hurwitz_2dof(structure: Structure, slope: float) -> bool:
     For the foundation in the paper's form (``M = diag(1, M_a)``, ``C_00 = 2 zeta``,
     ``C_01 = -2 zeta`` ...) the quartic is that of :func:`quartic_coefficients` with
     ``C_00 -> C_00 + slope = C_00 - 2 delta_loc``.
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless mass, damping and stiffness matrices, contact on DOF 0.
+    slope : float
+        Friction slope ``dF/du`` at the belt speed (``u = 1``), dimensionless; it adds to the
+        damping of DOF 0.
+
+    Returns
+    -------
+    bool
+        True when steady sliding is asymptotically stable.
     """
     if structure.n_dof != 2:
         raise ValueError(f"routh_hurwitz_2dof needs 2 degrees of freedom, got {structure.n_dof}")
@@ -145,7 +218,18 @@ def routh_hurwitz_2dof(structure: Structure, slope: float) -> bool:
 
 def one_sided_slopes(slider: Slider) -> tuple[float, float]:
     """``dF/du`` just below and just above ``u = 1``: the exact derivative for smooth laws,
-    the band slopes for the exact piecewise-linear ones (they differ at a kink)."""
+    the band slopes for the exact piecewise-linear ones (they differ at a kink).
+
+    Parameters
+    ----------
+    slider : Slider
+        The frictional contact: ``lambda``, ``gamma`` and the friction law.
+
+    Returns
+    -------
+    tuple of float
+        ``dF/du`` below and above ``u = 1``, dimensionless.
+    """
     law = slider.friction
     if not law.exact:
         s = float(law.slope_at(1.0, slider.lam, slider.gamma))
@@ -168,6 +252,11 @@ def steady_sliding_stability(structure: Structure, slider: Slider) -> SteadySlid
         ``lambda``, ``gamma`` and the friction law; the slope is the law's exact derivative
         at ``u = 1`` (for Stribeck not the piecewise-linear one; at a kink of a table the
         worse side, see :func:`one_sided_slopes`).
+
+    Returns
+    -------
+    SteadySlidingStability
+        Eigenvalues, growth rate, stability and local weakening.
     """
     left, right = one_sided_slopes(slider)
     slope, eig, growth = right, np.zeros(0, dtype=np.complex128), -np.inf
@@ -187,7 +276,20 @@ def steady_sliding_stability(structure: Structure, slider: Slider) -> SteadySlid
 
 
 def growth_rate(structure: Structure, delta: float) -> float:
-    """Largest real part of the eigenvalues of slip-I with uniform weakening ``delta`` (per ``tau``)."""
+    """Largest real part of the eigenvalues of slip-I with uniform weakening ``delta`` (per ``tau``).
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless mass, damping and stiffness matrices, contact on DOF 0.
+    delta : float
+        Uniform weakening, dimensionless.
+
+    Returns
+    -------
+    float
+        Largest real part of the eigenvalues, per unit ``tau``.
+    """
     return float(np.max(np.linalg.eigvals(slip_matrix(structure, -2.0 * delta)).real))
 
 
@@ -203,6 +305,18 @@ def critical_weakening(structure: Structure, *, rtol: float = 1e-10) -> float:
     the eigenvalues, so every ``delta`` above ``tr(M^-1 C) / (2 (M^-1)_00)`` is unstable; the
     growth rate is scanned on 64 points below that bound and the first sign change bisected
     to ``rtol``. Returns 0 when steady sliding is not stable even without weakening.
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless mass, damping and stiffness matrices, contact on DOF 0.
+    rtol : float
+        Relative tolerance of the bisection on ``delta``.
+
+    Returns
+    -------
+    float
+        ``delta_crit``, dimensionless; 0 when steady sliding is unstable without weakening.
     """
     if growth_rate(structure, 0.0) >= 0.0:
         return 0.0

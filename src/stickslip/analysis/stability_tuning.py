@@ -108,6 +108,11 @@ def optimal_foundation_stability(
     maxiter : int
         Nelder-Mead iterations from the best seed.
 
+    Returns
+    -------
+    StabilityTuning
+        The best foundation, its ``delta_crit`` and the reference's.
+
     Notes
     -----
     ``delta_crit`` comes from the eigenvalues of the linearised slip-I matrix

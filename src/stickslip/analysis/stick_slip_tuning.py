@@ -112,6 +112,11 @@ def optimal_foundation_stick_slip(
     maxiter : int
         Iterations of the Nelder-Mead refinement.
 
+    Returns
+    -------
+    StickSlipTuning
+        The best foundation, its onset and the reference's.
+
     Notes
     -----
     A coarse grid over ``(K, zeta_a)`` at the largest allowed ``M`` (and at the smallest)

@@ -66,22 +66,66 @@ def _cubic(zeta: float, a3: float, a2: float, a1: float, a0: float) -> float:
 
 
 def optimal_mass_ratio_fit(zeta: float) -> float:
-    """Fitted optimal mass ratio ``M_opt = 330 z^3 - 43.6 z^2 + 14.5 z + 1.48``, Eq. (28)."""
+    """Fitted optimal mass ratio ``M_opt = 330 z^3 - 43.6 z^2 + 14.5 z + 1.48``, Eq. (28).
+
+    Parameters
+    ----------
+    zeta : float
+        Primary damping ratio ``c / (2 sqrt(m k))``, dimensionless, >= 0.
+
+    Returns
+    -------
+    float
+        The fitted value of Eq. (28), dimensionless.
+    """
     return _cubic(zeta, 330.0, -43.6, 14.5, 1.48)
 
 
 def optimal_stiffness_ratio_fit(zeta: float) -> float:
-    """Fitted optimal stiffness ratio ``K_opt = 7.72 z^3 + 1.13 z^2 + 1.38 z + 0.934``, Eq. (29)."""
+    """Fitted optimal stiffness ratio ``K_opt = 7.72 z^3 + 1.13 z^2 + 1.38 z + 0.934``, Eq. (29).
+
+    Parameters
+    ----------
+    zeta : float
+        Primary damping ratio ``c / (2 sqrt(m k))``, dimensionless, >= 0.
+
+    Returns
+    -------
+    float
+        The fitted value of Eq. (29), dimensionless.
+    """
     return _cubic(zeta, 7.72, 1.13, 1.38, 0.934)
 
 
 def optimal_damping_ratio_fit(zeta: float) -> float:
-    """Fitted optimal damping ratio ``zeta_a,opt = 61.1 z^3 - 4.40 z^2 + 3.91 z + 1.09``, Eq. (30)."""
+    """Fitted optimal damping ratio ``zeta_a,opt = 61.1 z^3 - 4.40 z^2 + 3.91 z + 1.09``, Eq. (30).
+
+    Parameters
+    ----------
+    zeta : float
+        Primary damping ratio ``c / (2 sqrt(m k))``, dimensionless, >= 0.
+
+    Returns
+    -------
+    float
+        The fitted value of Eq. (30), dimensionless.
+    """
     return _cubic(zeta, 61.1, -4.40, 3.91, 1.09)
 
 
 def optimal_foundation_fit(zeta: float) -> Foundation:
-    """The paper's fitted optimal foundation ``(M_opt, K_opt, zeta_a,opt)``, Eqs. (28)-(30)."""
+    """The paper's fitted optimal foundation ``(M_opt, K_opt, zeta_a,opt)``, Eqs. (28)-(30).
+
+    Parameters
+    ----------
+    zeta : float
+        Primary damping ratio ``c / (2 sqrt(m k))``, dimensionless, >= 0.
+
+    Returns
+    -------
+    Foundation
+        ``(M_opt, K_opt, zeta_a,opt)``, dimensionless.
+    """
     return Foundation(
         optimal_mass_ratio_fit(zeta),
         optimal_stiffness_ratio_fit(zeta),
@@ -90,28 +134,83 @@ def optimal_foundation_fit(zeta: float) -> Foundation:
 
 
 def peak_response_fit(zeta: float) -> float:
-    """Fitted peak response at the optimum ``H_max = 2.31 z^3 + 0.70 z^2 - 3.08 z + 2.24``, Eq. (31)."""
+    """Fitted peak response at the optimum ``H_max = 2.31 z^3 + 0.70 z^2 - 3.08 z + 2.24``, Eq. (31).
+
+    Parameters
+    ----------
+    zeta : float
+        Primary damping ratio ``c / (2 sqrt(m k))``, dimensionless, >= 0.
+
+    Returns
+    -------
+    float
+        The fitted value of Eq. (31), dimensionless.
+    """
     return _cubic(zeta, 2.31, 0.70, -3.08, 2.24)
 
 
 def equivalent_damping_from_peak(peak: float) -> float:
-    """Equivalent damping ratio of a 1DOF system with the same peak, ``1 / (2 H_max)``, Eq. (32)."""
+    """Equivalent damping ratio of a 1DOF system with the same peak, ``1 / (2 H_max)``, Eq. (32).
+
+    Parameters
+    ----------
+    peak : float
+        Peak response ``H_max = k |X| / f``, dimensionless, > 0.
+
+    Returns
+    -------
+    float
+        ``zeta_eq``, dimensionless.
+    """
     return 1.0 / (2.0 * positive("H_max", peak))
 
 
 def equivalent_damping_fit(zeta: float) -> float:
-    """``zeta_eq = 1 / (4.62 z^3 + 1.40 z^2 - 6.16 z + 4.48)``, Eq. (33) (Eqs. 31 and 32)."""
+    """``zeta_eq = 1 / (4.62 z^3 + 1.40 z^2 - 6.16 z + 4.48)``, Eq. (33) (Eqs. 31 and 32).
+
+    Parameters
+    ----------
+    zeta : float
+        Primary damping ratio ``c / (2 sqrt(m k))``, dimensionless, >= 0.
+
+    Returns
+    -------
+    float
+        The fitted value of Eq. (33), dimensionless.
+    """
     return 1.0 / _cubic(zeta, 4.62, 1.40, -6.16, 4.48)
 
 
 def stick_slip_frequency_ratio(lam: float) -> float:
-    """Undamped 1DOF stick-slip frequency ``f_ss / f_n = 1 / (1 + (lam - atan lam)/pi)``, Eq. (34)."""
+    """Undamped 1DOF stick-slip frequency ``f_ss / f_n = 1 / (1 + (lam - atan lam)/pi)``, Eq. (34).
+
+    Parameters
+    ----------
+    lam : float
+        ``lambda = (mu_s - mu_k) W / (V sqrt(m k))``, dimensionless, > 0.
+
+    Returns
+    -------
+    float
+        ``f_ss / f_n``, dimensionless.
+    """
     lam = positive("lambda", lam)
     return 1.0 / (1.0 + (lam - math.atan(lam)) / math.pi)
 
 
 def stick_slip_period(lam: float) -> float:
-    """Undamped 1DOF stick-slip period in dimensionless time, ``2 pi / (f_ss/f_n)`` from Eq. (34)."""
+    """Undamped 1DOF stick-slip period in dimensionless time, ``2 pi / (f_ss/f_n)`` from Eq. (34).
+
+    Parameters
+    ----------
+    lam : float
+        ``lambda = (mu_s - mu_k) W / (V sqrt(m k))``, dimensionless, > 0.
+
+    Returns
+    -------
+    float
+        The period in dimensionless time ``tau = omega_n t``.
+    """
     return 2.0 * math.pi / stick_slip_frequency_ratio(lam)
 
 
@@ -119,6 +218,16 @@ def stick_slip_amplitude_ratio(lam: float) -> float:
     """Undamped 1DOF stick-slip amplitude ``A_ss / A_n = sqrt(1 + lam^2)``, Eq. (35).
 
     ``A_n = V / omega_n``, so this is also the dimensionless amplitude of ``xi``.
+
+    Parameters
+    ----------
+    lam : float
+        ``lambda = (mu_s - mu_k) W / (V sqrt(m k))``, dimensionless, > 0.
+
+    Returns
+    -------
+    float
+        ``A_ss / A_n``, dimensionless.
     """
     lam = positive("lambda", lam)
     return math.sqrt(1.0 + lam * lam)
@@ -130,6 +239,18 @@ def nakano_boundary_residual(lam: float, zeta: float) -> float:
     ``ln(1 - 2 z lam + lam^2) - z/sqrt(1-z^2) (3 pi + 2 atan((1 - z lam)/(lam sqrt(1-z^2))))``.
     Positive: stick-slip; negative: steady sliding. ``zeta`` is ``zeta_eq`` for the
     equivalent 1DOF model (Fig. 9) or ``zeta`` for the rigid base. Requires ``0 <= zeta < 1``.
+
+    Parameters
+    ----------
+    lam : float
+        ``lambda = (mu_s - mu_k) W / (V sqrt(m k))``, dimensionless, > 0.
+    zeta : float
+        Primary damping ratio ``c / (2 sqrt(m k))``, dimensionless, 0 <= zeta < 1 (or ``zeta_eq``).
+
+    Returns
+    -------
+    float
+        Positive: stick-slip; negative: steady sliding.
     """
     lam = positive("lambda", lam)
     zeta = non_negative("zeta", zeta)
@@ -147,6 +268,16 @@ def critical_lambda_exact(zeta: float) -> float:
     Stick-slip occurs for ``lambda`` above it. Returns 0 for ``zeta = 0`` (always
     stick-slip) and ``inf`` for ``zeta >= 1`` (an overdamped slider never returns to the
     belt speed).
+
+    Parameters
+    ----------
+    zeta : float
+        Primary damping ratio ``c / (2 sqrt(m k))``, dimensionless, >= 0.
+
+    Returns
+    -------
+    float
+        Critical ``lambda``: 0 for ``zeta = 0``, ``inf`` for ``zeta >= 1``.
     """
     zeta = non_negative("zeta", zeta)
     if zeta == 0.0:
@@ -165,6 +296,16 @@ def critical_lambda_approx(zeta: float) -> float:
     """Boundary of the simplified criterion ``(1 - z)^5 lam^2 / z = 4 pi``, Eqs. (37) and (39).
 
     Pass ``zeta_eq`` for Eq. (37) (foundation) or ``zeta`` for Eq. (39) (rigid base).
+
+    Parameters
+    ----------
+    zeta : float
+        ``zeta_eq`` for Eq. (37) or ``zeta`` for Eq. (39), dimensionless, >= 0.
+
+    Returns
+    -------
+    float
+        Critical ``lambda`` (``inf`` for ``zeta >= 1``).
     """
     zeta = non_negative("zeta", zeta)
     if zeta >= 1.0:
@@ -173,7 +314,20 @@ def critical_lambda_approx(zeta: float) -> float:
 
 
 def stick_slip_predicted(lam: float, zeta: float) -> bool:
-    """True when the criterion of Eq. (38) fails, i.e. ``(1 - z)^5 lam^2 / z >= 4 pi``."""
+    """True when the criterion of Eq. (38) fails, i.e. ``(1 - z)^5 lam^2 / z >= 4 pi``.
+
+    Parameters
+    ----------
+    lam : float
+        ``lambda = (mu_s - mu_k) W / (V sqrt(m k))``, dimensionless, > 0.
+    zeta : float
+        Primary damping ratio ``c / (2 sqrt(m k))``, dimensionless, >= 0.
+
+    Returns
+    -------
+    bool
+        True when Eq. (38) predicts stick-slip.
+    """
     return positive("lambda", lam) >= critical_lambda_approx(zeta)
 
 
@@ -209,6 +363,18 @@ def critical_lambda_linear(zeta: float, delta: float) -> float:
       always stick-slip, ``lambda_c = 0``; ``zeta_e >= 1``: never (``inf``).
 
     Velocity strengthening (``delta < 0``) simply raises the effective damping.
+
+    Parameters
+    ----------
+    zeta : float
+        Primary damping ratio ``c / (2 sqrt(m k))``, dimensionless, >= 0.
+    delta : float
+        Dimensionless weakening ``sigma W / (2 sqrt(m k))`` of the linear law (< 0: strengthening).
+
+    Returns
+    -------
+    float
+        Critical ``lambda``: 0 when ``zeta - delta <= 0``, ``inf`` when it is >= 1.
     """
     zeta = non_negative("zeta", zeta)
     try:

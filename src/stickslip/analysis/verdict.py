@@ -111,7 +111,13 @@ STATUSES: tuple[RunStatus, ...] = tuple(sorted(RunStatus, key=lambda s: s.code))
 
 
 def verdict_flag_attributes() -> dict[str, Any]:
-    """CF ``flag_values`` and ``flag_meanings`` of an integer verdict variable."""
+    """CF ``flag_values`` and ``flag_meanings`` of an integer verdict variable.
+
+    Returns
+    -------
+    dict
+        ``flag_values`` (int8 array) and ``flag_meanings``.
+    """
     return {
         "flag_values": np.array([v.code for v in VERDICTS], dtype=np.int8),
         "flag_meanings": " ".join(v.value for v in VERDICTS),
@@ -119,7 +125,13 @@ def verdict_flag_attributes() -> dict[str, Any]:
 
 
 def status_flag_attributes() -> dict[str, Any]:
-    """CF flag attributes of an integer run-status (certificate) variable, with the messages."""
+    """CF flag attributes of an integer run-status (certificate) variable, with the messages.
+
+    Returns
+    -------
+    dict
+        ``flag_values``, ``flag_meanings`` and ``comment`` (the messages).
+    """
     return {
         "flag_values": np.array([s.code for s in STATUSES], dtype=np.int8),
         "flag_meanings": " ".join(s.label for s in STATUSES),

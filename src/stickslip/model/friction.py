@@ -100,7 +100,20 @@ def _through_points(u: FloatArray, f: FloatArray, tail_slope: float) -> list[Seg
 
 
 def evaluate_bands(table: BandTable, u: Any) -> FloatArray:
-    """The piecewise-linear friction magnitude of a band table at sliding speeds ``u``."""
+    """The piecewise-linear friction magnitude of a band table at sliding speeds ``u``.
+
+    Parameters
+    ----------
+    table : BandTable
+        A law's band table, as its ``bands(lam, gamma)`` method returns it.
+    u : array_like
+        Sliding speeds ``1 - xi'``, dimensionless.
+
+    Returns
+    -------
+    ndarray
+        Friction magnitude ``F(u)``, dimensionless.
+    """
     edges, intercepts, slopes = table
     uu = np.asarray(u, dtype=np.float64)
     b = np.clip(np.searchsorted(edges, uu, side="right") - 1, 0, len(intercepts) - 1)
@@ -271,6 +284,16 @@ def read_friction_csv_columns(path: str | Path) -> tuple[list[float], list[float
 
     ``#`` starts a comment line. Returns the speeds and friction values as read (no units).
     A file with columns ``v`` and ``f`` (the dimensionless form) is read the same way.
+
+    Parameters
+    ----------
+    path : str or Path
+        The CSV file.
+
+    Returns
+    -------
+    tuple of list of float
+        The speed and friction columns.
     """
     p = Path(path)
     try:
@@ -285,6 +308,18 @@ def friction_csv_columns(text: str, p: str = "(text)") -> tuple[list[float], lis
 
     The rules of :func:`read_friction_csv_columns` (which reads a file through this); ``p``
     names the source in error messages (an uploaded file's name, say).
+
+    Parameters
+    ----------
+    text : str
+        The CSV text.
+    p : str
+        Its name in error messages.
+
+    Returns
+    -------
+    tuple of list of float
+        The speed and friction columns.
     """
     lines = [line for line in text.splitlines() if line.strip() and not line.startswith("#")]
     rows = list(csv.reader(lines))
@@ -314,6 +349,20 @@ def read_friction_table(
     Columns ``v`` [m/s] and ``mu`` [-] (then ``mu_s``, ``mu_k`` and the belt ``speed``
     [m/s] are required), or ``v`` and ``f`` for the dimensionless form (``v`` = sliding
     speed over belt speed, ``f = (mu - mu_k)/(mu_s - mu_k)``).
+
+    Parameters
+    ----------
+    path : str or Path
+        CSV with columns ``v``, ``f`` (dimensionless) or ``v`` [m/s], ``mu``.
+    mu_s, mu_k : float, optional
+        Friction coefficients, needed for a ``mu`` column.
+    speed : float, optional
+        Belt speed ``V``, m/s, needed for a ``mu`` column.
+
+    Returns
+    -------
+    TableFriction
+        The dimensionless law.
     """
     v, y = read_friction_csv_columns(path)
     header = Path(path).read_text().lower()

@@ -75,6 +75,18 @@ def startup_state(structure: Structure, slider: Slider) -> InitialState:
     ``xi = -gamma lambda (1 + 1/K^2)``, ``xi_a = -gamma lambda / K^2``; for the rigid base
     ``xi = -gamma lambda``. The slider moves with the belt (``xi' = 1``), the foundation is
     at rest.
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless mass, damping and stiffness matrices, contact on DOF 0.
+    slider : Slider
+        The frictional contact: ``lambda``, ``gamma`` and the friction law.
+
+    Returns
+    -------
+    InitialState
+        Springs relaxed, slider stuck to the belt, foundation at rest.
     """
     from stickslip.model._validate import friction_range
 

@@ -318,7 +318,20 @@ def _warn_former(old: str, new: str) -> None:
 
 
 def foundation_to_dimensionless(foundation: PhysicalFoundation, m: float, k: float) -> Foundation:
-    """``M = m_a/m``, ``K = sqrt(k_a/k)``, ``zeta_a = c_a/(2 sqrt(m k))`` (after Eq. 27)."""
+    """``M = m_a/m``, ``K = sqrt(k_a/k)``, ``zeta_a = c_a/(2 sqrt(m k))`` (after Eq. 27).
+
+    Parameters
+    ----------
+    foundation : PhysicalFoundation
+        The foundation in SI units.
+    m, k : float
+        Slider mass, kg, and spring stiffness, N/m (> 0).
+
+    Returns
+    -------
+    Foundation
+        ``(M, K, zeta_a)``, dimensionless.
+    """
     m, k = positive("m", m), positive("k", k)
     return Foundation(
         mass_ratio=foundation.m_a / m,
@@ -328,7 +341,20 @@ def foundation_to_dimensionless(foundation: PhysicalFoundation, m: float, k: flo
 
 
 def foundation_to_physical(foundation: Foundation, m: float, k: float) -> PhysicalFoundation:
-    """``m_a = M m``, ``k_a = K^2 k``, ``c_a = 2 zeta_a sqrt(m k)``: inverse of the above."""
+    """``m_a = M m``, ``k_a = K^2 k``, ``c_a = 2 zeta_a sqrt(m k)``: inverse of the above.
+
+    Parameters
+    ----------
+    foundation : Foundation
+        ``(M, K, zeta_a)``, dimensionless.
+    m, k : float
+        Slider mass, kg, and spring stiffness, N/m (> 0).
+
+    Returns
+    -------
+    PhysicalFoundation
+        ``m_a`` [kg], ``k_a`` [N/m], ``c_a`` [N s/m].
+    """
     m, k = positive("m", m), positive("k", k)
     return PhysicalFoundation(
         m_a=foundation.mass_ratio * m,
@@ -345,6 +371,20 @@ def physical_friction_from_config(table: Mapping[str, Any], *, base_dir: Path | 
     ``stribeck_velocity`` (m/s), ``exponent``, ``viscous`` (s/m), ``tolerance`` (stribeck), and
     ``table`` (a CSV with columns ``v`` [m/s] and ``mu``, relative to ``base_dir``). Values
     may carry units (``"0.02 s/m"``). Raises ``ValueError`` naming the key and the value.
+
+    Parameters
+    ----------
+    table : mapping
+        The ``[friction]`` table.
+    base_dir : Path, optional
+        Directory against which a relative ``table`` path is read.
+    source : str
+        Its name in error messages.
+
+    Returns
+    -------
+    PhysicalFriction
+        The law in SI units.
     """
     from stickslip.model.friction import read_friction_csv_columns
     from stickslip.model.units import FRICTION_QUANTITIES, to_si

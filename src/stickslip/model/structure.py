@@ -168,10 +168,34 @@ def chain_structure(zeta: float, foundations: Sequence[Foundation] = ()) -> Stru
 
 
 def rigid_base(zeta: float) -> Structure:
-    """The paper's 1DOF system: the slider on a spring-damper anchored to a rigid base."""
+    """The paper's 1DOF system: the slider on a spring-damper anchored to a rigid base.
+
+    Parameters
+    ----------
+    zeta : float
+        Primary damping ratio ``c / (2 sqrt(m k))``, dimensionless, >= 0.
+
+    Returns
+    -------
+    Structure
+        The 1DOF structure.
+    """
     return chain_structure(zeta, ())
 
 
 def elastic_foundation(zeta: float, foundation: Foundation) -> Structure:
-    """The paper's 2DOF system (Fig. 1): the slider on an elastic foundation, Eqs. (23)-(24)."""
+    """The paper's 2DOF system (Fig. 1): the slider on an elastic foundation, Eqs. (23)-(24).
+
+    Parameters
+    ----------
+    zeta : float
+        Primary damping ratio ``c / (2 sqrt(m k))``, dimensionless, >= 0.
+    foundation : Foundation
+        ``(M, K, zeta_a)``, dimensionless.
+
+    Returns
+    -------
+    Structure
+        The 2DOF structure.
+    """
     return chain_structure(zeta, (foundation,))

@@ -80,6 +80,20 @@ def to_si(name: str, value: str | float | int, *, source: str | None = None) -> 
     comma, two numbers, arithmetic, a value that is not a number or a string (a TOML date,
     list or table), or a result that is not finite. ``source`` names where the value came
     from in the message (default: the command-line flag, e.g. ``--m``).
+
+    Parameters
+    ----------
+    name : str
+        Quantity name (a key of ``QUANTITIES`` or ``FRICTION_QUANTITIES``).
+    value : str or float
+        A number (already SI) or a quantity string such as ``"2 kg"``.
+    source : str, optional
+        Where the value came from, for error messages.
+
+    Returns
+    -------
+    float
+        The value in SI units.
     """
     dim, si_unit, what = QUANTITIES[name] if name in QUANTITIES else FRICTION_QUANTITIES[name]
     flag = source or f"--{name.replace('_', '-')}"
