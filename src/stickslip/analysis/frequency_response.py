@@ -10,7 +10,7 @@ with ``Omega = omega / omega_n`` (paper Fig. 5), for any :class:`~stickslip.mode
 ``H(Omega)`` and its peak ``H_max`` are computed exactly: every local maximum is a root of
 ``d|H|^2/dOmega``, bracketed and refined with Brent's method (never read off a grid). The
 equivalent damping ratio ``zeta_eq = 1 / (2 H_max)`` is the paper's Eq. (32). The tuning that
-minimises ``H_max`` lives in :mod:`stickslip.analysis.tuning`.
+minimises ``H_max`` lives in :mod:`stickslip.analysis.absorber_tuning`.
 """
 
 from __future__ import annotations

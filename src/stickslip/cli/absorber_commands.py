@@ -1,6 +1,6 @@
 """``stickslip frf`` and ``stickslip tune``: the foundation as a vibration absorber.
 
-Thin commands over :mod:`stickslip.analysis.tuning` (paper Figs. 3-6 and 10,
+Thin commands over :mod:`stickslip.analysis.absorber_tuning` (paper Figs. 3-6 and 10,
 Eqs. 28-33).
 """
 

@@ -121,7 +121,7 @@ def warn(message: str) -> None:
 def warn_fitted_range(spec: Any, zetas: Any) -> None:
     """One warning line when ``--dva optimal`` is used above the fitted range of Eqs. 28-30.
 
-    ``spec`` is a :class:`~stickslip.analysis.dva.DvaSpec` or the ``--dva`` text. Call it
+    ``spec`` is a :class:`~stickslip.model.dva.DvaSpec` or the ``--dva`` text. Call it
     after every check has passed, so that a rejected command prints only its error line.
     """
     from stickslip.analysis.dva import fitted_zeta_warning

@@ -3,7 +3,7 @@
 Follows the plotting contract of :mod:`stickslip.plot.figure`: every ``*_plot`` takes the
 data first and keyword-only options with ``ax=None``, draws, and returns a
 :class:`~stickslip.plot.figure.PlotResult`. The data come from
-:mod:`stickslip.analysis.tuning` (:func:`~stickslip.analysis.tuning.tuning_curve`,
+:mod:`stickslip.analysis.absorber_tuning` (:func:`~stickslip.analysis.absorber_tuning.tuning_curve`,
 :func:`~stickslip.analysis.frequency_response.response_curves`); these functions only draw.
 """
 
@@ -61,7 +61,7 @@ def optimal_parameter_plot(
     Parameters
     ----------
     curve : TuningCurve
-        Exact optimum over a ``zeta`` grid (:func:`stickslip.analysis.tuning.tuning_curve`).
+        Exact optimum over a ``zeta`` grid (:func:`stickslip.analysis.absorber_tuning.tuning_curve`).
     parameter : {"M", "K", "zeta_a"}
         ``M_opt`` (Eq. 28), ``K_opt`` (Eq. 29) or ``zeta_a,opt`` (Eq. 30), dimensionless.
         Part of the data (which curve), so it may be given by position.
