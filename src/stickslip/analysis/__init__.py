@@ -74,6 +74,7 @@ _EXPORTS: dict[str, str] = {
     "nelder_mead": "stickslip.analysis.optimise",
     "best_seed": "stickslip.analysis.optimise",
     "box_simplex": "stickslip.analysis.optimise",
+    "ordered_bounds": "stickslip.analysis.optimise",
     "minimise_peak": "stickslip.analysis.peak_minimiser",
     "PeakMinimum": "stickslip.analysis.peak_minimiser",
     "DEFAULT_MASS_BOUNDS": "stickslip.analysis.absorber_tuning",
@@ -159,6 +160,7 @@ __all__ = [
     "optimal_foundation_stick_slip",
     "optimal_mass_ratio_fit",
     "optimal_stiffness_ratio_fit",
+    "ordered_bounds",
     "peak_response_fit",
     "resolve_dva",
     "response_curves",
@@ -210,7 +212,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         response_curves,
         response_peak,
     )
-    from stickslip.analysis.optimise import best_seed, box_simplex, nelder_mead
+    from stickslip.analysis.optimise import best_seed, box_simplex, nelder_mead, ordered_bounds
     from stickslip.analysis.peak_minimiser import PeakMinimum, minimise_peak
     from stickslip.analysis.simulation import EngineOptions, SimulationResult, TimeHistory, simulate
     from stickslip.analysis.stability import (

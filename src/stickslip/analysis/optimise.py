@@ -18,8 +18,32 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import minimize
 
+from stickslip.model._validate import positive
+
 FloatArray = NDArray[np.float64]
 Objective = Callable[[FloatArray], float]
+
+
+def ordered_bounds(name: str, bounds: tuple[float, float]) -> tuple[float, float]:
+    """A search interval of a positive parameter, checked: ``0 < lower <= upper``.
+
+    Parameters
+    ----------
+    name : str
+        The parameter, for the error message (e.g. ``"mass ratio"``).
+    bounds : (float, float)
+        Lower and upper bound.
+
+    Returns
+    -------
+    (float, float)
+        The bounds as floats; a ``ValueError`` names a bound that is not positive and finite,
+        or bounds in the wrong order.
+    """
+    lower, upper = (positive(f"{name} bound", b) for b in bounds)
+    if lower > upper:
+        raise ValueError(f"{name} bounds ({lower!r}, {upper!r}) are in the wrong order")
+    return lower, upper
 
 
 def box_simplex(x0: FloatArray, step: float, lower: FloatArray, upper: FloatArray) -> FloatArray:

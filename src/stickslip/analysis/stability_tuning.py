@@ -17,10 +17,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from stickslip.analysis.absorber_tuning import DAMPING_BOUNDS, check_tuning_zeta
-from stickslip.analysis.optimise import best_seed, nelder_mead
+from stickslip.analysis.optimise import best_seed, nelder_mead, ordered_bounds
 from stickslip.analysis.stability import critical_weakening
 from stickslip.analysis.theory import optimal_foundation_fit
-from stickslip.model._validate import positive
 from stickslip.model.parameters import Foundation
 from stickslip.model.structure import elastic_foundation
 
@@ -125,14 +124,10 @@ def optimal_foundation_stability(
     reference = optimal_foundation_fit(zeta) if reference is None else reference
     if mass_ratio_bounds is None:
         mass_ratio_bounds = (reference.mass_ratio / 20.0, reference.mass_ratio)
-    m_lo, m_hi = (positive("mass ratio bound", b) for b in mass_ratio_bounds)
-    if m_lo > m_hi:
-        raise ValueError(f"mass ratio bounds ({m_lo!r}, {m_hi!r}) are in the wrong order")
+    m_lo, m_hi = ordered_bounds("mass ratio", mass_ratio_bounds)
     if stiffness_ratio_bounds is None:
         stiffness_ratio_bounds = (reference.stiffness_ratio / 10.0, reference.stiffness_ratio * 10.0)
-    k_lo, k_hi = (positive("stiffness ratio bound", b) for b in stiffness_ratio_bounds)
-    if k_lo > k_hi:
-        raise ValueError(f"stiffness ratio bounds ({k_lo!r}, {k_hi!r}) are in the wrong order")
+    k_lo, k_hi = ordered_bounds("stiffness ratio", stiffness_ratio_bounds)
     z_lo, z_hi = DAMPING_BOUNDS
     count = 0
 

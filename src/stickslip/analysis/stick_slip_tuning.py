@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from stickslip.analysis.critical import lowest_onset
-from stickslip.analysis.optimise import best_seed, nelder_mead
+from stickslip.analysis.optimise import best_seed, nelder_mead, ordered_bounds
 from stickslip.analysis.theory import optimal_foundation_fit
 from stickslip.model._validate import non_negative, positive
 from stickslip.model.parameters import Foundation
@@ -130,9 +130,7 @@ def optimal_foundation_stick_slip(
     reference = optimal_foundation_fit(zeta) if reference is None else reference
     if mass_ratio_bounds is None:
         mass_ratio_bounds = (reference.mass_ratio / 20.0, reference.mass_ratio)
-    m_lo, m_hi = (positive("mass ratio bound", b) for b in mass_ratio_bounds)
-    if m_lo > m_hi:
-        raise ValueError(f"mass ratio bounds ({m_lo!r}, {m_hi!r}) are in the wrong order")
+    m_lo, m_hi = ordered_bounds("mass ratio", mass_ratio_bounds)
     count = 0
 
     def onset(f: Foundation, tol: float = rtol) -> float:
