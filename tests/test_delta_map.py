@@ -58,7 +58,7 @@ def test_dataset_layout(rigid: OccurrenceMap) -> None:
     assert config["axes"] == ["lambda", "delta"]
     assert "linear" in ds.attrs["friction"]
     _, delta, verdict = rigid
-    assert verdict.shape == (6, 5) and rigid.second == "delta"
+    assert verdict.shape == (6, 5) and rigid.second_axis_name == "delta"
     np.testing.assert_array_equal(delta, rigid.delta)
     np.testing.assert_array_equal(rigid.zeta, [ZETA])
     summary = rigid.to_dict()
@@ -155,7 +155,7 @@ def test_resume_from_a_store(rigid: OccurrenceMap, tmp_path: Path) -> None:
 def test_netcdf_and_csv(rigid: OccurrenceMap, tmp_path: Path) -> None:
     back = OccurrenceMap.from_netcdf(rigid.to_netcdf(tmp_path / "d.nc"))
     xr.testing.assert_identical(back.dataset, rigid.dataset)
-    assert back.second == "delta" and back.zeta.tolist() == [ZETA]
+    assert back.second_axis_name == "delta" and back.zeta.tolist() == [ZETA]
     rows = list(csv.DictReader(open(rigid.to_csv(tmp_path / "d.csv"))))
     assert len(rows) == 30
     assert list(rows[0])[:2] == ["lambda", "delta"] and rows[0]["zeta"] == repr(ZETA)

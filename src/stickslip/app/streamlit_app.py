@@ -57,6 +57,7 @@ from stickslip.plot.figure import new_grid
 from stickslip.plot.simulation import phase_portrait_plot, time_history_plot
 from stickslip.sweep import OccurrenceMap, occurrence_map
 from stickslip.sweep.basin import BasinResult, basin_stability, equilibrium_state, sample_box
+from stickslip.sweep.execution import ExecutionOptions
 
 #: Widget key -> (label, default text). The keys are the quantity names of ``to_si``.
 SYSTEM_INPUTS: dict[str, tuple[str, str]] = {
@@ -320,7 +321,8 @@ def occurrence_maps(lam: float, zeta: float, gamma: float, foundation: Foundatio
     top = 2.0 * zeta if zeta > 0.0 else MAP_ZETA_FLOOR
     zetas = (np.arange(n_zeta) + 0.5) * (top / n_zeta)  # cell centres; edges 0 .. top
     dva = DvaSpec("optimal") if foundation is None else DvaSpec("explicit", Foundation(*foundation))
-    return {name: occurrence_map(lams, zetas, spec, gamma, friction=friction, backend="serial")
+    return {name: occurrence_map(lams, zetas, spec, gamma, friction=friction,
+                                 execution=ExecutionOptions(backend="serial"))
             for name, spec in (("rigid base", DvaSpec("none")), ("with foundation", dva))}
 
 

@@ -166,6 +166,7 @@ def basin(
 
     from stickslip.cli.map_commands import _ProgressBar, _scheduler_context
     from stickslip.io.lock import output_lock
+    from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.store import discard_store
 
     enabled = not json and sys.stderr.isatty()
@@ -175,9 +176,10 @@ def basin(
         out.mkdir(parents=True, exist_ok=True)  # every check passed: writing starts
     with output_lock(labels) if labels is not None else nullcontext(), reach:
         with _ProgressBar(enabled, f"basin {len(states)} states", unit="samples") as bar:
-            result = basin_stability(structure, slider, states, options=options, backend=chosen,
-                                     workers=workers, scheduler=scheduler, progress=bar, store=store,
-                                     overwrite=overwrite)
+            result = basin_stability(structure, slider, states, options=options,
+                                     execution=ExecutionOptions(backend=chosen, workers=workers,
+                                                                scheduler=scheduler, progress=bar,
+                                                                store=store, overwrite=overwrite))
         payload = result.to_dict()
         payload.update({"labels": None, "dataset": None, "plot": None})
         if out is not None:

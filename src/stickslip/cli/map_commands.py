@@ -209,6 +209,7 @@ def map_command(
     Example: stickslip map --lam log:0.1:50:100 --delta -0.1:0.3:41 --zeta 0.1 --out dmap.nc
     """
     from stickslip.io.lock import output_lock
+    from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.executors import check_backend
     from stickslip.sweep.occurrence import OccurrenceMap, occurrence_map
     from stickslip.sweep.store import discard_store
@@ -240,9 +241,11 @@ def map_command(
             with _ProgressBar(enabled, f"map {config.shape[0]}x{config.shape[1]}") as bar:
                 result = occurrence_map(config.lam, config.zeta, config.dva, config.gamma,
                                         options=config.options,
-                                        friction=law, deltas=config.delta, backend=chosen, workers=workers,
-                                        scheduler=scheduler, chunk_size=chunk_size, progress=bar,
-                                        store=store, overwrite=overwrite)
+                                        friction=law, deltas=config.delta,
+                                        execution=ExecutionOptions(
+                                            backend=chosen, workers=workers, scheduler=scheduler,
+                                            chunk_size=chunk_size, progress=bar, store=store,
+                                            overwrite=overwrite))
             result.to_netcdf(out, overwrite=True)
             discard_store(store)
         payload = result.to_dict()
@@ -344,6 +347,7 @@ def boundary_command(
     from stickslip.analysis.dva import DvaSpec
     from stickslip.model.friction import parse_friction
     from stickslip.sweep.boundary import stick_slip_boundary
+    from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.executors import check_backend
 
     _, zeta_axis = _parse_axes(None, zeta, None, zeta_spacing)
@@ -359,8 +363,8 @@ def boundary_command(
     if plot is not None:
         check_figure_path(plot, overwrite=overwrite)
     result = stick_slip_boundary(zeta_axis, spec, gamma, lam_min=lam_min, lam_max=lam_max,
-                                 n_scan=scan, rtol=rtol, t_max=t_max, workers=workers,
-                                 friction=law, criterion=criterion)
+                                 n_scan=scan, rtol=rtol, t_max=t_max, friction=law,
+                                 criterion=criterion, execution=ExecutionOptions(workers=workers))
     warn_fitted_range(spec, zeta_axis.values)
     payload = result.to_dict()
     payload.update({"out": None, "plot": None})

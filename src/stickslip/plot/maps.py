@@ -32,10 +32,13 @@ from numpy.typing import NDArray
 from stickslip.analysis.dva import DvaSpec
 from stickslip.analysis.stability import critical_weakening
 from stickslip.analysis.theory import analytic_boundaries, critical_lambda_linear
+from stickslip.analysis.verdict import VERDICTS
 from stickslip.model.parameters import Foundation
 from stickslip.model.structure import chain_structure
 from stickslip.plot.figure import PlotResult, new_axes
-from stickslip.sweep.occurrence import VERDICTS, OccurrenceMap, dva_from_config, stored_foundations
+from stickslip.sweep.map_config import dva_from_config
+from stickslip.sweep.map_dataset import stored_foundations
+from stickslip.sweep.occurrence import OccurrenceMap
 
 if TYPE_CHECKING:
     import xarray as xr

@@ -38,6 +38,7 @@ from stickslip.kernel import engine
 from stickslip.model._validate import at_most, non_negative, positive
 from stickslip.model.friction import CoulombFriction, FrictionLaw, LinearFriction
 from stickslip.model.parameters import Foundation
+from stickslip.sweep.execution import ExecutionOptions, execution_from_keywords
 from stickslip.sweep.executors import CellBatch, StructureSet, run_batch
 from stickslip.sweep.grid import Axis, as_axis
 
@@ -297,10 +298,11 @@ def stick_slip_boundary(
     rtol: float = 1e-6,
     t_max: float | None = None,
     options: EngineOptions | None = None,
-    workers: int | None = None,
     friction: FrictionLaw | None = None,
     criterion: str = "startup",
     existence_seeds: int = 8,
+    execution: ExecutionOptions | None = None,
+    **legacy: Any,
 ) -> BoundaryResult:
     """Every critical ``lambda`` in ``[lam_min, lam_max]`` at each ``zeta``, by scan and bisection.
 
@@ -322,8 +324,6 @@ def stick_slip_boundary(
         Time horizon of each simulation (dimensionless); overrides ``options.t_max``.
     options : EngineOptions, optional
         Engine limits (defaults of :class:`EngineOptions`).
-    workers : int, optional
-        Numba threads (all cores when None).
     friction : FrictionLaw, optional
         Friction law of every run (the paper's Coulomb law by default).
     criterion : {"startup", "existence"}
@@ -335,11 +335,19 @@ def stick_slip_boundary(
         foundation).
     existence_seeds : int
         Random starts of each cycle search (``existence`` only).
+    execution : ExecutionOptions, optional
+        ``workers``: numba threads (all cores when None; ``serial`` is one). The bisection runs
+        in this process, so the dask backend, chunk size, store and progress are refused.
+    **legacy
+        ``workers=``: deprecated spelling of ``execution=ExecutionOptions(workers=...)``.
 
     Returns
     -------
     BoundaryResult
     """
+    run = execution_from_keywords(execution, legacy, "stick_slip_boundary")
+    run.check_in_process("stick_slip_boundary", progress=False)
+    workers = run.threads
     started = time.perf_counter()
     spec = DvaSpec.parse(dva) if isinstance(dva, str) else dva
     axis = as_axis(zetas, "zeta")
