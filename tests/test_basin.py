@@ -31,6 +31,7 @@ from stickslip import (
 from stickslip.analysis.disturbance import safe_disturbance
 from stickslip.model.friction import LinearFriction, StribeckFriction
 from stickslip.sweep.basin import basin_stability, equilibrium_state, sample_box, states_from_physical
+from stickslip.sweep.execution import ExecutionOptions
 
 from .cli_helpers import run_cli
 
@@ -46,7 +47,7 @@ def test_labels_equal_single_simulations(name, structure, slider) -> None:  # ty
     names = ["xi", "v"] if structure.n_dof == 1 else ["xi", "xi_a", "v", "v_a"]
     box = {names[0]: (-4.0, 4.0), names[structure.n_dof]: (-3.0, 1.5)}
     states = sample_box(structure, slider, 60, box, seed=5)
-    result = basin_stability(structure, slider, states, workers=2)
+    result = basin_stability(structure, slider, states, execution=ExecutionOptions(workers=2))
     for state, code in zip(states, result.verdict, strict=True):
         n = structure.n_dof
         single = simulate(structure, slider, initial=InitialState(state[:n], state[n:]), record=False)
@@ -142,15 +143,18 @@ def test_basin_resumes_from_its_store(tmp_path: Path) -> None:
     structure, slider = rigid_base(0.1), Slider(2.5)
     states = sample_box(structure, slider, 300, {"xi": (-4, 4), "v": (-3, 1.5)}, seed=4)
     store = tmp_path / "basin.parts"
-    first = basin_stability(structure, slider, states, chunk_size=64, store=store)
+    first = basin_stability(structure, slider, states,
+                            execution=ExecutionOptions(chunk_size=64, store=store))
     chunks = sorted(store.glob("chunk-*.npz"))
     assert len(chunks) == 5
     chunks[2].unlink()
-    again = basin_stability(structure, slider, states, chunk_size=64, store=store)
+    again = basin_stability(structure, slider, states,
+                            execution=ExecutionOptions(chunk_size=64, store=store))
     assert np.array_equal(first.verdict, again.verdict)
     assert np.array_equal(first.float_summary, again.float_summary, equal_nan=True)
     with pytest.raises(StoreMismatch):
-        basin_stability(structure, slider, states[:200], chunk_size=64, store=store)
+        basin_stability(structure, slider, states[:200],
+                        execution=ExecutionOptions(chunk_size=64, store=store))
 
 
 def test_basin_map_over_lambda_and_delta() -> None:

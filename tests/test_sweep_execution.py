@@ -79,7 +79,7 @@ def test_basin_stability_takes_execution():  # type: ignore[no-untyped-def]
 
 
 def test_in_process_sweeps_refuse_what_they_cannot_honour():  # type: ignore[no-untyped-def]
-    with pytest.raises(ValueError, match="numba threads in this process only.*backend='dask'"):
+    with pytest.raises(ValueError, match=r"numba threads in this process only.*backend='dask'"):
         stick_slip_boundary([0.1], execution=ExecutionOptions(backend="dask"))
     with pytest.raises(ValueError, match="progress"):
         stick_slip_boundary([0.1], execution=ExecutionOptions(progress=lambda d, t: None))

@@ -9,7 +9,14 @@ from typing import Annotated, Any
 
 import typer
 
-from stickslip.cli.console import BadInput, check_figure_path, check_output_path, parse_dva, print_json
+from stickslip.cli.console import (
+    BadInput,
+    check_figure_path,
+    check_output_path,
+    parse_dva,
+    parse_friction_option,
+    print_json,
+)
 from stickslip.cli.map_commands import WORKERS
 from stickslip.cli.options import (
     BACKEND,
@@ -105,7 +112,6 @@ def basin(
     Example: stickslip basin --lam 2.5 --zeta 0.1 --samples 200000 --backend dask --workers 2 --out run
     """
     from stickslip.analysis.simulation import EngineOptions
-    from stickslip.model.friction import parse_friction
     from stickslip.model.parameters import Slider
     from stickslip.model.structure import chain_structure
     from stickslip.sweep.basin import (
@@ -126,7 +132,7 @@ def basin(
     else:
         if lam is None or zeta is None:
             raise BadInput("give --lam and --zeta (dimensionless), or --config machine.toml")
-        slider = Slider(lam, gamma=gamma, friction=parse_friction(friction))
+        slider = Slider(lam, gamma=gamma, friction=parse_friction_option(friction))
         found = parse_dva(dva, zeta, k_scale)
         structure = chain_structure(zeta, () if found is None else (found,))
     options = EngineOptions(t_max=t_max)

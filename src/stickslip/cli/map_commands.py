@@ -21,6 +21,8 @@ from stickslip.cli.console import (
     check_grid_memory,
     check_output_path,
     check_run_limits,
+    parse_dva_option,
+    parse_friction_option,
     print_json,
     save_plot,
     warn_fitted_range,
@@ -77,13 +79,12 @@ def grid_config(lam: str | None, zeta: str, lam_spacing: str | None, zeta_spacin
     linear law ``linear:DELTA`` (the returned law is then None); otherwise every cell has
     ``--friction``. Bad combinations and out-of-range values are one-line ``BadInput``.
     """
-    from stickslip.analysis.dva import DvaSpec
-    from stickslip.model.friction import CoulombFriction, parse_friction
+    from stickslip.model.friction import CoulombFriction
     from stickslip.sweep.grid import Axis
     from stickslip.sweep.occurrence import MapConfig
 
     lam_axis, zeta_axis = _parse_axes(lam, zeta, lam_spacing, zeta_spacing)
-    law = parse_friction(friction)
+    law = parse_friction_option(friction)
     delta_axis = None
     if delta is not None:
         if not isinstance(law, CoulombFriction):
@@ -94,7 +95,7 @@ def grid_config(lam: str | None, zeta: str, lam_spacing: str | None, zeta_spacin
                            f"--zeta value, not {len(zeta_axis)} ({zeta})")
         delta_axis = Axis.parse(delta, "delta")
     cell_law = None if delta_axis is not None else law
-    config = MapConfig.create(lam_axis, zeta_axis, DvaSpec.parse(dva, k_scale), gamma, t_max=t_max,
+    config = MapConfig.create(lam_axis, zeta_axis, parse_dva_option(dva, k_scale), gamma, t_max=t_max,
                               friction=cell_law, deltas=delta_axis)
     check_run_limits(float(config.lam.values.max()), config.gamma)
     return config, cell_law
@@ -344,15 +345,13 @@ def boundary_command(
 
     Example: stickslip boundary --zeta 0.01:0.4:8 --dva none --friction linear:0.02 --json
     """
-    from stickslip.analysis.dva import DvaSpec
-    from stickslip.model.friction import parse_friction
     from stickslip.sweep.boundary import stick_slip_boundary
     from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.executors import check_backend
 
     _, zeta_axis = _parse_axes(None, zeta, None, zeta_spacing)
-    spec = DvaSpec.parse(dva, k_scale)
-    law = parse_friction(friction)
+    spec = parse_dva_option(dva, k_scale)
+    law = parse_friction_option(friction)
     if criterion not in ("startup", "existence"):
         raise BadInput(f"--criterion {criterion!r} must be 'startup' or 'existence'")
     check_backend("threads", workers, None)

@@ -12,6 +12,7 @@ from stickslip.cli.console import (
     check_figure_path,
     check_run_limits,
     parse_dva,
+    parse_friction_option,
     print_json,
     warn_fitted_range,
 )
@@ -74,9 +75,8 @@ def simulate(
     from stickslip.analysis.simulation import EngineOptions
     from stickslip.analysis.simulation import simulate as run_simulation
     from stickslip.model import Slider, chain_structure
-    from stickslip.model.friction import parse_friction
 
-    slider = Slider(lam, gamma=gamma, friction=parse_friction(friction))
+    slider = Slider(lam, gamma=gamma, friction=parse_friction_option(friction))
     check_run_limits(slider.lam, slider.gamma, max_events=max_events, plot_from=t_plot_start)
     foundation = parse_dva(dva, zeta, k_scale)
     structure = chain_structure(zeta, () if foundation is None else (foundation,))
