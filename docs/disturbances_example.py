@@ -13,7 +13,7 @@ import numpy as np
 from stickslip import PhysicalSystem, simulate
 from stickslip.analysis.disturbance import safe_disturbance
 from stickslip.sweep.basin import basin_stability, sample_box
-from stickslip.sweep.basin_map import basin_map
+from stickslip.sweep.basin_maps import basin_map
 
 
 def main() -> None:

@@ -115,7 +115,7 @@ def test_basin_map_cells_and_the_start_up_boundary() -> None:
     # Eq. (36): below the rigid-base critical lambda no cycle exists, so no disturbance can
     # end in stick-slip
     from stickslip import critical_lambda_exact, occurrence_map
-    from stickslip.sweep.basin_map import basin_map
+    from stickslip.sweep.basin_maps import basin_map
 
     lams, zetas = [0.5, 2.5, 6.0], [0.05, 0.2]
     result = basin_map(lams, zetas, "none", samples=200, seed=3)
@@ -168,7 +168,7 @@ def test_basin_map_over_lambda_and_delta() -> None:
     from stickslip import occurrence_map
     from stickslip.analysis.theory import critical_lambda_linear
     from stickslip.model.friction import LinearFriction
-    from stickslip.sweep.basin_map import basin_map
+    from stickslip.sweep.basin_maps import basin_map
 
     zeta = 0.1
     lams, deltas = [0.25, 0.4, 3.5, 6.0], [-0.05, 0.0, 0.05, 0.15]
@@ -213,7 +213,7 @@ def test_basin_map_over_lambda_and_delta() -> None:
 
 def test_basin_map_plot_names_the_second_axis() -> None:
     # source: basin_map_plot labels the grid's second coordinate (issue 13, point 2)
-    from stickslip.sweep.basin_map import basin_map
+    from stickslip.sweep.basin_maps import basin_map
 
     by_zeta = basin_map([0.5, 3.0], [0.05, 0.2], "none", samples=20).plot()
     assert "zeta" in by_zeta.axes[0].get_xlabel()
@@ -231,7 +231,7 @@ def test_basin_map_plot_names_the_second_axis() -> None:
     ({"samples": 0}, "samples"),
 ])
 def test_basin_map_rejects_bad_input_before_running(kwargs, message) -> None:  # type: ignore[no-untyped-def]
-    from stickslip.sweep.basin_map import basin_map
+    from stickslip.sweep.basin_maps import basin_map
 
     args = {"lams": [1.0], "zetas": [0.1], **kwargs}
     with pytest.raises(ValueError, match=message):

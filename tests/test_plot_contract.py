@@ -32,7 +32,7 @@ from stickslip.plot.figure import PlotResult
 from stickslip.reproduction.steps_design import EXAMPLE
 from stickslip.sweep import stick_slip_boundary
 from stickslip.sweep.basin import BasinResult, basin_stability, sample_box
-from stickslip.sweep.basin_map import BasinMap, basin_map
+from stickslip.sweep.basin_maps import BasinMap, basin_map
 from stickslip.sweep.occurrence import OccurrenceMap, occurrence_map
 
 PLOT_MODULES: tuple[ModuleType, ...] = (simulation, absorber, maps, design, basin)

@@ -76,7 +76,7 @@ def basin_map_command(
     from stickslip.cli.map_commands import _ProgressBar, grid_config
     from stickslip.io.lock import output_lock
     from stickslip.sweep.basin import MAX_SAMPLES, check_box, state_names
-    from stickslip.sweep.basin_map import DEFAULT_MAP_BOX, basin_map
+    from stickslip.sweep.basin_maps import DEFAULT_MAP_BOX, basin_map
     from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.executors import check_backend
 

@@ -14,7 +14,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
     from stickslip.sweep.basin import BasinResult
-    from stickslip.sweep.basin_map import BasinMap
+    from stickslip.sweep.basin_maps import BasinMap
 
 
 def basin_plot(

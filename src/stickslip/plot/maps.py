@@ -37,7 +37,7 @@ from stickslip.model.parameters import Foundation
 from stickslip.model.structure import chain_structure
 from stickslip.plot.figure import PlotResult, new_axes
 from stickslip.sweep.map_config import dva_from_config
-from stickslip.sweep.map_dataset import stored_foundations
+from stickslip.sweep.map_data import stored_foundations
 from stickslip.sweep.occurrence import OccurrenceMap
 
 if TYPE_CHECKING:

@@ -33,8 +33,8 @@ _EXPORTS: dict[str, str] = {
     "basin_stability": "stickslip.sweep.basin",
     "sample_box": "stickslip.sweep.basin",
     "states_from_physical": "stickslip.sweep.basin",
-    "BasinMap": "stickslip.sweep.basin_map",
-    "basin_map": "stickslip.sweep.basin_map",
+    "BasinMap": "stickslip.sweep.basin_maps",
+    "basin_map": "stickslip.sweep.basin_maps",
     "ChunkStore": "stickslip.sweep.store",
     "StoreMismatch": "stickslip.sweep.store",
 }
@@ -65,7 +65,7 @@ __getattr__, __dir__ = lazy_exports(__name__, globals(), _EXPORTS)
 
 if TYPE_CHECKING:  # pragma: no cover
     from stickslip.sweep.basin import BasinResult, basin_stability, sample_box, states_from_physical
-    from stickslip.sweep.basin_map import BasinMap, basin_map
+    from stickslip.sweep.basin_maps import BasinMap, basin_map
     from stickslip.sweep.boundary import BoundaryResult, Crossing, stick_slip_boundary
     from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.executors import BACKENDS

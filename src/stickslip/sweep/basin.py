@@ -394,7 +394,7 @@ def basin_configuration(structure: Structure, slider: Slider, options: EngineOpt
     }
 
 
-#: Names that moved to :mod:`stickslip.sweep.basin_map` (one system's basin here, maps there);
+#: Names that moved to :mod:`stickslip.sweep.basin_maps` (one system's basin here, maps there);
 #: still importable from here for one release, with a DeprecationWarning.
 _MOVED_TO_BASIN_MAP = ("BasinMap", "DEFAULT_MAP_BOX", "basin_map")
 
@@ -403,9 +403,9 @@ def __getattr__(name: str) -> Any:
     if name in _MOVED_TO_BASIN_MAP:
         import warnings
 
-        from stickslip.sweep import basin_map as module
+        from stickslip.sweep import basin_maps as module
 
-        warnings.warn(f"stickslip.sweep.basin.{name} moved to stickslip.sweep.basin_map.{name}; the old "
+        warnings.warn(f"stickslip.sweep.basin.{name} moved to stickslip.sweep.basin_maps.{name}; the old "
                       "path will be removed in the next release", DeprecationWarning, stacklevel=2)
         return getattr(module, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -7,7 +7,7 @@ changes the answer's fingerprint; ``ExecutionOptions`` says *how* the runs are c
 resuming from which store) and never changes an answer: the backends are bit-identical.
 
 Every sweep (:func:`stickslip.occurrence_map`, :func:`stickslip.stick_slip_boundary`,
-:func:`stickslip.sweep.basin.basin_stability`, :func:`stickslip.sweep.basin_map.basin_map`)
+:func:`stickslip.sweep.basin.basin_stability`, :func:`stickslip.sweep.basin_maps.basin_map`)
 takes ``execution=ExecutionOptions(...)``. The loose keywords they took before
 (``backend=``, ``workers=``, ``scheduler=``, ``chunk_size=``, ``progress=``, ``store=``,
 ``overwrite=``) still work for one release, with a :class:`DeprecationWarning`
@@ -87,7 +87,7 @@ class ExecutionOptions:
         """Refuse what a sweep that runs only in this process cannot honour.
 
         :func:`stickslip.stick_slip_boundary` (bisection: each step depends on the last) and
-        :func:`stickslip.sweep.basin_map.basin_map` (one basin per cell) run on numba threads
+        :func:`stickslip.sweep.basin_maps.basin_map` (one basin per cell) run on numba threads
         only, without chunks or a resume store; ``progress=False`` also refuses a callback.
 
         Raises

@@ -2,7 +2,7 @@
 
 :class:`MapConfig` holds everything that determines a map (its fingerprint is a hash of it) and
 cuts the grid into the engine's cell batches; :func:`stickslip.sweep.occurrence.occurrence_map`
-runs it and :func:`stickslip.sweep.map_dataset.map_dataset` turns the summaries into a dataset.
+runs it and :func:`stickslip.sweep.map_data.map_dataset` turns the summaries into a dataset.
 """
 
 from __future__ import annotations

@@ -48,7 +48,7 @@ from stickslip.sweep.executors import (
 )
 from stickslip.sweep.grid import Axis
 from stickslip.sweep.map_config import DELTA_LAW, MapConfig, dva_from_config
-from stickslip.sweep.map_dataset import map_axes, map_dataset, stored_foundations
+from stickslip.sweep.map_data import map_axes, map_dataset, stored_foundations
 from stickslip.sweep.renamed import warn_renamed
 from stickslip.sweep.store import ChunkStore
 
