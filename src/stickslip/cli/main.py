@@ -32,6 +32,7 @@ app = typer.Typer(
     # help texts are plain text: units and TOML tables are written in brackets ("[kg]",
     # "[system]"), which Rich markup would swallow as style tags
     rich_markup_mode=None,
+    context_settings={"max_content_width": 120},  # up to 120 columns when the terminal has them
 )
 
 
