@@ -53,10 +53,12 @@ def _print(p: dict[str, Any]) -> None:
         lines.append(f"none found  from {p['n_seeds']} starts: every disturbed start ends in steady sliding "
                      "or in no cycle of the periods searched")
     for i, c in enumerate(p["cycles"], start=1):
-        mults = ", ".join(f"{m['abs']:.4g}" for m in c["multipliers"]) or "none (rigid base)"
+        mults = ", ".join(f"{m['abs']:.4g}" for m in c["multipliers"])
+        why = (f"|Floquet multipliers| {mults}" if mults else
+               "rigid base: a stick phase resets the whole state, the return map has no multipliers")
         lines.append(f"cycle {i}     period {c['period']:.6g}  amplitude {c['amplitude']:.6g}  "
                      f"stick ratio {c['stick_ratio']:.4g}  {c['stick_phases']} stick phase(s)  "
-                     f"{'stable' if c['stable'] else 'UNSTABLE'} (|Floquet multipliers| {mults})")
+                     f"{'stable' if c['stable'] else 'UNSTABLE'} ({why})")
     lines.append(f"search      {p['n_seeds']} starts, {p['n_map_evaluations']} return-map evaluations")
     typer.echo("\n".join(lines))
 
