@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from stickslip.analysis.simulation import EngineOptions
 from stickslip.analysis.verdict import VERDICTS, Verdict
@@ -175,7 +176,6 @@ def basin_map(
     **legacy
         ``workers=``, ``progress=``: deprecated spellings of the fields of ``execution``.
     """
-    import xarray as xr
 
     from stickslip.model.friction import LinearFriction
 
@@ -220,6 +220,18 @@ def basin_map(
             done += 1
             if progress is not None:
                 progress(done, total)
+    ds = _basin_map_dataset(config, fraction, undetermined, startup.dataset, n, seed, box)
+    return BasinMap(ds, time.perf_counter() - started)
+
+
+def _basin_map_dataset(config: MapConfig, fraction: NDArray[np.float64],
+                       undetermined: NDArray[np.float64], startup: xr.Dataset, n: int, seed: int,
+                       box: Mapping[str, tuple[float, float]]) -> xr.Dataset:
+    """The dataset of :class:`BasinMap`: the fractions, their binomial standard error
+    ``sqrt(p (1 - p) / n)``, the start-up verdict of the same grid and the provenance."""
+    import xarray as xr
+
+    by_delta = config.delta is not None
     dims = ("lambda", config.second_axis_name)
     title = f"basin stability map, {config.dva.describe()}, gamma = {config.gamma:g}"
     extra: dict[str, Any] = {}
@@ -228,7 +240,7 @@ def basin_map(
         title += f", over (lambda, delta) at zeta = {fixed:g}, friction {DELTA_LAW}"
         extra = {"zeta": fixed}
     law_text = DELTA_LAW if by_delta else config.friction.describe()
-    ds = xr.Dataset(
+    return xr.Dataset(
         {
             "stick_slip_fraction": (dims, fraction, {
                 "long_name": "fraction of the fixed disturbance sample ending in stick-slip", "units": "1"}),
@@ -236,9 +248,9 @@ def basin_map(
                 "long_name": "binomial standard error of stick_slip_fraction", "units": "1"}),
             "undetermined_fraction": (dims, undetermined, {
                 "long_name": "fraction of the sample without a certified verdict", "units": "1"}),
-            "startup_verdict": startup.dataset["verdict"],
+            "startup_verdict": startup["verdict"],
         },
-        coords={name: startup.dataset[name] for name in dims},
+        coords={name: startup[name] for name in dims},
         attrs={
             **provenance_attributes(title, {**config.to_dict(), "samples": n, "seed": seed,
                                             "box": {k: list(v) for k, v in box.items()}}),
@@ -247,4 +259,3 @@ def basin_map(
             **extra,
         },
     )
-    return BasinMap(ds, time.perf_counter() - started)
