@@ -50,8 +50,9 @@ def test_every_option_help_is_shown_whole(command: str, capsys: pytest.CaptureFi
 def test_design_help_names_every_unit(capsys: pytest.CaptureFixture[str],
                                       monkeypatch: pytest.MonkeyPatch) -> None:
     shown = _squeezed(_help("design", capsys, monkeypatch))
-    for name, (_, unit, what) in QUANTITIES.items():
+    for name, (_, unit, what) in QUANTITIES.items():  # what: the quantity named in the help
         text = quantity_help(name)
+        assert text.startswith(what)
         assert _squeezed(text) in shown
         if unit:
             assert f"[{unit}]" in text and UNIT_EXAMPLES[unit] in text
