@@ -85,3 +85,25 @@ def test_in_process_sweeps_refuse_what_they_cannot_honour():  # type: ignore[no-
         stick_slip_boundary([0.1], execution=ExecutionOptions(progress=lambda d, t: None))
     with pytest.raises(ValueError, match="store"):
         basin_map("log:0.5:5:2", [0.1], samples=4, execution=ExecutionOptions(store="x"))
+
+
+def test_moved_and_renamed_names_still_work_with_a_warning():  # type: ignore[no-untyped-def]
+    import stickslip.sweep.basin as basin_module
+    from stickslip.sweep.basin_maps import DEFAULT_MAP_BOX, BasinMap
+
+    for name, new in (("basin_map", basin_map), ("BasinMap", BasinMap), ("DEFAULT_MAP_BOX", DEFAULT_MAP_BOX)):
+        with pytest.warns(DeprecationWarning, match=f"stickslip.sweep.basin_maps.{name}"):
+            assert getattr(basin_module, name) is new
+    with pytest.raises(AttributeError):
+        basin_module.no_such_name  # noqa: B018
+
+
+def test_sweep_face_gives_functions_not_modules():  # type: ignore[no-untyped-def]
+    """A submodule named like a function would shadow it on the lazy face once imported."""
+    import importlib
+
+    import stickslip.sweep as face
+
+    for name in face.__all__:
+        importlib.import_module(face._EXPORTS[name])
+        assert not isinstance(getattr(face, name), type(face)), name
