@@ -6,7 +6,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: run test lint bench docs clean clean-cache
+.PHONY: run test browser lint bench docs clean clean-cache
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -19,7 +19,24 @@ run: $(STAMP)
 	@echo "Open results/report.html (or results/report.md); figures in results/figures, data in results/data"
 
 test: $(STAMP)
+	@$(MAKE) --no-print-directory browser
 	$(BIN)/python -m pytest
+
+# What the browser test (tests/test_app_browser.py) needs besides the Python extras: Debian's
+# Chromium. Installed here, in the open, as root when missing; a failure is tolerated (the test
+# then skips and says why). The test suite itself never installs anything.
+browser:
+	@if command -v chromium >/dev/null 2>&1 || [ -x /usr/bin/chromium ]; then \
+		echo "browser tests: chromium is installed"; \
+	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+		echo "browser tests: installing chromium and chromium-driver with apt-get (the browser test skips if this fails)"; \
+		mkdir -p $(VENV); ( apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium chromium-driver ) \
+			> $(VENV)/browser-install.log 2>&1 \
+			&& echo "browser tests: chromium installed (log: $(VENV)/browser-install.log)" \
+			|| echo "browser tests: apt-get could not install chromium (log: $(VENV)/browser-install.log); tests/test_app_browser.py will skip"; \
+	else \
+		echo "browser tests: chromium is missing and installing it needs root and apt-get; tests/test_app_browser.py will skip"; \
+	fi
 
 lint: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks

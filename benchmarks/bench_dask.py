@@ -22,6 +22,7 @@ from distributed import Client, LocalCluster
 
 from stickslip.model.dva import DvaSpec
 from stickslip.sweep import Axis, occurrence_map
+from stickslip.sweep.execution import ExecutionOptions
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -37,9 +38,11 @@ def main(argv: list[str] | None = None) -> int:
     n_cells = len(lam) * len(zeta)
     print(f"map: {len(lam)} x {len(zeta)} = {n_cells} cells, {dva.describe()}")
 
-    occurrence_map([1.0], [0.1], dva, backend="serial")  # JIT compile or cache load
+    occurrence_map([1.0], [0.1], dva,
+                   execution=ExecutionOptions(backend="serial"))  # JIT compile or cache load
     t0 = time.perf_counter()
-    serial = occurrence_map(lam, zeta, dva, backend="serial", chunk_size=args.chunk_size)
+    serial = occurrence_map(lam, zeta, dva,
+                            execution=ExecutionOptions(backend="serial", chunk_size=args.chunk_size))
     t_serial = time.perf_counter() - t0
     print(f"serial in-process (1 thread): {t_serial:6.2f} s  {n_cells / t_serial:8,.0f} cells/s")
 
@@ -53,12 +56,14 @@ def main(argv: list[str] | None = None) -> int:
             t_start = time.perf_counter() - t0
             address = cluster.scheduler_address
             t0 = time.perf_counter()
-            occurrence_map([1.0, 2.0], [0.1, 0.2], dva, backend="dask",
-                           scheduler=address, chunk_size=1)  # every worker loads the engine
+            occurrence_map([1.0, 2.0], [0.1, 0.2], dva,
+                           execution=ExecutionOptions(backend="dask", scheduler=address,
+                                                      chunk_size=1))  # every worker loads the engine
             t_warm = time.perf_counter() - t0
             t0 = time.perf_counter()
-            result = occurrence_map(lam, zeta, dva, backend="dask", scheduler=address,
-                                    chunk_size=args.chunk_size)
+            result = occurrence_map(lam, zeta, dva,
+                                    execution=ExecutionOptions(backend="dask", scheduler=address,
+                                                               chunk_size=args.chunk_size))
             t_map = time.perf_counter() - t0
         rates[n_workers] = n_cells / t_map
         same = all(result.dataset[n].values.tobytes() == serial.dataset[n].values.tobytes()

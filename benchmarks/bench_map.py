@@ -39,6 +39,7 @@ from stickslip.model.dva import DvaSpec
 from stickslip.model.parameters import Slider
 from stickslip.model.structure import chain_structure
 from stickslip.sweep import Axis, occurrence_map
+from stickslip.sweep.execution import ExecutionOptions
 from stickslip.sweep.executors import CellBatch, EngineSettings, StructureSet, run_batch
 
 
@@ -64,14 +65,16 @@ def main(argv: list[str] | None = None) -> int:
           f"{dva.describe()}, gamma = 2, t_max = {EngineSettings().t_max:g}")
 
     t0 = time.perf_counter()
-    occurrence_map([1.0], [0.1], dva, backend="serial")  # JIT compile or cache load
+    occurrence_map([1.0], [0.1], dva,
+                   execution=ExecutionOptions(backend="serial"))  # JIT compile or cache load
     print(f"warm-up (JIT compile or cache load): {time.perf_counter() - t0:.2f} s")
 
     t0 = time.perf_counter()
-    serial = occurrence_map(lam, zeta, dva, backend="serial")
+    serial = occurrence_map(lam, zeta, dva, execution=ExecutionOptions(backend="serial"))
     t_serial = time.perf_counter() - t0
     t0 = time.perf_counter()
-    threads = occurrence_map(lam, zeta, dva, backend="threads", workers=args.threads)
+    threads = occurrence_map(lam, zeta, dva,
+                             execution=ExecutionOptions(backend="threads", workers=args.threads))
     t_threads = time.perf_counter() - t0
     rate_serial, rate_threads = n_cells / t_serial, n_cells / t_threads
     print(f"serial  (1 thread) : {t_serial:7.2f} s  {rate_serial:9,.0f} cells/s")

@@ -12,7 +12,8 @@ import numpy as np
 
 from stickslip import PhysicalSystem, simulate
 from stickslip.analysis.disturbance import safe_disturbance
-from stickslip.sweep.basin import basin_map, basin_stability, sample_box
+from stickslip.sweep.basin import basin_stability, sample_box
+from stickslip.sweep.basin_maps import basin_map
 
 
 def main() -> None:

@@ -10,7 +10,7 @@ sample of disturbed starts; the fractions estimate how likely a knock is to star
 import matplotlib.pyplot as plt
 
 from stickslip import Slider, critical_lambda_exact, rigid_base
-from stickslip.sweep.basin import basin_stability, sample_box
+from stickslip.sweep import basin_stability, sample_box
 
 zeta = 0.1
 structure, slider = rigid_base(zeta), Slider(1.5 * critical_lambda_exact(zeta))

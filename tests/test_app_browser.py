@@ -2,15 +2,15 @@
 
 A real ``streamlit run`` server on a free localhost port, driven by Playwright through
 Debian's Chromium (``/usr/bin/chromium``; Playwright's own browser download is not used).
-Missing prerequisites are installed when possible (``apt-get install chromium`` as root,
-``pip install playwright`` into this interpreter); the test is skipped, with the reason,
-only when that is impossible.
+The test never installs anything: ``make test`` installs Chromium first, visibly (its
+``browser`` step: ``apt-get install chromium chromium-driver`` as root when missing), and
+Playwright comes with the ``test`` extra. Where either is missing the test is skipped and
+says what to install.
 """
 
 from __future__ import annotations
 
 import importlib
-import os
 import shutil
 import socket
 import subprocess
@@ -45,49 +45,21 @@ def _tail(text: str, lines: int = 3) -> str:
 
 
 def _chromium() -> str:
-    """Path of a Chromium binary, installed with apt-get when missing and possible."""
+    """Path of a Chromium binary; skip, saying how to get one, when there is none."""
     found = shutil.which("chromium") or (str(CHROMIUM) if CHROMIUM.exists() else None)
-    if found:
-        return found
-    if shutil.which("apt-get") is None:
-        pytest.skip("Chromium is not installed (no /usr/bin/chromium) and there is no apt-get "
-                    "to install it")
-    if not hasattr(os, "geteuid") or os.geteuid() != 0:
-        pytest.skip("Chromium is not installed (no /usr/bin/chromium); installing it with "
-                    "apt-get needs root: run 'apt-get install -y chromium'")
-    env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
-    for command in (["apt-get", "update"], ["apt-get", "install", "-y", "chromium"]):
-        try:
-            proc = subprocess.run(command, capture_output=True, text=True, env=env,
-                                  timeout=INSTALL_TIMEOUT, check=False)
-        except subprocess.TimeoutExpired:
-            pytest.skip(f"Chromium could not be installed: '{' '.join(command)}' took more than "
-                        f"{INSTALL_TIMEOUT:.0f} s")
-        if proc.returncode != 0:
-            pytest.skip(f"Chromium could not be installed: '{' '.join(command)}' failed: "
-                        f"{_tail(proc.stderr or proc.stdout)}")
-    if not CHROMIUM.exists():
-        pytest.skip("apt-get installed the chromium package but /usr/bin/chromium is missing")
-    return str(CHROMIUM)
+    if found is None:
+        pytest.skip("Chromium is not installed (no 'chromium' on PATH, no /usr/bin/chromium): "
+                    "run 'make browser' (apt-get install chromium chromium-driver, as root)")
+    return found
 
 
 def _playwright() -> Any:
-    """The ``playwright.sync_api`` module, pip-installed into this interpreter when missing."""
+    """The ``playwright.sync_api`` module; skip, saying how to get it, when it is missing."""
     try:
         return importlib.import_module("playwright.sync_api")
     except ImportError:
-        pass
-    command = [sys.executable, "-m", "pip", "install", "--quiet", "playwright"]
-    try:
-        proc = subprocess.run(command, capture_output=True, text=True, timeout=INSTALL_TIMEOUT,
-                              check=False)
-    except subprocess.TimeoutExpired:
-        pytest.skip(f"playwright could not be installed: pip took more than {INSTALL_TIMEOUT:.0f} s")
-    if proc.returncode != 0:
-        pytest.skip(f"playwright is not installed and 'pip install playwright' failed: "
-                    f"{_tail(proc.stderr or proc.stdout)}")
-    importlib.invalidate_caches()
-    return importlib.import_module("playwright.sync_api")
+        pytest.skip("playwright is not installed: pip install -e '.[test]' (it is in the test "
+                    "extra)")
 
 
 def _free_port() -> int:

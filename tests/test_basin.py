@@ -31,6 +31,7 @@ from stickslip import (
 from stickslip.analysis.disturbance import safe_disturbance
 from stickslip.model.friction import LinearFriction, StribeckFriction
 from stickslip.sweep.basin import basin_stability, equilibrium_state, sample_box, states_from_physical
+from stickslip.sweep.execution import ExecutionOptions
 
 from .cli_helpers import run_cli
 
@@ -46,7 +47,7 @@ def test_labels_equal_single_simulations(name, structure, slider) -> None:  # ty
     names = ["xi", "v"] if structure.n_dof == 1 else ["xi", "xi_a", "v", "v_a"]
     box = {names[0]: (-4.0, 4.0), names[structure.n_dof]: (-3.0, 1.5)}
     states = sample_box(structure, slider, 60, box, seed=5)
-    result = basin_stability(structure, slider, states, workers=2)
+    result = basin_stability(structure, slider, states, execution=ExecutionOptions(workers=2))
     for state, code in zip(states, result.verdict, strict=True):
         n = structure.n_dof
         single = simulate(structure, slider, initial=InitialState(state[:n], state[n:]), record=False)
@@ -114,7 +115,7 @@ def test_basin_map_cells_and_the_start_up_boundary() -> None:
     # Eq. (36): below the rigid-base critical lambda no cycle exists, so no disturbance can
     # end in stick-slip
     from stickslip import critical_lambda_exact, occurrence_map
-    from stickslip.sweep.basin import basin_map
+    from stickslip.sweep.basin_maps import basin_map
 
     lams, zetas = [0.5, 2.5, 6.0], [0.05, 0.2]
     result = basin_map(lams, zetas, "none", samples=200, seed=3)
@@ -142,15 +143,18 @@ def test_basin_resumes_from_its_store(tmp_path: Path) -> None:
     structure, slider = rigid_base(0.1), Slider(2.5)
     states = sample_box(structure, slider, 300, {"xi": (-4, 4), "v": (-3, 1.5)}, seed=4)
     store = tmp_path / "basin.parts"
-    first = basin_stability(structure, slider, states, chunk_size=64, store=store)
+    first = basin_stability(structure, slider, states,
+                            execution=ExecutionOptions(chunk_size=64, store=store))
     chunks = sorted(store.glob("chunk-*.npz"))
     assert len(chunks) == 5
     chunks[2].unlink()
-    again = basin_stability(structure, slider, states, chunk_size=64, store=store)
+    again = basin_stability(structure, slider, states,
+                            execution=ExecutionOptions(chunk_size=64, store=store))
     assert np.array_equal(first.verdict, again.verdict)
     assert np.array_equal(first.float_summary, again.float_summary, equal_nan=True)
     with pytest.raises(StoreMismatch):
-        basin_stability(structure, slider, states[:200], chunk_size=64, store=store)
+        basin_stability(structure, slider, states[:200],
+                        execution=ExecutionOptions(chunk_size=64, store=store))
 
 
 def test_basin_map_over_lambda_and_delta() -> None:
@@ -164,13 +168,13 @@ def test_basin_map_over_lambda_and_delta() -> None:
     from stickslip import occurrence_map
     from stickslip.analysis.theory import critical_lambda_linear
     from stickslip.model.friction import LinearFriction
-    from stickslip.sweep.basin import basin_map
+    from stickslip.sweep.basin_maps import basin_map
 
     zeta = 0.1
     lams, deltas = [0.25, 0.4, 3.5, 6.0], [-0.05, 0.0, 0.05, 0.15]
     result = basin_map(lams, [zeta], "none", samples=200, seed=3, deltas=deltas)
     ds = result.dataset
-    assert ds["stick_slip_fraction"].dims == ("lambda", "delta") and result.second == "delta"
+    assert ds["stick_slip_fraction"].dims == ("lambda", "delta") and result.second_axis_name == "delta"
     assert ds.attrs["zeta"] == zeta
     startup = occurrence_map(lams, [zeta], "none", deltas=deltas)
     assert np.array_equal(ds["startup_verdict"].values, startup.verdict)
@@ -209,7 +213,7 @@ def test_basin_map_over_lambda_and_delta() -> None:
 
 def test_basin_map_plot_names_the_second_axis() -> None:
     # source: basin_map_plot labels the grid's second coordinate (issue 13, point 2)
-    from stickslip.sweep.basin import basin_map
+    from stickslip.sweep.basin_maps import basin_map
 
     by_zeta = basin_map([0.5, 3.0], [0.05, 0.2], "none", samples=20).plot()
     assert "zeta" in by_zeta.axes[0].get_xlabel()
@@ -227,7 +231,7 @@ def test_basin_map_plot_names_the_second_axis() -> None:
     ({"samples": 0}, "samples"),
 ])
 def test_basin_map_rejects_bad_input_before_running(kwargs, message) -> None:  # type: ignore[no-untyped-def]
-    from stickslip.sweep.basin import basin_map
+    from stickslip.sweep.basin_maps import basin_map
 
     args = {"lams": [1.0], "zetas": [0.1], **kwargs}
     with pytest.raises(ValueError, match=message):

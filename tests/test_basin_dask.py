@@ -19,6 +19,7 @@ from stickslip import Slider, elastic_foundation, optimal_foundation_fit, rigid_
 from stickslip.analysis.simulation import EngineOptions
 from stickslip.model.structure import chain_structure
 from stickslip.sweep.basin import basin_stability, sample_box
+from stickslip.sweep.execution import ExecutionOptions
 
 from .cli_helpers import run_cli
 
@@ -39,10 +40,11 @@ SYSTEMS = [
 @pytest.mark.parametrize(("name", "structure", "slider", "box"), SYSTEMS, ids=[s[0] for s in SYSTEMS])
 def test_dask_labels_are_identical_to_threads(name, structure, slider, box, cluster) -> None:  # type: ignore[no-untyped-def]
     states = sample_box(structure, slider, 400, box, seed=11)
-    threads = basin_stability(structure, slider, states, workers=2)
+    threads = basin_stability(structure, slider, states, execution=ExecutionOptions(workers=2))
     done: list[int] = []
-    remote = basin_stability(structure, slider, states, backend="dask", scheduler=_address(cluster),
-                             chunk_size=48, progress=lambda d, n: done.append(d))
+    remote = basin_stability(structure, slider, states,
+                             execution=ExecutionOptions(backend="dask", scheduler=_address(cluster),
+                                                        chunk_size=48, progress=lambda d, n: done.append(d)))
     assert np.array_equal(remote.verdict, threads.verdict), name
     assert np.array_equal(remote.float_summary, threads.float_summary, equal_nan=True), name
     assert np.array_equal(remote.int_summary, threads.int_summary), name
@@ -71,17 +73,20 @@ def test_an_interrupted_dask_run_resumes_from_its_store(tmp_path: Path, cluster:
             raise _Interrupt
 
     with pytest.raises(_Interrupt):
-        basin_stability(structure, slider, states, backend="dask", scheduler=_address(cluster),
-                        chunk_size=32, progress=stop_after_two_chunks, store=store)
+        basin_stability(structure, slider, states,
+                        execution=ExecutionOptions(backend="dask", scheduler=_address(cluster),
+                                                   chunk_size=32, progress=stop_after_two_chunks,
+                                                   store=store))
     saved = sorted(store.glob("chunk-*.npz"))
     assert len(saved) == 2  # progress is reported after each chunk is saved
-    resumed = basin_stability(structure, slider, states, backend="dask", scheduler=_address(cluster),
-                              store=store)
+    resumed = basin_stability(structure, slider, states,
+                              execution=ExecutionOptions(backend="dask", scheduler=_address(cluster),
+                                                         store=store))
     assert resumed.chunks_total == 10 and resumed.chunks_loaded == len(saved)
     assert np.array_equal(resumed.verdict, reference.verdict)
     assert np.array_equal(resumed.float_summary, reference.float_summary, equal_nan=True)
     # a store finished on one backend serves the other: threads load every chunk
-    again = basin_stability(structure, slider, states, store=store)
+    again = basin_stability(structure, slider, states, execution=ExecutionOptions(store=store))
     assert again.chunks_loaded == again.chunks_total == 10
     assert np.array_equal(again.verdict, reference.verdict)
 
@@ -99,8 +104,8 @@ def test_cli_dask_backend_resumes_and_matches_threads(tmp_path: Path, cluster: o
     structure, slider = chain_structure(0.1, ()), Slider(2.5)
     states = sample_box(structure, slider, 300, {"xi": (-4.0, 4.0), "v": (-3.0, 1.5)}, seed=7)
     run = tmp_path / "dask"
-    basin_stability(structure, slider, states, options=EngineOptions(t_max=5000.0), chunk_size=64,
-                    store=run / "basin.parts")
+    basin_stability(structure, slider, states, options=EngineOptions(t_max=5000.0),
+                    execution=ExecutionOptions(chunk_size=64, store=run / "basin.parts"))
     (run / "basin.parts" / "chunk-000002.npz").unlink()
     code, out, err = run_cli([*args, "--out", str(run), "--backend", "dask",
                               "--scheduler", _address(cluster)], capsys)
@@ -117,9 +122,10 @@ def test_store_records_the_backends_that_used_it(tmp_path: Path, cluster: object
     structure, slider = rigid_base(0.1), Slider(2.5)
     states = sample_box(structure, slider, 100, {"xi": (-4, 4), "v": (-3, 1.5)}, seed=1)
     store = tmp_path / "basin.parts"
-    basin_stability(structure, slider, states, backend="dask", scheduler=_address(cluster),
-                    chunk_size=50, store=store)
-    basin_stability(structure, slider, states, store=store)
+    basin_stability(structure, slider, states,
+                    execution=ExecutionOptions(backend="dask", scheduler=_address(cluster),
+                                               chunk_size=50, store=store))
+    basin_stability(structure, slider, states, execution=ExecutionOptions(store=store))
     manifest = json.loads((store / "manifest.json").read_text())
     assert [(r["backend"], r["chunks_loaded"], r["chunks_computed"]) for r in manifest["runs"]] == [
         ("dask", 0, 2), ("threads", 2, 0)]

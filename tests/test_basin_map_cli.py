@@ -15,7 +15,7 @@ import pytest
 import typer
 
 from stickslip.cli.main import app
-from stickslip.sweep.basin import basin_map
+from stickslip.sweep.basin_maps import basin_map
 
 from .cli_helpers import run_cli
 

@@ -15,6 +15,7 @@ import pytest
 
 from stickslip.analysis.theory import critical_lambda_exact
 from stickslip.sweep import OccurrenceMap, occurrence_map
+from stickslip.sweep.execution import ExecutionOptions
 from tests.cli_helpers import run_cli as _run
 from tests.sweep_helpers import assert_same_map
 
@@ -82,7 +83,8 @@ def test_resume_store_of_another_configuration_is_refused(
 ) -> None:
     out = tmp_path / "m.nc"
     parts = tmp_path / "m.nc.parts"
-    occurrence_map([1.0, 2.0], [0.3], "none", store=parts)  # a leftover store, other grid
+    occurrence_map([1.0, 2.0], [0.3], "none",
+                   execution=ExecutionOptions(store=parts))  # a leftover store, other grid
     before = {p.name: _digest(p) for p in parts.iterdir()}
     code, _, err = _run(["map", *SMALL, "--out", str(out)], capsys)
     assert code == 2 and "belongs to another configuration" in err
@@ -97,7 +99,8 @@ def test_map_with_a_local_dask_cluster(tmp_path: Path, capsys: pytest.CaptureFix
                               "dask", "--workers", "2", "--chunk-size", "3", "--json"], capsys)
     assert code == 0, err
     assert json.loads(stdout)["backend"] == "dask"
-    serial = occurrence_map("0.5:4:4", "0.1,0.2,0.3", "optimal", backend="serial")
+    serial = occurrence_map("0.5:4:4", "0.1,0.2,0.3", "optimal",
+                            execution=ExecutionOptions(backend="serial"))
     assert_same_map(OccurrenceMap.from_netcdf(out).dataset, serial.dataset)
 
 

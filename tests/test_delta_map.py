@@ -30,6 +30,7 @@ from stickslip.analysis.theory import critical_lambda_linear, optimal_foundation
 from stickslip.model.friction import LinearFriction, StribeckFriction
 from stickslip.plot.figure import PlotResult
 from stickslip.sweep import Axis, occurrence_map
+from stickslip.sweep.execution import ExecutionOptions
 from stickslip.sweep.occurrence import MapConfig, OccurrenceMap
 from tests.cli_helpers import run_cli
 from tests.sweep_helpers import assert_same_map
@@ -41,7 +42,8 @@ DELTAS = Axis.parse("-0.1:0.3:5", "delta")  # strengthening, Coulomb, weakening 
 
 @pytest.fixture(scope="module")
 def rigid() -> OccurrenceMap:
-    return occurrence_map(LAMS, [ZETA], "none", deltas=DELTAS, backend="serial")
+    return occurrence_map(LAMS, [ZETA], "none", deltas=DELTAS,
+                          execution=ExecutionOptions(backend="serial"))
 
 
 def test_dataset_layout(rigid: OccurrenceMap) -> None:
@@ -58,7 +60,7 @@ def test_dataset_layout(rigid: OccurrenceMap) -> None:
     assert config["axes"] == ["lambda", "delta"]
     assert "linear" in ds.attrs["friction"]
     _, delta, verdict = rigid
-    assert verdict.shape == (6, 5) and rigid.second == "delta"
+    assert verdict.shape == (6, 5) and rigid.second_axis_name == "delta"
     np.testing.assert_array_equal(delta, rigid.delta)
     np.testing.assert_array_equal(rigid.zeta, [ZETA])
     summary = rigid.to_dict()
@@ -84,7 +86,8 @@ def test_cells_equal_single_simulations(rigid: OccurrenceMap) -> None:
 def test_cells_with_a_foundation_equal_single_simulations() -> None:
     # reference: stickslip.simulate with the fitted optimum of Eqs. 28-30 at the map's zeta
     zeta, lams, deltas = 0.2, [0.5, 3.0], [-0.05, 0.1]
-    result = occurrence_map(lams, [zeta], "optimal", deltas=deltas, backend="serial")
+    result = occurrence_map(lams, [zeta], "optimal", deltas=deltas,
+                            execution=ExecutionOptions(backend="serial"))
     assert "foundation_mass_ratio" in result.dataset and result.dataset["foundation_mass_ratio"].dims == ()
     structure = elastic_foundation(zeta, optimal_foundation_fit(zeta))
     for i, lam in enumerate(lams):
@@ -122,40 +125,42 @@ def test_weakening_beyond_zeta_always_sticks_on_the_rigid_base(rigid: Occurrence
 
 
 def test_serial_and_threads_are_bit_identical(rigid: OccurrenceMap) -> None:
-    threads = occurrence_map(LAMS, [ZETA], "none", deltas=DELTAS, backend="threads", workers=2,
-                             chunk_size=7)
+    threads = occurrence_map(LAMS, [ZETA], "none", deltas=DELTAS,
+                             execution=ExecutionOptions(backend="threads", workers=2, chunk_size=7))
     assert_same_map(rigid.dataset, threads.dataset)
     assert threads.chunks_total == 5
 
 
 def test_dask_is_bit_identical(rigid: OccurrenceMap) -> None:
     pytest.importorskip("distributed")
-    remote = occurrence_map(LAMS, [ZETA], "none", deltas=DELTAS, backend="dask", workers=1,
-                            chunk_size=10)
+    remote = occurrence_map(LAMS, [ZETA], "none", deltas=DELTAS,
+                            execution=ExecutionOptions(backend="dask", workers=1, chunk_size=10))
     assert_same_map(rigid.dataset, remote.dataset)
     assert remote.backend == "dask" and remote.chunks_computed == 3
 
 
 def test_resume_from_a_store(rigid: OccurrenceMap, tmp_path: Path) -> None:
     store = tmp_path / "store"
-    full = occurrence_map(LAMS, [ZETA], "none", deltas=DELTAS, chunk_size=4, store=store)
+    full = occurrence_map(LAMS, [ZETA], "none", deltas=DELTAS,
+                          execution=ExecutionOptions(chunk_size=4, store=store))
     assert full.chunks_computed == 8
     for f in sorted(store.glob("chunk-*.npz"))[1:4]:
         f.unlink()
-    again = occurrence_map(LAMS, [ZETA], "none", deltas=DELTAS, chunk_size=4, store=store)
+    again = occurrence_map(LAMS, [ZETA], "none", deltas=DELTAS,
+                           execution=ExecutionOptions(chunk_size=4, store=store))
     assert (again.chunks_loaded, again.chunks_computed) == (5, 3)
     assert_same_map(rigid.dataset, again.dataset)
     # the zeta map of the same lambdas is another configuration, never mixed in
     from stickslip.sweep.store import StoreMismatch
 
     with pytest.raises(StoreMismatch):
-        occurrence_map(LAMS, [ZETA], "none", chunk_size=4, store=store)
+        occurrence_map(LAMS, [ZETA], "none", execution=ExecutionOptions(chunk_size=4, store=store))
 
 
 def test_netcdf_and_csv(rigid: OccurrenceMap, tmp_path: Path) -> None:
     back = OccurrenceMap.from_netcdf(rigid.to_netcdf(tmp_path / "d.nc"))
     xr.testing.assert_identical(back.dataset, rigid.dataset)
-    assert back.second == "delta" and back.zeta.tolist() == [ZETA]
+    assert back.second_axis_name == "delta" and back.zeta.tolist() == [ZETA]
     rows = list(csv.DictReader(open(rigid.to_csv(tmp_path / "d.csv"))))
     assert len(rows) == 30
     assert list(rows[0])[:2] == ["lambda", "delta"] and rows[0]["zeta"] == repr(ZETA)
@@ -217,7 +222,8 @@ def test_plot_has_the_threshold_line_and_the_closed_form(rigid: OccurrenceMap) -
 
 def test_plot_with_a_foundation_has_the_threshold_only() -> None:
     zeta = 0.1
-    result = occurrence_map([0.5, 3.0], [zeta], "optimal", deltas=[0.0, 0.2], backend="serial")
+    result = occurrence_map([0.5, 3.0], [zeta], "optimal", deltas=[0.0, 0.2],
+                            execution=ExecutionOptions(backend="serial"))
     out = result.plot(style="image")
     labels = [str(ln.get_label()) for ln in _lines(out)]
     assert len(labels) == 1 and "delta_{crit}" in labels[0]

@@ -41,6 +41,7 @@ from stickslip.model.friction import (
     parse_friction,
 )
 from stickslip.model.physical import PhysicalSystem, physical_friction_from_config
+from stickslip.sweep.execution import ExecutionOptions
 
 from .cli_helpers import run_cli
 
@@ -94,7 +95,8 @@ def test_boundary_with_the_linear_law_meets_its_closed_form(zeta: float, delta: 
 def test_map_with_a_law_agrees_with_simulate_cell_by_cell() -> None:
     law = LinearFriction(0.03)
     lams, zetas = [0.5, 1.2, 3.0], [0.05, 0.2]
-    result = occurrence_map(lams, zetas, "optimal", friction=law, backend="serial")
+    result = occurrence_map(lams, zetas, "optimal", friction=law,
+                            execution=ExecutionOptions(backend="serial"))
     for i, lam in enumerate(lams):
         for j, zeta in enumerate(zetas):
             run = simulate(elastic_foundation(zeta, optimal_foundation_fit(zeta)),
@@ -106,7 +108,7 @@ def test_map_with_a_law_agrees_with_simulate_cell_by_cell() -> None:
 
 def test_a_coulomb_map_keeps_its_configuration() -> None:
     # the fingerprint (resume stores) of a Coulomb map does not mention friction at all
-    result = occurrence_map([1.0], [0.1], "none", backend="serial")
+    result = occurrence_map([1.0], [0.1], "none", execution=ExecutionOptions(backend="serial"))
     assert "friction" not in result.configuration
 
 

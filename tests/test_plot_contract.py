@@ -31,7 +31,8 @@ from stickslip.plot import absorber, basin, design, maps, simulation
 from stickslip.plot.figure import PlotResult
 from stickslip.reproduction.steps_design import EXAMPLE
 from stickslip.sweep import stick_slip_boundary
-from stickslip.sweep.basin import BasinMap, BasinResult, basin_map, basin_stability, sample_box
+from stickslip.sweep.basin import BasinResult, basin_stability, sample_box
+from stickslip.sweep.basin_maps import BasinMap, basin_map
 from stickslip.sweep.occurrence import OccurrenceMap, occurrence_map
 
 PLOT_MODULES: tuple[ModuleType, ...] = (simulation, absorber, maps, design, basin)

@@ -20,6 +20,7 @@ from pathlib import Path
 import pytest
 
 from stickslip.sweep import OccurrenceMap, occurrence_map
+from stickslip.sweep.execution import ExecutionOptions
 from stickslip.sweep.store import MANIFEST, StoreDamaged
 from tests.cli_helpers import run_cli
 from tests.sweep_helpers import LAMS, ZETAS, assert_same_map
@@ -27,7 +28,7 @@ from tests.sweep_helpers import LAMS, ZETAS, assert_same_map
 
 def _clean(tmp_path: Path) -> tuple[Path, OccurrenceMap]:
     store = tmp_path / "store"
-    full = occurrence_map(LAMS, ZETAS, "none", chunk_size=4, store=store)
+    full = occurrence_map(LAMS, ZETAS, "none", execution=ExecutionOptions(chunk_size=4, store=store))
     assert len(list(store.glob("chunk-*.npz"))) == 8
     return store, full
 
@@ -57,7 +58,7 @@ def test_damaged_chunk_is_reported_and_recomputed(kind: str, tmp_path: Path) -> 
     CHUNK_DAMAGE[kind](victim)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        again = occurrence_map(LAMS, ZETAS, "none", chunk_size=4, store=store)
+        again = occurrence_map(LAMS, ZETAS, "none", execution=ExecutionOptions(chunk_size=4, store=store))
     damaged = [w for w in caught if issubclass(w.category, StoreDamaged)]
     if kind == "deleted":
         assert damaged == []  # a missing chunk is simply not done yet
@@ -67,7 +68,7 @@ def test_damaged_chunk_is_reported_and_recomputed(kind: str, tmp_path: Path) -> 
     assert again.chunks_computed == 1 and again.chunks_loaded == 7
     assert_same_map(full.dataset, again.dataset)
     # the chunk was rewritten: a third run loads everything
-    third = occurrence_map(LAMS, ZETAS, "none", chunk_size=4, store=store)
+    third = occurrence_map(LAMS, ZETAS, "none", execution=ExecutionOptions(chunk_size=4, store=store))
     assert third.chunks_computed == 0
 
 
@@ -99,7 +100,7 @@ def test_damaged_manifest_is_reported_and_store_rebuilt(kind: str, tmp_path: Pat
     store, full = _clean(tmp_path)
     MANIFEST_DAMAGE[kind](store / MANIFEST)
     with pytest.warns(StoreDamaged, match="manifest") as caught:
-        again = occurrence_map(LAMS, ZETAS, "none", chunk_size=4, store=store)
+        again = occurrence_map(LAMS, ZETAS, "none", execution=ExecutionOptions(chunk_size=4, store=store))
     assert len(caught) == 1
     assert_same_map(full.dataset, again.dataset)
     manifest = json.loads((store / MANIFEST).read_text())
@@ -113,7 +114,8 @@ def test_cli_resume_over_damaged_store_warns_once_and_completes(
     store = tmp_path / "m.nc.parts"
     args = ["map", "--lam", "log:0.1:50:6", "--zeta", "0.01,0.05,0.1,0.2,0.4", "--out", str(out),
             "--chunk-size", "4", "--json"]
-    occurrence_map("log:0.1:50:6", "0.01,0.05,0.1,0.2,0.4", "none", chunk_size=4, store=store)
+    occurrence_map("log:0.1:50:6", "0.01,0.05,0.1,0.2,0.4", "none",
+                   execution=ExecutionOptions(chunk_size=4, store=store))
     _truncate(sorted(store.glob("chunk-*.npz"))[2])
     _empty(sorted(store.glob("chunk-*.npz"))[5])
     code, stdout, err = run_cli(args, capsys)

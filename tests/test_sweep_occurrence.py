@@ -17,17 +17,18 @@ from stickslip.analysis.theory import critical_lambda_exact
 from stickslip.model import STARTUP_DESCRIPTION
 from stickslip.model.dva import DvaSpec
 from stickslip.sweep import Axis, ChunkStore, OccurrenceMap, StoreMismatch, occurrence_map
+from stickslip.sweep.execution import ExecutionOptions
 from tests.sweep_helpers import LAMS, ZETAS, assert_same_map
 
 
 @pytest.fixture(scope="module")
 def optimal_serial() -> OccurrenceMap:
-    return occurrence_map(LAMS, ZETAS, "optimal", backend="serial")
+    return occurrence_map(LAMS, ZETAS, "optimal", execution=ExecutionOptions(backend="serial"))
 
 
 def test_serial_and_threads_are_bit_identical(optimal_serial: OccurrenceMap) -> None:
-    threads = occurrence_map(LAMS, ZETAS, DvaSpec("optimal"), backend="threads", workers=2,
-                             chunk_size=4)
+    threads = occurrence_map(LAMS, ZETAS, DvaSpec("optimal"),
+                             execution=ExecutionOptions(backend="threads", workers=2, chunk_size=4))
     assert_same_map(optimal_serial.dataset, threads.dataset)
     assert threads.chunks_total == 8 and threads.chunks_computed == 8
 
@@ -101,8 +102,9 @@ def test_undetermined_is_an_explicit_code_never_nan() -> None:
 
 def test_progress_is_called_per_chunk() -> None:
     calls: list[tuple[int, int]] = []
-    occurrence_map([0.5, 1.0, 2.0], [0.1, 0.2, 0.3], "none", chunk_size=4,
-                   progress=lambda done, total: calls.append((done, total)))
+    occurrence_map([0.5, 1.0, 2.0], [0.1, 0.2, 0.3], "none",
+                   execution=ExecutionOptions(chunk_size=4, progress=lambda done,
+                                              total: calls.append((done, total))))
     assert calls == [(0, 9), (4, 9), (8, 9), (9, 9)]
 
 
@@ -132,15 +134,16 @@ def test_netcdf_round_trip_and_csv(optimal_serial: OccurrenceMap, tmp_path: Path
 
 def test_resume_computes_only_missing_chunks(tmp_path: Path) -> None:
     store = tmp_path / "store"
-    full = occurrence_map(LAMS, ZETAS, "none", chunk_size=4, store=store)
+    full = occurrence_map(LAMS, ZETAS, "none", execution=ExecutionOptions(chunk_size=4, store=store))
     assert full.chunks_computed == 8 and full.chunks_loaded == 0
     # lose three chunks, as if the run had been killed before writing them
     files = sorted(store.glob("chunk-*.npz"))
     for f in files[2:5]:
         f.unlink()
     calls: list[int] = []
-    again = occurrence_map(LAMS, ZETAS, "none", chunk_size=9, store=store,
-                           progress=lambda d, n: calls.append(d))
+    again = occurrence_map(LAMS, ZETAS, "none",
+                           execution=ExecutionOptions(chunk_size=9, store=store, progress=lambda d,
+                                                      n: calls.append(d)))
     assert (again.chunks_loaded, again.chunks_computed) == (5, 3)
     assert calls[0] == 30 - 12  # the loaded cells count as done from the start
     assert_same_map(full.dataset, again.dataset)
@@ -150,13 +153,13 @@ def test_resume_computes_only_missing_chunks(tmp_path: Path) -> None:
 
 def test_store_of_another_configuration_is_never_mixed(tmp_path: Path) -> None:
     store = tmp_path / "store"
-    occurrence_map([0.5, 1.0], [0.1, 0.2], "none", store=store)
+    occurrence_map([0.5, 1.0], [0.1, 0.2], "none", execution=ExecutionOptions(store=store))
     before = {p.name: p.read_bytes() for p in store.iterdir()}
     with pytest.raises(StoreMismatch, match="another configuration"):
-        occurrence_map([0.5, 1.0], [0.1, 0.2], "none", gamma=1.0, store=store)
+        occurrence_map([0.5, 1.0], [0.1, 0.2], "none", gamma=1.0, execution=ExecutionOptions(store=store))
     assert {p.name: p.read_bytes() for p in store.iterdir()} == before
-    replaced = occurrence_map([0.5, 1.0], [0.1, 0.2], "none", gamma=1.0, store=store,
-                              overwrite=True)
+    replaced = occurrence_map([0.5, 1.0], [0.1, 0.2], "none", gamma=1.0,
+                              execution=ExecutionOptions(store=store, overwrite=True))
     assert replaced.chunks_computed == 1
 
 

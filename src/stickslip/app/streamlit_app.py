@@ -1,7 +1,7 @@
 """The stickslip web app: the design procedure of the paper's Fig. 16 in a browser.
 
 Run it with ``stickslip app`` (or ``streamlit run`` on this file). Inputs are text with
-units ("2 kg", "50 kN/m"), parsed once by :func:`stickslip.model.units.to_si`; everything
+units ("2 kg", "50 kN/m"), parsed by :mod:`stickslip.model.inputs` as the command line's; everything
 after that is SI floats and dimensionless groups. Every number shown comes from the public
 Python API (:func:`~stickslip.analysis.design.design_foundation`, :func:`~stickslip.simulate`,
 :func:`~stickslip.sweep.occurrence_map`,
@@ -14,436 +14,71 @@ paper's), ``linear`` (slope in s/m), ``stribeck`` or ``table`` (an uploaded CSV 
 ``v`` [m/s] and ``mu``); its fields are the keys of the ``[friction]`` table of the TOML used by
 ``stickslip design`` (:class:`~stickslip.model.physical.PhysicalFriction`, units parsed by
 ``to_si``). The design report's stability section is shown as a table.
+
+This module is the page only; the inputs (:mod:`stickslip.app.inputs`), the cached
+computations (:mod:`stickslip.app.computations`), the figures (:mod:`stickslip.app.figures`)
+and the downloads (:mod:`stickslip.app.exports`) have modules of their own.
 """
 
 from __future__ import annotations
 
-import csv
-import dataclasses
-import io
-import json
-import math
 from collections.abc import Mapping
 from typing import Any
 
-import numpy as np
 import pandas as pd
 import streamlit as st
-from matplotlib.figure import Figure
-from matplotlib.ticker import NullLocator
-from numpy.typing import NDArray
 
-from stickslip import (
-    STARTUP_DESCRIPTION,
-    EngineOptions,
-    Foundation,
-    Mode,
-    PhysicalFoundation,
-    PhysicalSystem,
-    SimulationResult,
-    Slider,
-    Structure,
-    __version__,
-    elastic_foundation,
-    rigid_base,
-    simulate,
+from stickslip.app.computations import (
+    BASIN_SAMPLES,
+    BASIN_V,
+    BASIN_XI,
+    basin_runs,
+    design_report,
+    occurrence_maps,
+    operating_point_runs,
+    stick_slip_optimum,
 )
-from stickslip.analysis.design import design_foundation
-from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
-from stickslip.model.dva import DvaSpec
-from stickslip.model.friction import CoulombFriction, FrictionLaw, friction_csv_columns
-from stickslip.model.physical import PhysicalFriction, foundation_to_physical
-from stickslip.model.units import FRICTION_QUANTITIES, QUANTITIES, to_si
-from stickslip.plot.figure import new_grid
-from stickslip.plot.simulation import phase_portrait_plot, time_history_plot
-from stickslip.sweep import OccurrenceMap, occurrence_map
-from stickslip.sweep.basin import BasinResult, basin_stability, equilibrium_state, sample_box
+from stickslip.app.exports import history_csv, report_json
+from stickslip.app.figures import figure_of_run, fmt, occurrence_figure
+from stickslip.app.inputs import (
+    DEFAULTS,
+    FOUNDATION_INPUTS,
+    FRICTION_FIELDS,
+    FRICTION_INPUTS,
+    FRICTION_LAWS,
+    FRICTION_TABLE,
+    FRICTION_TABLE_NAME,
+    SYSTEM_INPUTS,
+    FoundationKey,
+    parse_inputs,
+    si_key,
+    system_from_key,
+)
+from stickslip.io.provenance import package_version
+from stickslip.model.initial import STARTUP_DESCRIPTION
+from stickslip.model.parameters import Foundation
+from stickslip.model.physical import PhysicalSystem, foundation_to_physical
+from stickslip.model.units import FRICTION_QUANTITIES, QUANTITIES
 
-#: Widget key -> (label, default text). The keys are the quantity names of ``to_si``.
-SYSTEM_INPUTS: dict[str, tuple[str, str]] = {
-    "m": ("Slider mass m", "2 kg"),
-    "k": ("Spring stiffness k", "50 kN/m"),
-    "c": ("Damping coefficient c", "20 N*s/m"),
-    "mu_s": ("Static friction coefficient μs", "0.5"),
-    "mu_k": ("Kinetic friction coefficient μk", "0.3"),
-    "load": ("Normal load W", "500 N"),
-    "speed": ("Belt speed V", "5 cm/s"),
-}
-FOUNDATION_INPUTS: dict[str, tuple[str, str]] = {
-    "m_a": ("Foundation mass m_a", ""),
-    "k_a": ("Foundation stiffness k_a", ""),
-    "c_a": ("Foundation damping c_a", ""),
-}
-DEFAULTS: dict[str, str] = {key: default for key, (_, default) in
-                            (SYSTEM_INPUTS | FOUNDATION_INPUTS).items()}
-#: The friction laws of the selectbox (widget key ``friction_law``), the paper's first.
-FRICTION_LAWS = ("coulomb", "linear", "stribeck", "table")
-#: Widget key -> (label, default text) of the friction fields; the keys are those of the
-#: ``[friction]`` table (``FRICTION_QUANTITIES`` of ``to_si``). ``mu_0`` may stay empty (= mu_s).
-FRICTION_INPUTS: dict[str, tuple[str, str]] = {
-    "slope": ("Friction slope σ (μ = μk − σ v_r)", "0.02 s/m"),
-    "mu_0": ("μ0 at vanishing sliding speed (empty: μs)", ""),
-    "stribeck_velocity": ("Stribeck velocity v_s", "0.5 m/s"),
-    "exponent": ("Stribeck exponent n", "1"),
-    "viscous": ("Viscous slope σ_v", "0 s/m"),
-}
-#: The fields of each law.
-FRICTION_FIELDS: dict[str, tuple[str, ...]] = {
-    "coulomb": (),
-    "linear": ("slope",),
-    "stribeck": ("mu_0", "stribeck_velocity", "exponent", "viscous"),
-    "table": (),
-}
-#: Widget keys of the uploaded friction curve (its text and file name, in ``raw``).
-FRICTION_TABLE = "friction_table"
-FRICTION_TABLE_NAME = "friction_table_name"
+#: Names of the app's modules kept reachable from the script (tests and users import them here).
+__all__ = [
+    "BASIN_SAMPLES",
+    "BASIN_V",
+    "BASIN_XI",
+    "DEFAULTS",
+    "FRICTION_INPUTS",
+    "design_report",
+    "history_csv",
+    "main",
+    "operating_point_runs",
+    "parse_inputs",
+    "report_json",
+    "si_key",
+    "system_from_key",
+]
 
-#: Occurrence map around the operating point: lambda from lam/SPAN to lam*SPAN (log-spaced),
-#: zeta from 0 to twice the operating zeta.
-MAP_SHAPE = (30, 12)
-MAP_LAMBDA_SPAN = 10.0
-MAP_ZETA_FLOOR = 0.05  # zeta range used when the slider has no damping
-#: Time horizon of the time-history figures, dimensionless tau.
-PLOT_HORIZON = (40.0, 3000.0)
-#: Disturbed starts per basin, and their box about steady sliding (dimensionless, the knocks of
-#: docs/disturbances.md): ``xi - xi_eq`` in units of V/omega_n, ``xi'`` in units of V.
-BASIN_SAMPLES = 4000
-BASIN_XI = 6.0
-BASIN_V = (-4.0, 1.5)
-#: Samples of the exact trajectory per figure (every mode switch is added to them).
-PLOT_POINTS = 1500
+_fmt = fmt  # the page's short name
 
-SiKey = tuple[tuple[str, Any], ...]
-FoundationKey = tuple[float, float, float]
-
-
-# ---------------------------------------------------------------- inputs -----------------
-
-def _field_error(name: str, label: str, exc: ValueError) -> str:
-    """``to_si``'s message names the command-line flag; the app names the field instead."""
-    message = str(exc)
-    flag = f"--{name.replace('_', '-')}"
-    if message.startswith(flag):
-        message = message[len(flag):].strip()
-    return f"{label}: {message}"
-
-
-def parse_inputs(raw: Mapping[str, str]) -> tuple[PhysicalSystem | None, list[str]]:
-    """Turn the text inputs into a :class:`PhysicalSystem` (SI), or one error line per problem.
-
-    Parameters
-    ----------
-    raw : mapping
-        Text of every field of :data:`SYSTEM_INPUTS` and :data:`FOUNDATION_INPUTS` (the three
-        foundation fields all empty for no existing foundation); ``friction_law`` (one of
-        :data:`FRICTION_LAWS`, ``coulomb`` when absent) and the fields of that law
-        (:data:`FRICTION_FIELDS`), and for ``table`` the uploaded CSV text
-        (:data:`FRICTION_TABLE`, its file name in :data:`FRICTION_TABLE_NAME`).
-
-    Returns
-    -------
-    system : PhysicalSystem or None
-        ``None`` exactly when ``errors`` is not empty.
-    errors : list of str
-        One line per bad input (wrong unit, not a number, non-positive, ``mu_k >= mu_s``, a
-        friction law outside its range).
-    """
-    errors: list[str] = []
-    values: dict[str, float] = {}
-    labels = {key: label for key, (label, _) in (SYSTEM_INPUTS | FOUNDATION_INPUTS).items()}
-    given_foundation = [key for key in FOUNDATION_INPUTS if str(raw.get(key, "")).strip()]
-    if given_foundation and len(given_foundation) != len(FOUNDATION_INPUTS):
-        errors.append("An existing foundation needs all of m_a, k_a and c_a (leave all three "
-                      "empty to have one recommended)")
-    for key in [*SYSTEM_INPUTS, *given_foundation]:
-        text = str(raw.get(key, "")).strip()
-        if not text:
-            errors.append(f"{labels[key]} is empty")
-            continue
-        try:
-            values[key] = to_si(key, text)
-        except ValueError as exc:
-            errors.append(_field_error(key, labels[key], exc))
-    friction, friction_errors = parse_friction_inputs(raw)
-    errors += friction_errors
-    if errors or friction is None:
-        return None, errors
-    try:
-        foundation = None
-        if given_foundation:
-            foundation = PhysicalFoundation(values["m_a"], values["k_a"], values["c_a"])
-        system = PhysicalSystem(mass=values["m"], stiffness=values["k"], damping=values["c"],
-                                mu_s=values["mu_s"], mu_k=values["mu_k"], load=values["load"],
-                                speed=values["speed"], foundation=foundation, friction=friction)
-    except ValueError as exc:
-        return None, [f"Invalid input: {exc}"]
-    if friction.mu_0 is not None and friction.mu_0 > system.mu_s:
-        return None, [f"{FRICTION_INPUTS['mu_0'][0]}: {friction.mu_0:g} is above μs = "
-                      f"{system.mu_s:g} (friction at vanishing speed is at most static friction)"]
-    try:
-        system.slider()  # the law in the engine's units: mu >= 0, ...
-    except ValueError as exc:
-        return None, ["Friction law: " + " ".join(str(exc).split())]
-    return system, []
-
-
-def parse_friction_inputs(raw: Mapping[str, str]) -> tuple[PhysicalFriction | None, list[str]]:
-    """The friction law of the inputs in SI units, or one error line per bad friction field.
-
-    Only the fields of the chosen law are read (:data:`FRICTION_FIELDS`); values with units
-    go through ``to_si`` as in the ``[friction]`` table of ``stickslip design``.
-    """
-    law = str(raw.get("friction_law", "coulomb") or "coulomb").strip().lower()
-    if law not in FRICTION_LAWS:
-        return None, [f"Friction law {law!r} is not one of {', '.join(FRICTION_LAWS)}"]
-    errors: list[str] = []
-    values: dict[str, Any] = {"law": law}
-    for key in FRICTION_FIELDS[law]:
-        label = FRICTION_INPUTS[key][0]
-        text = str(raw.get(key, "")).strip()
-        if not text:
-            if key != "mu_0":
-                errors.append(f"{label} is empty")
-            continue
-        try:
-            values[key] = to_si(key, text)
-        except ValueError as exc:
-            errors.append(_field_error(key, label, exc))
-    if law == "table":
-        name = str(raw.get(FRICTION_TABLE_NAME, "") or "(uploaded)")
-        text = str(raw.get(FRICTION_TABLE, ""))
-        if not text.strip():
-            errors.append("Friction table: upload a CSV file with columns v [m/s] and mu")
-        else:
-            try:
-                header = next(line for line in text.splitlines()
-                              if line.strip() and not line.startswith("#"))
-                if "mu" not in [h.strip().lower() for h in header.split(",")]:
-                    raise ValueError(f"{name} needs columns v [m/s] and mu, got {header.strip()}")
-                v, mu = friction_csv_columns(text, name)
-                values["table_v"], values["table_mu"] = tuple(v), tuple(mu)
-            except ValueError as exc:
-                errors.append("Friction table: " + " ".join(str(exc).split()))
-    if errors:
-        return None, errors
-    try:
-        return PhysicalFriction(**values), []
-    except ValueError as exc:
-        return None, ["Friction law: " + " ".join(str(exc).split())]
-
-
-def si_key(system: PhysicalSystem) -> SiKey:
-    """The SI inputs as a hashable key for the caches."""
-    items: list[tuple[str, Any]] = [
-        ("m", system.mass), ("k", system.stiffness), ("c", system.damping), ("mu_s", system.mu_s),
-        ("mu_k", system.mu_k), ("load", system.load), ("speed", system.speed)]
-    if system.foundation is not None:
-        f = system.foundation
-        items += [("m_a", f.m_a), ("k_a", f.k_a), ("c_a", f.c_a)]
-    if system.friction.law != "coulomb":
-        items.append(("friction", dataclasses.astuple(system.friction)))
-    return tuple(items)
-
-
-def system_from_key(key: SiKey) -> PhysicalSystem:
-    """Inverse of :func:`si_key`."""
-    v = dict(key)
-    foundation = PhysicalFoundation(v["m_a"], v["k_a"], v["c_a"]) if "m_a" in v else None
-    friction = PhysicalFriction(*v["friction"]) if "friction" in v else PhysicalFriction()
-    return PhysicalSystem(mass=v["m"], stiffness=v["k"], damping=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"],
-                          load=v["load"], speed=v["speed"], foundation=foundation,
-                          friction=friction)
-
-
-# ---------------------------------------------------------- computations (cached) --------
-
-@st.cache_data(show_spinner="Running the design procedure (Fig. 16)...", max_entries=128)
-def design_report(key: SiKey) -> dict[str, Any]:
-    """:func:`design_foundation` of the system, as its JSON dictionary (SI units)."""
-    return design_foundation(system_from_key(key)).to_dict()
-
-
-@st.cache_data(show_spinner="Simulating the operating point...", max_entries=64)
-def operating_point_runs(lam: float, zeta: float, gamma: float, foundation: FoundationKey,
-                         friction: FrictionLaw | None = None) -> dict[str, SimulationResult]:
-    """Rigid base and foundation runs from the startup state, recorded for the figures.
-
-    ``friction`` is the dimensionless law of the contact (the paper's Coulomb law by default).
-
-    Both run to a common horizon: one and a half times the longer of the two times needed
-    to certify the verdict (so a stick-slip cycle shows at least twice), within
-    :data:`PLOT_HORIZON`.
-    """
-    slider = Slider(lam, gamma=gamma, friction=friction or CoulombFriction())
-    structures = _structures(zeta, foundation)
-    certified = max(simulate(s, slider, record=False).t_end for s in structures.values())
-    horizon = min(max(PLOT_HORIZON[0], 1.5 * certified), PLOT_HORIZON[1])
-    return {name: simulate(s, slider, options=EngineOptions(t_max=horizon), run_to_t_max=True)
-            for name, s in structures.items()}
-
-
-def _structures(zeta: float, foundation: FoundationKey) -> dict[str, Structure]:
-    """The machine without and with its foundation (dimensionless)."""
-    return {"rigid base": rigid_base(zeta),
-            "with foundation": elastic_foundation(zeta, Foundation(*foundation))}
-
-
-@st.cache_data(show_spinner="Sampling disturbed starts...", max_entries=16)
-def basin_runs(lam: float, zeta: float, gamma: float, foundation: FoundationKey,
-               friction: FrictionLaw | None = None) -> dict[str, BasinResult]:
-    """Certified verdicts of :data:`BASIN_SAMPLES` disturbed starts, without and with the foundation.
-
-    The starts are uniform in ``xi - xi_eq`` in ``[-BASIN_XI, BASIN_XI]`` and ``xi'`` in
-    :data:`BASIN_V` about steady sliding (the foundation, if any, at its steady-sliding
-    state), with one seed, so both machines are knocked alike (issue 13; ``stickslip basin``).
-    """
-    slider = Slider(lam, gamma=gamma, friction=friction or CoulombFriction())
-    results = {}
-    for name, structure in _structures(zeta, foundation).items():
-        xi_eq = float(equilibrium_state(structure, slider)[0])
-        box = {"xi": (xi_eq - BASIN_XI, xi_eq + BASIN_XI), "v": BASIN_V}
-        states = sample_box(structure, slider, BASIN_SAMPLES, box, seed=1)
-        results[name] = basin_stability(structure, slider, states)
-    return results
-
-
-@st.cache_data(show_spinner="Computing the occurrence maps...", max_entries=64)
-def occurrence_maps(lam: float, zeta: float, gamma: float, foundation: FoundationKey | None,
-                    friction: FrictionLaw | None = None) -> dict[str, OccurrenceMap]:
-    """Verdicts on a ``lambda x zeta`` grid around the operating point (paper Figs. 8, 11).
-
-    Two maps: the rigid base, and the foundation (the given one, fixed in SI units, or the
-    one of Eqs. 28-30 tuned at every ``zeta`` of the grid); every cell with the friction law
-    ``friction`` (dimensionless, as at the operating point).
-    """
-    n_lam, n_zeta = MAP_SHAPE
-    lams = np.geomspace(lam / MAP_LAMBDA_SPAN, lam * MAP_LAMBDA_SPAN, n_lam)
-    top = 2.0 * zeta if zeta > 0.0 else MAP_ZETA_FLOOR
-    zetas = (np.arange(n_zeta) + 0.5) * (top / n_zeta)  # cell centres; edges 0 .. top
-    dva = DvaSpec("optimal") if foundation is None else DvaSpec("explicit", Foundation(*foundation))
-    return {name: occurrence_map(lams, zetas, spec, gamma, friction=friction, backend="serial")
-            for name, spec in (("rigid base", DvaSpec("none")), ("with foundation", dva))}
-
-
-@st.cache_data(show_spinner="Searching the stick-slip-optimal foundation...", max_entries=32)
-def stick_slip_optimum(zeta: float, gamma: float, lam_max: float) -> dict[str, Any]:
-    """:func:`optimal_foundation_stick_slip` at ``(zeta, gamma)``, as its dictionary."""
-    return optimal_foundation_stick_slip(zeta, gamma, lam_max=lam_max).to_dict()
-
-
-# ------------------------------------------------------------------ outputs --------------
-
-def _fmt(x: float | None, unit: str = "") -> str:
-    if x is None or not math.isfinite(x):
-        return "—"
-    return f"{x:.4g}" + (f" {unit}" if unit else "")
-
-
-def figure_of_run(result: SimulationResult, title: str) -> Figure:
-    """Time history of ``xi`` (stick phases shaded) next to the phase portrait."""
-    fig, (ax_t, ax_p) = new_grid(1, 2, figsize=(10.0, 3.0), width_ratios=(2.2, 1.0))
-    time_history_plot(result, ax=ax_t, quantity="position", n_points=PLOT_POINTS)
-    phase_portrait_plot(result, ax=ax_p, n_points=PLOT_POINTS)
-    fig.suptitle(title)
-    return fig
-
-
-def occurrence_figure(maps: Mapping[str, OccurrenceMap], system: PhysicalSystem, lam: float,
-                      zeta: float) -> Figure:
-    """The maps side by side (closed-form boundaries overlaid), the operating point marked.
-
-    Secondary axes in SI: the damping coefficient ``c = 2 zeta sqrt(m k)`` on top, the belt
-    speed ``V = lambda_op V_op / lambda`` (at the same load) on the right. One legend below
-    collects the entries of both panels.
-    """
-    fig = Figure(figsize=(11.0, 4.6), layout="constrained")
-    axes = fig.subplots(1, len(maps), sharey=True, squeeze=False)[0]
-    speed_times_lam = lam * system.speed
-    root_mk = math.sqrt(system.mass * system.stiffness)
-
-    def reciprocal(x: NDArray[np.float64]) -> NDArray[np.float64]:
-        x = np.asarray(x, dtype=np.float64)
-        return np.divide(speed_times_lam, x, out=np.full_like(x, np.inf), where=x > 0)
-
-    entries: dict[str, Any] = {}
-    for ax, (name, result) in zip(axes, maps.items(), strict=True):
-        result.plot(ax=ax, style="image", legend=True, title=name)
-        legend = ax.get_legend()
-        entries |= {text.get_text(): handle for text, handle in
-                    zip(legend.get_texts(), legend.legend_handles, strict=True)}
-        legend.remove()
-        (star,) = ax.plot([zeta], [lam], marker="*", ms=16, color="gold", mec="black", ls="none")
-        top = ax.secondary_xaxis("top", functions=(lambda z: 2.0 * root_mk * z,
-                                                   lambda c: c / (2.0 * root_mk)))
-        top.set_xlabel("damping c [N s/m]")
-    speed = axes[-1].secondary_yaxis("right", functions=(reciprocal, reciprocal))
-    speed.yaxis.set_minor_locator(NullLocator())  # unlabelled, and slow to lay out
-    speed.set_ylabel("belt speed V [m/s]")
-    entries["operating point"] = star
-    fig.legend(list(entries.values()), list(entries), loc="outside lower center",
-               ncols=min(len(entries), 4), frameon=False, fontsize="small")
-    return fig
-
-
-def report_json(raw: Mapping[str, str], report: Mapping[str, Any],
-                runs: Mapping[str, SimulationResult], optimum: Mapping[str, Any] | None) -> str:
-    """The downloadable design report: inputs as typed, the design report, the two runs.
-
-    The friction inputs are those of the chosen law (``friction_law`` and its fields, the
-    uploaded table's file name).
-    """
-    summaries = {}
-    for name, result in runs.items():
-        summary = result.to_dict()
-        summary.pop("events")  # thousands of entries; the CSV has the trajectory
-        summaries[name] = summary
-    payload = {
-        "stickslip_version": __version__,
-        "inputs": {key: raw.get(key, "") for key in DEFAULTS} | _friction_inputs(raw),
-        "initial_condition": STARTUP_DESCRIPTION,
-        "design": dict(report),
-        "operating_point": summaries,
-        "stick_slip_optimal_foundation": dict(optimum) if optimum is not None else None,
-    }
-    return json.dumps(payload, indent=2, allow_nan=False)
-
-
-def _friction_inputs(raw: Mapping[str, str]) -> dict[str, str]:
-    law = str(raw.get("friction_law", "coulomb") or "coulomb")
-    out = {"friction_law": law} | {key: str(raw.get(key, "")) for key in FRICTION_FIELDS.get(law, ())}
-    if law == "table":
-        out[FRICTION_TABLE_NAME] = str(raw.get(FRICTION_TABLE_NAME, ""))
-    return out
-
-
-def history_csv(runs: Mapping[str, SimulationResult], system: PhysicalSystem,
-                n_points: int = 2000) -> str:
-    """The trajectories of the runs, dimensionless and in SI, one row per sample.
-
-    Columns: ``structure``, ``tau``, ``t_s``, ``xi``, ``xi_dot``, ``xi_a``, ``xi_a_dot``
-    (empty on the rigid base), ``x_m`` (slider displacement from its kinetic-friction
-    equilibrium, m), ``v_m_s`` (slider velocity, m/s), ``mode``.
-    """
-    buffer = io.StringIO()
-    writer = csv.writer(buffer)
-    writer.writerow(["structure", "tau", "t_s", "xi", "xi_dot", "xi_a", "xi_a_dot", "x_m", "v_m_s",
-                     "mode"])
-    for name, result in runs.items():
-        t, q, v, modes = result.time_history(n_points=n_points)
-        has_foundation = q.shape[1] > 1
-        for i in range(t.size):
-            writer.writerow([
-                name, repr(float(t[i])), repr(float(t[i] * system.time_scale)),
-                repr(float(q[i, 0])), repr(float(v[i, 0])),
-                repr(float(q[i, 1])) if has_foundation else "",
-                repr(float(v[i, 1])) if has_foundation else "",
-                repr(float(q[i, 0] * system.length_scale)), repr(float(v[i, 0] * system.speed)),
-                Mode(int(modes[i])).label,
-            ])
-    return buffer.getvalue()
-
-
-# ---------------------------------------------------------------------- page -------------
 
 def _input_widgets() -> dict[str, str]:
     side = st.sidebar
@@ -646,7 +281,7 @@ def main() -> None:
     st.title("Stick-slip on an elastic foundation")
     st.caption("Will this sliding system stick-slip, at which belt speed or load, and which "
                "foundation suppresses it? The design procedure of the paper's Fig. 16, checked "
-               f"by certified simulation. stickslip {__version__}; initial condition: "
+               f"by certified simulation. stickslip {package_version()}; initial condition: "
                f"{STARTUP_DESCRIPTION}.")
     raw = _input_widgets()
     system, errors = parse_inputs(raw)

@@ -75,7 +75,9 @@ def basin_map_command(
     from stickslip.cli.basin_command import parse_box
     from stickslip.cli.map_commands import _ProgressBar, grid_config
     from stickslip.io.lock import output_lock
-    from stickslip.sweep.basin import DEFAULT_MAP_BOX, MAX_SAMPLES, basin_map, check_box, state_names
+    from stickslip.sweep.basin import MAX_SAMPLES, check_box, state_names
+    from stickslip.sweep.basin_maps import DEFAULT_MAP_BOX, basin_map
+    from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.executors import check_backend
 
     config, law = grid_config(lam, zeta, lam_spacing, zeta_spacing, delta, dva, k_scale, gamma,
@@ -105,7 +107,8 @@ def basin_map_command(
             result = basin_map(config.lam, config.zeta, config.dva, config.gamma, samples=samples,
                                box=intervals, seed=seed,
                                friction=law, deltas=config.delta,
-                               options=config.options, workers=workers, progress=bar)
+                               options=config.options,
+                               execution=ExecutionOptions(workers=workers, progress=bar))
         payload = result.to_dict()
         payload.update({"out": None, "plot": None})
         if out is not None:

@@ -14,6 +14,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, NoReturn
 
 if TYPE_CHECKING:
+    from stickslip.model.dva import DvaSpec
+    from stickslip.model.friction import FrictionLaw
     from stickslip.model.parameters import Foundation
 
 EXIT_BAD_INPUT = 2
@@ -30,17 +32,60 @@ def fail(message: str) -> NoReturn:
     raise SystemExit(EXIT_BAD_INPUT)
 
 
-def parse_dva(text: str, zeta: float, k_scale: float = 1.0) -> Foundation | None:
-    """Resolve the ``--dva`` option at damping ratio ``zeta``.
+def flag_error(flag: str, value: object, exc: ValueError) -> BadInput:
+    """The one-line error of a model parser, with the command-line flag that gave the value.
+
+    Model parsers speak of the model ("friction law 'x' is not one of ..."); the command line
+    adds which flag it came from: ``"--friction 'x': friction law 'x' is not one of ..."``. A
+    message that already starts with the flag (model messages written before issue 17 did) is
+    kept as it is, so the flag is never named twice.
+    """
+    message = str(exc)
+    if message.startswith(f"{flag} "):
+        return BadInput(message)
+    return BadInput(f"{flag} {str(value)!r}: {message}")
+
+
+def parse_friction_option(text: str, flag: str = "--friction") -> FrictionLaw:
+    """The friction law of a ``--friction`` option (:func:`stickslip.model.friction.parse_friction`).
+
+    Raises :class:`BadInput` naming the flag, the value and the model's reason.
+    """
+    from stickslip.model.friction import parse_friction
+
+    try:
+        return parse_friction(text)
+    except ValueError as exc:
+        raise flag_error(flag, text, exc) from None
+
+
+def parse_dva_option(text: str, k_scale: float = 1.0) -> DvaSpec:
+    """The foundation spec of a ``--dva`` option (``DvaSpec.parse``), errors naming ``--dva``.
 
     ``none`` is the rigid base (1DOF); ``optimal`` the paper's fitted optimum, Eqs. (28)-(30);
     ``optimal-exact`` the numerical optimum of the absorber; ``M,K,ZETA_A`` explicit values.
-    ``k_scale`` multiplies ``K`` (paper Figs. 11-15); it requires a foundation.
+    ``k_scale`` multiplies ``K`` (paper Figs. 11-15); it requires a foundation (its error
+    names ``--k-scale``).
     """
-    from stickslip.analysis.dva import resolve_dva
     from stickslip.model.dva import DvaSpec
 
-    return resolve_dva(DvaSpec.parse(text, k_scale), zeta)
+    try:
+        spec = DvaSpec.parse(text)
+    except ValueError as exc:
+        raise flag_error("--dva", text, exc) from None
+    if k_scale == 1.0:
+        return spec
+    try:
+        return DvaSpec.parse(text, k_scale)
+    except ValueError as exc:
+        raise flag_error("--k-scale", k_scale, exc) from None
+
+
+def parse_dva(text: str, zeta: float, k_scale: float = 1.0) -> Foundation | None:
+    """Resolve the ``--dva`` option at damping ratio ``zeta`` (see :func:`parse_dva_option`)."""
+    from stickslip.analysis.dva import resolve_dva
+
+    return resolve_dva(parse_dva_option(text, k_scale), zeta)
 
 
 def max_events_limit() -> int:
@@ -125,10 +170,9 @@ def warn_fitted_range(spec: Any, zetas: Any) -> None:
     after every check has passed, so that a rejected command prints only its error line.
     """
     from stickslip.analysis.dva import fitted_zeta_warning
-    from stickslip.model.dva import DvaSpec
 
     if isinstance(spec, str):
-        spec = DvaSpec.parse(spec)
+        spec = parse_dva_option(spec)
     note = fitted_zeta_warning(spec, zetas)
     if note:
         warn(note)

@@ -6,7 +6,7 @@ from typing import Annotated, Any
 
 import typer
 
-from stickslip.cli.console import parse_dva, print_json
+from stickslip.cli.console import parse_dva, parse_friction_option, print_json
 from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE
 
 
@@ -28,7 +28,6 @@ def cycles(
     """
     from stickslip.analysis.cycles import find_cycles
     from stickslip.cli.console import BadInput
-    from stickslip.model.friction import parse_friction
     from stickslip.model.parameters import Slider
     from stickslip.model.structure import chain_structure
 
@@ -36,7 +35,7 @@ def cycles(
         raise BadInput(f"--seeds {seeds} must be from 1 to 10000")
     if not 1 <= max_period <= 8:
         raise BadInput(f"--max-period {max_period} must be from 1 to 8")
-    slider = Slider(lam, gamma=gamma, friction=parse_friction(friction))
+    slider = Slider(lam, gamma=gamma, friction=parse_friction_option(friction))
     found = parse_dva(dva, zeta, k_scale)
     structure = chain_structure(zeta, () if found is None else (found,))
     result = find_cycles(structure, slider, seeds=seeds, max_period=max_period, seed=seed)
@@ -54,10 +53,12 @@ def _print(p: dict[str, Any]) -> None:
         lines.append(f"none found  from {p['n_seeds']} starts: every disturbed start ends in steady sliding "
                      "or in no cycle of the periods searched")
     for i, c in enumerate(p["cycles"], start=1):
-        mults = ", ".join(f"{m['abs']:.4g}" for m in c["multipliers"]) or "none (rigid base)"
+        mults = ", ".join(f"{m['abs']:.4g}" for m in c["multipliers"])
+        why = (f"|Floquet multipliers| {mults}" if mults else
+               "rigid base: a stick phase resets the whole state, the return map has no multipliers")
         lines.append(f"cycle {i}     period {c['period']:.6g}  amplitude {c['amplitude']:.6g}  "
                      f"stick ratio {c['stick_ratio']:.4g}  {c['stick_phases']} stick phase(s)  "
-                     f"{'stable' if c['stable'] else 'UNSTABLE'} (|Floquet multipliers| {mults})")
+                     f"{'stable' if c['stable'] else 'UNSTABLE'} ({why})")
     lines.append(f"search      {p['n_seeds']} starts, {p['n_map_evaluations']} return-map evaluations")
     typer.echo("\n".join(lines))
 

@@ -2,75 +2,81 @@
 
 from __future__ import annotations
 
-import tomllib
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
 from stickslip.cli.console import BadInput, print_json
-from stickslip.model.units import QUANTITIES, to_si
+from stickslip.model.units import QUANTITIES
 
 if TYPE_CHECKING:
+    from stickslip.io.config import MachineConfig
     from stickslip.model.physical import PhysicalFriction
 
-REQUIRED = ("m", "k", "mu_s", "mu_k", "load", "speed")
-FOUNDATION = ("m_a", "k_a", "c_a")
+
+
+#: An example value of each SI unit of :data:`QUANTITIES`, in a unit other than the SI one where
+#: that shows the conversion (the help says "[kg]; units allowed, e.g. '2 kg'").
+UNIT_EXAMPLES = {"kg": "2 kg", "N/m": "50 kN/m", "N s/m": "20 N*s/m", "N": "500 N", "m/s": "5 cm/s"}
+
+
+def quantity_help(name: str) -> str:
+    """Help text of the flag of quantity ``name``: what it is, its SI unit and an example.
+
+    A dimensionless quantity (a friction coefficient) says so and takes a plain number.
+    """
+    _, unit, what = QUANTITIES[name]
+    if not unit:
+        return f"{what} (dimensionless number, e.g. 0.5)"
+    return f"{what} [{unit}]; units allowed, e.g. '{UNIT_EXAMPLES[unit]}'"
 
 
 def _opt(name: str) -> Any:
-    _, unit, what = QUANTITIES[name]
-    hint = f" [{unit}]" if unit else ""
-    return typer.Option(f"--{name.replace('_', '-')}", help=f"{what}{hint}; units allowed, e.g. '2 kg'")
+    return typer.Option(f"--{name.replace('_', '-')}", help=quantity_help(name))
 
 
 def read_config(path: Path) -> dict[str, Any]:
-    """Read a TOML file whose keys are the quantity names (``m``, ``k``, ``mu_s``, ...)."""
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise BadInput(f"--config {str(path)!r} does not exist") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise BadInput(f"--config {str(path)!r} is not valid TOML: {exc}") from None
-    section = data.get("system", {k: v for k, v in data.items() if k != "friction"})
-    if not isinstance(section, dict):
-        raise BadInput(f"--config {str(path)!r}: 'system' must be a table of quantities, "
-                       f"not {section!r}")
-    unknown = sorted(set(section) - set(QUANTITIES))
-    if unknown:
-        raise BadInput(f"--config {str(path)!r}: unknown keys {', '.join(unknown)}")
-    return dict(section)
+    """The ``[system]`` table of a machine's TOML file (:func:`stickslip.io.config.read_machine_config`)."""
+    return _machine(path).system
 
 
 def read_friction_config(path: Path | None) -> PhysicalFriction:
     """The ``[friction]`` table of the TOML file (DESIGN.md section 8); Coulomb without one."""
-    from stickslip.model.physical import PhysicalFriction, physical_friction_from_config
+    from stickslip.model.physical import PhysicalFriction
 
-    if path is None:
-        return PhysicalFriction()
-    data = tomllib.loads(path.read_text(encoding="utf-8"))
-    if "friction" not in data:
-        return PhysicalFriction()
-    return physical_friction_from_config(data["friction"], base_dir=path.parent,
-                                         source=f"--config {str(path)!r}: [friction]")
+    return PhysicalFriction() if path is None else _machine(path).friction
+
+
+def _machine(path: Path) -> MachineConfig:
+    from stickslip.io.config import read_machine_config
+
+    try:
+        return read_machine_config(path, label=f"--config {str(path)!r}")
+    except ValueError as exc:
+        raise BadInput(str(exc)) from None
 
 
 def collect_inputs(flags: dict[str, Any], config: Path | None) -> dict[str, float]:
-    """Merge the TOML file (if any) and the flags (flags win), convert to SI, check presence."""
+    """Merge the TOML file (if any) and the flags (flags win), convert to SI, check presence.
+
+    The rules are :mod:`stickslip.model.inputs`' (the web app's too); a value from the file is
+    named ``--config 'FILE': KEY =`` in messages, a flag by its name.
+    """
+    from stickslip.model.inputs import missing_system_quantities, quantities_to_si
+
     merged: dict[str, Any] = read_config(config) if config is not None else {}
     from_file = set(merged)
     merged.update({k: v for k, v in flags.items() if v is not None})
     from_file -= {k for k, v in flags.items() if v is not None}
-    missing = [f"--{k.replace('_', '-')}" for k in REQUIRED if k not in merged]
+    missing, partial = missing_system_quantities(merged)
     if missing:
-        raise BadInput(f"missing {', '.join(missing)} (give them as flags or in --config)")
-    given = [k for k in FOUNDATION if k in merged]
-    if given and len(given) != len(FOUNDATION):
+        flags_missing = ", ".join(f"--{k.replace('_', '-')}" for k in missing)
+        raise BadInput(f"missing {flags_missing} (give them as flags or in --config)")
+    if partial:
         raise BadInput("an existing foundation needs all of --m-a, --k-a and --c-a")
-    values = {
-        key: to_si(key, value, source=f"--config {str(config)!r}: {key} =" if key in from_file else None)
-        for key, value in merged.items()
-    }
+    values = quantities_to_si(
+        merged, source=lambda key: f"--config {str(config)!r}: {key} =" if key in from_file else None)
     values.setdefault("c", 0.0)
     return values
 
@@ -87,7 +93,8 @@ def design(
     k_a: Annotated[str | None, _opt("k_a")] = None,
     c_a: Annotated[str | None, _opt("c_a")] = None,
     config: Annotated[
-        Path | None, typer.Option("--config", help="TOML file with the same keys (m, k, ...)")
+        Path | None, typer.Option("--config", help="TOML file: a [system] table with the same keys "
+                                           "(m, k, ...) and an optional [friction] table")
     ] = None,
     stick_slip_optimum: Annotated[
         bool,

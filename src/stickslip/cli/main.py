@@ -29,6 +29,10 @@ app = typer.Typer(
     no_args_is_help=True,
     add_completion=True,  # Typer's --install-completion and --show-completion
     pretty_exceptions_enable=False,
+    # help texts are plain text: units and TOML tables are written in brackets ("[kg]",
+    # "[system]"), which Rich markup would swallow as style tags
+    rich_markup_mode=None,
+    context_settings={"max_content_width": 120},  # up to 120 columns when the terminal has them
 )
 
 

@@ -21,6 +21,8 @@ from stickslip.cli.console import (
     check_grid_memory,
     check_output_path,
     check_run_limits,
+    parse_dva_option,
+    parse_friction_option,
     print_json,
     save_plot,
     warn_fitted_range,
@@ -77,13 +79,12 @@ def grid_config(lam: str | None, zeta: str, lam_spacing: str | None, zeta_spacin
     linear law ``linear:DELTA`` (the returned law is then None); otherwise every cell has
     ``--friction``. Bad combinations and out-of-range values are one-line ``BadInput``.
     """
-    from stickslip.model.dva import DvaSpec
-    from stickslip.model.friction import CoulombFriction, parse_friction
+    from stickslip.model.friction import CoulombFriction
     from stickslip.sweep.grid import Axis
     from stickslip.sweep.occurrence import MapConfig
 
     lam_axis, zeta_axis = _parse_axes(lam, zeta, lam_spacing, zeta_spacing)
-    law = parse_friction(friction)
+    law = parse_friction_option(friction)
     delta_axis = None
     if delta is not None:
         if not isinstance(law, CoulombFriction):
@@ -94,7 +95,7 @@ def grid_config(lam: str | None, zeta: str, lam_spacing: str | None, zeta_spacin
                            f"--zeta value, not {len(zeta_axis)} ({zeta})")
         delta_axis = Axis.parse(delta, "delta")
     cell_law = None if delta_axis is not None else law
-    config = MapConfig.create(lam_axis, zeta_axis, DvaSpec.parse(dva, k_scale), gamma, t_max=t_max,
+    config = MapConfig.create(lam_axis, zeta_axis, parse_dva_option(dva, k_scale), gamma, t_max=t_max,
                               friction=cell_law, deltas=delta_axis)
     check_run_limits(float(config.lam.values.max()), config.gamma)
     return config, cell_law
@@ -209,6 +210,7 @@ def map_command(
     Example: stickslip map --lam log:0.1:50:100 --delta -0.1:0.3:41 --zeta 0.1 --out dmap.nc
     """
     from stickslip.io.lock import output_lock
+    from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.executors import check_backend
     from stickslip.sweep.occurrence import OccurrenceMap, occurrence_map
     from stickslip.sweep.store import discard_store
@@ -240,9 +242,11 @@ def map_command(
             with _ProgressBar(enabled, f"map {config.shape[0]}x{config.shape[1]}") as bar:
                 result = occurrence_map(config.lam, config.zeta, config.dva, config.gamma,
                                         options=config.options,
-                                        friction=law, deltas=config.delta, backend=chosen, workers=workers,
-                                        scheduler=scheduler, chunk_size=chunk_size, progress=bar,
-                                        store=store, overwrite=overwrite)
+                                        friction=law, deltas=config.delta,
+                                        execution=ExecutionOptions(
+                                            backend=chosen, workers=workers, scheduler=scheduler,
+                                            chunk_size=chunk_size, progress=bar, store=store,
+                                            overwrite=overwrite))
             result.to_netcdf(out, overwrite=True)
             discard_store(store)
         payload = result.to_dict()
@@ -341,14 +345,13 @@ def boundary_command(
 
     Example: stickslip boundary --zeta 0.01:0.4:8 --dva none --friction linear:0.02 --json
     """
-    from stickslip.model.dva import DvaSpec
-    from stickslip.model.friction import parse_friction
     from stickslip.sweep.boundary import stick_slip_boundary
+    from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.executors import check_backend
 
     _, zeta_axis = _parse_axes(None, zeta, None, zeta_spacing)
-    spec = DvaSpec.parse(dva, k_scale)
-    law = parse_friction(friction)
+    spec = parse_dva_option(dva, k_scale)
+    law = parse_friction_option(friction)
     if criterion not in ("startup", "existence"):
         raise BadInput(f"--criterion {criterion!r} must be 'startup' or 'existence'")
     check_backend("threads", workers, None)
@@ -359,8 +362,8 @@ def boundary_command(
     if plot is not None:
         check_figure_path(plot, overwrite=overwrite)
     result = stick_slip_boundary(zeta_axis, spec, gamma, lam_min=lam_min, lam_max=lam_max,
-                                 n_scan=scan, rtol=rtol, t_max=t_max, workers=workers,
-                                 friction=law, criterion=criterion)
+                                 n_scan=scan, rtol=rtol, t_max=t_max, friction=law,
+                                 criterion=criterion, execution=ExecutionOptions(workers=workers))
     warn_fitted_range(spec, zeta_axis.values)
     payload = result.to_dict()
     payload.update({"out": None, "plot": None})

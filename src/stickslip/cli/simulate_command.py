@@ -12,6 +12,7 @@ from stickslip.cli.console import (
     check_figure_path,
     check_run_limits,
     parse_dva,
+    parse_friction_option,
     print_json,
     warn_fitted_range,
 )
@@ -74,9 +75,8 @@ def simulate(
     from stickslip.analysis.simulation import EngineOptions
     from stickslip.analysis.simulation import simulate as run_simulation
     from stickslip.model import Slider, chain_structure
-    from stickslip.model.friction import parse_friction
 
-    slider = Slider(lam, gamma=gamma, friction=parse_friction(friction))
+    slider = Slider(lam, gamma=gamma, friction=parse_friction_option(friction))
     check_run_limits(slider.lam, slider.gamma, max_events=max_events, plot_from=t_plot_start)
     foundation = parse_dva(dva, zeta, k_scale)
     structure = chain_structure(zeta, () if foundation is None else (foundation,))
@@ -121,7 +121,7 @@ def _print_summary(p: dict[str, Any]) -> None:
         "sliding     steady sliding is linearly "
         + ("stable" if p["steady_sliding_stable"] else "UNSTABLE")
         + f" (growth rate {fmt(p['growth_rate'])} per unit tau)",
-        f"disturbance {p['safe_disturbance_sentence']}",
+        f"disturbance {_disturbance_line(p)}",
     ]
     if p.get("foundation"):
         f = p["foundation"]
@@ -129,6 +129,20 @@ def _print_summary(p: dict[str, Any]) -> None:
     if p.get("plot"):
         lines.append(f"figure      {p['plot']}")
     typer.echo("\n".join(lines))
+
+
+def _disturbance_line(p: dict[str, Any]) -> str:
+    """The safe disturbance margin, said to be about disturbances of steady sliding.
+
+    The margin (:mod:`stickslip.analysis.disturbance`) is about knocks to a machine that is
+    already sliding steadily; the verdict above is about the start-up, which is no small knock
+    of steady sliding. Without saying so, "verdict stick-slip" followed by "a kick below 1 V
+    cannot start stick-slip" reads as a contradiction.
+    """
+    line = f"of steady sliding: {p['safe_disturbance_sentence']}"
+    if p["verdict"] == "stick-slip" and p["steady_sliding_stable"]:
+        line += " (the start-up above is not such a disturbance: it starts far from steady sliding)"
+    return line
 
 
 def register(app: typer.Typer) -> None:

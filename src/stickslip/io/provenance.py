@@ -20,10 +20,16 @@ _LIBRARIES = ("numpy", "scipy", "numba", "matplotlib", "xarray", "h5netcdf", "h5
 
 
 def package_version() -> str:
-    """Version of the installed ``stickslip`` package (its metadata: the one source of truth)."""
-    from stickslip import __version__
+    """Version of the installed ``stickslip`` package (its metadata: the one source of truth).
 
-    return __version__
+    Read from :mod:`importlib.metadata` here rather than from ``stickslip.__version__``, so that
+    this low layer does not import the package face (which loads ``sweep`` and ``io`` lazily and
+    would loop back here). ``"0+unknown"`` when running from an uninstalled tree, as the face says.
+    """
+    try:
+        return metadata.version("stickslip")
+    except metadata.PackageNotFoundError:  # pragma: no cover - uninstalled source tree
+        return "0+unknown"
 
 
 @functools.cache

@@ -387,26 +387,14 @@ def physical_friction_from_config(table: Mapping[str, Any], *, base_dir: Path | 
         The law in SI units.
     """
     from stickslip.model.friction import read_friction_csv_columns
-    from stickslip.model.units import FRICTION_QUANTITIES, to_si
+    from stickslip.model.inputs import friction_fields
 
-    if not isinstance(table, Mapping):
-        raise ValueError(f"{source} must be a table of keys, not {table!r}")
-    unknown = sorted(set(table) - set(FRICTION_QUANTITIES) - {"law", "table"})
-    if unknown:
-        raise ValueError(f"{source}: unknown keys {', '.join(unknown)} (allowed: law, table, "
-                         f"{', '.join(FRICTION_QUANTITIES)})")
-    law = table.get("law", "coulomb")
-    if not isinstance(law, str):
-        raise ValueError(f"{source}: law = {law!r} must be a string")
-    values: dict[str, Any] = {"law": law.strip().lower()}
-    for key in FRICTION_QUANTITIES:
-        if key in table:
-            values[key] = to_si(key, table[key], source=f"{source}: {key} =")
-    if "table" in table:
+    columns = None
+    if isinstance(table, Mapping) and "table" in table:
         path = table["table"]
         if not isinstance(path, str):
             raise ValueError(f"{source}: table = {path!r} must be the path of a CSV file")
         full = Path(path) if base_dir is None or Path(path).is_absolute() else base_dir / path
-        v, mu = read_friction_csv_columns(full)
-        values["table_v"], values["table_mu"] = tuple(v), tuple(mu)
-    return PhysicalFriction(**values)
+        columns = read_friction_csv_columns(full)
+    return PhysicalFriction(**friction_fields(table, source=lambda key: f"{source}: {key} =",
+                                              table_columns=columns, where=source))

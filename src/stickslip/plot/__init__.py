@@ -1,8 +1,9 @@
-"""Plotting: every ``*_plot(data, *, ax=None, ...)`` function returns a :class:`PlotResult`.
+"""Figures: one ``*_plot(data, *, ax=None, ...)`` per result, each returning a :class:`PlotResult`.
 
-A result object's ``.plot()`` delegates to one of these. Names load on first use (PEP 562), so
-that importing this package does not import matplotlib; every name of ``__all__`` is public,
-the rest is private.
+A result's ``.plot()`` delegates here.
+
+Names load on first use (PEP 562), as in :mod:`stickslip.model`: importing one module of this
+layer does not import the others.
 """
 
 from __future__ import annotations
@@ -11,22 +12,21 @@ from typing import TYPE_CHECKING
 
 from stickslip._lazy import lazy_exports
 
-#: Public name -> module that defines it.
 _EXPORTS: dict[str, str] = {
     "PlotResult": "stickslip.plot.figure",
     "simulation_plot": "stickslip.plot.simulation",
     "time_history_plot": "stickslip.plot.simulation",
     "phase_portrait_plot": "stickslip.plot.simulation",
-    "frequency_response_plot": "stickslip.plot.absorber",
-    "optimal_tuning_plot": "stickslip.plot.absorber",
-    "optimal_parameter_plot": "stickslip.plot.absorber",
-    "peak_response_plot": "stickslip.plot.absorber",
-    "equivalent_damping_plot": "stickslip.plot.absorber",
     "occurrence_map_plot": "stickslip.plot.maps",
     "boundary_plot": "stickslip.plot.maps",
     "analytic_curves_plot": "stickslip.plot.maps",
     "basin_plot": "stickslip.plot.basin",
     "basin_map_plot": "stickslip.plot.basin",
+    "optimal_parameter_plot": "stickslip.plot.absorber",
+    "optimal_tuning_plot": "stickslip.plot.absorber",
+    "frequency_response_plot": "stickslip.plot.absorber",
+    "peak_response_plot": "stickslip.plot.absorber",
+    "equivalent_damping_plot": "stickslip.plot.absorber",
     "design_flowchart_plot": "stickslip.plot.design",
 }
 
@@ -48,10 +48,11 @@ __all__ = [
     "time_history_plot",
 ]
 
+
 __getattr__, __dir__ = lazy_exports(__name__, globals(), _EXPORTS)
 
 
-if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
+if TYPE_CHECKING:  # pragma: no cover
     from stickslip.plot.absorber import (
         equivalent_damping_plot,
         frequency_response_plot,

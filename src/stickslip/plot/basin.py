@@ -13,7 +13,8 @@ from stickslip.plot.maps import COLORS
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-    from stickslip.sweep.basin import BasinMap, BasinResult
+    from stickslip.sweep.basin import BasinResult
+    from stickslip.sweep.basin_maps import BasinMap
 
 
 def basin_plot(

@@ -126,6 +126,9 @@ class _Chart:
         self.arrow((left.right, left.middle), (right.left, left.middle), label, bold)
 
 
+# Over 120 lines on purpose: the flowchart of Fig. 16 is drawn box by box and arrow by arrow in
+# reading order, so that each box sits next to the step it shows; cut into helpers it would be
+# harder to check against the figure.
 def design_flowchart_plot(
     report: DesignReport,
     *,

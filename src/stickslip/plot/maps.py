@@ -32,11 +32,14 @@ from numpy.typing import NDArray
 from stickslip.analysis.analytic_boundary import analytic_boundaries
 from stickslip.analysis.stability import critical_weakening
 from stickslip.analysis.theory import critical_lambda_linear
+from stickslip.analysis.verdict import VERDICTS
 from stickslip.model.dva import DvaSpec
 from stickslip.model.parameters import Foundation
 from stickslip.model.structure import chain_structure
 from stickslip.plot.figure import PlotResult, new_axes
-from stickslip.sweep.occurrence import VERDICTS, OccurrenceMap, dva_from_config, stored_foundations
+from stickslip.sweep.map_config import dva_from_config
+from stickslip.sweep.map_data import stored_foundations
+from stickslip.sweep.occurrence import OccurrenceMap
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -261,36 +264,54 @@ def occurrence_map_plot(
         raise ValueError(f"style={style!r} must be 'auto', 'markers' or 'image'")
     ds = data.dataset if isinstance(data, OccurrenceMap) else data
     fig, ax = new_axes(ax, figsize=MAP_SIZE)
-    if "delta" in ds.dims:
-        return _draw_delta_map(ds, fig, ax, style=style, analytic=analytic, legend=legend,
-                               lam_log=lam_log, delta_log=zeta_log, marker_size=marker_size,
-                               max_markers=max_markers, title=title)
-    lam = np.asarray(ds["lambda"].values, dtype=np.float64)
-    zeta = np.asarray(ds["zeta"].values, dtype=np.float64)
-    verdict = np.asarray(ds["verdict"].transpose("lambda", "zeta").values)
-    y_log = _is_log(lam, str(ds["lambda"].attrs.get("spacing", "list")), lam_log, lists=True)
-    x_log = _is_log(zeta, str(ds["zeta"].attrs.get("spacing", "list")), zeta_log)
+    by_delta = "delta" in ds.dims
+    # (lambda, zeta): zeta across, lambda up (the paper's Figs. 8, 11); (lambda, delta): lambda
+    # across, delta up
+    x_name, y_name = ("lambda", "delta") if by_delta else ("zeta", "lambda")
+    log_requests = {"lambda": lam_log, "zeta": zeta_log, "delta": zeta_log}
+    x = np.asarray(ds[x_name].values, dtype=np.float64)
+    y = np.asarray(ds[y_name].values, dtype=np.float64)
+    verdict = np.asarray(ds["verdict"].transpose(y_name, x_name).values)
+    x_log, y_log = (_is_log(values, str(ds[name].attrs.get("spacing", "list")), log_requests[name],
+                            lists=name == "lambda")
+                    for name, values in ((x_name, x), (y_name, y)))
     if style == "auto":
         style = "markers" if verdict.size <= max_markers else "image"
-    artists, handles, x_edges, y_edges = _draw_cells(ax, zeta, lam, verdict, style, marker_size,
+    artists, handles, x_edges, y_edges = _draw_cells(ax, x, y, verdict, style, marker_size,
                                                      x_log, y_log)
     _set_scales(ax, x_log, y_log)
-    if analytic and "configuration" in ds.attrs:
-        dva = dva_from_config(json.loads(ds.attrs["configuration"]))
-        curves = analytic_curves_plot(dva, (float(zeta[0]), float(zeta[-1])), ax=ax, log=x_log,
-                                      resolved=(zeta, stored_foundations(ds))).artists
+    if analytic:
+        curves = _map_overlays(ds, x, y, x_log, ax)
         artists += curves
         handles += curves
-    _set_limits(ax, zeta, x_edges, y_edges, x_log, style)
-    ax.set_xlabel(r"damping ratio $\zeta$")
-    ax.set_ylabel(r"$\lambda$")
-    if title is None:
-        title = f"{ds.attrs.get('dva', '')}, $\\gamma$ = {ds.attrs.get('gamma', '')}"
-    ax.set_title(title, fontsize="medium")
+    _set_limits(ax, x, x_edges, y_edges, x_log, style)
+    if by_delta:
+        ax.set_xlabel(r"$\lambda$")
+        ax.set_ylabel(r"friction slope $\delta$ (> 0 velocity weakening)")
+        default_title = (f"{ds.attrs.get('dva', '')}, $\\zeta$ = {float(ds.attrs['zeta']):g}, "
+                         f"$\\gamma$ = {ds.attrs.get('gamma', '')}, linear law")
+    else:
+        ax.set_xlabel(r"damping ratio $\zeta$")
+        ax.set_ylabel(r"$\lambda$")
+        default_title = f"{ds.attrs.get('dva', '')}, $\\gamma$ = {ds.attrs.get('gamma', '')}"
+    ax.set_title(default_title if title is None else title, fontsize="medium")
     if legend and handles:
         artists.append(ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0),
                                  fontsize="small", frameon=False))
     return PlotResult(fig, [ax], artists)
+
+
+def _map_overlays(ds: xr.Dataset, x: FloatArray, y: FloatArray, x_log: bool, ax: Axes) -> list[Any]:
+    """The closed-form curves of a map: Eqs. 36/39 (or 37) over zeta, or the delta thresholds."""
+    if "delta" in ds.dims:
+        (foundation,) = stored_foundations(ds)
+        return list(_delta_overlays(float(ds.attrs["zeta"]), foundation, (float(y[0]), float(y[-1])),
+                                    ax=ax).artists)
+    if "configuration" not in ds.attrs:
+        return []
+    dva = dva_from_config(json.loads(ds.attrs["configuration"]))
+    return list(analytic_curves_plot(dva, (float(x[0]), float(x[-1])), ax=ax, log=x_log,
+                                     resolved=(x, stored_foundations(ds))).artists)
 
 
 def _set_scales(ax: Axes, x_log: bool, y_log: bool) -> None:
@@ -338,40 +359,6 @@ def _draw_cells(ax: Axes, x: FloatArray, y: FloatArray, verdict: NDArray[Any], s
         handles += [Patch(facecolor=COLORS[v.value], edgecolor="0.4", label=v.value)
                     for v in VERDICTS if v.code in present]
     return artists, handles, x_edges, y_edges
-
-
-def _draw_delta_map(ds: xr.Dataset, fig: Any, ax: Axes, *, style: str, analytic: bool,
-                    legend: bool, lam_log: bool | None, delta_log: bool | None,
-                    marker_size: float | None, max_markers: int, title: str | None) -> PlotResult:
-    """:func:`occurrence_map_plot` of a (lambda, delta) map: lambda across, delta up."""
-    lam = np.asarray(ds["lambda"].values, dtype=np.float64)
-    delta = np.asarray(ds["delta"].values, dtype=np.float64)
-    verdict = np.asarray(ds["verdict"].transpose("delta", "lambda").values)
-    x_log = _is_log(lam, str(ds["lambda"].attrs.get("spacing", "list")), lam_log, lists=True)
-    y_log = _is_log(delta, str(ds["delta"].attrs.get("spacing", "list")), delta_log)
-    if style == "auto":
-        style = "markers" if verdict.size <= max_markers else "image"
-    artists, handles, x_edges, y_edges = _draw_cells(ax, lam, delta, verdict, style, marker_size,
-                                                     x_log, y_log)
-    _set_scales(ax, x_log, y_log)
-    zeta = float(ds.attrs["zeta"])
-    if analytic:
-        (foundation,) = stored_foundations(ds)
-        curves = _delta_overlays(zeta, foundation, (float(delta[0]), float(delta[-1])),
-                                   ax=ax).artists
-        artists += curves
-        handles += curves
-    _set_limits(ax, lam, x_edges, y_edges, x_log, style)
-    ax.set_xlabel(r"$\lambda$")
-    ax.set_ylabel(r"friction slope $\delta$ (> 0 velocity weakening)")
-    if title is None:
-        title = (f"{ds.attrs.get('dva', '')}, $\\zeta$ = {zeta:g}, "
-                 f"$\\gamma$ = {ds.attrs.get('gamma', '')}, linear law")
-    ax.set_title(title, fontsize="medium")
-    if legend and handles:
-        artists.append(ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0),
-                                 fontsize="small", frameon=False))
-    return PlotResult(fig, [ax], artists)
 
 
 def boundary_plot(

@@ -26,8 +26,9 @@ Progress = Callable[[int, int], None] | None
 def _compute(lams: np.ndarray, zetas: np.ndarray, dva: DvaSpec, gamma: float,
              progress: Progress) -> Any:
     from stickslip.sweep import occurrence_map
+    from stickslip.sweep.execution import ExecutionOptions
 
-    return occurrence_map(lams, zetas, dva, gamma, progress=progress)
+    return occurrence_map(lams, zetas, dva, gamma, execution=ExecutionOptions(progress=progress))
 
 
 def _verdicts(result: Any) -> np.ndarray:

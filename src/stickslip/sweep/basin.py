@@ -19,7 +19,7 @@ import hashlib
 import json
 import math
 import time
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -33,10 +33,8 @@ from stickslip.io.provenance import provenance_attributes
 from stickslip.kernel import engine
 from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
+from stickslip.sweep.execution import ExecutionOptions, execution_from_keywords
 from stickslip.sweep.executors import (
-    Backend,
-    check_backend,
-    check_chunk_size,
     default_chunk_size,
     execute,
     load_stored,
@@ -51,7 +49,6 @@ if TYPE_CHECKING:
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
-Progress = Callable[[int, int], None]
 
 #: Most samples of one basin computation (the summaries take about 150 bytes per sample).
 MAX_SAMPLES = 50_000_000
@@ -60,9 +57,6 @@ MAX_SAMPLES = 50_000_000
 #: of the resume store); the Dask backend cuts about 32 chunks (``default_chunk_size``).
 THREADS_CHUNK = 4096
 
-#: The disturbance box of :func:`basin_map` when none is given: deviations of the slider's
-#: ``xi`` and ``xi'`` from steady sliding (dimensionless, ``V / omega_n`` and ``V``).
-DEFAULT_MAP_BOX: dict[str, tuple[float, float]] = {"xi": (-2.0, 2.0), "v": (-2.0, 1.0)}
 
 
 def state_names(n_dof: int) -> list[str]:
@@ -98,7 +92,7 @@ def sample_box(structure: Structure, slider: Slider, n: int, box: Mapping[str, t
     """
     names = state_names(structure.n_dof)
     check_box(box, names)
-    n = _count(n)
+    n = sample_count(n)
     states = np.tile(equilibrium_state(structure, slider), (n, 1))
     rng = np.random.default_rng(seed)
     for name, (lo, hi) in box.items():
@@ -117,7 +111,8 @@ def check_box(box: Mapping[str, tuple[float, float]], names: Sequence[str]) -> N
             raise ValueError(f"box {name}={lo!r}:{hi!r} must be a finite interval with lo <= hi")
 
 
-def _count(n: int) -> int:
+def sample_count(n: int) -> int:
+    """``n`` as a sample count: a whole number from 1 to :data:`MAX_SAMPLES`, else ValueError."""
     if isinstance(n, bool) or int(n) != n or not 1 <= int(n) <= MAX_SAMPLES:
         raise ValueError(f"samples={n!r} must be a whole number from 1 to {MAX_SAMPLES:,}")
     return int(n)
@@ -230,7 +225,7 @@ class BasinResult:
             "long_name": "certified verdict from this initial state", **verdict_flag_attributes()})
         data["t_end"] = (("sample",), self.float_summary[:, engine.F_T_END], {
             "long_name": "dimensionless time at which the run stopped", "units": "1"})
-        configuration = _configuration(self.structure, self.slider, self.options)
+        configuration = basin_configuration(self.structure, self.slider, self.options)
         attrs = provenance_attributes(f"basin stability, {self.structure.name}, lambda = "
                                       f"{self.slider.lam:g}", configuration)
         return xr.Dataset(data, coords={"sample": np.arange(self.n)}, attrs=attrs)
@@ -294,13 +289,8 @@ def basin_stability(
     states: FloatArray,
     *,
     options: EngineOptions | None = None,
-    backend: Backend = "threads",
-    workers: int | None = None,
-    scheduler: str | None = None,
-    chunk_size: int | None = None,
-    progress: Progress | None = None,
-    store: str | Path | None = None,
-    overwrite: bool = False,
+    execution: ExecutionOptions | None = None,
+    **legacy: Any,
 ) -> BasinResult:
     """Certified verdict for every initial state of one system, on numba threads or Dask.
 
@@ -313,39 +303,28 @@ def basin_stability(
         :func:`states_from_physical`).
     options : EngineOptions, optional
         Horizon and budgets of every run.
-    backend : {"threads", "serial", "dask"}
-        As for maps (:func:`stickslip.occurrence_map`, :func:`stickslip.sweep.executors.execute`):
-        ``threads``: ``workers`` numba threads (all cores when None); ``serial``: one thread;
-        ``dask``: a ``dask.distributed`` cluster at ``scheduler``, or a ``LocalCluster`` of
-        ``workers`` single-threaded processes on 127.0.0.1. The labels are identical across
-        backends (every state is an independent, deterministic run).
-    workers : int, optional
-        Threads (``threads``) or worker processes (``dask`` without ``scheduler``); >= 1.
-    scheduler : str, optional
-        Address of a running Dask scheduler (``dask`` only).
-    chunk_size : int, optional
-        States per chunk (unit of progress, of Dask tasks and of the resume store); default
-        :data:`THREADS_CHUNK` in process, about 32 chunks with Dask. An existing store keeps
-        its own chunk size.
-    progress : callable, optional
-        ``progress(done, total)`` at the start and after every chunk (in completion order).
-    store : path, optional
-        Resume store folder (:class:`stickslip.sweep.store.ChunkStore`, as for maps): finished
-        chunks are written there as they complete, and a later call with the same system,
-        options and states computes only the missing ones, on any backend.
-    overwrite : bool
-        Discard a store of another configuration instead of raising ``StoreMismatch``.
+    execution : ExecutionOptions, optional
+        How the runs are carried out, as for maps (:class:`stickslip.sweep.execution.ExecutionOptions`):
+        backend (the labels are identical across backends: every state is an independent,
+        deterministic run), workers, scheduler, chunk size (states per chunk; default
+        :data:`THREADS_CHUNK` in process, about 32 chunks with Dask; an existing store keeps
+        its own), progress ``progress(done, total)`` (in completion order), resume store (a
+        later call with the same system, options and states computes only the missing
+        chunks, on any backend) and overwrite.
+    **legacy
+        ``backend=``, ``workers=``, ``scheduler=``, ``chunk_size=``, ``progress=``,
+        ``store=``, ``overwrite=``: deprecated spellings of the fields of ``execution``.
     """
+    run = execution_from_keywords(execution, legacy, "basin_stability")
+    backend, chunk_size, store, progress = run.backend, run.chunk_size, run.store, run.progress
     opts = options or EngineOptions()
-    backend = check_backend(backend, workers, scheduler)
     z0s = np.ascontiguousarray(states, dtype=np.float64)
     n_dof = structure.n_dof
     if z0s.ndim != 2 or z0s.shape[1] != 2 * n_dof:
         raise ValueError(f"states need shape (n, {2 * n_dof}) for a {n_dof}-DOF structure, got {z0s.shape}")
-    _count(z0s.shape[0])
+    sample_count(z0s.shape[0])
     if not np.all(np.isfinite(z0s)):
         raise ValueError("initial states have NaN or infinite entries")
-    check_chunk_size(chunk_size)
     system = BasinSystem.prepare(structure, slider)
     started = time.perf_counter()
     n = z0s.shape[0]
@@ -357,10 +336,11 @@ def basin_stability(
     if store is not None:
         from stickslip.sweep.store import ChunkStore
 
-        configuration = _configuration(structure, slider, opts)
+        configuration = basin_configuration(structure, slider, opts)
         configuration["states_sha256"] = hashlib.sha256(z0s.tobytes()).hexdigest()
         fingerprint = hashlib.sha256(json.dumps(configuration, sort_keys=True).encode()).hexdigest()
-        chunk_store = ChunkStore(store, fingerprint, configuration, n, int(chunk_size), overwrite=overwrite)
+        chunk_store = ChunkStore(store, fingerprint, configuration, n, int(chunk_size),
+                                 overwrite=run.overwrite)
         chunk_size = chunk_store.chunk_size
     chunks = make_chunks(n, int(chunk_size))
     missing = load_stored(chunk_store, chunks, fsum, isum)
@@ -368,8 +348,8 @@ def basin_stability(
     if progress is not None:
         progress(done, n)
     batches = [(c, z0s[c.start:c.stop]) for c in missing]
-    for chunk, f_chunk, i_chunk in execute(system, batches, opts, backend=backend, workers=workers,
-                                           scheduler=scheduler, task=run_state_batch):
+    for chunk, f_chunk, i_chunk in execute(system, batches, opts, backend=backend, workers=run.workers,
+                                           scheduler=run.scheduler, task=run_state_batch):
         fsum[chunk.start:chunk.stop], isum[chunk.start:chunk.stop] = f_chunk, i_chunk
         if chunk_store is not None:
             chunk_store.save(chunk.index, f_chunk, i_chunk)
@@ -404,211 +384,7 @@ def write_labels(result: BasinResult, path: str | Path, rows: Sequence[Mapping[s
     return Path(path)
 
 
-@dataclass
-class BasinMap:
-    """Result of :func:`basin_map`: the dataset and how long it took.
-
-    ``dataset`` has coordinates ``lambda`` and ``zeta`` (or ``lambda`` and ``delta`` for a map
-    over the slope of the linear friction law at one ``zeta``, kept in ``attrs["zeta"]``) and
-    the variables ``stick_slip_fraction`` (fraction of the fixed disturbance sample that ends
-    in stick-slip), ``standard_error`` (binomial), ``undetermined_fraction`` and
-    ``startup_verdict`` (the verdict from the start-up state, as in
-    :func:`stickslip.occurrence_map` on the same grid).
-    """
-
-    dataset: xr.Dataset
-    elapsed: float = 0.0
-
-    @property
-    def second(self) -> str:
-        """Name of the grid's second axis: ``"zeta"`` or ``"delta"``."""
-        return str(self.dataset["stick_slip_fraction"].dims[1])
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary of the map.
-
-        Keys: ``axes``, ``n_lambda``, ``n_zeta`` or ``n_delta`` (and the fixed ``zeta``),
-        ``n_cells``, ``samples``, ``seed``, ``box``, ``startup_counts`` (cells per start-up
-        verdict), ``mean_stick_slip_fraction``, ``max_stick_slip_fraction``,
-        ``max_undetermined_fraction``, ``disturbable_cells`` (cells whose start-up ends in
-        steady sliding although part of the disturbance sample ends in stick-slip: bistable
-        cells that the start-up verdict calls safe), ``elapsed_s``, ``samples_per_second``,
-        ``dva``, ``gamma``, ``friction``, ``t_max``.
-        """
-        ds = self.dataset
-        fraction = np.asarray(ds["stick_slip_fraction"].values)
-        startup = np.asarray(ds["startup_verdict"].values)
-        configuration = json.loads(ds.attrs["configuration"])
-        n_cells = int(fraction.size)
-        samples = int(configuration["samples"])
-        second: dict[str, Any] = {f"n_{self.second}": int(ds[self.second].size)}
-        if self.second == "delta":
-            second["zeta"] = float(ds.attrs["zeta"])
-        disturbable = (startup == Verdict.STEADY_SLIDING.code) & (fraction > 0.0)
-        return {
-            "axes": ["lambda", self.second],
-            "n_lambda": int(ds["lambda"].size),
-            **second,
-            "n_cells": n_cells,
-            "samples": samples,
-            "seed": configuration["seed"],
-            "box": configuration["box"],
-            "startup_counts": {v.value: int(np.count_nonzero(startup == v.code)) for v in VERDICTS},
-            "mean_stick_slip_fraction": float(fraction.mean()),
-            "max_stick_slip_fraction": float(fraction.max()),
-            "max_undetermined_fraction": float(np.asarray(ds["undetermined_fraction"].values).max()),
-            "disturbable_cells": int(np.count_nonzero(disturbable)),
-            "elapsed_s": self.elapsed,
-            "samples_per_second": n_cells * samples / self.elapsed if self.elapsed > 0 else None,
-            "dva": ds.attrs["dva"],
-            "gamma": configuration["gamma"],
-            "friction": ds.attrs["friction"],
-            "t_max": configuration["engine"]["t_max"],
-        }
-
-    def to_netcdf(self, path: str | Path, *, overwrite: bool = True) -> Path:
-        """Write the dataset atomically; see :func:`stickslip.io.netcdf.write_dataset`."""
-        from stickslip.io.netcdf import write_dataset
-
-        return write_dataset(self.dataset, path, overwrite=overwrite)
-
-    def plot(self, **kwargs: Any) -> Any:
-        """The fractions with the start-up boundary, a ``PlotResult``; see
-        :func:`stickslip.plot.basin.basin_map_plot`."""
-        from stickslip.plot.basin import basin_map_plot
-
-        return basin_map_plot(self, **kwargs)
-
-
-def basin_map(
-    lams: Any,
-    zetas: Any,
-    dva: Any = "none",
-    gamma: float = 2.0,
-    *,
-    samples: int = 500,
-    box: Mapping[str, tuple[float, float]] | None = None,
-    seed: int = 0,
-    friction: Any = None,
-    deltas: Any = None,
-    options: EngineOptions | None = None,
-    workers: int | None = None,
-    progress: Progress | None = None,
-) -> BasinMap:
-    """Basin stability over a ``(lambda, zeta)`` or ``(lambda, delta)`` grid, next to the
-    start-up verdict (issue 13, point 2).
-
-    Every cell is disturbed by the same fixed sample of ``samples`` deviations from its own
-    steady sliding, drawn uniformly in ``box`` with ``seed``, so cells differ only by their
-    dynamics. Each state gets a certified verdict (:func:`basin_stability`).
-
-    Parameters
-    ----------
-    lams, zetas : Axis, array_like or str
-        The grid (axis specs as in :func:`stickslip.occurrence_map`): ``lambda > 0`` and
-        damping ratios ``zeta >= 0``, dimensionless. With ``deltas``, ``zetas`` holds the one
-        fixed ``zeta``.
-    dva : DvaSpec or str
-        The foundation at each ``zeta``.
-    gamma : float
-        ``mu_k / (mu_s - mu_k)``, dimensionless.
-    samples : int
-        Disturbances per cell (1 to :data:`MAX_SAMPLES`).
-    box : mapping of str to (float, float), optional
-        Intervals of the deviations from steady sliding, by column of :func:`state_names`
-        (``xi``, ``v``, ``xi_a``, ``v_a``; positions in ``V / omega_n``, velocities in ``V``);
-        unnamed columns are not disturbed. Default :data:`DEFAULT_MAP_BOX`.
-    seed : int
-        Seed of the disturbance sample (drawn column after column, in the order of
-        :func:`state_names`: ``xi`` before ``v``).
-    friction : FrictionLaw, optional
-        Friction law of every cell (the paper's Coulomb law by default); not with ``deltas``.
-    deltas : Axis, array_like or str, optional
-        Slopes ``delta = sigma W / (2 sqrt(m k))`` of the linear law (dimensionless, > 0
-        velocity weakening): the map is then over ``(lambda, delta)`` at the one ``zeta``,
-        cell ``(i, j)`` with the law ``LinearFriction(delta_j)``, as in
-        :func:`stickslip.occurrence_map`.
-    options : EngineOptions, optional
-        Engine limits of every run.
-    workers : int, optional
-        Numba threads (all cores when None).
-    progress : callable, optional
-        ``progress(done_cells, total_cells)``.
-    """
-    import xarray as xr
-
-    from stickslip.model.friction import LinearFriction
-    from stickslip.sweep.occurrence import _DELTA_LAW, MapConfig, occurrence_map
-
-    started = time.perf_counter()
-    config = MapConfig.create(lams, zetas, dva, gamma, options=options, friction=friction, deltas=deltas)
-    check_backend("threads", workers, None)
-    n = _count(samples)
-    box = dict(DEFAULT_MAP_BOX if box is None else box)
-    structures = config.structures
-    names = state_names(structures.n_dof)
-    check_box(box, names)
-    rng = np.random.default_rng(seed)  # columns drawn in the order of state_names, whatever box's
-    deviations = {name: rng.uniform(*box[name], n) for name in names if name in box}
-    by_delta = config.delta is not None
-    startup = occurrence_map(config.lam, config.zeta, config.dva, config.gamma, options=config.options,
-                             friction=None if by_delta else config.friction, deltas=config.delta,
-                             workers=workers)
-    shape = config.shape
-    fraction = np.empty(shape)
-    undetermined = np.empty(shape)
-    total = config.n_cells
-    done = 0
-    if progress is not None:
-        progress(0, total)
-    for j in range(shape[1]):
-        # a (lambda, zeta) map: the structure of zeta_j and one law; (lambda, delta): the one
-        # structure and the linear law of delta_j
-        at = 0 if by_delta else j
-        law = LinearFriction(float(config.second_axis.values[j])) if by_delta else config.friction
-        structure = Structure(structures.masses[at], structures.dampings[at], structures.stiffnesses[at])
-        for i, lam in enumerate(config.lam.values):
-            slider = Slider(float(lam), gamma=config.gamma, friction=law)
-            states = np.tile(equilibrium_state(structure, slider), (n, 1))
-            for name, values in deviations.items():
-                states[:, names.index(name)] += values
-            result = basin_stability(structure, slider, states, options=config.options, workers=workers)
-            fraction[i, j] = result.fractions[Verdict.STICK_SLIP.value]
-            undetermined[i, j] = result.fractions[Verdict.UNDETERMINED.value]
-            done += 1
-            if progress is not None:
-                progress(done, total)
-    dims = ("lambda", config.second)
-    title = f"basin stability map, {config.dva.describe()}, gamma = {config.gamma:g}"
-    extra: dict[str, Any] = {}
-    if by_delta:
-        fixed = float(config.zeta.values[0])
-        title += f", over (lambda, delta) at zeta = {fixed:g}, friction {_DELTA_LAW}"
-        extra = {"zeta": fixed}
-    law_text = _DELTA_LAW if by_delta else config.friction.describe()
-    ds = xr.Dataset(
-        {
-            "stick_slip_fraction": (dims, fraction, {
-                "long_name": "fraction of the fixed disturbance sample ending in stick-slip", "units": "1"}),
-            "standard_error": (dims, np.sqrt(fraction * (1.0 - fraction) / n), {
-                "long_name": "binomial standard error of stick_slip_fraction", "units": "1"}),
-            "undetermined_fraction": (dims, undetermined, {
-                "long_name": "fraction of the sample without a certified verdict", "units": "1"}),
-            "startup_verdict": startup.dataset["verdict"],
-        },
-        coords={name: startup.dataset[name] for name in dims},
-        attrs={
-            **provenance_attributes(title, {**config.to_dict(), "samples": n, "seed": seed,
-                                            "box": {k: list(v) for k, v in box.items()}}),
-            "dva": config.dva.describe(),
-            "friction": law_text,
-            **extra,
-        },
-    )
-    return BasinMap(ds, time.perf_counter() - started)
-
-
-def _configuration(structure: Structure, slider: Slider, options: EngineOptions) -> dict[str, Any]:
+def basin_configuration(structure: Structure, slider: Slider, options: EngineOptions) -> dict[str, Any]:
     """The resolved configuration of a basin computation, JSON-ready (datasets, resume stores)."""
     return {
         "lambda": slider.lam, "gamma": slider.gamma, "zeta": structure.zeta,
@@ -616,3 +392,20 @@ def _configuration(structure: Structure, slider: Slider, options: EngineOptions)
         "damping": structure.damping.tolist(), "stiffness": structure.stiffness.tolist(),
         "friction": slider.friction.to_dict(), "engine": options.to_dict(),
     }
+
+
+#: Names that moved to :mod:`stickslip.sweep.basin_maps` (one system's basin here, maps there);
+#: still importable from here for one release, with a DeprecationWarning.
+_MOVED_TO_BASIN_MAP = ("BasinMap", "DEFAULT_MAP_BOX", "basin_map")
+
+
+def __getattr__(name: str) -> Any:
+    if name in _MOVED_TO_BASIN_MAP:
+        import warnings
+
+        from stickslip.sweep import basin_maps as module
+
+        warnings.warn(f"stickslip.sweep.basin.{name} moved to stickslip.sweep.basin_maps.{name}; the old "
+                      "path will be removed in the next release", DeprecationWarning, stacklevel=2)
+        return getattr(module, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -39,6 +39,7 @@ from stickslip.model._validate import at_most, non_negative, positive
 from stickslip.model.dva import DvaSpec
 from stickslip.model.friction import CoulombFriction, FrictionLaw, LinearFriction
 from stickslip.model.parameters import Foundation
+from stickslip.sweep.execution import ExecutionOptions, execution_from_keywords
 from stickslip.sweep.executors import CellBatch, StructureSet, run_batch
 from stickslip.sweep.grid import Axis, as_axis
 
@@ -284,6 +285,30 @@ class BoundaryResult:
         return boundary_plot(self, **kwargs)
 
 
+def _checked_scan(lam_min: float, lam_max: float, n_scan: int, rtol: float,
+                  n_zeta: int) -> tuple[float, float, float]:
+    """``(lam_min, lam_max, rtol)`` of a boundary scan, checked; a one-line ValueError otherwise.
+
+    ``0 < lam_min < lam_max`` finite, ``n_scan`` a whole number >= 2 with ``n_scan * n_zeta`` at
+    most :data:`MAX_SCAN_RUNS` (the scan's results are held in memory at once), ``0 < rtol < 1``.
+    """
+    lam_min = at_most("lam_min", positive("lam_min", lam_min))
+    lam_max = at_most("lam_max", positive("lam_max", lam_max))
+    if lam_max <= lam_min:
+        raise ValueError(f"lam_max={lam_max!r} must exceed lam_min={lam_min!r}")
+    if isinstance(n_scan, bool) or int(n_scan) != n_scan or n_scan < 2:
+        raise ValueError(f"n_scan={n_scan!r} must be a whole number of at least 2")
+    if n_scan * n_zeta > MAX_SCAN_RUNS:
+        raise ValueError(
+            f"n_scan={n_scan!r} at {n_zeta} zeta values is {n_scan * n_zeta:,} scan runs, "
+            f"above the limit of {MAX_SCAN_RUNS:,} (their results are held in memory at once)"
+        )
+    rtol = positive("rtol", rtol)
+    if rtol >= 1.0:
+        raise ValueError(f"rtol={rtol!r} must be below 1")
+    return lam_min, lam_max, rtol
+
+
 def stick_slip_boundary(
     zetas: Axis | ArrayLike,
     dva: DvaSpec | str = "none",
@@ -295,10 +320,11 @@ def stick_slip_boundary(
     rtol: float = 1e-6,
     t_max: float | None = None,
     options: EngineOptions | None = None,
-    workers: int | None = None,
     friction: FrictionLaw | None = None,
     criterion: str = "startup",
     existence_seeds: int = 8,
+    execution: ExecutionOptions | None = None,
+    **legacy: Any,
 ) -> BoundaryResult:
     """Every critical ``lambda`` in ``[lam_min, lam_max]`` at each ``zeta``, by scan and bisection.
 
@@ -320,8 +346,6 @@ def stick_slip_boundary(
         Time horizon of each simulation (dimensionless); overrides ``options.t_max``.
     options : EngineOptions, optional
         Engine limits (defaults of :class:`EngineOptions`).
-    workers : int, optional
-        Numba threads (all cores when None).
     friction : FrictionLaw, optional
         Friction law of every run (the paper's Coulomb law by default).
     criterion : {"startup", "existence"}
@@ -333,31 +357,26 @@ def stick_slip_boundary(
         foundation).
     existence_seeds : int
         Random starts of each cycle search (``existence`` only).
+    execution : ExecutionOptions, optional
+        ``workers``: numba threads (all cores when None; ``serial`` is one). The bisection runs
+        in this process, so the dask backend, chunk size, store and progress are refused.
+    **legacy
+        ``workers=``: deprecated spelling of ``execution=ExecutionOptions(workers=...)``.
 
     Returns
     -------
     BoundaryResult
     """
+    run = execution_from_keywords(execution, legacy, "stick_slip_boundary")
+    run.check_in_process("stick_slip_boundary", progress=False)
+    workers = run.threads
     started = time.perf_counter()
     spec = DvaSpec.parse(dva) if isinstance(dva, str) else dva
     axis = as_axis(zetas, "zeta")
     for value in axis.values.tolist():
         non_negative("zeta", value)
     gamma = at_most("gamma", non_negative("gamma", gamma))
-    lam_min = at_most("lam_min", positive("lam_min", lam_min))
-    lam_max = at_most("lam_max", positive("lam_max", lam_max))
-    if lam_max <= lam_min:
-        raise ValueError(f"lam_max={lam_max!r} must exceed lam_min={lam_min!r}")
-    if isinstance(n_scan, bool) or int(n_scan) != n_scan or n_scan < 2:
-        raise ValueError(f"n_scan={n_scan!r} must be a whole number of at least 2")
-    if n_scan * len(axis) > MAX_SCAN_RUNS:
-        raise ValueError(
-            f"n_scan={n_scan!r} at {len(axis)} zeta values is {n_scan * len(axis):,} scan runs, "
-            f"above the limit of {MAX_SCAN_RUNS:,} (their results are held in memory at once)"
-        )
-    rtol = positive("rtol", rtol)
-    if rtol >= 1.0:
-        raise ValueError(f"rtol={rtol!r} must be below 1")
+    lam_min, lam_max, rtol = _checked_scan(lam_min, lam_max, n_scan, rtol, len(axis))
     engine_options = (options or EngineOptions()).with_t_max(t_max)
     law = friction or CoulombFriction()
     structures = StructureSet.resolve(spec, axis.values)

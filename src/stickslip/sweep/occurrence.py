@@ -19,12 +19,10 @@ layout) is shared: the second axis of the grid is ``zeta`` or ``delta``.
 
 from __future__ import annotations
 
-import functools
-import hashlib
 import json
 import time
-from collections.abc import Callable, Iterator, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -35,255 +33,27 @@ from stickslip.analysis.simulation import EngineOptions
 from stickslip.analysis.verdict import (
     VERDICTS,
     Verdict,
-    status_flag_attributes,
-    verdict_codes,
-    verdict_flag_attributes,
 )
-from stickslip.io.provenance import package_version, provenance_attributes
 from stickslip.kernel import engine
-from stickslip.model._validate import non_negative, positive
 from stickslip.model.dva import DvaSpec
-from stickslip.model.friction import CoulombFriction, FrictionLaw, LinearFriction
-from stickslip.model.initial import STARTUP_DESCRIPTION
-from stickslip.model.parameters import Foundation
+from stickslip.model.friction import CoulombFriction, FrictionLaw
+from stickslip.sweep.execution import ExecutionOptions, execution_from_keywords
 from stickslip.sweep.executors import (
-    Backend,
     CellBatch,
     Chunk,
-    StructureSet,
-    check_backend,
-    check_chunk_size,
     default_chunk_size,
     execute,
     load_stored,
     make_chunks,
 )
-from stickslip.sweep.grid import Axis, as_axis
+from stickslip.sweep.grid import Axis
+from stickslip.sweep.map_config import DELTA_LAW, MapConfig, dva_from_config
+from stickslip.sweep.map_data import map_axes, map_dataset, stored_foundations
+from stickslip.sweep.renamed import warn_renamed
 from stickslip.sweep.store import ChunkStore
 
 if TYPE_CHECKING:
     import xarray as xr
-
-Progress = Callable[[int, int], None]
-
-_NAN_COMMENT = "NaN (the _FillValue) where no stick-slip cycle was certified (verdict is not stick-slip)"
-_FLOAT_VARIABLES: dict[str, tuple[int, dict[str, str]]] = {
-    "period": (engine.F_PERIOD, {
-        "long_name": "period of the certified stick-slip cycle",
-        "units": "1 (dimensionless time tau = omega_n t)",
-        "comment": _NAN_COMMENT,
-    }),
-    "amplitude": (engine.F_AMPLITUDE, {
-        "long_name": "half the peak-to-peak of xi over the certified cycle",
-        "units": "1 (V / omega_n)",
-        "comment": _NAN_COMMENT,
-    }),
-    "stick_ratio": (engine.F_STICK_RATIO, {
-        "long_name": "fraction of the cycle period spent stuck",
-        "units": "1",
-        "comment": _NAN_COMMENT,
-    }),
-    "max_velocity": (engine.F_MAX_VELOCITY, {
-        "long_name": "largest slider velocity xi' reached in the run",
-        "units": "1 (belt speed V)",
-    }),
-    "t_end": (engine.F_T_END, {
-        "long_name": "dimensionless time at which the run stopped (certificate or horizon)",
-        "units": "1 (dimensionless time tau)",
-    }),
-}
-
-
-@dataclass(frozen=True)
-class MapConfig:
-    """Everything that determines an occurrence map (its fingerprint is a hash of it).
-
-    Parameters
-    ----------
-    lam, zeta : Axis
-        Grid axes, dimensionless (``lambda > 0``, ``zeta >= 0``).
-    dva : DvaSpec
-        The foundation, resolved at each ``zeta`` (``none`` is the rigid base).
-    gamma : float
-        ``mu_k / (mu_s - mu_k)``, dimensionless (the paper uses 2).
-    options : EngineOptions
-        Engine limits of every cell.
-    friction : FrictionLaw
-        The friction law of every cell (default: the paper's Coulomb law).
-    delta : Axis, optional
-        Slopes ``delta`` of the linear friction law (dimensionless, finite): the grid is then
-        ``(lambda, delta)`` at the one value of ``zeta``, cell ``(i, j)`` has the law
-        ``LinearFriction(delta[j])`` and ``friction`` stays the Coulomb default.
-    """
-
-    lam: Axis
-    zeta: Axis
-    dva: DvaSpec = field(default_factory=DvaSpec)
-    gamma: float = 2.0
-    options: EngineOptions = field(default_factory=EngineOptions)
-    friction: FrictionLaw = field(default_factory=CoulombFriction)
-    delta: Axis | None = None
-
-    def __post_init__(self) -> None:
-        for value in self.lam.values.tolist():
-            positive("lambda", value)
-        for value in self.zeta.values.tolist():
-            non_negative("zeta", value)
-        object.__setattr__(self, "gamma", non_negative("gamma", self.gamma))
-        if self.delta is not None:
-            if len(self.zeta) != 1:
-                raise ValueError(f"a (lambda, delta) map is at one fixed zeta; got {len(self.zeta)} "
-                                 "zeta values")
-            if not isinstance(self.friction, CoulombFriction):
-                raise ValueError("a (lambda, delta) map sets the linear law LinearFriction(delta) "
-                                 f"in every cell; it cannot also take the friction law "
-                                 f"{self.friction.describe()!r}")
-            for value in self.delta.values.tolist():
-                LinearFriction(value)  # finite, or a one-line ValueError
-
-    @classmethod
-    def create(
-        cls,
-        lams: Axis | ArrayLike,
-        zetas: Axis | ArrayLike,
-        dva: DvaSpec | str = "none",
-        gamma: float = 2.0,
-        *,
-        options: EngineOptions | None = None,
-        t_max: float | None = None,
-        friction: FrictionLaw | None = None,
-        deltas: Axis | ArrayLike | None = None,
-    ) -> MapConfig:
-        """The configuration of :func:`occurrence_map` for these arguments (same parsing rules).
-
-        Lets a caller know the map's :meth:`fingerprint` before computing it (the command line
-        uses it to recognise an output file that already holds this map).
-        """
-        spec = DvaSpec.parse(dva) if isinstance(dva, str) else dva
-        engine_options = (options or EngineOptions()).with_t_max(t_max)
-        if deltas is not None and friction is not None:
-            raise ValueError("deltas and friction exclude each other: a (lambda, delta) map has "
-                             "the linear law LinearFriction(delta) in every cell")
-        return cls(as_axis(lams, "lambda"), as_axis(zetas, "zeta"), spec, gamma, engine_options,
-                   friction or CoulombFriction(),
-                   None if deltas is None else as_axis(deltas, "delta"))
-
-    @property
-    def second(self) -> str:
-        """Name of the grid's second axis: ``"zeta"``, or ``"delta"`` for a (lambda, delta) map."""
-        return "zeta" if self.delta is None else "delta"
-
-    @property
-    def second_axis(self) -> Axis:
-        """The grid's second axis (:attr:`zeta` or :attr:`delta`)."""
-        return self.zeta if self.delta is None else self.delta
-
-    @functools.cached_property
-    def structures(self) -> StructureSet:
-        """The structure at every ``zeta`` of the grid."""
-        return StructureSet.resolve(self.dva, self.zeta.values)
-
-    @property
-    def shape(self) -> tuple[int, int]:
-        """``(n_lambda, n_zeta)``, or ``(n_lambda, n_delta)``."""
-        return len(self.lam), len(self.second_axis)
-
-    @property
-    def n_cells(self) -> int:
-        """Number of grid cells."""
-        return len(self.lam) * len(self.second_axis)
-
-    def to_dict(self) -> dict[str, Any]:
-        """The full resolved configuration, JSON-ready (floats kept to full precision).
-
-        The friction law appears only when it is not the paper's Coulomb law, and the
-        ``delta`` axis only for a (lambda, delta) map, so that the configuration (and
-        fingerprint) of a Coulomb map is what it was before friction laws.
-        """
-        friction: dict[str, Any] = {} if isinstance(self.friction, CoulombFriction) else {
-            "friction": {**self.friction.to_dict(), "description": self.friction.describe()}}
-        if self.delta is not None:
-            friction = {
-                "friction": {"law": "linear", "delta": "per cell: the delta axis",
-                             "description": _DELTA_LAW},
-                "delta": _axis_dict(self.delta),
-                "axes": ["lambda", "delta"],
-            }
-        return {
-            **friction,
-            "lambda": _axis_dict(self.lam),
-            "zeta": _axis_dict(self.zeta),
-            "dva": {
-                "text": self.dva.as_text(),
-                "kind": self.dva.kind,
-                "k_scale": self.dva.k_scale,
-                "description": self.dva.describe(),
-            },
-            "foundations": [
-                None if f is None else [f.mass_ratio, f.stiffness_ratio, f.damping_ratio]
-                for f in self.structures.foundations
-            ],
-            "gamma": self.gamma,
-            "engine": self.options.to_dict(),
-            "initial_condition": STARTUP_DESCRIPTION,
-            "package_version": package_version(),
-        }
-
-    def fingerprint(self) -> str:
-        """SHA-256 of the resolved configuration: grids, foundations, gamma, engine, version."""
-        text = json.dumps(self.to_dict(), sort_keys=True, allow_nan=False)
-        return hashlib.sha256(text.encode()).hexdigest()
-
-    def batch(self, chunk: Chunk) -> CellBatch:
-        """The cells of ``chunk``: flat index ``c = i_lambda * n_second + j``.
-
-        A (lambda, zeta) map indexes the structure of ``zeta_j``; a (lambda, delta) map has
-        one structure and the law ``LinearFriction(delta_j)`` per cell.
-        """
-        cells = np.arange(chunk.start, chunk.stop, dtype=np.int64)
-        n_second = self.shape[1]
-        lams = np.array(self.lam.values[cells // n_second])
-        if self.delta is None:
-            return CellBatch(structure_index=cells % n_second, lams=lams, gamma=self.gamma,
-                             friction=self.friction)
-        deltas = self.delta.values[cells % n_second]
-        return CellBatch(structure_index=np.zeros(cells.size, dtype=np.int64), lams=lams,
-                         gamma=self.gamma, laws=tuple(LinearFriction(float(d)) for d in deltas))
-
-
-#: How the cells of a (lambda, delta) map are computed (``describe()`` of their laws).
-_DELTA_LAW = "linear, delta per cell (the delta axis), exact (floored at zero)"
-
-
-def _axis_dict(axis: Axis) -> dict[str, Any]:
-    return {"spec": axis.spec, "spacing": axis.spacing, "values": [float(v) for v in axis.values]}
-
-
-def stored_foundations(dataset: xr.Dataset) -> list[Foundation | None]:
-    """The foundation at each ``zeta`` of a map dataset (``None`` everywhere for the rigid base).
-
-    A (lambda, delta) map has one ``zeta``, hence one foundation.
-    """
-    n_zeta = int(dataset.sizes["zeta"]) if "zeta" in dataset.dims else 1
-    if "foundation_mass_ratio" not in dataset:
-        return [None] * n_zeta
-    return [
-        Foundation(float(m), float(k), float(c))
-        for m, k, c in zip(np.atleast_1d(dataset["foundation_mass_ratio"].values),
-                           np.atleast_1d(dataset["foundation_stiffness_ratio"].values),
-                           np.atleast_1d(dataset["foundation_damping_ratio"].values), strict=True)
-    ]
-
-
-def map_axes(dataset: xr.Dataset) -> tuple[str, str]:
-    """``("lambda", "zeta")`` or ``("lambda", "delta")``: the dimensions of a map dataset."""
-    return ("lambda", "delta") if "delta" in dataset.dims else ("lambda", "zeta")
-
-
-def dva_from_config(configuration: dict[str, Any]) -> DvaSpec:
-    """The :class:`DvaSpec` recorded in a map's configuration (``MapConfig.to_dict``)."""
-    dva = configuration["dva"]
-    return DvaSpec.parse(str(dva["text"]), float(dva["k_scale"]))
 
 
 @dataclass
@@ -324,14 +94,20 @@ class OccurrenceMap:
         return iter((self.lam, self.second_values, self.verdict))
 
     @property
-    def second(self) -> str:
+    def second_axis_name(self) -> str:
         """Name of the second axis: ``"zeta"``, or ``"delta"`` for a (lambda, delta) map."""
         return map_axes(self.dataset)[1]
 
     @property
+    def second(self) -> str:
+        """Deprecated name of :attr:`second_axis_name` (removed in the next release)."""
+        warn_renamed("OccurrenceMap.second", "OccurrenceMap.second_axis_name")
+        return self.second_axis_name
+
+    @property
     def second_values(self) -> NDArray[np.float64]:
         """Values of the second axis (:attr:`zeta` or :attr:`delta`)."""
-        return np.asarray(self.dataset[self.second].values)
+        return np.asarray(self.dataset[self.second_axis_name].values)
 
     @property
     def lam(self) -> NDArray[np.float64]:
@@ -341,14 +117,14 @@ class OccurrenceMap:
     @property
     def zeta(self) -> NDArray[np.float64]:
         """The ``zeta`` axis (dimensionless); one value, the fixed one, for a (lambda, delta) map."""
-        if self.second == "delta":
+        if self.second_axis_name == "delta":
             return np.array([float(self.dataset.attrs["zeta"])])
         return np.asarray(self.dataset["zeta"].values)
 
     @property
     def delta(self) -> NDArray[np.float64] | None:
         """The ``delta`` axis of a (lambda, delta) map (dimensionless); ``None`` otherwise."""
-        return np.asarray(self.dataset["delta"].values) if self.second == "delta" else None
+        return np.asarray(self.dataset["delta"].values) if self.second_axis_name == "delta" else None
 
     @property
     def verdict(self) -> NDArray[np.int8]:
@@ -402,7 +178,7 @@ class OccurrenceMap:
         ``zeta`` only when it is the map's fixed value, or omitted).
         """
         i = int(np.argmin(np.abs(self.lam - lam)))
-        if self.second == "zeta":
+        if self.second_axis_name == "zeta":
             if zeta is None or delta is not None:
                 raise ValueError("this map is over (lambda, zeta): give lam and zeta, not delta")
             value = zeta
@@ -487,13 +263,8 @@ def occurrence_map(
     options: EngineOptions | None = None,
     friction: FrictionLaw | None = None,
     deltas: Axis | ArrayLike | None = None,
-    backend: Backend = "threads",
-    workers: int | None = None,
-    scheduler: str | None = None,
-    chunk_size: int | None = None,
-    progress: Progress | None = None,
-    store: str | Path | None = None,
-    overwrite: bool = False,
+    execution: ExecutionOptions | None = None,
+    **legacy: Any,
 ) -> OccurrenceMap:
     """Classify every ``(lambda, zeta)`` cell of a grid by certified simulation (Figs. 8, 11).
 
@@ -525,34 +296,24 @@ def occurrence_map(
         velocity weakening), e.g. ``"-0.1:0.3:41"``: the map is then over ``(lambda, delta)``
         with the law ``LinearFriction(delta)`` in each cell; ``zetas`` must hold exactly one
         value (the fixed primary damping) and ``friction`` must be left out.
-    backend : {"threads", "serial", "dask"}
-        ``threads``: numba threads (``workers`` of them, all cores when None);
-        ``serial``: one thread; ``dask``: a ``dask.distributed`` cluster at ``scheduler``
-        or a ``LocalCluster`` of ``workers`` processes on 127.0.0.1. The results are
-        bit-identical across backends.
-    workers : int, optional
-        Threads (``threads``) or worker processes (``dask`` without ``scheduler``).
-    scheduler : str, optional
-        Address of a running Dask scheduler (``dask`` backend only).
-    chunk_size : int, optional
-        Cells per chunk (unit of progress, of Dask tasks and of the resume store). An
-        existing store keeps its own chunk size.
-    progress : callable, optional
-        ``progress(done_cells, total_cells)``, called once at the start and after every chunk.
-    store : path, optional
-        Resume store folder: finished chunks are written there as they complete, and a
-        later call with the same configuration computes only the missing ones.
-    overwrite : bool
-        Discard a store of another configuration instead of raising ``StoreMismatch``.
+    execution : ExecutionOptions, optional
+        How the cells run: backend (``threads``, ``serial`` or ``dask``; bit-identical
+        results), workers, scheduler, chunk size (the unit of progress, of Dask tasks and of
+        the resume store; an existing store keeps its own), progress callback, resume store
+        and overwrite (:class:`stickslip.sweep.execution.ExecutionOptions`).
+    **legacy
+        ``backend=``, ``workers=``, ``scheduler=``, ``chunk_size=``, ``progress=``,
+        ``store=``, ``overwrite=``: deprecated spellings of the fields of ``execution``
+        (a :class:`DeprecationWarning`; removed in the next release).
 
     Returns
     -------
     OccurrenceMap
     """
+    run = execution_from_keywords(execution, legacy, "occurrence_map")
     config = MapConfig.create(lams, zetas, dva, gamma, options=options, t_max=t_max,
                               friction=friction, deltas=deltas)
-    backend = check_backend(backend, workers, scheduler)
-    check_chunk_size(chunk_size)
+    backend, chunk_size, store, progress = run.backend, run.chunk_size, run.store, run.progress
     started = time.perf_counter()
     n_cells = config.n_cells
     size = int(chunk_size) if chunk_size is not None else default_chunk_size(n_cells, backend)
@@ -560,7 +321,7 @@ def occurrence_map(
     chunk_store = None
     if store is not None:
         chunk_store = ChunkStore(store, fingerprint, config.to_dict(), n_cells, size,
-                                 overwrite=overwrite)
+                                 overwrite=run.overwrite)
         size = chunk_store.chunk_size
     chunks = make_chunks(n_cells, size)
     float_summary = np.full((n_cells, engine.N_FLOAT), np.nan)
@@ -571,7 +332,7 @@ def occurrence_map(
         progress(done, n_cells)
     batches: Sequence[tuple[Chunk, CellBatch]] = [(c, config.batch(c)) for c in missing]
     for chunk, f_chunk, i_chunk in execute(config.structures, batches, config.options,
-                                           backend=backend, workers=workers, scheduler=scheduler):
+                                           backend=backend, workers=run.workers, scheduler=run.scheduler):
         float_summary[chunk.start:chunk.stop] = f_chunk
         int_summary[chunk.start:chunk.stop] = i_chunk
         if chunk_store is not None:
@@ -594,98 +355,16 @@ def occurrence_map(
     )
 
 
-def map_dataset(
-    config: MapConfig, float_summary: NDArray[np.float64], int_summary: NDArray[np.int64], fingerprint: str
-) -> xr.Dataset:
-    """Assemble the dataset of DESIGN.md section 6 from the engine's per-cell summaries.
 
-    Parameters
-    ----------
-    config : MapConfig
-    float_summary, int_summary : ndarray, shapes ``(n_cells, N_FLOAT)`` and ``(n_cells, N_INT)``
-        Summaries in flat lambda-major order (``c = i_lambda * n_zeta + j_zeta``).
-    fingerprint : str
-        :meth:`MapConfig.fingerprint`, stored in the attributes.
-    """
-    import xarray as xr
-
-    shape = config.shape
-    dims = ("lambda", config.second)
-    status = int_summary[:, engine.I_STATUS].reshape(shape)
-    data_vars: dict[str, Any] = {
-        "verdict": (dims, verdict_codes(status), {
-            "long_name": "certified stick-slip verdict from the startup state",
-            **verdict_flag_attributes(),
-            "comment": "undetermined: no certificate before t_max or max_events (see certificate)",
-        }),
-        "certificate": (dims, status.astype(np.int8), {
-            "long_name": "how the run ended: the certificate of the verdict, or why there is none",
-            **status_flag_attributes(),
-        }),
-        "n_stick": (dims, int_summary[:, engine.I_N_STICK].reshape(shape).astype(np.int32), {
-            "long_name": "number of stick phases in the run, the initial one included",
-            "units": "1",
-        }),
-        "cycle_k": (dims, int_summary[:, engine.I_CYCLE_K].reshape(shape).astype(np.int16), {
-            "long_name": "stick phases per certified cycle (period-k cycle); 0 without a cycle",
-            "units": "1",
-        }),
-    }
-    for name, (column, var_attrs) in _FLOAT_VARIABLES.items():
-        data_vars[name] = (dims, float_summary[:, column].reshape(shape).astype(np.float64), var_attrs)
-    foundations = config.structures.foundations
-    if foundations and foundations[0] is not None:
-        for name, attr, long_name in (
-            ("foundation_mass_ratio", "mass_ratio", "foundation mass ratio M = m_a / m"),
-            ("foundation_stiffness_ratio", "stiffness_ratio", "foundation stiffness ratio K = sqrt(k_a/k)"),
-            ("foundation_damping_ratio", "damping_ratio", "foundation damping zeta_a = c_a / (2 sqrt(m k))"),
-        ):
-            values = np.array([getattr(f, attr) for f in foundations], dtype=np.float64)
-            if config.delta is None:
-                data_vars[name] = (("zeta",), values, {"long_name": long_name, "units": "1"})
-            else:  # the one foundation of the fixed zeta
-                data_vars[name] = ((), values[0], {"long_name": long_name, "units": "1"})
-    coords = {
-        "lambda": ("lambda", np.array(config.lam.values), {
-            "long_name": "lambda = (mu_s - mu_k) W / (V sqrt(m k))",
-            "units": "1",
-            "spacing": config.lam.spacing,
-        }),
-    }
-    if config.delta is None:
-        coords["zeta"] = ("zeta", np.array(config.zeta.values), {
-            "long_name": "damping ratio zeta = c / (2 sqrt(m k))",
-            "units": "1",
-            "spacing": config.zeta.spacing,
-        })
-    else:
-        coords["delta"] = ("delta", np.array(config.delta.values), {
-            "long_name": "friction slope delta = sigma W / (2 sqrt(m k)), > 0 velocity weakening",
-            "units": "1",
-            "spacing": config.delta.spacing,
-        })
-    law = "" if isinstance(config.friction, CoulombFriction) else f", friction {config.friction.describe()}"
-    description = config.friction.describe()
-    if config.delta is not None:
-        zeta = float(config.zeta.values[0])
-        law = f", over (lambda, delta) at zeta = {zeta:g}, friction {_DELTA_LAW}"
-        description = _DELTA_LAW
-    attrs: dict[str, Any] = provenance_attributes(
-        f"stick-slip occurrence map, {config.dva.describe()}, gamma = {config.gamma:g}{law}",
-        config.to_dict(),
-    )
-    attrs.update({
-        "source": f"stickslip {package_version()}: exact piecewise-linear engine, certified verdicts",
-        "references": "Discussion of Stick-Slip Dynamics of 2DOF Sliding Systems Based on Dynamic "
-                      "Vibration Absorbers Analysis (Figs. 8 and 11)",
-        "initial_condition": STARTUP_DESCRIPTION,
-        "t_max": config.options.t_max,
-        "gamma": config.gamma,
-        "dva": config.dva.describe(),
-        "friction": description,
-        "config_fingerprint": fingerprint,
-    })
-    if config.delta is not None:
-        attrs["zeta"] = float(config.zeta.values[0])
-    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
-
+#: Kept importable from here (the modules this one was split into in issue 17).
+__all__ = [
+    "DELTA_LAW",
+    "VERDICTS",
+    "MapConfig",
+    "OccurrenceMap",
+    "dva_from_config",
+    "map_axes",
+    "map_dataset",
+    "occurrence_map",
+    "stored_foundations",
+]

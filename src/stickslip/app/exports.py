@@ -1,0 +1,75 @@
+"""The web app's downloads: the design report as JSON and the time histories as CSV."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from collections.abc import Mapping
+from typing import Any
+
+from stickslip import Mode
+from stickslip.analysis.simulation import SimulationResult
+from stickslip.app.inputs import DEFAULTS, FRICTION_FIELDS, FRICTION_TABLE_NAME
+from stickslip.io.provenance import package_version
+from stickslip.model.initial import STARTUP_DESCRIPTION
+from stickslip.model.physical import PhysicalSystem
+
+
+def report_json(raw: Mapping[str, str], report: Mapping[str, Any],
+                runs: Mapping[str, SimulationResult], optimum: Mapping[str, Any] | None) -> str:
+    """The downloadable design report: inputs as typed, the design report, the two runs.
+
+    The friction inputs are those of the chosen law (``friction_law`` and its fields, the
+    uploaded table's file name).
+    """
+    summaries = {}
+    for name, result in runs.items():
+        summary = result.to_dict()
+        summary.pop("events")  # thousands of entries; the CSV has the trajectory
+        summaries[name] = summary
+    payload = {
+        "stickslip_version": package_version(),
+        "inputs": {key: raw.get(key, "") for key in DEFAULTS} | friction_inputs(raw),
+        "initial_condition": STARTUP_DESCRIPTION,
+        "design": dict(report),
+        "operating_point": summaries,
+        "stick_slip_optimal_foundation": dict(optimum) if optimum is not None else None,
+    }
+    return json.dumps(payload, indent=2, allow_nan=False)
+
+
+def friction_inputs(raw: Mapping[str, str]) -> dict[str, str]:
+    """The friction inputs as typed: ``friction_law``, its fields and the uploaded table's name."""
+    law = str(raw.get("friction_law", "coulomb") or "coulomb")
+    out = {"friction_law": law} | {key: str(raw.get(key, "")) for key in FRICTION_FIELDS.get(law, ())}
+    if law == "table":
+        out[FRICTION_TABLE_NAME] = str(raw.get(FRICTION_TABLE_NAME, ""))
+    return out
+
+
+def history_csv(runs: Mapping[str, SimulationResult], system: PhysicalSystem,
+                n_points: int = 2000) -> str:
+    """The trajectories of the runs, dimensionless and in SI, one row per sample.
+
+    Columns: ``structure``, ``tau``, ``t_s``, ``xi``, ``xi_dot``, ``xi_a``, ``xi_a_dot``
+    (empty on the rigid base), ``x_m`` (slider displacement from its kinetic-friction
+    equilibrium, m), ``v_m_s`` (slider velocity, m/s), ``mode``.
+    """
+    buffer = io.StringIO()
+    writer = csv.writer(buffer)
+    writer.writerow(["structure", "tau", "t_s", "xi", "xi_dot", "xi_a", "xi_a_dot", "x_m", "v_m_s",
+                     "mode"])
+    for name, result in runs.items():
+        t, q, v, modes = result.time_history(n_points=n_points)
+        has_foundation = q.shape[1] > 1
+        for i in range(t.size):
+            writer.writerow([
+                name, repr(float(t[i])), repr(float(t[i] * system.time_scale)),
+                repr(float(q[i, 0])), repr(float(v[i, 0])),
+                repr(float(q[i, 1])) if has_foundation else "",
+                repr(float(v[i, 1])) if has_foundation else "",
+                repr(float(q[i, 0] * system.length_scale)), repr(float(v[i, 0] * system.speed)),
+                Mode(int(modes[i])).label,
+            ])
+    return buffer.getvalue()
