@@ -12,7 +12,7 @@ import numpy as np
 import streamlit as st
 
 from stickslip.analysis.design import design_foundation
-from stickslip.analysis.simulation import SimulationResult, simulate
+from stickslip.analysis.simulation import EngineOptions, SimulationResult, simulate
 from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
 from stickslip.app.inputs import FoundationKey, SiKey, system_from_key
 from stickslip.model.dva import DvaSpec
@@ -57,7 +57,8 @@ def operating_point_runs(lam: float, zeta: float, gamma: float, foundation: Foun
     structures = _structures(zeta, foundation)
     certified = max(simulate(s, slider, record=False).t_end for s in structures.values())
     horizon = min(max(PLOT_HORIZON[0], 1.5 * certified), PLOT_HORIZON[1])
-    return {name: simulate(s, slider, t_max=horizon, run_to_t_max=True)
+    return {name: simulate(s, slider, options=EngineOptions(t_max=horizon),
+                           run_to_t_max=True)
             for name, s in structures.items()}
 
 
