@@ -11,6 +11,7 @@ Finished chunks are never removed, and nothing is undone on Ctrl-C: that is work
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 from types import TracebackType
 
@@ -26,7 +27,7 @@ class UndoOnRefusal:
         Resume store folders (:class:`stickslip.sweep.store.ChunkStore`) it may create.
     """
 
-    def __init__(self, folders: list[Path], stores: list[Path] = []) -> None:  # noqa: B006 - read only
+    def __init__(self, folders: Sequence[Path], stores: Sequence[Path] = ()) -> None:
         self._new_folders: list[Path] = []
         for folder in folders:
             missing = []
