@@ -94,9 +94,10 @@ def test_ctrl_c_in_a_long_chunk(args: list[str], store: str, outputs: list[str],
 @pytest.mark.slow
 def test_ctrl_c_in_basin_map(tmp_path: Path) -> None:
     # no resume store: nothing written, the lock released
-    process = _start(["basin-map", "--lam", "0.5:6:6", "--zeta", "0.05:0.3:4", "--samples", "3000",
+    # 60 cells x 20,000 samples: minutes of work, so the signal lands in a cell's chunk
+    process = _start(["basin-map", "--lam", "0.5:6:10", "--zeta", "0.05:0.3:6", "--samples", "20000",
                       "--t-max", "20000", "--workers", "1", "--out", "bm.nc", "--json"], tmp_path)
-    time.sleep(20.0)
+    time.sleep(15.0)
     assert process.poll() is None, process.communicate()
     code, out, err = _interrupt(process)
     _check_aborted(code, out, err)
