@@ -118,3 +118,41 @@ def test_ctrl_c_during_the_first_compile(tmp_path: Path) -> None:
     code, out, err = _interrupt(process)
     _check_aborted(code, out, err)
     assert _chunks(tmp_path / "run" / "basin.parts"), "the chunk being computed is kept"
+
+
+@pytest.mark.parametrize("raised", ["dispatcher", "keyboard"])
+def test_ctrl_c_anywhere_is_one_line(raised: str, monkeypatch: pytest.MonkeyPatch,
+                                     capsys: pytest.CaptureFixture[str]) -> None:
+    # outside the chunk loops (simulate, boundary, cycles) a Ctrl-C inside a kernel reaches the
+    # command line as numba's SystemError caused by the KeyboardInterrupt, elsewhere as the
+    # KeyboardInterrupt itself (which typer turns into exit code 130): both are one line, 130
+    import stickslip.analysis.simulation as simulation
+
+    from .cli_helpers import run_cli
+
+    def interrupted(*args: object, **kwargs: object) -> None:
+        if raised == "keyboard":
+            raise KeyboardInterrupt
+        try:
+            raise KeyboardInterrupt
+        except KeyboardInterrupt as exc:
+            raise SystemError("CPUDispatcher(<function run>) returned a result with an exception "
+                              "set") from exc
+
+    monkeypatch.setattr(simulation, "simulate", interrupted)
+    code, out, err = run_cli(["simulate", "--lam", "1", "--zeta", "0.1", "--json"], capsys)
+    _check_aborted(code, out, err)
+
+
+def test_deferred_sigint_records_and_restores() -> None:
+    # the handler only records inside the block; the previous one is back afterwards
+    from stickslip.kernel.interrupt import deferred_sigint
+
+    before = signal.getsignal(signal.SIGINT)
+    with deferred_sigint() as sigint:
+        signal.raise_signal(signal.SIGINT)  # would raise KeyboardInterrupt with Python's handler
+        assert sigint.caught
+    assert signal.getsignal(signal.SIGINT) is before
+    with pytest.raises(KeyboardInterrupt):
+        sigint.raise_if_caught()
+    sigint.raise_if_caught()  # once only
