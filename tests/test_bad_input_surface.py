@@ -340,3 +340,13 @@ def test_any_non_negative_seed_is_accepted(seed: int) -> None:
     from stickslip.model._validate import random_seed
 
     assert random_seed(seed) == seed
+
+
+@pytest.mark.parametrize("bad", [True, np.True_, 0, 2.5, "2"])
+def test_workers_and_chunk_size_are_whole_numbers(bad: object) -> None:
+    from stickslip.sweep.executors import check_backend, check_chunk_size
+
+    with pytest.raises(ValueError, match="whole number of at least 1"):
+        check_backend("threads", bad, None)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="whole number of at least 1"):
+        check_chunk_size(bad)

@@ -28,7 +28,7 @@ from numpy.typing import NDArray
 from stickslip.analysis.dva import DvaSpec
 from stickslip.analysis.simulation import EngineOptions
 from stickslip.kernel.interrupt import deferred_sigint
-from stickslip.model._validate import non_negative
+from stickslip.model._validate import non_negative, whole_number
 from stickslip.model.friction import CoulombFriction, FrictionLaw
 from stickslip.model.parameters import Foundation
 from stickslip.model.structure import chain_structure
@@ -239,9 +239,8 @@ class Chunk:
 
 def check_chunk_size(chunk_size: Any) -> None:
     """Refuse a ``chunk_size`` that is not a whole number of at least 1 (None is the default)."""
-    if chunk_size is not None and (isinstance(chunk_size, bool) or int(chunk_size) != chunk_size
-                                   or chunk_size < 1):
-        raise ValueError(f"chunk_size={chunk_size!r} must be a whole number of at least 1")
+    if chunk_size is not None:
+        whole_number("chunk_size", chunk_size)  # not a boolean (numpy's neither), not a fraction
 
 
 def load_stored(store: ChunkStore | None, chunks: Sequence[Chunk], float_summary: FloatArray,
@@ -290,8 +289,8 @@ def check_backend(backend: str, workers: int | None, scheduler: str | None) -> B
     """Validate the backend choice; ``scheduler`` needs ``dask`` and excludes ``workers``."""
     if backend not in BACKENDS:
         raise ValueError(f"backend {backend!r} is not one of {', '.join(BACKENDS)}")
-    if workers is not None and (isinstance(workers, bool) or int(workers) != workers or workers < 1):
-        raise ValueError(f"workers={workers!r} must be a whole number of at least 1")
+    if workers is not None:
+        whole_number("workers", workers)
     if scheduler is not None and backend != "dask":
         raise ValueError(f"a scheduler address needs the dask backend, not {backend!r}")
     if scheduler is not None and workers is not None:
