@@ -35,6 +35,7 @@ from stickslip.analysis.simulation import EngineOptions, SimulationResult, simul
 from stickslip.analysis.verdict import Verdict
 from stickslip.kernel.linalg import expm
 from stickslip.kernel.system import STICK, mode_matrices
+from stickslip.model._validate import random_seed
 from stickslip.model.initial import InitialState
 from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
@@ -391,7 +392,7 @@ def find_cycles(
     if np.any(structure.mass != np.diag(np.diag(structure.mass))):
         raise ValueError("the cycle search needs a diagonal mass matrix (the paper's structures)")
     pmap = _ReturnMap(structure, slider, opts)
-    rng = np.random.default_rng(seed)
+    rng = np.random.default_rng(random_seed(seed))
     starts = [np.concatenate([structure.kinetic_equilibrium_offset() * -slider.gamma * slider.lam,
                               np.eye(n)[0]])]
     for _ in range(int(seeds)):

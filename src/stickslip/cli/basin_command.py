@@ -38,14 +38,17 @@ def parse_box(text: str) -> dict[str, tuple[float, float]]:
     """``name=lo:hi,name=lo:hi`` to a dictionary of intervals."""
     box: dict[str, tuple[float, float]] = {}
     for item in text.split(","):
-        name, eq, interval = item.partition("=")
-        lo, colon, hi = interval.partition(":")
+        name, eq, text_interval = item.partition("=")
+        lo, colon, hi = text_interval.partition(":")
         try:
             if not (eq and colon):
                 raise ValueError
-            box[name.strip()] = (float(lo), float(hi))
+            interval = (float(lo), float(hi))
         except ValueError:
             raise BadInput(f"--box {item.strip()!r} is not NAME=LO:HI") from None
+        if name.strip() in box:
+            raise BadInput(f"--box {text!r}: column {name.strip()!r} given twice")
+        box[name.strip()] = interval
     return box
 
 
@@ -120,6 +123,7 @@ def basin(
     from stickslip.model.structure import chain_structure
     from stickslip.sweep.basin import (
         basin_stability,
+        check_states,
         physical_names,
         sample_box,
         state_names,
@@ -162,7 +166,12 @@ def basin(
         import numpy as np
 
         raw = np.array(values, dtype=np.float64)
-        states = states_from_physical(system, raw) if system is not None else raw
+        try:  # the bound of simulate --initial, before any file is made
+            check_states(raw, names)
+            states = states_from_physical(system, raw) if system is not None else raw
+            check_states(states, state_names(n_dof))
+        except ValueError as exc:
+            raise BadInput(f"--initial-states {str(initial_states)!r}: {exc}") from None
     else:
         intervals = parse_box(box) if box is not None else {names[0]: (-2.0, 2.0), names[n_dof]: (-2.0, 1.5)}
         unknown = sorted(set(intervals) - set(names))
@@ -174,6 +183,7 @@ def basin(
             states = sample_box(structure, slider, samples, intervals, seed)
     from contextlib import nullcontext
 
+    from stickslip.cli.cleanup import UndoOnRefusal
     from stickslip.cli.map_commands import _ProgressBar, _scheduler_context
     from stickslip.io.lock import output_lock
     from stickslip.sweep.execution import ExecutionOptions
@@ -182,9 +192,10 @@ def basin(
     enabled = not json and sys.stderr.isatty()
     store = None if out is None else out / "basin.parts"  # resume store, removed when done
     reach = _scheduler_context(scheduler, scheduler_timeout)  # before any file is made
+    undo = UndoOnRefusal([] if out is None else [out], [] if store is None else [store])
     if out is not None:
         out.mkdir(parents=True, exist_ok=True)  # every check passed: writing starts
-    with output_lock(labels) if labels is not None else nullcontext(), reach:
+    with undo, output_lock(labels) if labels is not None else nullcontext(), reach:
         with _ProgressBar(enabled, f"basin {len(states)} states", unit="samples") as bar:
             result = basin_stability(structure, slider, states, options=options,
                                      execution=ExecutionOptions(backend=chosen, workers=workers,

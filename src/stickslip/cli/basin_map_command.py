@@ -73,9 +73,11 @@ def basin_map_command(
     from contextlib import nullcontext
 
     from stickslip.cli.basin_command import parse_box
+    from stickslip.cli.cleanup import UndoOnRefusal
     from stickslip.cli.map_commands import _ProgressBar, grid_config
     from stickslip.io.lock import output_lock
-    from stickslip.sweep.basin import MAX_SAMPLES, check_box, state_names
+    from stickslip.model._validate import random_seed
+    from stickslip.sweep.basin import MAX_SAMPLES, check_box, check_map_work, state_names
     from stickslip.sweep.basin_maps import DEFAULT_MAP_BOX, basin_map
     from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.executors import check_backend
@@ -85,6 +87,8 @@ def basin_map_command(
     check_backend("threads", workers, None)  # --workers: a whole number of at least 1
     if not 1 <= samples <= MAX_SAMPLES:
         raise BadInput(f"--samples {samples} must be from 1 to {MAX_SAMPLES:,}")
+    check_map_work(config.n_cells, samples)  # bounded before anything starts, like boundary
+    random_seed(seed)
     intervals = parse_box(box) if box is not None else dict(DEFAULT_MAP_BOX)
     try:
         check_box(intervals, state_names(config.structures.n_dof))
@@ -100,9 +104,10 @@ def basin_map_command(
     warn_fitted_range(config.dva, config.zeta.values)  # every check passed
     enabled = not json and sys.stderr.isatty()
     shape = config.shape
+    undo = UndoOnRefusal([] if out is None else [out.parent])  # before anything is made
     if out is not None:
         out.parent.mkdir(parents=True, exist_ok=True)  # for the lock: writing starts
-    with output_lock(out) if out is not None else nullcontext():
+    with undo, output_lock(out) if out is not None else nullcontext():
         with _ProgressBar(enabled, f"basin-map {shape[0]}x{shape[1]}, {samples} samples per cell") as bar:
             result = basin_map(config.lam, config.zeta, config.dva, config.gamma, samples=samples,
                                box=intervals, seed=seed,

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 import warnings
-from typing import Annotated
+from typing import Annotated, NoReturn
 
 import typer
 
@@ -81,6 +81,16 @@ def _show_warning(message: Warning | str, category: type[Warning], filename: str
     print(f"stickslip: warning: {text}", file=sys.stderr)
 
 
+#: Exit code after Ctrl-C: 128 + SIGINT, as a shell reports a process that SIGINT ended.
+EXIT_INTERRUPTED = 130
+
+
+def _aborted() -> NoReturn:
+    """Ctrl-C: one line on stderr, exit code 130; finished work stays on disk for resume."""
+    print("stickslip: aborted (Ctrl-C)", file=sys.stderr)
+    raise SystemExit(EXIT_INTERRUPTED) from None
+
+
 def run(argv: list[str] | None = None) -> None:
     """Console entry point: one line on stderr and exit code 2 for any bad input."""
     with warnings.catch_warnings():
@@ -97,14 +107,21 @@ def _run(argv: list[str] | None) -> None:
     except click_exceptions.UsageError as exc:
         fail(exc.format_message())
     except typer.Abort:
-        print("stickslip: aborted", file=sys.stderr)
-        raise SystemExit(130) from None
+        _aborted()
+    except SystemError as exc:
+        # Ctrl-C inside a compiled kernel outside the chunk loops: numba's dispatcher reports
+        # the KeyboardInterrupt as "returned a result with an exception set"
+        if isinstance(exc.__cause__ or exc.__context__, KeyboardInterrupt):
+            _aborted()
+        raise
     except (BadInput, ValueError) as exc:
         fail(str(exc))
     except OSError as exc:
         fail(f"{exc.filename or 'file'}: {exc.strerror or exc}")
     except typer.Exit as exc:
         raise SystemExit(exc.exit_code) from None
+    if result == EXIT_INTERRUPTED:  # typer turns a KeyboardInterrupt into this exit code
+        _aborted()
     if isinstance(result, int) and result != 0:
         raise SystemExit(result)
 

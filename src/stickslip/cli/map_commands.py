@@ -58,7 +58,8 @@ T_MAX = Annotated[
 ]
 WORKERS = Annotated[
     int | None,
-    typer.Option("--workers", help="numba threads (threads backend) or worker processes (dask)"),
+    typer.Option("--workers", help="numba threads (threads backend) or worker processes (dask); "
+                 "at most the machine's cores, more are capped"),
 ]
 
 
@@ -98,6 +99,8 @@ def grid_config(lam: str | None, zeta: str, lam_spacing: str | None, zeta_spacin
     config = MapConfig.create(lam_axis, zeta_axis, parse_dva_option(dva, k_scale), gamma, t_max=t_max,
                               friction=cell_law, deltas=delta_axis)
     check_run_limits(float(config.lam.values.max()), config.gamma)
+    # tabulate the law now: a table that goes negative at this gamma is refused before writing
+    law.bands(float(config.lam.values.max()), config.gamma)
     return config, cell_law
 
 
@@ -209,6 +212,7 @@ def map_command(
 
     Example: stickslip map --lam log:0.1:50:100 --delta -0.1:0.3:41 --zeta 0.1 --out dmap.nc
     """
+    from stickslip.cli.cleanup import UndoOnRefusal
     from stickslip.io.lock import output_lock
     from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.executors import check_backend
@@ -230,8 +234,9 @@ def map_command(
     check_grid_memory(config.n_cells)
     reach = _scheduler_context(scheduler, scheduler_timeout)  # before any file is made
     fingerprint = config.fingerprint()
+    undo = UndoOnRefusal([out.parent], [store_path(out)])  # before anything is made
     out.parent.mkdir(parents=True, exist_ok=True)  # every check passed: writing starts
-    with output_lock(out), reach:
+    with undo, output_lock(out), reach:
         warn_fitted_range(config.dva, config.zeta.values)
         reused = _check_existing_output(out, fingerprint, overwrite)
         store = store_path(out)

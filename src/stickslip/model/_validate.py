@@ -10,7 +10,13 @@ import math
 
 
 def finite(name: str, value: float) -> float:
-    """Return ``value`` as a float, rejecting NaN, infinities and non-numbers."""
+    """Return ``value`` as a float, rejecting NaN, infinities and non-numbers.
+
+    Booleans (``True``, ``numpy.bool_``) are not numbers here, although Python converts
+    them to 1.0 and 0.0: ``Slider(lam=True)`` is a mistake, not lambda = 1.
+    """
+    if _is_boolean(value):
+        raise ValueError(f"{name}={value!r} is a boolean, not a number")
     try:
         x = float(value)
     except (TypeError, ValueError):
@@ -18,6 +24,32 @@ def finite(name: str, value: float) -> float:
     if not math.isfinite(x):
         raise ValueError(f"{name}={value!r} must be finite")
     return x
+
+
+def _is_boolean(value: object) -> bool:
+    """True for ``bool`` and NumPy's boolean scalar (which is not a subclass of ``bool``)."""
+    kind = type(value)
+    return isinstance(value, bool) or (kind.__module__ == "numpy" and kind.__name__ in ("bool", "bool_"))
+
+
+def whole_number(name: str, value: int, minimum: int = 1) -> int:
+    """Return ``value`` as an int of at least ``minimum``, rejecting booleans and fractions."""
+    try:
+        n = int(value)
+        exact = not _is_boolean(value) and n == value
+    except (TypeError, ValueError, OverflowError):
+        exact = False
+    if not exact or n < minimum:
+        raise ValueError(f"{name}={value!r} must be a whole number of at least {minimum}")
+    return n
+
+
+def random_seed(value: int, name: str = "seed") -> int:
+    """A seed of NumPy's random generators: a whole number 0, 1, 2, ... (no upper bound)."""
+    try:
+        return whole_number(name, value, 0)
+    except ValueError:
+        raise ValueError(f"{name}={value!r} must be a whole number of at least 0 (0, 1, 2, ...)") from None
 
 
 def positive(name: str, value: float) -> float:
@@ -60,6 +92,18 @@ def at_most(name: str, value: float, limit: float = MAX_PARAMETER) -> float:
             f"{name}={value!r} is beyond the supported range (magnitude at most {limit:g}; "
             "larger values overflow the dimensionless equations)"
         )
+    return x
+
+
+def within(name: str, value: float, low: float, high: float, why: str) -> float:
+    """Return ``value`` as a finite float in ``[low, high]``; ``why`` says what lies beyond.
+
+    The message names the value, the range and the reason, e.g. ``vs=1e-308 is outside the
+    supported range [1e-06, 1e+06] (...)``.
+    """
+    x = finite(name, value)
+    if not low <= x <= high:
+        raise ValueError(f"{name}={value!r} is outside the supported range [{low:g}, {high:g}] ({why})")
     return x
 
 

@@ -32,7 +32,15 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.model._validate import finite, non_negative, positive
+from stickslip.model._validate import (
+    MAX_PARAMETER,
+    MIN_RATIO,
+    at_most,
+    finite,
+    non_negative,
+    positive,
+    within,
+)
 
 FloatArray = NDArray[np.float64]
 BandTable = tuple[FloatArray, FloatArray, FloatArray]
@@ -171,7 +179,10 @@ class LinearFriction:
     exact = True
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "delta", finite("delta", self.delta))
+        # |delta| <= MAX_PARAMETER like every other dimensionless parameter: the slip damper
+        # -2 delta and the products 2 delta u stay finite (linear:-1e308 doubled to -inf and
+        # gave the answer of +1e308)
+        object.__setattr__(self, "delta", at_most("delta", self.delta))
 
     def bands(self, lam: float, gamma: float) -> BandTable:
         """Band table: one band, or two for weakening (``F = 0`` beyond ``u*``)."""
@@ -279,11 +290,24 @@ class TableFriction:
         return {"law": "table", "u": list(self.u), "f": list(self.f)}
 
 
+def _read_csv_text(path: str | Path) -> str:
+    """The text of a friction table file (UTF-8, with or without a byte-order mark)."""
+    p = Path(path)
+    try:
+        return p.read_text(encoding="utf-8-sig")
+    except OSError as exc:
+        raise ValueError(f"cannot read friction table {p}: {exc.strerror}") from None
+    except UnicodeDecodeError:
+        raise ValueError(f"cannot read friction table {p}: not UTF-8 text (save it as CSV UTF-8)") from None
+
+
 def read_friction_csv_columns(path: str | Path) -> tuple[list[float], list[float]]:
     """The ``v`` and ``mu`` columns of a measured friction curve (CSV with a header row).
 
     ``#`` starts a comment line. Returns the speeds and friction values as read (no units).
     A file with columns ``v`` and ``f`` (the dimensionless form) is read the same way.
+    Spreadsheet exports are read too: a UTF-8 byte-order mark, ``;`` separators and, with
+    ``;``, decimal commas (``0,35``).
 
     Parameters
     ----------
@@ -295,12 +319,7 @@ def read_friction_csv_columns(path: str | Path) -> tuple[list[float], list[float
     tuple of list of float
         The speed and friction columns.
     """
-    p = Path(path)
-    try:
-        text = p.read_text()
-    except OSError as exc:
-        raise ValueError(f"cannot read friction table {p}: {exc.strerror}") from None
-    return friction_csv_columns(text, str(p))
+    return friction_csv_columns(_read_csv_text(path), str(Path(path)))
 
 
 def friction_csv_columns(text: str, p: str = "(text)") -> tuple[list[float], list[float]]:
@@ -321,24 +340,40 @@ def friction_csv_columns(text: str, p: str = "(text)") -> tuple[list[float], lis
     tuple of list of float
         The speed and friction columns.
     """
-    lines = [line for line in text.splitlines() if line.strip() and not line.startswith("#")]
-    rows = list(csv.reader(lines))
+    _, v, y = _friction_csv(text, p)
+    return v, y
+
+
+def _friction_csv(text: str, p: str) -> tuple[str, list[float], list[float]]:
+    """``(name of the second column, "mu" or "f"; v; its values)`` of a friction CSV text."""
+    lines = [line for line in text.lstrip("\ufeff").splitlines()
+             if line.strip() and not line.startswith("#")]
+    # a spreadsheet in a locale with decimal commas separates its columns with ';'
+    delimiter = ";" if lines and ";" in lines[0] and "," not in lines[0] else ","
+    rows = list(csv.reader(lines, delimiter=delimiter))
     if len(rows) < 2:
         raise ValueError(f"friction table {p} needs a header row and at least one data row")
     header = [h.strip().lower() for h in rows[0]]
     if "v" not in header or ("mu" not in header and "f" not in header):
         raise ValueError(f"friction table {p} needs columns v and mu (or v and f), got {', '.join(header)}")
+    second = "mu" if "mu" in header else "f"
     iv = header.index("v")
-    iy = header.index("mu" if "mu" in header else "f")
+    iy = header.index(second)
+
+    def number(field: str) -> float:
+        field = field.strip()
+        return float(field.replace(",", ".") if delimiter == ";" else field)
+
     v: list[float] = []
     y: list[float] = []
     for k, row in enumerate(rows[1:], start=2):
         try:
-            v.append(float(row[iv]))
-            y.append(float(row[iy]))
+            v.append(number(row[iv]))
+            y.append(number(row[iy]))
         except (IndexError, ValueError):
-            raise ValueError(f"friction table {p}, line {k}: not two numbers: {','.join(row)}") from None
-    return v, y
+            raise ValueError(f"friction table {p}, line {k}: not two numbers: "
+                             f"{delimiter.join(row)}") from None
+    return second, v, y
 
 
 def read_friction_table(
@@ -364,16 +399,60 @@ def read_friction_table(
     TableFriction
         The dimensionless law.
     """
-    v, y = read_friction_csv_columns(path)
-    header = Path(path).read_text().lower()
-    dimensionless = "mu" not in [h.strip() for h in next(
-        line for line in header.splitlines() if line.strip() and not line.startswith("#")).split(",")]
-    if dimensionless:
+    second, v, y = _friction_csv(_read_csv_text(path), str(Path(path)))
+    if second == "f":
         return TableFriction(tuple(v), tuple(y))
     if mu_s is None or mu_k is None or speed is None:
         raise ValueError(f"friction table {path} gives mu: pass mu_s, mu_k and speed to make it "
                          "dimensionless, or give columns v (over the belt speed) and f")
     return TableFriction.from_physical(v, y, mu_s, mu_k, speed)
+
+
+def _dimensionless_table(raw: str, path: str) -> TableFriction:
+    """The table of ``table:FILE.csv`` (command-line text ``raw``): only the dimensionless form.
+
+    A table of ``mu`` against ``v`` in m/s needs ``mu_s``, ``mu_k`` and the belt speed, which
+    the dimensionless commands do not take: the message says how to give them.
+    """
+    second, v, y = _friction_csv(_read_csv_text(path), path)
+    if second == "mu":
+        raise ValueError(
+            f"friction law {raw!r}: the table gives mu against v in m/s, which needs mu_s, mu_k "
+            "and the belt speed V; on this command give it dimensionless, columns v = v_r/V and "
+            "f = (mu - mu_k)/(mu_s - mu_k) (e.g. mu_s = 0.4, mu_k = 0.3, V = 0.05 m/s: v = v_r/0.05, "
+            f"f = (mu - 0.3)/0.1), or name it in a machine file, [friction] table = {path!r} with "
+            "mu_s, mu_k and speed under [system], and pass that file to --config (design, basin)"
+        )
+    return TableFriction(tuple(v), tuple(y))
+
+
+#: Supported range of each Stribeck parameter, ``field: (low, high, why)``; outside it the
+#: law overflows, cannot be tabulated or defeats the engine. ``u_s`` like a mass ratio
+#: (``MIN_RATIO`` to ``MAX_PARAMETER``: ``u_s**2`` and ``u / u_s`` stay finite; 1e308 and
+#: 1e-308 overflowed). ``n`` from 0.5, the low end of measured exponents (the slope
+#: ``dF/du ~ u**(n-1)`` is infinite at ``u = 0`` for ``n < 1``: at ``n = 0.25`` the engine's
+#: steps shrink until the step budget is spent, a division by zero at ``v_s/V = 1e-6``; at
+#: ``n = 1e-3`` the last node ``U = u_s ln(2 r0 / tol)**(1/n)`` overflowed) to 100 (the law is
+#: then a step at ``u_s`` to the tolerance; ``n = 1e6`` overflowed ``x**n``). ``d_v`` and
+#: ``r0`` capped at :data:`MAX_PARAMETER` like every dimensionless parameter (``2 d_v u``
+#: overflowed at 1e308, ``r0 = -1e308`` made NaN).
+STRIBECK_RANGES: dict[str, tuple[float, float, str]] = {
+    "velocity_ratio": (MIN_RATIO, MAX_PARAMETER, "v_s / V beyond it overflows the law"),
+    "exponent": (0.5, 100.0, "beyond it the law overflows or cannot be tabulated"),
+    "viscous": (-MAX_PARAMETER, MAX_PARAMETER, "larger slopes overflow the dimensionless equations"),
+    "mu0_ratio": (-MAX_PARAMETER, 1.0, "below it the law overflows; above 1 mu_0 exceeds mu_s"),
+    "tolerance": (1e-9, 0.1, "the law approximation error in units of lambda"),
+}
+
+
+def check_stribeck_parameter(field: str, value: float, name: str | None = None) -> float:
+    """``value`` of the Stribeck parameter ``field`` as a float within :data:`STRIBECK_RANGES`.
+
+    ``name`` is how the caller calls it in messages (``vs`` on the command line), default the
+    field's own name. Raises ``ValueError`` with one line naming it, the value and the range.
+    """
+    low, high, why = STRIBECK_RANGES[field]
+    return within(name or field, value, low, high, why)
 
 
 @dataclass(frozen=True)
@@ -407,22 +486,22 @@ class StribeckFriction:
     exact = False
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "velocity_ratio", positive("velocity_ratio", self.velocity_ratio))
-        object.__setattr__(self, "exponent", positive("exponent", self.exponent))
-        object.__setattr__(self, "viscous", finite("viscous", self.viscous))
+        positive("velocity_ratio", self.velocity_ratio)
+        positive("exponent", self.exponent)
         r0 = finite("mu0_ratio", self.mu0_ratio)
         if r0 > 1.0:
             raise ValueError(f"mu0_ratio={r0!r} exceeds 1: mu_0 above mu_s")
-        object.__setattr__(self, "mu0_ratio", r0)
         tol = positive("tolerance", self.tolerance)
         if not 1e-9 <= tol <= 0.1:
             raise ValueError(f"tolerance={tol!r} must lie in [1e-9, 0.1]")
-        object.__setattr__(self, "tolerance", tol)
+        for name in STRIBECK_RANGES:
+            object.__setattr__(self, name, check_stribeck_parameter(name, getattr(self, name)))
 
     def _excess(self, u: Any) -> FloatArray:
         """``r0 exp(-(u/u_s)^n)`` (the Stribeck term in units of lambda)."""
         x = np.asarray(u, dtype=np.float64) / self.velocity_ratio
-        return np.asarray(self.mu0_ratio * np.exp(-(x**self.exponent)), dtype=np.float64)
+        with np.errstate(over="ignore"):  # x**n = inf far beyond u_s: exp(-inf) = 0, exactly
+            return np.asarray(self.mu0_ratio * np.exp(-(x**self.exponent)), dtype=np.float64)
 
     def value(self, u: Any, lam: float, gamma: float) -> FloatArray:
         """Exact dimensionless friction magnitude (floored at zero)."""
@@ -435,7 +514,11 @@ class StribeckFriction:
             return 0.0
         n, us = self.exponent, self.velocity_ratio
         x = u / us
-        return float(-lam * self.mu0_ratio * n / us * x ** (n - 1.0) * math.exp(-(x**n)) + 2.0 * self.viscous)
+        try:
+            shape = x ** (n - 1.0) * math.exp(-(x**n))
+        except OverflowError:  # x**n beyond the float range: exp(-x**n) is 0 to double precision
+            shape = 0.0
+        return float(-lam * self.mu0_ratio * n / us * shape + 2.0 * self.viscous)
 
     def nodes(self) -> FloatArray:
         """Interpolation nodes in ``u`` (independent of lambda and gamma; computed once per law).
@@ -459,7 +542,7 @@ class StribeckFriction:
             np.concatenate([np.linspace(0.0, big_u, 4001), big_u * np.geomspace(1e-9, 1.0, 2001)])
         )
         x = grid / us
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             # e'' = r0 exp(-x^n) n x^(n-2) (n x^n - n + 1) / us^2
             d2 = r0 * np.exp(-(x**n)) * n * x ** (n - 2.0) * np.abs(n * x**n - n + 1.0) / us**2
         d2 = np.where(np.isfinite(d2), d2, 0.0)
@@ -528,6 +611,11 @@ FRICTION_SYNTAX = (
 )
 
 
+#: The keys of ``stribeck:`` on the command line and the :class:`StribeckFriction` fields they set.
+STRIBECK_KEYS = {"vs": "velocity_ratio", "n": "exponent", "viscous": "viscous", "mu0": "mu0_ratio",
+                 "tol": "tolerance"}
+
+
 def parse_friction(text: str) -> FrictionLaw:
     """A friction law from its command-line text (dimensionless), see :data:`FRICTION_SYNTAX`.
 
@@ -539,7 +627,8 @@ def parse_friction(text: str) -> FrictionLaw:
     * ``stribeck:vs=...,n=...,viscous=...,mu0=...,tol=...``: :class:`StribeckFriction` with
       ``vs = v_s / V``, exponent ``n`` (default 1), ``viscous = sigma_v W / (2 sqrt(m k))``
       (default 0), ``mu0 = (mu_0 - mu_k)/(mu_s - mu_k)`` (default 1) and the law tolerance
-      ``tol`` in units of lambda (default 1e-4).
+      ``tol`` in units of lambda (default 1e-4). Each key at most once, each value within
+      :data:`STRIBECK_RANGES`; the law is tabulated here, so one that cannot be is refused.
 
     Parameters
     ----------
@@ -559,14 +648,17 @@ def parse_friction(text: str) -> FrictionLaw:
         return CoulombFriction()
     if kind == "linear":
         try:
-            return LinearFriction(float(arg))
+            delta = float(arg)
         except ValueError:
             raise ValueError(f"friction law {raw!r}: linear needs a number, e.g. linear:0.05") from None
+        try:
+            return LinearFriction(delta)
+        except ValueError as exc:
+            raise ValueError(f"friction law {raw!r}: {exc}") from None
     if kind == "table" and arg:
-        return read_friction_table(arg.strip())
+        return _dimensionless_table(raw, arg.strip())
     if kind == "stribeck" and arg:
-        names = {"vs": "velocity_ratio", "n": "exponent", "viscous": "viscous", "mu0": "mu0_ratio",
-                 "tol": "tolerance"}
+        names = STRIBECK_KEYS
         values: dict[str, float] = {}
         for item in arg.split(","):
             key, eq, value = item.partition("=")
@@ -574,13 +666,24 @@ def parse_friction(text: str) -> FrictionLaw:
             if not eq or key not in names:
                 raise ValueError(f"friction law {raw!r}: {item.strip()!r} is not one of "
                                  f"{', '.join(k + '=...' for k in names)}")
+            if names[key] in values:
+                raise ValueError(f"friction law {raw!r}: key {key!r} given twice")
             try:
-                values[names[key]] = float(value)
+                number = float(value)
             except ValueError:
                 raise ValueError(f"friction law {raw!r}: {key}={value.strip()!r} is not a number") from None
+            try:
+                values[names[key]] = check_stribeck_parameter(names[key], number, key)
+            except ValueError as exc:
+                raise ValueError(f"friction law {raw!r}: {exc}") from None
         if "velocity_ratio" not in values:
             raise ValueError(f"friction law {raw!r}: stribeck needs vs=V_S/V, e.g. stribeck:vs=0.5")
-        return StribeckFriction(**values)
+        law = StribeckFriction(**values)
+        try:
+            law.nodes()  # tabulated now (and cached): a law that cannot be is refused before any run
+        except ValueError as exc:
+            raise ValueError(f"friction law {raw!r}: {exc}") from None
+        return law
     raise ValueError(f"friction law {raw!r} is not one of: {FRICTION_SYNTAX}")
 
 

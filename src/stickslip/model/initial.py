@@ -41,6 +41,8 @@ class InitialState:
     description: str = "user-defined initial state"
 
     def __post_init__(self) -> None:
+        if np.asarray(self.position).dtype == np.bool_ or np.asarray(self.velocity).dtype == np.bool_:
+            raise ValueError("initial state has boolean entries; give numbers")
         pos = np.array(self.position, dtype=np.float64).reshape(-1)
         vel = np.array(self.velocity, dtype=np.float64).reshape(-1)
         if pos.shape != vel.shape:

@@ -33,6 +33,8 @@ MAX_MATRIX_ENTRY = 1e13
 
 def _matrix(name: str, value: object, n: int | None = None) -> FloatArray:
     raw = np.asarray(value)
+    if raw.dtype == np.bool_:
+        raise ValueError(f"{name} has boolean entries; the matrices must be real numbers")
     if np.iscomplexobj(raw):
         raise ValueError(f"{name} has complex entries; the matrices must be real")
     try:

@@ -31,6 +31,8 @@ from stickslip.analysis.simulation import EngineOptions
 from stickslip.analysis.verdict import VERDICTS, Verdict, verdict_codes, verdict_flag_attributes
 from stickslip.io.provenance import provenance_attributes
 from stickslip.kernel import engine
+from stickslip.model._validate import random_seed
+from stickslip.model.initial import MAX_STATE
 from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
 from stickslip.sweep.execution import ExecutionOptions, execution_from_keywords
@@ -52,6 +54,11 @@ IntArray = NDArray[np.int64]
 
 #: Most samples of one basin computation (the summaries take about 150 bytes per sample).
 MAX_SAMPLES = 50_000_000
+
+#: Most runs of one basin map (cells x samples per cell), checked before anything starts as
+#: ``boundary`` bounds its scan: 1e8 certified runs take one to two hours at the 25,000
+#: samples/s measured on two cores (bench_basin); a larger map is split into several.
+MAX_MAP_RUNS = 100_000_000
 
 #: States per chunk of the in-process backends when none is given (the unit of progress and
 #: of the resume store); the Dask backend cuts about 32 chunks (``default_chunk_size``).
@@ -94,7 +101,7 @@ def sample_box(structure: Structure, slider: Slider, n: int, box: Mapping[str, t
     check_box(box, names)
     n = sample_count(n)
     states = np.tile(equilibrium_state(structure, slider), (n, 1))
-    rng = np.random.default_rng(seed)
+    rng = np.random.default_rng(random_seed(seed))
     for name, (lo, hi) in box.items():
         states[:, names.index(name)] = rng.uniform(lo, hi, n)
     return states
@@ -109,6 +116,29 @@ def check_box(box: Mapping[str, tuple[float, float]], names: Sequence[str]) -> N
     for name, (lo, hi) in box.items():
         if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi):
             raise ValueError(f"box {name}={lo!r}:{hi!r} must be a finite interval with lo <= hi")
+        if max(abs(lo), abs(hi)) > MAX_STATE:
+            raise ValueError(f"box {name}={lo!r}:{hi!r} reaches beyond the supported magnitude "
+                             f"{MAX_STATE:g} of a state (its energy would overflow)")
+
+
+def check_states(states: FloatArray, names: Sequence[str]) -> None:
+    """Raise ``ValueError`` unless every entry of ``states`` (rows of ``names``) is finite and
+    at most :data:`~stickslip.model.initial.MAX_STATE` in magnitude, the bound of
+    ``simulate --initial``; the message names the first bad row (from 1) and column."""
+    bad = ~np.isfinite(states) | (np.abs(np.nan_to_num(states, nan=0.0)) > MAX_STATE)
+    if np.any(bad):
+        row, col = (int(i) for i in np.argwhere(bad)[0])
+        raise ValueError(f"initial state {row + 1}: {names[col]}={float(states[row, col])!r} must be finite "
+                         f"and at most {MAX_STATE:g} in magnitude (its energy would overflow)")
+
+
+def check_map_work(n_cells: int, samples: int) -> None:
+    """Refuse a basin map of more than :data:`MAX_MAP_RUNS` runs (cells x samples) before it starts."""
+    n = sample_count(samples)
+    if int(n_cells) * n > MAX_MAP_RUNS:
+        raise ValueError(f"a basin map of {int(n_cells):,} cells x {n:,} samples is {int(n_cells) * n:,} "
+                         f"runs, above the limit of {MAX_MAP_RUNS:,} (hours of computing); use fewer "
+                         "cells or samples, or split the map")
 
 
 def sample_count(n: int) -> int:
@@ -323,8 +353,7 @@ def basin_stability(
     if z0s.ndim != 2 or z0s.shape[1] != 2 * n_dof:
         raise ValueError(f"states need shape (n, {2 * n_dof}) for a {n_dof}-DOF structure, got {z0s.shape}")
     sample_count(z0s.shape[0])
-    if not np.all(np.isfinite(z0s)):
-        raise ValueError("initial states have NaN or infinite entries")
+    check_states(z0s, state_names(n_dof))
     system = BasinSystem.prepare(structure, slider)
     started = time.perf_counter()
     n = z0s.shape[0]

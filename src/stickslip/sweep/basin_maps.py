@@ -21,9 +21,17 @@ from numpy.typing import NDArray
 from stickslip.analysis.simulation import EngineOptions
 from stickslip.analysis.verdict import VERDICTS, Verdict
 from stickslip.io.provenance import provenance_attributes
+from stickslip.model._validate import random_seed
 from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
-from stickslip.sweep.basin import basin_stability, check_box, equilibrium_state, sample_count, state_names
+from stickslip.sweep.basin import (
+    basin_stability,
+    check_box,
+    check_map_work,
+    equilibrium_state,
+    sample_count,
+    state_names,
+)
 from stickslip.sweep.execution import ExecutionOptions, execution_from_keywords
 from stickslip.sweep.map_config import DELTA_LAW, MapConfig
 from stickslip.sweep.occurrence import occurrence_map
@@ -185,11 +193,12 @@ def basin_map(
     run.check_in_process("basin_map")
     workers, progress = run.threads, run.progress
     n = sample_count(samples)
+    check_map_work(config.n_cells, n)
     box = dict(DEFAULT_MAP_BOX if box is None else box)
     structures = config.structures
     names = state_names(structures.n_dof)
     check_box(box, names)
-    rng = np.random.default_rng(seed)  # columns drawn in the order of state_names, whatever box's
+    rng = np.random.default_rng(random_seed(seed))  # columns in the order of state_names, whatever box's
     deviations = {name: rng.uniform(*box[name], n) for name in names if name in box}
     by_delta = config.delta is not None
     startup = occurrence_map(config.lam, config.zeta, config.dva, config.gamma, options=config.options,

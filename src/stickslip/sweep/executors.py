@@ -27,7 +27,8 @@ from numpy.typing import NDArray
 
 from stickslip.analysis.dva import resolve_dva
 from stickslip.analysis.simulation import EngineOptions
-from stickslip.model._validate import non_negative
+from stickslip.kernel.interrupt import deferred_sigint
+from stickslip.model._validate import non_negative, whole_number
 from stickslip.model.dva import DvaSpec
 from stickslip.model.friction import CoulombFriction, FrictionLaw
 from stickslip.model.parameters import Foundation
@@ -196,6 +197,26 @@ def numba_threads(n_threads: int | None) -> Iterator[int]:
         numba.set_parallel_chunksize(previous_chunk)
 
 
+def machine_cores() -> int:
+    """Cores this process may run on (its CPU affinity where known, else ``os.cpu_count``)."""
+    import os
+
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):  # pragma: no cover - not Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def capped_workers(workers: int | None) -> int:
+    """Worker processes of a local Dask cluster: ``workers`` capped at :func:`machine_cores`
+    (all of them when None). More processes than cores only add memory (each holds an
+    interpreter and the compiled engine, ~100 MB): ``--workers 1000`` started 304 processes and
+    took 10 GiB before it was killed. Numba threads are capped the same way
+    (:func:`numba_threads`)."""
+    cores = machine_cores()
+    return cores if workers is None else max(1, min(int(workers), cores))
+
+
 def max_threads() -> int:
     """Number of numba threads available in this process (all cores by default)."""
     import numba
@@ -219,9 +240,8 @@ class Chunk:
 
 def check_chunk_size(chunk_size: Any) -> None:
     """Refuse a ``chunk_size`` that is not a whole number of at least 1 (None is the default)."""
-    if chunk_size is not None and (isinstance(chunk_size, bool) or int(chunk_size) != chunk_size
-                                   or chunk_size < 1):
-        raise ValueError(f"chunk_size={chunk_size!r} must be a whole number of at least 1")
+    if chunk_size is not None:
+        whole_number("chunk_size", chunk_size)  # not a boolean (numpy's neither), not a fraction
 
 
 def load_stored(store: ChunkStore | None, chunks: Sequence[Chunk], float_summary: FloatArray,
@@ -270,8 +290,8 @@ def check_backend(backend: str, workers: int | None, scheduler: str | None) -> B
     """Validate the backend choice; ``scheduler`` needs ``dask`` and excludes ``workers``."""
     if backend not in BACKENDS:
         raise ValueError(f"backend {backend!r} is not one of {', '.join(BACKENDS)}")
-    if workers is not None and (isinstance(workers, bool) or int(workers) != workers or workers < 1):
-        raise ValueError(f"workers={workers!r} must be a whole number of at least 1")
+    if workers is not None:
+        whole_number("workers", workers)
     if scheduler is not None and backend != "dask":
         raise ValueError(f"a scheduler address needs the dask backend, not {backend!r}")
     if scheduler is not None and workers is not None:
@@ -325,8 +345,10 @@ def execute(
         return
     n_threads = 1 if backend == "serial" else workers
     for chunk, batch in batches:
-        float_summary, int_summary = run(structures, batch, options, n_threads)
-        yield chunk, float_summary, int_summary
+        with deferred_sigint() as sigint:  # Ctrl-C in the kernel (or its compile): after it
+            float_summary, int_summary = run(structures, batch, options, n_threads)
+        yield chunk, float_summary, int_summary  # the caller keeps it (resume store) ...
+        sigint.raise_if_caught()  # ... then Ctrl-C stops the run
 
 
 def _execute_dask(
@@ -363,6 +385,9 @@ def _execute_dask(
 #: to change it; ``--scheduler-timeout`` of ``stickslip map`` and ``stickslip basin`` does.
 SCHEDULER_TIMEOUT_S = 10.0
 
+#: Address schemes of a Dask scheduler that can be reached from another process.
+_SCHEMES = ("tcp", "tls", "ws", "wss")
+
 #: Longest first message accepted from a scheduler: its handshake is under a hundred bytes.
 _MAX_HANDSHAKE_BYTES = 1 << 16
 
@@ -398,7 +423,7 @@ def _dask_client(client_cls: Any, cluster_cls: Any, workers: int | None,
         with client:
             yield client
         return
-    n_workers = workers if workers is not None else max_threads()
+    n_workers = capped_workers(workers)
     with (
         cluster_cls(
             n_workers=n_workers,
@@ -422,7 +447,9 @@ def _probe_tcp(address: str, timeout: float | None = None) -> None:
     a silent listener fails after ``timeout``; a peer that answers with anything else (an
     HTTP server, a worker of another protocol) fails as "not a Dask scheduler" -- before the
     Dask client could misread its bytes as a frame length (a 3 EiB allocation) or retry for
-    minutes. Other protocols (``tls://``, ``inproc://``) are left to the client.
+    minutes. ``tls://``, ``ws://`` and ``wss://`` addresses must accept a TCP connection (their
+    handshake is left to the client); ``inproc://`` (a scheduler inside another process's
+    memory) and other schemes are refused -- all before a resume store is made.
     """
     import socket
     import time
@@ -437,12 +464,23 @@ def _probe_tcp(address: str, timeout: float | None = None) -> None:
 
     try:
         protocol, location = parse_address(address)
-        if protocol != "tcp":
-            return
+        if protocol == "inproc":
+            raise fail("an inproc:// scheduler lives inside the memory of another process and "
+                       "cannot be reached from this one; give its tcp:// address")
+        if protocol not in _SCHEMES:
+            raise fail(f"the scheme {protocol!r} is not one of {', '.join(_SCHEMES)}")
         host, port = parse_host_port(location)
     except (ValueError, TypeError) as exc:
         reason = " ".join(str(exc).split()) or type(exc).__name__
-        raise fail(reason) from None
+        raise (exc if str(exc).startswith("cannot reach") else fail(reason)) from None
+    if protocol != "tcp":
+        try:
+            socket.create_connection((host, port), timeout=timeout).close()
+        except TimeoutError:
+            raise fail(f"no answer within {timeout:g} s (see --scheduler-timeout)") from None
+        except OSError as exc:
+            raise fail(" ".join(str(exc).split()) or type(exc).__name__) from None
+        return
     try:
         with socket.create_connection((host, port), timeout=timeout) as sock:
             data = b""

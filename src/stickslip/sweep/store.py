@@ -255,6 +255,11 @@ def _damaged(message: str) -> None:
     warnings.warn(message, StoreDamaged, stacklevel=3)
 
 
+def has_chunks(path: str | os.PathLike[str]) -> bool:
+    """True when the store folder ``path`` holds at least one finished chunk file."""
+    return any(p for p in Path(path).glob(f"{_CHUNK_PREFIX}*.npz") if TMP_MARK not in p.name)
+
+
 def discard_store(path: str | os.PathLike[str]) -> None:
     """Delete a store folder's manifest, chunk and temporary files, then the folder if empty.
 
