@@ -224,7 +224,7 @@ def test_basin_map_work_is_bounded_before_it_starts(here: Path,
                          "1000000"], capsys)
     assert f"{MAX_MAP_RUNS:,}" in err
     with pytest.raises(ValueError, match="runs, above the limit"):
-        from stickslip.sweep.basin import basin_map
+        from stickslip.sweep.basin_maps import basin_map
 
         basin_map(np.linspace(0.1, 10, 1000), np.linspace(0, 0.3, 1000), samples=1000)
 
