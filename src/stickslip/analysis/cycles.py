@@ -34,7 +34,7 @@ from numpy.typing import NDArray
 from stickslip.analysis.simulation import EngineOptions, SimulationResult, simulate
 from stickslip.analysis.verdict import Verdict
 from stickslip.kernel.linalg import expm
-from stickslip.kernel.system import STICK, mode_matrices
+from stickslip.kernel.system import STICK, mode_kind_band, mode_matrices
 from stickslip.model.initial import InitialState
 from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
@@ -202,6 +202,21 @@ class _ReturnMap:
         result, times = run
         q, v, _ = result.state_at(times)
         return [np.concatenate([q[i], v[i]]) for i in range(len(times))]
+
+    def signature(self, b: FloatArray, k: int) -> tuple[int, ...] | None:
+        """The kinds of the phases (slip-I, slip-II, stick; friction bands merged) from the
+        breakaway built from ``b`` up to the ``k``-th next breakaway; None when there are fewer.
+
+        A change of the signature along a branch is a grazing: a phase appears or vanishes.
+        """
+        run = self._run(self.state(b), k)
+        if run is None:
+            return None
+        result, times = run
+        kinds = [mode_kind_band(int(m))[0] for m, t in zip(result.segment_modes, result.segment_times,
+                                                        strict=True) if t < times[-1]]
+        merged = [kind for i, kind in enumerate(kinds) if i == 0 or kind != kinds[i - 1]]
+        return tuple(merged)
 
     def __call__(self, b: FloatArray, k: int) -> FloatArray | None:
         states = self.next_breakaways(self.state(b), k)
