@@ -216,6 +216,8 @@ class _ReturnMap:
         kinds = [mode_kind_band(int(m))[0] for m, t in zip(result.segment_modes, result.segment_times,
                                                         strict=True) if t < times[-1]]
         merged = [kind for i, kind in enumerate(kinds) if i == 0 or kind != kinds[i - 1]]
+        while merged and merged[0] == STICK:  # the start's own stick phase (within rounding of 0)
+            merged.pop(0)
         return tuple(merged)
 
     def __call__(self, b: FloatArray, k: int) -> FloatArray | None:
