@@ -70,6 +70,8 @@ FAST_NEWTON = 3
 MAX_TURN = 0.3
 #: Tolerance of event locations in the parameter.
 EVENT_TOL = 1e-10
+#: Peak velocity of the first slip oscillation computed next to a Hopf point.
+SLIP_START = 0.02
 #: Relative finite-difference step in the parameter (central differences).
 PARAM_STEP = 1e-7
 
@@ -156,6 +158,11 @@ class _StickSlipSection:
         pb, jac = out
         return pb - y, jac
 
+    def gap(self, y: FloatArray) -> FloatArray | None:
+        """``P^k(y) - y`` without the Jacobian."""
+        py = self.pmap(y, self.k)
+        return None if py is None else py - y
+
     def signature(self, y: FloatArray) -> tuple[int, ...] | None:
         return self.pmap.signature(y, self.k)
 
@@ -234,11 +241,14 @@ class _SlipSection:
         run = simulate(self.structure, self.slider, initial=InitialState(z0[:n], z0[n:]),
                        options=self.options.with_t_max(horizon), record=True, run_to_t_max=True)
         t_end = float(run.t_end)
-        grid = np.linspace(0.0, t_end, 1200)
+        grid = np.linspace(0.0, t_end, 400)
         q, v, modes = run.state_at(grid)
         if np.any(modes != 0):
             return None  # it sticks or slides faster than the belt: not a slip oscillation
-        acc = np.array([self.accel(np.concatenate([q[i], v[i]]))[0] for i in range(grid.size)])
+        st = self.structure
+        force = np.zeros_like(q)
+        force[:, 0] = evaluate_bands(self.bands, 1.0 - v[:, 0]) - self.f_ref
+        acc = ((force - v @ st.damping.T - q @ st.stiffness.T) @ self.minv.T)[:, 0]
         start = int(np.argmax(grid > 1e-6 * t_end + 1e-9))
         for i in range(max(start, 1), grid.size - 1):
             if acc[i] > 0.0 >= acc[i + 1]:
@@ -256,7 +266,7 @@ class _SlipSection:
 
     def _xi_extrema(self, run: Any, t_end: float) -> list[float]:
         """``xi`` at the roots of ``xi'`` in ``[0, t_end]`` (and at the ends)."""
-        grid = np.linspace(0.0, t_end, 600)
+        grid = np.linspace(0.0, t_end, 200)
         q, v, _ = run.state_at(grid)
         out = [float(q[0, 0]), float(q[-1, 0])]
         for i in range(grid.size - 1):
@@ -281,6 +291,11 @@ class _SlipSection:
             jac[:, j] = (plus - minus) / (2.0 * h)
         self.last = last
         return py - y, jac
+
+    def gap(self, y: FloatArray) -> FloatArray | None:
+        """``P(y) - y`` without the Jacobian."""
+        py = self.step(y)
+        return None if py is None else py - y
 
     def signature(self, y: FloatArray) -> tuple[int, ...] | None:
         return (0,) if self.step(y) is not None else None
@@ -459,17 +474,27 @@ class _Tracer:
             self._cache[p] = self.make(self.system.with_value(self.name, p))
         return self._cache[p]
 
+    def valid(self, p: float) -> bool:
+        """Whether the parameter value makes a valid system (e.g. ``lambda > 0``)."""
+        try:
+            self.section(p)
+        except ValueError:
+            return False
+        return True
+
     def jacobians(self, y: FloatArray, p: float) -> tuple[FloatArray, FloatArray, FloatArray] | None:
         """``G``, ``[D_y G, D_p G]`` and ``D P`` at ``(y, p)``."""
+        h = PARAM_STEP * max(1.0, abs(p))
+        if not (self.valid(p) and self.valid(p + h) and self.valid(p - h)):
+            return None
         out = self.section(p).residual(y)
         if out is None:
             return None
         g, dp_map = out
-        h = PARAM_STEP * max(1.0, abs(p))
-        plus, minus = self.section(p + h).residual(y), self.section(p - h).residual(y)
+        plus, minus = self.section(p + h).gap(y), self.section(p - h).gap(y)
         if plus is None or minus is None:
             return None
-        gp = (plus[0] - minus[0]) / (2.0 * h)
+        gp = (plus - minus) / (2.0 * h)
         full = np.column_stack([dp_map - np.eye(y.size), gp])
         return g, full, dp_map
 
@@ -536,38 +561,64 @@ class _BranchRun:
 
 def _trace(tracer: _Tracer, start: _Point, lo: float, hi: float, h0: float, h_max: float,
            max_steps: int) -> _BranchRun:
-    """Continue from ``start`` along ``start.tangent`` until the range ends or the branch does."""
+    """Continue from ``start`` along ``start.tangent`` until the range ends or the branch does.
+
+    A failed step (no convergence, a changed phase signature or too sharp a turn) is halved;
+    once it is below ``1e-4`` of the range and still fails, the end of the branch is located by
+    bisection on the step length (every success a converged point) to :data:`EVENT_TOL` and the
+    branch stops there: ``grazing`` when the phase signature changes or the cycle ceases to
+    exist, ``step-too-small`` otherwise. At most ``max_steps`` steps, accepted or not.
+    """
     points = [start]
     events: list[tuple[str, _Point, str]] = []
     h = h0
-    h_min = 1e-9 * max(1.0, hi - lo)
+    h_small = 1e-4 * (hi - lo)
     stop = "max-steps"
+    grow = True
     for _ in range(max_steps):
         at = points[-1]
         out = tracer.step(at, h)
-        ok = (out is not None and out[0].signature == at.signature
-              and float(out[0].tangent @ at.tangent) >= math.cos(MAX_TURN))
-        if not ok:
-            if h > h_min:
-                h *= 0.5
-                continue
-            if out is None or out[0].signature != at.signature:
-                # the bisection on the step has closed in on where the phase structure changes
-                events.append(("grazing", at, "a phase appears or vanishes (phase signature "
-                               "changes)" if out is not None else "the cycle ceases to exist"))
-                stop = "grazing"
+        if out is not None and _acceptable(at, out[0]):
+            new, its = out
+            events += _located_events(tracer, at, new)
+            points.append(new)
+            if not lo <= new.p <= hi:
+                stop = "range-end"
+                break
+            if its <= FAST_NEWTON and grow:
+                h = min(h_max, 1.5 * h)
+            grow = True
+            continue
+        grow = False
+        if h > h_small:
+            h *= 0.5
+            continue
+        # the end of the branch: bisection on the step length
+        changed = out is not None and out[0].signature != at.signature
+        ok_h, bad_h, last = 0.0, h, at
+        while bad_h - ok_h > EVENT_TOL:
+            mid = 0.5 * (ok_h + bad_h)
+            trial = tracer.step(at, mid)
+            if trial is not None and _acceptable(at, trial[0]):
+                ok_h, last = mid, trial[0]
             else:
-                stop = "step-too-small"
-            break
-        new, its = out  # type: ignore[misc]
-        events += _located_events(tracer, at, new)
-        points.append(new)
-        if not lo <= new.p <= hi:
-            stop = "range-end"
-            break
-        if its <= FAST_NEWTON:
-            h = min(h_max, 1.5 * h)
+                changed = changed or (trial is not None and trial[0].signature != at.signature)
+                bad_h = mid
+        if last is not at:
+            points.append(last)
+        if changed or out is None:
+            events.append(("grazing", last, "a phase appears or vanishes (phase signature changes)"
+                           if changed else "the periodic motion ceases to exist"))
+            stop = "grazing"
+        else:
+            stop = "step-too-small"
+        break
     return _BranchRun(points, events, stop)
+
+
+def _acceptable(at: _Point, new: _Point) -> bool:
+    """Same phase signature, and the tangent turned by less than :data:`MAX_TURN`."""
+    return new.signature == at.signature and float(new.tangent @ at.tangent) >= math.cos(MAX_TURN)
 
 
 def _located_events(tracer: _Tracer, a: _Point, b: _Point) -> list[tuple[str, _Point, str]]:
@@ -629,6 +680,12 @@ def _rigid_stick_slip(system: ContinuationSystem, name: str, lo: float, hi: floa
                 break
     points.sort(key=lambda x: x[0])
     return points, ends
+
+
+def _local_slope(system: ContinuationSystem, name: str, p: float) -> float:
+    """The friction slope ``dF/du`` at the belt speed (the worse side at a kink)."""
+    left, right = one_sided_slopes(system.with_value(name, p).build()[1])
+    return min(left, right)
 
 
 def steady_sliding_along(system: ContinuationSystem, name: str, lo: float, hi: float,
@@ -738,11 +795,23 @@ def _to_branch(tracer: _Tracer, runs: list[_BranchRun], kind: str, k: int) -> tu
     bps: list[BranchPoint] = []
     for pt in ordered:
         sec = tracer.section(pt.p)
+        if kind == "slip-oscillation" and not np.any(pt.y):  # the Hopf point: steady sliding
+            structure = tracer.system.with_value(tracer.name, pt.p).build()[0]
+            omega = float(np.max(np.abs(np.linalg.eigvals(slip_matrix(structure, 0.0)).imag)))
+            # the linear period there: 2 pi / omega of the critical pair (the Hopf frequency)
+            critical = np.linalg.eigvals(slip_matrix(structure, _local_slope(tracer.system, tracer.name,
+                                                                             pt.p)))
+            omega = float(np.abs(critical[np.argmin(np.abs(critical.real))].imag)) or omega
+            bps.append(BranchPoint(pt.p, 2.0 * math.pi / omega, 0.0, 0.0,
+                                   np.zeros(0, dtype=np.complex128), False, np.zeros(2 * structure.n_dof)))
+            continue
         m = sec.measure(pt.y)
         if m is None:
             continue
         mult = _multipliers(pt.jac)
         bps.append(BranchPoint(pt.p, *m, mult, bool(np.all(np.abs(mult) < 1.0)), sec.full_state(pt.y)))
+    if len(bps) > 1 and bps[0].amplitude == 0.0:  # the Hopf end takes its neighbour's stability
+        bps[0] = replace(bps[0], stable=bps[1].stable)
     reason = f"backward: {back.stop}; forward: {fwd.stop}"
     evs = []
     for typ, pt, detail in back.events + fwd.events:
@@ -811,14 +880,12 @@ def _slip_branches(system: ContinuationSystem, name: str, lo: float, hi: float, 
         tracer = _Tracer(system, name, lambda s: _SlipSection(s, opts))
         sec = tracer.section(p_h)
         assert isinstance(sec, _SlipSection)
-        # a small oscillation: peak velocity eps, foundation at rest, p found by the corrector
-        eps = 1e-3
+        # a small oscillation (peak velocity SLIP_START), foundation at rest; p from the corrector
         y0 = np.zeros(sec.dim)
-        y0[0] = eps
-        fix = np.zeros(sec.dim + 1)
-        fix[0] = 1.0
+        y0[0] = SLIP_START
+        fix = np.eye(sec.dim + 1)[0]
         start = None
-        for guess in (p_h, p_h - 1e-4 * max(1.0, abs(p_h)), p_h + 1e-4 * max(1.0, abs(p_h))):
+        for guess in (p_h, p_h - 1e-3 * max(1.0, abs(p_h)), p_h + 1e-3 * max(1.0, abs(p_h))):
             out = tracer.correct(y0, guess, fix, np.append(y0, guess))
             if out is not None:
                 start = out[0]
@@ -826,12 +893,11 @@ def _slip_branches(system: ContinuationSystem, name: str, lo: float, hi: float, 
         if start is None:
             events.append(Event("hopf", p_h, 0.0, None, "no slip oscillation could be started here"))
             continue
-        # orient towards growing amplitude
-        t0 = start.tangent if start.tangent[0] >= 0.0 else -start.tangent
-        start.tangent = t0
-        back = replace(start, tangent=-t0)
-        runs = [_trace(tracer, back, lo, hi, 1e-3, h_max, max_steps // 4),
-                _trace(tracer, start, lo, hi, 1e-3, h_max, max_steps)]
+        # orient towards growing amplitude; the other way the branch ends at the Hopf point
+        start.tangent = start.tangent if start.tangent[0] >= 0.0 else -start.tangent
+        hopf_end = _Point(p_h, np.zeros(sec.dim), np.eye(sec.dim), start.tangent, start.signature)
+        runs = [_BranchRun([start, hopf_end], [], "hopf"),
+                _trace(tracer, start, lo, hi, 1e-2 * (hi - lo), h_max, max_steps)]
         branch, evs = _to_branch(tracer, runs, "slip-oscillation", 0)
         if branch.points:
             index = len(branches)
