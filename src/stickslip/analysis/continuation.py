@@ -42,6 +42,7 @@ predicate (Eq. 36 for the Coulomb law).
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
@@ -102,7 +103,8 @@ class ContinuationSystem:
         if name in ("lam", "zeta", "gamma"):
             return float(getattr(self, name))
         if name == "delta":
-            return float(self.friction.delta)  # type: ignore[attr-defined]
+            assert isinstance(self.friction, LinearFriction)
+            return float(self.friction.delta)
         f = self.foundation
         assert f is not None
         return float({"K": f.stiffness_ratio, "M": f.mass_ratio, "zeta_a": f.damping_ratio}[name])
@@ -110,14 +112,21 @@ class ContinuationSystem:
     def with_value(self, name: str, value: float) -> ContinuationSystem:
         """The same system with parameter ``name`` set to ``value``."""
         check_parameter(self, name)
-        if name in ("lam", "zeta", "gamma"):
-            return replace(self, **{name: float(value)})
+        if name == "lam":
+            return replace(self, lam=float(value))
+        if name == "zeta":
+            return replace(self, zeta=float(value))
+        if name == "gamma":
+            return replace(self, gamma=float(value))
         if name == "delta":
             return replace(self, friction=LinearFriction(float(value)))
         f = self.foundation
         assert f is not None
-        key = {"K": "stiffness_ratio", "M": "mass_ratio", "zeta_a": "damping_ratio"}[name]
-        return replace(self, foundation=replace(f, **{key: float(value)}))
+        if name == "K":
+            return replace(self, foundation=replace(f, stiffness_ratio=float(value)))
+        if name == "M":
+            return replace(self, foundation=replace(f, mass_ratio=float(value)))
+        return replace(self, foundation=replace(f, damping_ratio=float(value)))
 
     def build(self) -> tuple[Structure, Slider]:
         """The engine's structure and slider."""
@@ -409,7 +418,8 @@ class ContinuationResult:
             lines.append(f"  branch {i}: {b.kind}, {b.stick_phases} stick phase(s), {len(ps)} points, "
                          f"{self.param} in [{min(ps):.6g}, {max(ps):.6g}], stopped: {b.stop_reason}")
         for e in self.events:
-            lines.append(f"  {e.type} at {self.param} = {e.param:.10g} (amplitude {e.amplitude:.6g}) {e.detail}")
+            lines.append(f"  {e.type} at {self.param} = {e.param:.10g} "
+                         f"(amplitude {e.amplitude:.6g}) {e.detail}")
         return "\n".join(lines)
 
     def to_xarray(self) -> Any:
@@ -661,7 +671,7 @@ def _rigid_stick_slip(system: ContinuationSystem, name: str, lo: float, hi: floa
     grid = np.linspace(lo, hi, n_points)
     found = [(float(p), exists(float(p))) for p in grid]
     ends: list[float] = []
-    for (pa, sa), (pb, sb) in zip(found[:-1], found[1:], strict=True):
+    for (pa, sa), (pb, sb) in itertools.pairwise(found):
         if (sa is None) != (sb is None):
             a, b = pa, pb
             while b - a > EVENT_TOL * max(1.0, abs(a)):
@@ -779,7 +789,8 @@ def continue_cycles(
         for e in ends:
             amp = min(bps, key=lambda b: abs(b.param - e)).amplitude if bps else 0.0
             events.append(Event("grazing", e, amp, 0 if bps else None,
-                                "the stick-slip cycle is born / ends: its slip velocity grazes the belt speed"))
+                                "the stick-slip cycle is born / ends: its slip velocity grazes "
+                                "the belt speed"))
     else:
         _foundation_branches(system, param, lo, hi, max_period, seeds, max_steps, opts, branches, events)
     if not isinstance(system.friction, (CoulombFriction, LinearFriction)):
@@ -838,6 +849,13 @@ def _on_branch(branches: list[Branch], p: float, amplitude: float, kind: str) ->
     return False
 
 
+def _stick_slip_factory(k: int, opts: EngineOptions) -> Callable[[ContinuationSystem], _StickSlipSection]:
+    def make(s: ContinuationSystem) -> _StickSlipSection:
+        return _StickSlipSection(s, k, opts)
+
+    return make
+
+
 def _foundation_branches(system: ContinuationSystem, name: str, lo: float, hi: float, max_period: int,
                          seeds: int, max_steps: int, opts: EngineOptions, branches: list[Branch],
                          events: list[Event]) -> None:
@@ -850,7 +868,7 @@ def _foundation_branches(system: ContinuationSystem, name: str, lo: float, hi: f
             if _on_branch(branches, p0, cycle.amplitude, "stick-slip"):
                 continue
             k = cycle.stick_phases
-            tracer = _Tracer(system, name, lambda s, k=k: _StickSlipSection(s, k, opts))
+            tracer = _Tracer(system, name, _stick_slip_factory(k, opts))
             sec = tracer.section(p0)
             assert isinstance(sec, _StickSlipSection)
             y0 = sec.pmap.reduce(cycle.breakaway_state)
@@ -903,3 +921,27 @@ def _slip_branches(system: ContinuationSystem, name: str, lo: float, hi: float, 
             index = len(branches)
             branches.append(branch)
             events += [replace(e, branch=index) for e in evs]
+
+
+def slip_oscillation(system: ContinuationSystem, peak_velocity: float, *,
+                     options: EngineOptions | None = None) -> BranchPoint | None:
+    """The slip oscillation of ``system`` whose peak slider velocity is near ``peak_velocity``.
+
+    Newton's method on the velocity-maximum section at fixed parameters (the corrector of the
+    continuation with the parameter held); None when it does not converge.
+    """
+    opts = options or EngineOptions()
+    tracer = _Tracer(system, "lam", lambda s: _SlipSection(s, opts))
+    sec = tracer.section(system.lam)
+    assert isinstance(sec, _SlipSection)
+    y0 = np.zeros(sec.dim)
+    y0[0] = peak_velocity
+    out = tracer.correct(y0, system.lam, np.eye(sec.dim + 1)[-1], None)
+    if out is None:
+        return None
+    pt = out[0]
+    m = sec.measure(pt.y)
+    if m is None or pt.y[0] <= 1e-9:  # peak velocity 0: steady sliding, not an oscillation
+        return None
+    mult = _multipliers(pt.jac)
+    return BranchPoint(pt.p, *m, mult, bool(np.all(np.abs(mult) < 1.0)), sec.full_state(pt.y))

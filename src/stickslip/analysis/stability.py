@@ -17,6 +17,8 @@ quantities are dimensionless.
 
 from __future__ import annotations
 
+import itertools
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -244,7 +246,7 @@ def hopf_weakenings(structure: Structure) -> FloatArray:
     denom = qr * qr + qi * qi
     dcross = cross.deriv()
     found: list[float] = []
-    for root in cross.roots():
+    for root in np.asarray(cross.roots(), dtype=np.complex128):
         if abs(root.imag) > 1e-6 * max(1.0, abs(root.real)) or root.real <= 0.0:
             continue
         w = float(root.real)
@@ -260,7 +262,7 @@ def hopf_weakenings(structure: Structure) -> FloatArray:
         if w <= 0.0 or d2 <= 0.0:
             continue
         delta = 0.5 * float(numer(w)) / d2
-        if delta > 0.0 and np.isfinite(delta):
+        if delta > 0.0 and math.isfinite(delta):
             found.append(delta)
     found.sort()
     unique: list[float] = []
@@ -301,7 +303,7 @@ def stability_intervals(structure: Structure) -> list[tuple[float, float, bool]]
     """
     edges = [0.0, *hopf_weakenings(structure).tolist(), float("inf")]
     out: list[tuple[float, float, bool]] = []
-    for lo, hi in zip(edges[:-1], edges[1:], strict=True):
+    for lo, hi in itertools.pairwise(edges):
         probe = lo + 1.0 if not np.isfinite(hi) else 0.5 * (lo + hi)
         out.append((lo, hi, growth_rate(structure, probe) < 0.0))
     return out

@@ -68,8 +68,8 @@ def continue_branches(
         from stickslip.io.provenance import provenance_attributes
 
         ds = result.to_xarray()
-        ds.attrs.update(provenance_attributes(
-            f"continuation in {param}", {k: v for k, v in payload.items() if k in ("param", "range", "system")}))
+        config = {k: v for k, v in payload.items() if k in ("param", "range", "system")}
+        ds.attrs.update(provenance_attributes(f"continuation in {param}", config))
         payload["dataset"] = str(write_dataset(ds, out, overwrite=True))
     if plot is not None:
         payload["plot"] = str(result.plot().savefig(plot))
