@@ -286,3 +286,48 @@ def test_continuation_plot_follows_the_contract() -> None:
     with pytest.raises(TypeError):
         result.plot(nonsense=1)
     assert "grazing" in result.summary()
+
+
+# --------------------------------------------------------------------------- slip-II section
+
+
+def test_return_map_on_the_slip_ii_piece_has_its_exact_jacobian() -> None:
+    # a heavy, soft, lightly damped foundation that pushes the stuck slider forward: runs from
+    # random starts break away onto slip-II (S = -lambda (1 + 2 gamma), Eq. 20). On that piece
+    # of the section the map's Jacobian (saltation matrices) must match central differences of
+    # the map itself (error O(h^2) + rounding / h, about 1e-7 here)
+    from stickslip.analysis.cycles import _ReturnMap
+    from stickslip.analysis.simulation import EngineOptions
+    from stickslip.kernel.system import SLIP_II
+    from stickslip.model.parameters import Slider
+
+    structure = elastic_foundation(0.0527218, Foundation(3.53655, 0.261100, 0.0174248))
+    slider = Slider(3.6779, gamma=0.0438475)
+    pmap = _ReturnMap(structure, slider, EngineOptions(), SLIP_II)
+    rng = np.random.default_rng(2)
+    checked = 0
+    for _ in range(40):
+        start = np.concatenate([rng.uniform(-4, 4, 2), rng.uniform(-4, 1.5, 2)])
+        on_piece = [z for z in pmap.next_breakaways(start, 6) if pmap.direction_of(z) == SLIP_II]
+        if not on_piece:
+            continue
+        b = pmap.reduce(on_piece[0])
+        # the breakaway state rebuilt from b lies on the slip-II level of the stick force
+        assert pmap.stick_normal @ pmap.state(b) == pytest.approx(-slider.lam * (1 + 2 * slider.gamma),
+                                                                  rel=1e-12)
+        for k in (1, 2, 3):
+            out = pmap.linearise(b, k)
+            if out is None:
+                continue
+            h = 1e-6
+            columns = []
+            for e in np.eye(2):
+                plus, minus = pmap(b + h * e, k), pmap(b - h * e, k)
+                assert plus is not None and minus is not None
+                columns.append((plus - minus) / (2 * h))
+            error = np.max(np.abs(out[1] - np.column_stack(columns)))
+            assert error <= 1e-6 * max(1.0, np.max(np.abs(out[1])))
+            checked += 1
+        if checked >= 3:
+            break
+    assert checked >= 3
