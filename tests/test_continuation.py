@@ -331,3 +331,17 @@ def test_return_map_on_the_slip_ii_piece_has_its_exact_jacobian() -> None:
         if checked >= 3:
             break
     assert checked >= 3
+
+
+def test_docs_worked_example_states_the_documented_numbers(tmp_path: Path) -> None:
+    # docs/continuation.md quotes these numbers; Eq. (36) is the source of the rigid base's
+    import subprocess
+    import sys
+
+    script = Path(__file__).resolve().parents[1] / "docs" / "continuation_example.py"
+    proc = subprocess.run([sys.executable, str(script), "--out", str(tmp_path), "--quick"],
+                          capture_output=True, text=True, timeout=600, check=True)
+    assert "rigid: grazing at lambda = 1.4701178 " in proc.stdout
+    assert "foundation: grazing at lambda = 5.994754 " in proc.stdout
+    assert "foundation: stick-slip from start-up from lambda = 6.00048" in proc.stdout
+    assert (tmp_path / "continuation_lambda.png").stat().st_size > 10_000

@@ -55,6 +55,7 @@ from stickslip.analysis.cycles import _ReturnMap, find_cycles
 from stickslip.analysis.simulation import EngineOptions, simulate
 from stickslip.analysis.stability import growth_rate, hopf_weakenings, one_sided_slopes, slip_matrix
 from stickslip.analysis.verdict import Verdict
+from stickslip.kernel.system import SLIP_I, SLIP_II
 from stickslip.model.friction import CoulombFriction, FrictionLaw, LinearFriction, evaluate_bands
 from stickslip.model.initial import InitialState
 from stickslip.model.parameters import Foundation, Slider
@@ -152,10 +153,11 @@ class _StickSlipSection:
 
     kind = "stick-slip"
 
-    def __init__(self, system: ContinuationSystem, k: int, options: EngineOptions) -> None:
+    def __init__(self, system: ContinuationSystem, k: int, options: EngineOptions,
+                 direction: int = SLIP_I) -> None:
         self.structure, self.slider = system.build()
         self.k = k
-        self.pmap = _ReturnMap(self.structure, self.slider, options)
+        self.pmap = _ReturnMap(self.structure, self.slider, options, direction)
         self.dim = 2 * self.structure.n_dof - 2
 
     def residual(self, y: FloatArray) -> tuple[FloatArray, FloatArray] | None:
@@ -849,9 +851,10 @@ def _on_branch(branches: list[Branch], p: float, amplitude: float, kind: str) ->
     return False
 
 
-def _stick_slip_factory(k: int, opts: EngineOptions) -> Callable[[ContinuationSystem], _StickSlipSection]:
+def _stick_slip_factory(k: int, opts: EngineOptions, direction: int
+                        ) -> Callable[[ContinuationSystem], _StickSlipSection]:
     def make(s: ContinuationSystem) -> _StickSlipSection:
-        return _StickSlipSection(s, k, opts)
+        return _StickSlipSection(s, k, opts, direction)
 
     return make
 
@@ -868,7 +871,8 @@ def _foundation_branches(system: ContinuationSystem, name: str, lo: float, hi: f
             if _on_branch(branches, p0, cycle.amplitude, "stick-slip"):
                 continue
             k = cycle.stick_phases
-            tracer = _Tracer(system, name, _stick_slip_factory(k, opts))
+            direction = SLIP_I if cycle.breakaway_onto == "slip-I" else SLIP_II
+            tracer = _Tracer(system, name, _stick_slip_factory(k, opts, direction))
             sec = tracer.section(p0)
             assert isinstance(sec, _StickSlipSection)
             y0 = sec.pmap.reduce(cycle.breakaway_state)
