@@ -16,7 +16,7 @@ from pathlib import Path
 
 from matplotlib.figure import Figure
 
-from stickslip.analysis.continuation import ContinuationSystem, ContinuationResult, continue_cycles
+from stickslip.analysis.continuation import ContinuationResult, ContinuationSystem, continue_cycles
 from stickslip.analysis.critical import lowest_onset
 from stickslip.analysis.theory import critical_lambda_exact, optimal_foundation_fit
 from stickslip.model.friction import StribeckFriction
