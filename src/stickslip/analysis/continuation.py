@@ -477,6 +477,8 @@ class _Tracer:
     def __init__(self, system: ContinuationSystem, name: str,
                  make: Callable[[ContinuationSystem], _StickSlipSection | _SlipSection]) -> None:
         self.system, self.name, self.make = system, name, make
+        #: the range continued over (points outside it are not reported)
+        self.bounds = (-math.inf, math.inf)
         self._cache: dict[float, _StickSlipSection | _SlipSection] = {}
 
     def section(self, p: float) -> _StickSlipSection | _SlipSection:
@@ -805,6 +807,8 @@ def _to_branch(tracer: _Tracer, runs: list[_BranchRun], kind: str, k: int) -> tu
     """Join a backward and a forward run into one branch, measuring every point."""
     back, fwd = runs
     ordered = list(reversed(back.points[1:])) + fwd.points
+    lo, hi = tracer.bounds
+    ordered = [pt for pt in ordered if lo <= pt.p <= hi]  # the step that left the range: dropped
     bps: list[BranchPoint] = []
     for pt in ordered:
         sec = tracer.section(pt.p)
@@ -873,6 +877,7 @@ def _foundation_branches(system: ContinuationSystem, name: str, lo: float, hi: f
             k = cycle.stick_phases
             direction = SLIP_I if cycle.breakaway_onto == "slip-I" else SLIP_II
             tracer = _Tracer(system, name, _stick_slip_factory(k, opts, direction))
+            tracer.bounds = (lo, hi)
             sec = tracer.section(p0)
             assert isinstance(sec, _StickSlipSection)
             y0 = sec.pmap.reduce(cycle.breakaway_state)
@@ -900,6 +905,7 @@ def _slip_branches(system: ContinuationSystem, name: str, lo: float, hi: float, 
     h_max = 0.05 * (hi - lo)
     for p_h in hopf:
         tracer = _Tracer(system, name, lambda s: _SlipSection(s, opts))
+        tracer.bounds = (lo, hi)
         sec = tracer.section(p_h)
         assert isinstance(sec, _SlipSection)
         # a small oscillation (peak velocity SLIP_START), foundation at rest; p from the corrector
