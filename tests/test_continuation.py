@@ -80,6 +80,25 @@ def test_exact_first_loss_of_stability_finds_the_window_of_issue_20() -> None:
     assert growth_rate(structure, 0.5 * (hopf[1] + hopf[2])) < 0.0
 
 
+@pytest.mark.parametrize("stages", [1, 2])
+def test_critical_weakening_is_the_first_crossing_on_random_structures(stages: int) -> None:
+    # oracle: numpy's eigenvalues of the slip-I matrix on a fine grid below delta_crit and just
+    # around it (a scan is only the check here, never the method)
+    from stickslip.model.structure import chain_structure
+
+    rng = np.random.default_rng(stages)
+    for _ in range(12):
+        zeta = float(rng.uniform(0.01, 0.3))
+        stages_ = tuple(Foundation(float(np.exp(rng.uniform(-2, 1))), float(np.exp(rng.uniform(-1.5, 0.7))),
+                                   float(rng.uniform(0.01, 1.5))) for _ in range(stages))
+        structure = chain_structure(zeta, stages_)
+        d = critical_weakening(structure)
+        assert math.isfinite(d) and d > 0.0
+        assert growth_rate(structure, d * (1 - 1e-8)) < 0.0 < growth_rate(structure, d * (1 + 1e-8))
+        grid = np.linspace(0.0, d * (1 - 1e-6), 300)
+        assert max(growth_rate(structure, float(x)) for x in grid) < 0.0
+
+
 @pytest.mark.parametrize("zeta", [0.05, 0.1])
 def test_stability_optimum_is_stable_below_its_delta_crit(zeta: float) -> None:
     from stickslip.analysis.tuning import optimal_foundation_stability
