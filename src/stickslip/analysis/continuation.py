@@ -369,15 +369,19 @@ def _to_branch(tracer: ArclengthTracer, runs: list[TracedRun], kind: str, k: int
 
 
 def _on_branch(branches: list[Branch], p: float, amplitude: float, kind: str) -> bool:
-    """Whether ``(p, amplitude)`` lies on a computed branch of ``kind`` (to 1e-6 relative)."""
+    """Whether ``(p, amplitude)`` lies on a computed branch of ``kind``: on the linear
+    interpolation between two points (or its extension by one segment past either end, where
+    the step that left the range was dropped) to 1e-3 relative, or at a point to 1e-6."""
     for b in branches:
         if b.kind != kind:
             continue
         ps = np.array([q.param for q in b.points])
         amps = np.array([q.amplitude for q in b.points])
+        last = ps.size - 2
         for i in range(ps.size - 1):
             a0, a1 = ps[i], ps[i + 1]
-            if min(a0, a1) - 1e-12 <= p <= max(a0, a1) + 1e-12:
+            reach = abs(a1 - a0) if i in (0, last) else 0.0
+            if min(a0, a1) - 1e-12 - reach <= p <= max(a0, a1) + 1e-12 + reach:
                 w = 0.0 if a1 == a0 else (p - a0) / (a1 - a0)
                 if abs(amps[i] + w * (amps[i + 1] - amps[i]) - amplitude) <= 1e-3 * max(1.0, amplitude):
                     return True
