@@ -372,3 +372,76 @@ def test_docs_worked_example_states_the_documented_numbers(tmp_path: Path) -> No
     assert "foundation: grazing at lambda = 5.994754 " in proc.stdout
     assert "foundation: stick-slip from start-up from lambda = 6.00048" in proc.stdout
     assert (tmp_path / "continuation_lambda.png").stat().st_size > 10_000
+
+
+# --------------------------------------------------------------------------- events on closed forms
+
+
+class _FoldMap:
+    """``P(y) = y + p - y^2`` with ``p = lambda - 1``: fixed points ``y = +-sqrt(p)``, a fold at
+    ``lambda = 1`` (``y = 0``, multiplier ``1 - 2 y = +1``) and a period doubling at
+    ``lambda = 2`` (``y = 1``, multiplier ``-1``), closed forms."""
+
+    def __init__(self, system: ContinuationSystem) -> None:
+        self.p = system.lam - 1.0
+
+    def gap(self, y: np.ndarray) -> np.ndarray:
+        return np.array([self.p - y[0] ** 2])
+
+    def residual(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return self.gap(y), np.array([[1.0 - 2.0 * y[0]]])
+
+    def signature(self, y: np.ndarray) -> tuple[int, ...]:
+        return (0,)
+
+
+class _RotationMap:
+    """``P(y) = lambda R(0.7) y``: the fixed point 0 with multipliers ``lambda e^(+-0.7 i)``,
+    leaving the unit circle at ``lambda = 1`` (Neimark-Sacker), closed form."""
+
+    def __init__(self, system: ContinuationSystem) -> None:
+        c, s = math.cos(0.7), math.sin(0.7)
+        self.a = system.lam * np.array([[c, -s], [s, c]])
+
+    def gap(self, y: np.ndarray) -> np.ndarray:
+        return np.asarray(self.a @ y - y)
+
+    def residual(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return self.gap(y), self.a
+
+    def signature(self, y: np.ndarray) -> tuple[int, ...]:
+        return (0,)
+
+
+def _start(tracer: object, y0: np.ndarray, p0: float, direction: float) -> object:
+    from stickslip.analysis.arclength import BranchState, unit_tangent
+
+    _, full, jac = tracer.jacobians(y0, p0)  # type: ignore[attr-defined]
+    t = unit_tangent(full, np.append(np.zeros(y0.size), direction))
+    return BranchState(p0, y0, jac, t, (0,))
+
+
+def test_fold_and_period_doubling_are_located_to_their_closed_forms() -> None:
+    from stickslip.analysis.arclength import ArclengthTracer, trace_branch
+
+    tracer = ArclengthTracer(ContinuationSystem(3.25, 0.1), "lam", _FoldMap)  # type: ignore[arg-type]
+    start = _start(tracer, np.array([1.5]), 3.25, -1.0)
+    run = trace_branch(tracer, start, 0.5, 4.0, 0.05, 0.2, 400)  # type: ignore[arg-type]
+    assert run.stop == "range-end"
+    found = {name: pt for name, pt, _ in run.events}
+    assert set(found) == {"fold", "period-doubling"}
+    assert found["fold"].p == pytest.approx(1.0, abs=1e-8)
+    assert found["period-doubling"].p == pytest.approx(2.0, abs=1e-8)
+    # the branch went round the fold: it ends on the other half, y = -sqrt(lambda - 1)
+    end = run.points[-1]
+    assert end.y[0] == pytest.approx(-math.sqrt(end.p - 1.0), abs=1e-9)
+
+
+def test_neimark_sacker_is_located_to_its_closed_form() -> None:
+    from stickslip.analysis.arclength import ArclengthTracer, trace_branch
+
+    tracer = ArclengthTracer(ContinuationSystem(0.5, 0.1), "lam", _RotationMap)  # type: ignore[arg-type]
+    start = _start(tracer, np.zeros(2), 0.5, 1.0)
+    run = trace_branch(tracer, start, 0.4, 1.5, 0.05, 0.2, 400)  # type: ignore[arg-type]
+    (event,) = run.events
+    assert event[0] == "torus" and event[1].p == pytest.approx(1.0, abs=1e-8)
