@@ -120,7 +120,7 @@ def main() -> None:
 
     # figure 2: the rigid base with the measured law, time history and phase portrait
     runs["rigid"].plot(t_start=300.0).savefig(out / "friction_rigid_run.png")
-    runs["stability"].plot(t_start=340.0).savefig(out / "friction_stability_run.png")
+    runs["stability"].plot(t_start=0.0).savefig(out / "friction_stability_run.png")
 
     # figure 3: where does it stick-slip? the law fixed, lambda (the normal load) and zeta swept
     n_lam, n_zeta = (16, 8) if args.quick else (80, 40)

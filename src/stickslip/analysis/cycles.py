@@ -17,10 +17,12 @@ rigid-base cycle has none and is stable as soon as it exists). Every reported cy
 certified by a run of :func:`stickslip.simulate` started on it (its breakaway state repeats),
 which also gives the period, amplitude and stick ratio.
 
-Known limit: the section is the breakaway onto slip-I (``S = lambda``). A cycle whose stick
-phases can also end onto slip-II (``S = -lambda (1 + 2 gamma)``, possible with a foundation)
-is evaluated on the wrong section; such a "fixed point" fails the certifying run and is not
-reported, so the search can miss that cycle but never reports a false one.
+The section has two pieces: breakaways onto slip-I (``S = lambda``) and onto slip-II
+(``S = -lambda (1 + 2 gamma)``, possible with a foundation, when the foundation pushes the
+stuck slider forward). Each breakaway state reached by a seeding run lies on one of them; the
+map ``P^k`` of a piece goes ``k`` breakaways on (of either kind, as the engine counts them)
+and must land on the same piece. A cycle whose breakaways go onto both modes is found on
+either piece and reported once (the slip-I piece first).
 """
 
 from __future__ import annotations
@@ -34,7 +36,7 @@ from numpy.typing import NDArray
 from stickslip.analysis.simulation import EngineOptions, SimulationResult, simulate
 from stickslip.analysis.verdict import Verdict
 from stickslip.kernel.linalg import expm
-from stickslip.kernel.system import STICK, mode_matrices
+from stickslip.kernel.system import SLIP_I, SLIP_II, STICK, mode_kind_band, mode_matrices
 from stickslip.model._validate import random_seed
 from stickslip.model.initial import InitialState
 from stickslip.model.parameters import Slider
@@ -55,6 +57,9 @@ class Cycle:
     ----------
     breakaway_state : ndarray, shape (2 n_dof,)
         The full state at the cycle's breakaway (shifted coordinates).
+    breakaway_onto : str
+        ``slip-I`` or ``slip-II``: the section of ``breakaway_state`` (the slip mode that
+        breakaway goes onto).
     stick_phases : int
         Stick phases per cycle (period-k).
     period, amplitude, stick_ratio : float
@@ -72,10 +77,12 @@ class Cycle:
     stick_ratio: float
     multipliers: NDArray[np.complex128] = field(repr=False)
     stable: bool
+    breakaway_onto: str = "slip-I"
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready, with the keys of ``stickslip cycles --json``."""
         return {
+            "breakaway_onto": self.breakaway_onto,
             "period": self.period,
             "amplitude": self.amplitude,
             "stick_ratio": self.stick_ratio,
@@ -121,8 +128,14 @@ class _ReturnMap:
     ``d state / d b``.
     """
 
-    def __init__(self, structure: Structure, slider: Slider, options: EngineOptions) -> None:
+    def __init__(self, structure: Structure, slider: Slider, options: EngineOptions,
+                 direction: int = SLIP_I) -> None:
         self.structure, self.slider = structure, slider
+        #: the section: breakaways onto slip-I (``S = lambda``) or onto slip-II
+        #: (``S = -lambda (1 + 2 gamma)``), Eq. (20)
+        self.direction = int(direction)
+        self.level = (float(slider.lam) if direction == SLIP_I
+                      else -float(slider.lam) * (1.0 + 2.0 * float(slider.gamma)))
         _edges, intercepts, slopes = slider.friction.bands(float(slider.lam), float(slider.gamma))
         self.options = EngineOptions(t_max=options.t_max, max_events=RETURN_EVENTS * len(intercepts))
         self.n = structure.n_dof
@@ -154,15 +167,16 @@ class _ReturnMap:
         self.lift[0, n - 1:] = -st.damping[0, 1:] / st.stiffness[0, 0]
 
     def state(self, b: FloatArray) -> FloatArray:
-        """Breakaway state from the foundation coordinates ``b``: ``xi' = 1`` and ``S = lambda``."""
+        """Breakaway state from the foundation coordinates ``b``: ``xi' = 1`` and ``S`` at the
+        section's level (``lambda`` onto slip-I, ``-lambda (1 + 2 gamma)`` onto slip-II)."""
         n, st = self.n, self.structure
         q = np.zeros(n)
         v = np.zeros(n)
         v[0] = 1.0
         q[1:], v[1:] = b[: n - 1], b[n - 1:]
-        # S = K_0j q_j + C_0j v_j (the stick force of Eq. 20 with xi'' = 0) equals lambda
+        # S = K_0j q_j + C_0j v_j (the stick force of Eq. 20 with xi'' = 0) equals the level
         rest = st.stiffness[0, 1:] @ q[1:] + st.damping[0, :] @ v
-        q[0] = (self.slider.lam - rest) / st.stiffness[0, 0]
+        q[0] = (self.level - rest) / st.stiffness[0, 0]
         return np.concatenate([q, v])
 
     def reduce(self, state: FloatArray) -> FloatArray:
@@ -170,7 +184,8 @@ class _ReturnMap:
         n = self.n
         return np.concatenate([state[1:n], state[n + 1:]])
 
-    def _run(self, state: FloatArray, count: int) -> tuple[SimulationResult, FloatArray] | None:
+    def _run(self, state: FloatArray, count: int, *, on_section: bool = True
+             ) -> tuple[SimulationResult, FloatArray] | None:
         """The recorded run from ``state`` and the times of its next ``count`` breakaways.
 
         None when there are fewer: in particular when steady sliding is certified, after which
@@ -188,21 +203,53 @@ class _ReturnMap:
             times = [t for t in result.breakaway_times if t > 1e-9][:count]
             if len(times) >= count or result.verdict is not Verdict.STICK_SLIP:
                 break
-        if len(times) < count:
-            return None
+        if len(times) < count or (on_section and
+                                  self.breakaway_direction(result, times[-1]) != self.direction):
+            return None  # fewer breakaways, or the k-th is not onto this section's slip mode
         return result, np.array(times)
+
+    @staticmethod
+    def breakaway_direction(result: SimulationResult, t: float) -> int:
+        """``SLIP_I`` or ``SLIP_II``: the slip mode a breakaway at ``t`` goes onto."""
+        i = int(np.searchsorted(result.segment_times, t, side="left"))
+        if i >= result.segment_times.size or abs(float(result.segment_times[i]) - t) > 1e-12 * max(1.0, t):
+            i = max(0, i - 1)
+        return mode_kind_band(int(result.segment_modes[i]))[0]
+
+    def direction_of(self, state: FloatArray) -> int:
+        """The section a breakaway state lies on: the nearer of the two stick-force levels."""
+        force = float(self.stick_normal @ state)
+        low = -float(self.slider.lam) * (1.0 + 2.0 * float(self.slider.gamma))
+        return SLIP_I if abs(force - float(self.slider.lam)) <= abs(force - low) else SLIP_II
 
     def next_breakaways(self, state: FloatArray, count: int) -> list[FloatArray]:
         """The full states of the next ``count`` breakaways after starting at ``state``.
 
         Empty when there are fewer (see :meth:`_run`).
         """
-        run = self._run(state, count)
+        run = self._run(state, count, on_section=False)
         if run is None:
             return []
         result, times = run
         q, v, _ = result.state_at(times)
         return [np.concatenate([q[i], v[i]]) for i in range(len(times))]
+
+    def signature(self, b: FloatArray, k: int) -> tuple[int, ...] | None:
+        """The kinds of the phases (slip-I, slip-II, stick; friction bands merged) from the
+        breakaway built from ``b`` up to the ``k``-th next breakaway; None when there are fewer.
+
+        A change of the signature along a branch is a grazing: a phase appears or vanishes.
+        """
+        run = self._run(self.state(b), k)
+        if run is None:
+            return None
+        result, times = run
+        kinds = [mode_kind_band(int(m))[0] for m, t in zip(result.segment_modes, result.segment_times,
+                                                        strict=True) if t < times[-1]]
+        merged = [kind for i, kind in enumerate(kinds) if i == 0 or kind != kinds[i - 1]]
+        while merged and merged[0] == STICK:  # the start's own stick phase (within rounding of 0)
+            merged.pop(0)
+        return tuple(merged)
 
     def __call__(self, b: FloatArray, k: int) -> FloatArray | None:
         states = self.next_breakaways(self.state(b), k)
@@ -391,7 +438,8 @@ def find_cycles(
     n = structure.n_dof
     if np.any(structure.mass != np.diag(np.diag(structure.mass))):
         raise ValueError("the cycle search needs a diagonal mass matrix (the paper's structures)")
-    pmap = _ReturnMap(structure, slider, opts)
+    pmaps = {d: _ReturnMap(structure, slider, opts, d) for d in (SLIP_I, SLIP_II)}
+    pmap = pmaps[SLIP_I]
     rng = np.random.default_rng(random_seed(seed))
     starts = [np.concatenate([structure.kinetic_equilibrium_offset() * -slider.gamma * slider.lam,
                               np.eye(n)[0]])]
@@ -402,34 +450,46 @@ def find_cycles(
         found = pmap.next_breakaways(start, 2 * max_period + 1)
         breakaways += found[-max_period:] if found else []
     cycles: list[Cycle] = []
-    for k in range(1, int(max_period) + 1):
-        for state in breakaways:
+    # the section's two pieces: breakaways onto slip-I first (the paper's), then onto slip-II
+    for direction, name in ((SLIP_I, "slip-I"), (SLIP_II, "slip-II")):
+        pm = pmaps[direction]
+        on_section = [z for z in breakaways if pm.direction_of(z) == direction]
+        if n == 1:  # the breakaway state is unique: try it even when no run reached it
+            on_section = on_section[:1] or [pm.state(np.zeros(0))]
+        for k in range(1, int(max_period) + 1):
+            for state in on_section:
+                if n == 1:
+                    solution: tuple[FloatArray, FloatArray] | None = (np.zeros(0), np.zeros((0, 0)))
+                    if pm(np.zeros(0), k) is None:
+                        solution = None
+                else:
+                    solution = _newton(pm, pm.reduce(state), k)
+                if solution is None:
+                    continue
+                b, jac = solution
+                full = pm.state(b)
+                scale = max(1.0, float(np.max(np.abs(full))))
+                if any(np.max(np.abs(full - c.breakaway_state)) <= 1e-7 * scale for c in cycles):
+                    continue
+                certified = simulate(structure, slider, initial=InitialState(full[:n], full[n:]),
+                                     options=opts, record=False)
+                if certified.verdict is not Verdict.STICK_SLIP or certified.cycle_length != k:
+                    continue
+                if any(c.stick_phases == k and c.breakaway_onto != name
+                       and abs(c.period - certified.period) <= 1e-8 * c.period
+                       and abs(c.amplitude - certified.amplitude) <= 1e-8 * max(1.0, c.amplitude)
+                       for c in cycles):
+                    continue  # a cycle with breakaways onto both modes, found on the other piece
+                multipliers = (np.asarray(np.linalg.eigvals(jac), dtype=np.complex128) if jac.size
+                               else np.zeros(0, dtype=np.complex128))
+                stable = bool(np.all(np.abs(multipliers) < 1.0))
+                cycles.append(Cycle(full, k, certified.period, certified.amplitude,
+                                    certified.stick_ratio, multipliers, stable, name))
             if n == 1:
-                solution: tuple[FloatArray, FloatArray] | None = (np.zeros(0), np.zeros((0, 0)))
-                if pmap(np.zeros(0), k) is None:
-                    solution = None
-            else:
-                solution = _newton(pmap, pmap.reduce(state), k)
-            if solution is None:
-                continue
-            b, jac = solution
-            full = pmap.state(b)
-            scale = max(1.0, float(np.max(np.abs(full))))
-            if any(np.max(np.abs(full - c.breakaway_state)) <= 1e-7 * scale for c in cycles):
-                continue
-            certified = simulate(structure, slider, initial=InitialState(full[:n], full[n:]),
-                                 options=opts, record=False)
-            if certified.verdict is not Verdict.STICK_SLIP or certified.cycle_length != k:
-                continue
-            multipliers = (np.asarray(np.linalg.eigvals(jac), dtype=np.complex128) if jac.size
-                           else np.zeros(0, dtype=np.complex128))
-            stable = bool(np.all(np.abs(multipliers) < 1.0))
-            cycles.append(Cycle(full, k, certified.period, certified.amplitude, certified.stick_ratio,
-                                multipliers, stable))
-        if n == 1:
-            break
+                break
     cycles.sort(key=lambda c: (c.stick_phases, c.amplitude))
-    return CycleSearch(structure, slider, tuple(cycles), len(starts), pmap.evaluations)
+    return CycleSearch(structure, slider, tuple(cycles), len(starts),
+                       sum(m.evaluations for m in pmaps.values()))
 
 
 def cycle_exists(structure: Structure, slider: Slider, **kwargs: Any) -> bool:

@@ -17,6 +17,8 @@ quantities are dimensionless.
 
 from __future__ import annotations
 
+import itertools
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -293,48 +295,128 @@ def growth_rate(structure: Structure, delta: float) -> float:
     return float(np.max(np.linalg.eigvals(slip_matrix(structure, -2.0 * delta)).real))
 
 
-def critical_weakening(structure: Structure, *, rtol: float = 1e-10) -> float:
+def _characteristic_polynomial(mass: FloatArray, damping: FloatArray, stiffness: FloatArray
+                               ) -> FloatArray:
+    """Coefficients (highest power first) of ``det(M s^2 + C s + K)``, real.
+
+    ``det(M s^2 + C s + K) = det(M) prod_i (s - s_i)`` over the ``2 n`` eigenvalues ``s_i`` of
+    the first-order matrix ``[[0, I], [-M^-1 K, -M^-1 C]]``; an empty structure gives ``1``.
+    """
+    n = mass.shape[0]
+    if n == 0:
+        return np.ones(1)
+    minv = np.linalg.inv(mass)
+    a = np.zeros((2 * n, 2 * n))
+    a[:n, n:] = np.eye(n)
+    a[n:, :n] = -minv @ stiffness
+    a[n:, n:] = -minv @ damping
+    return np.asarray(np.real(np.poly(np.linalg.eigvals(a))) * np.linalg.det(mass))
+
+
+def hopf_weakenings(structure: Structure) -> FloatArray:
+    """Every weakening ``delta > 0`` at which steady sliding has a root on the imaginary axis.
+
+    With the weakening ``delta`` the characteristic polynomial of the slip-I linearisation is
+    affine in ``delta`` (only ``C_00`` changes, by ``-2 delta``; expansion of the determinant
+    along row 0):
+
+        ``p(s; delta) = p_0(s) - 2 delta s q(s)``,
+
+    ``p_0(s) = det(M s^2 + C s + K)`` and ``q(s)`` the same determinant without row and
+    column 0 (``q = 1`` on the rigid base). ``s = 0`` is never a root (``p(0) = det K > 0``),
+    so stability can change only where a pair ``s = +-i omega``, ``omega > 0``, crosses:
+    ``p_0(i omega) = 2 delta i omega q(i omega)``. Writing ``P(omega) = p_0(i omega)`` and
+    ``Q(omega) = i omega q(i omega)`` (polynomials in ``omega`` with complex coefficients),
+    ``delta = P / (2 Q)`` is real iff ``Im(P conj(Q)) = 0``: a real polynomial in ``omega``
+    of degree at most ``4 n - 1``. Its positive roots (polished by Newton's method on that
+    polynomial) give the candidate ``delta = Re(P conj(Q)) / (2 |Q|^2)``; those with
+    ``delta > 0`` are returned, sorted, each once. Rigid base: ``p_0 = s^2 + 2 zeta s + 1``,
+    ``q = 1``, so ``omega = 1`` and ``delta = zeta``.
+    """
+    m, c, k = (np.asarray(x, dtype=np.float64) for x in
+               (structure.mass, structure.damping, structure.stiffness))
+    p0 = _characteristic_polynomial(m, c, k)
+    q = _characteristic_polynomial(m[1:, 1:], c[1:, 1:], k[1:, 1:])
+    q = np.append(q, 0.0)  # s q(s)
+    # a polynomial a(s) = sum a_j s^j evaluated at s = i omega: coefficient a_j i^j of omega^j
+    big_p = np.polynomial.Polynomial(p0[::-1] * (1j ** np.arange(p0.size)))
+    big_q = np.polynomial.Polynomial(q[::-1] * (1j ** np.arange(q.size)))
+    pr, pi = (np.polynomial.Polynomial(big_p.coef.real), np.polynomial.Polynomial(big_p.coef.imag))
+    qr, qi = (np.polynomial.Polynomial(big_q.coef.real), np.polynomial.Polynomial(big_q.coef.imag))
+    cross = (pi * qr - pr * qi).trim()
+    numer = pr * qr + pi * qi
+    denom = qr * qr + qi * qi
+    dcross = cross.deriv()
+    found: list[float] = []
+    for root in np.asarray(cross.roots(), dtype=np.complex128):
+        if abs(root.imag) > 1e-6 * max(1.0, abs(root.real)) or root.real <= 0.0:
+            continue
+        w = float(root.real)
+        for _ in range(8):  # Newton polish on the real polynomial
+            slope = float(dcross(w))
+            if slope == 0.0:
+                break
+            step = float(cross(w)) / slope
+            w -= step
+            if abs(step) <= 1e-16 * w:
+                break
+        d2 = float(denom(w))
+        if w <= 0.0 or d2 <= 0.0:
+            continue
+        delta = 0.5 * float(numer(w)) / d2
+        if delta > 0.0 and math.isfinite(delta):
+            found.append(delta)
+    found.sort()
+    unique: list[float] = []
+    for d in found:
+        if not unique or d - unique[-1] > 1e-12 * max(1.0, d):
+            unique.append(d)
+    return np.array(unique)
+
+
+def critical_weakening(structure: Structure) -> float:
     """Largest friction weakening ``delta_crit`` for which steady sliding stays stable.
 
     Steady sliding of ``structure`` under a law with local slope ``dF/du = -2 delta`` at the
     belt speed is stable for ``0 <= delta < delta_crit`` (dimensionless, ``delta = sigma W /
-    (2 sqrt(m k))`` for the linear law). Closed form on the rigid base: ``delta_crit = zeta``
-    (Routh-Hurwitz of ``s^2 + 2 (zeta - delta) s + 1``, :func:`routh_hurwitz_1dof`).
+    (2 sqrt(m k))`` for the linear law): ``delta_crit`` is the first loss of stability, exactly.
+    Closed form on the rigid base: ``delta_crit = zeta`` (Routh-Hurwitz of
+    ``s^2 + 2 (zeta - delta) s + 1``, :func:`routh_hurwitz_1dof`).
 
-    Method: the trace of the slip matrix, ``-tr(M^-1 C) + 2 delta (M^-1)_00``, is the sum of
-    the eigenvalues, so every ``delta`` above ``tr(M^-1 C) / (2 (M^-1)_00)`` is unstable; the
-    growth rate is scanned on 64 points below that bound and the first sign change bisected
-    to ``rtol``. Returns 0 when steady sliding is not stable even without weakening.
+    Method: no scan. Stability can change only where a root crosses the imaginary axis, at the
+    Hopf weakenings of :func:`hopf_weakenings` (roots of a polynomial); between two of them the
+    verdict is constant. Steady sliding stable at ``delta = 0`` stays stable up to the smallest
+    one, which is returned (a window of instability above it and a return to stability, as on
+    some foundations, is therefore never stepped over). Returns 0 when steady sliding is not
+    stable even without weakening, and ``inf`` when no crossing exists.
 
     Parameters
     ----------
     structure : Structure
         Dimensionless mass, damping and stiffness matrices, contact on DOF 0.
-    rtol : float
-        Relative tolerance of the bisection on ``delta``.
 
     Returns
     -------
     float
-        ``delta_crit``, dimensionless; 0 when steady sliding is unstable without weakening.
+        ``delta_crit``, dimensionless; 0 when steady sliding is unstable without weakening,
+        ``inf`` when no crossing exists.
     """
     if growth_rate(structure, 0.0) >= 0.0:
         return 0.0
-    minv = np.linalg.inv(structure.mass)
-    upper = float(np.trace(minv @ structure.damping)) / (2.0 * float(minv[0, 0]))
-    grid = np.linspace(0.0, upper, 65)[1:]
-    lo, hi = 0.0, upper
-    for d in grid:
-        if growth_rate(structure, float(d)) >= 0.0:
-            hi = float(d)
-            break
-        lo = float(d)
-    for _ in range(200):
-        if hi - lo <= rtol * max(hi, 1e-300):
-            break
-        mid = 0.5 * (lo + hi)
-        if growth_rate(structure, mid) >= 0.0:
-            hi = mid
-        else:
-            lo = mid
-    return 0.5 * (lo + hi)
+    hopf = hopf_weakenings(structure)
+    return float(hopf[0]) if hopf.size else float("inf")
+
+
+def stability_intervals(structure: Structure) -> list[tuple[float, float, bool]]:
+    """Steady sliding's stability for every weakening ``delta >= 0``, exactly.
+
+    Returns the intervals ``(lo, hi, stable)`` between consecutive Hopf weakenings
+    (:func:`hopf_weakenings`; ``hi = inf`` for the last), the verdict of each taken from the
+    eigenvalues at its midpoint (at ``lo + 1`` for the last).
+    """
+    edges = [0.0, *hopf_weakenings(structure).tolist(), float("inf")]
+    out: list[tuple[float, float, bool]] = []
+    for lo, hi in itertools.pairwise(edges):
+        probe = lo + 1.0 if not np.isfinite(hi) else 0.5 * (lo + hi)
+        out.append((lo, hi, growth_rate(structure, probe) < 0.0))
+    return out

@@ -20,10 +20,16 @@ from stickslip.analysis.absorber_tuning import DAMPING_BOUNDS, check_tuning_zeta
 from stickslip.analysis.optimise import best_seed, nelder_mead, ordered_bounds
 from stickslip.analysis.stability import critical_weakening
 from stickslip.analysis.theory import optimal_foundation_fit
+from stickslip.model._validate import positive
 from stickslip.model.parameters import Foundation
 from stickslip.model.structure import elastic_foundation
 
 FloatArray = NDArray[np.float64]
+
+#: Default largest static deflection of the foundation under the kinetic friction force, as a
+#: multiple of the slider spring's deflection under it (``1 / K^2``); see
+#: :func:`optimal_foundation_stability`.
+MAX_FOUNDATION_DEFLECTION_RATIO = 4.0
 
 
 @dataclass(frozen=True)
@@ -76,6 +82,8 @@ class StabilityTuning:
             "gain": self.gain if math.isfinite(self.gain) else None,
             "mass_ratio_bounds": list(self.mass_ratio_bounds),
             "stiffness_ratio_bounds": list(self.stiffness_ratio_bounds),
+            # static deflection of the foundation under mu_k W over the slider spring's: 1 / K^2
+            "foundation_deflection_ratio": 1.0 / f.stiffness_ratio ** 2,
             "evaluations": self.evaluations,
         }
 
@@ -87,6 +95,7 @@ def optimal_foundation_stability(
     stiffness_ratio_bounds: tuple[float, float] | None = None,
     reference: Foundation | None = None,
     maxiter: int = 400,
+    max_deflection_ratio: float = MAX_FOUNDATION_DEFLECTION_RATIO,
 ) -> StabilityTuning:
     """Maximise the critical friction weakening ``delta_crit`` over ``(M, K, zeta_a)``.
 
@@ -98,14 +107,23 @@ def optimal_foundation_stability(
         Allowed ``M``; by default ``(M_opt / 20, M_opt)`` with ``M_opt`` of Eq. (28), so that
         the design adds no more mass than the absorber optimum (as for the stick-slip objective).
     stiffness_ratio_bounds : (float, float), optional
-        Allowed ``K``; by default ``(K_opt / 10, 10 K_opt)`` with ``K_opt`` of Eq. (29). A
-        lower bound is needed: as ``K -> 0`` the foundation hangs on its damper alone,
-        ``delta_crit`` tends to ``zeta_a`` while the static drift ``gamma lambda / K^2`` of the
-        foundation grows without bound and its slowest mode stops decaying, which is no design.
+        Allowed ``K``; by default ``(1 / sqrt(max_deflection_ratio), 10 K_opt)`` with ``K_opt``
+        of Eq. (29). A lower bound is needed: as ``K -> 0`` the foundation hangs on its damper
+        alone, ``delta_crit`` tends to ``zeta_a`` while the static drift ``gamma lambda / K^2``
+        of the foundation grows without bound and its slowest mode stops decaying, which is no
+        design.
     reference : Foundation, optional
         The absorber optimum compared with; Eqs. (28)-(30) by default.
     maxiter : int
         Nelder-Mead iterations from the best seed.
+    max_deflection_ratio : float
+        Largest static deflection of the foundation under the kinetic friction force
+        ``mu_k W``, as a multiple of the slider spring's deflection under the same force:
+        ``(mu_k W / k_a) / (mu_k W / k) = 1 / K^2``, so ``K >= 1 / sqrt(max_deflection_ratio)``.
+        In SI the deflection is ``max_deflection_ratio * mu_k W / k``. Default
+        :data:`MAX_FOUNDATION_DEFLECTION_RATIO` (4: a foundation spring at least a quarter as
+        stiff as the slider's, i.e. ``K >= 0.5``, the paper's detuning ``K_opt / 2`` of
+        Figs. 11-15 at small ``zeta``).
 
     Returns
     -------
@@ -126,7 +144,9 @@ def optimal_foundation_stability(
         mass_ratio_bounds = (reference.mass_ratio / 20.0, reference.mass_ratio)
     m_lo, m_hi = ordered_bounds("mass ratio", mass_ratio_bounds)
     if stiffness_ratio_bounds is None:
-        stiffness_ratio_bounds = (reference.stiffness_ratio / 10.0, reference.stiffness_ratio * 10.0)
+        ratio_max = positive("largest foundation deflection ratio", max_deflection_ratio)
+        stiffness_ratio_bounds = (1.0 / math.sqrt(ratio_max),
+                                  max(reference.stiffness_ratio * 10.0, 1.0 / math.sqrt(ratio_max)))
     k_lo, k_hi = ordered_bounds("stiffness ratio", stiffness_ratio_bounds)
     z_lo, z_hi = DAMPING_BOUNDS
     count = 0

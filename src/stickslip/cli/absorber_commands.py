@@ -220,8 +220,9 @@ def _tune_stability(zeta: float, mass_ratio: float | None, json: bool) -> None:
         f"{'rigid base':22s} {'':9s} {'':9s} {'':9s}  {payload['rigid_base_delta_crit']:.6g}  (= zeta)",
         "steady sliding is linearly stable for every friction law whose weakening at the belt "
         "speed, delta = -(dF/du)/2, is below delta_crit",
-        *(["note: K lies on its lower bound K_opt/10; softer foundations stabilise further but "
-           "drift by gamma lambda / K^2 and decay ever slower"]
+        *([f"note: K lies on its lower bound: the foundation's static deflection under the kinetic "
+           f"friction force is {payload['foundation_deflection_ratio']:.4g} times the slider spring's "
+           "(the largest allowed); softer foundations stabilise further but drift further"]
           if payload["K"] <= payload["stiffness_ratio_bounds"][0] * (1 + 1e-9) else []),
     ]))
 

@@ -1,0 +1,286 @@
+"""Poincare sections of periodic motions, for continuation (DESIGN.md section 12).
+
+* **Stick-slip cycles** on the breakaway section of :mod:`stickslip.analysis.cycles`
+  (``xi' = 1``, ``S`` at the level of a breakaway onto slip-I or onto slip-II; unknowns ``b``,
+  the foundation's coordinates, ``2 n - 2`` of them): ``G(b) = P^k(b) - b`` with the exact
+  Jacobian of saltation matrices (:meth:`stickslip.analysis.cycles._ReturnMap.linearise`).
+* **Slip oscillations** (never sticking, velocity-dependent friction) on the section of a
+  velocity maximum of the slider, ``xi'' = 0`` with ``xi''' < 0``: the unknowns are the
+  slider's peak velocity ``xi'`` and the foundation's coordinates (``2 n - 1``), ``xi`` follows
+  from ``xi'' = 0``. The map is evaluated exactly by the engine (the next velocity maximum is
+  the root of ``xi''`` on the recorded run); its Jacobian by central differences (the section
+  is crossed transversally and the flow is smooth in slip: a piecewise-linear friction law is
+  continuous across its band edges).
+
+Both give ``G``, its Jacobian, ``G`` alone (for differences in the parameter), the phase
+signature (the sequence of slip-I, slip-II and stick phases: a change is a grazing) and the
+period, amplitude and stick ratio of the motion. All quantities are dimensionless.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from stickslip.analysis.cycles import _ReturnMap
+from stickslip.analysis.simulation import EngineOptions, simulate
+from stickslip.analysis.stability import slip_matrix
+from stickslip.analysis.verdict import Verdict
+from stickslip.kernel.system import SLIP_I
+from stickslip.model.friction import CoulombFriction, FrictionLaw, LinearFriction, evaluate_bands
+from stickslip.model.initial import InitialState
+from stickslip.model.parameters import Foundation, Slider
+from stickslip.model.structure import Structure, chain_structure
+
+FloatArray = NDArray[np.float64]
+
+#: Parameters a branch can be continued in (``delta`` needs the linear law; ``K``, ``M``,
+#: ``zeta_a`` a foundation).
+PARAMETERS = ("lam", "zeta", "gamma", "delta", "K", "M", "zeta_a")
+
+
+@dataclass(frozen=True)
+class ContinuationSystem:
+    """The system continued: the options of ``stickslip cycles`` as one value.
+
+    Parameters
+    ----------
+    lam, zeta, gamma : float
+        The slider (Eqs. 19-27, dimensionless).
+    foundation : Foundation or None
+        The elastic foundation (None: rigid base).
+    friction : FrictionLaw
+        The friction law (section 8 of DESIGN.md).
+    """
+
+    lam: float
+    zeta: float
+    gamma: float = 2.0
+    foundation: Foundation | None = None
+    friction: FrictionLaw = field(default_factory=CoulombFriction)
+
+    def value(self, name: str) -> float:
+        """The current value of parameter ``name`` (one of :data:`PARAMETERS`)."""
+        check_parameter(self, name)
+        if name in ("lam", "zeta", "gamma"):
+            return float(getattr(self, name))
+        if name == "delta":
+            assert isinstance(self.friction, LinearFriction)
+            return float(self.friction.delta)
+        f = self.foundation
+        assert f is not None
+        return float({"K": f.stiffness_ratio, "M": f.mass_ratio, "zeta_a": f.damping_ratio}[name])
+
+    def with_value(self, name: str, value: float) -> ContinuationSystem:
+        """The same system with parameter ``name`` set to ``value``."""
+        check_parameter(self, name)
+        if name == "lam":
+            return replace(self, lam=float(value))
+        if name == "zeta":
+            return replace(self, zeta=float(value))
+        if name == "gamma":
+            return replace(self, gamma=float(value))
+        if name == "delta":
+            return replace(self, friction=LinearFriction(float(value)))
+        f = self.foundation
+        assert f is not None
+        if name == "K":
+            return replace(self, foundation=replace(f, stiffness_ratio=float(value)))
+        if name == "M":
+            return replace(self, foundation=replace(f, mass_ratio=float(value)))
+        return replace(self, foundation=replace(f, damping_ratio=float(value)))
+
+    def build(self) -> tuple[Structure, Slider]:
+        """The engine's structure and slider."""
+        structure = chain_structure(self.zeta, () if self.foundation is None else (self.foundation,))
+        return structure, Slider(self.lam, gamma=self.gamma, friction=self.friction)
+
+
+def check_parameter(system: ContinuationSystem, name: str) -> None:
+    """Refuse a parameter the system cannot be continued in (``ValueError``, one line)."""
+    if name not in PARAMETERS:
+        raise ValueError(f"parameter {name!r} is not one of {', '.join(PARAMETERS)}")
+    if name == "delta" and not isinstance(system.friction, LinearFriction):
+        raise ValueError("parameter 'delta' needs the linear friction law (--friction linear:DELTA)")
+    if name in ("K", "M", "zeta_a") and system.foundation is None:
+        raise ValueError(f"parameter {name!r} needs a foundation (--dva), not the rigid base")
+
+
+class StickSlipSection:
+    """``G(b) = P^k(b) - b`` on the breakaway section, exact Jacobian."""
+
+    kind = "stick-slip"
+
+    def __init__(self, system: ContinuationSystem, k: int, options: EngineOptions,
+                 direction: int = SLIP_I) -> None:
+        self.structure, self.slider = system.build()
+        self.k = k
+        self.pmap = _ReturnMap(self.structure, self.slider, options, direction)
+        self.dim = 2 * self.structure.n_dof - 2
+
+    def residual(self, y: FloatArray) -> tuple[FloatArray, FloatArray] | None:
+        if self.dim == 0:
+            return (np.zeros(0), np.zeros((0, 0))) if self.pmap(np.zeros(0), self.k) is not None else None
+        out = self.pmap.linearise(y, self.k)
+        if out is None:
+            return None
+        pb, jac = out
+        return pb - y, jac
+
+    def gap(self, y: FloatArray) -> FloatArray | None:
+        """``P^k(y) - y`` without the Jacobian."""
+        py = self.pmap(y, self.k)
+        return None if py is None else py - y
+
+    def signature(self, y: FloatArray) -> tuple[int, ...] | None:
+        return self.pmap.signature(y, self.k)
+
+    def full_state(self, y: FloatArray) -> FloatArray:
+        return self.pmap.state(y)
+
+    def measure(self, y: FloatArray) -> tuple[float, float, float] | None:
+        """Period, amplitude and stick ratio of the cycle, from a certifying run."""
+        n = self.structure.n_dof
+        z = self.full_state(y)
+        run = simulate(self.structure, self.slider, initial=InitialState(z[:n], z[n:]),
+                       options=self.pmap.options, record=False)
+        if run.verdict is not Verdict.STICK_SLIP or run.period is None or run.amplitude is None:
+            return None
+        return float(run.period), float(run.amplitude), float(run.stick_ratio or 0.0)
+
+
+class SlipSection:
+    """``G(y) = P(y) - y`` on the section of a velocity maximum, ``y = (xi', foundation)``."""
+
+    kind = "slip-oscillation"
+
+    def __init__(self, system: ContinuationSystem, options: EngineOptions) -> None:
+        self.structure, self.slider = system.build()
+        st = self.structure
+        self.n = st.n_dof
+        self.dim = 2 * self.n - 1
+        self.minv = np.linalg.inv(st.mass)
+        self.bands = self.slider.friction.bands(float(self.slider.lam), float(self.slider.gamma))
+        self.f_ref = float(self.slider.lam * self.slider.gamma)
+        self.options = EngineOptions(t_max=options.t_max, max_events=min(
+            100_000, 400 * len(self.bands[1]) + 400))
+        self.last: tuple[float, float, float] | None = None
+
+    def _force(self, v0: float) -> float:
+        """Friction on the slider in slip-I in shifted coordinates, ``F(1 - xi') - gamma lambda``."""
+        return float(evaluate_bands(self.bands, 1.0 - v0)) - self.f_ref
+
+    def accel(self, z: FloatArray) -> FloatArray:
+        n, st = self.n, self.structure
+        f = np.zeros(n)
+        f[0] = self._force(float(z[n]))
+        return np.asarray(self.minv @ (f - st.damping @ z[n:] - st.stiffness @ z[:n]))
+
+    def full_state(self, y: FloatArray) -> FloatArray:
+        """The state with ``xi'' = 0`` (solved for ``xi``, linear in it)."""
+        n, st = self.n, self.structure
+        q = np.zeros(n)
+        v = np.zeros(n)
+        v[0] = y[0]
+        q[1:], v[1:] = y[1:n], y[n:]
+        # row 0 of M^-1 (f - C v - K q) = 0, linear in q0
+        r = self.minv[0]
+        rest = r @ (np.eye(n)[0] * self._force(v[0]) - st.damping @ v - st.stiffness @ q)
+        coef = float(r @ st.stiffness[:, 0])
+        q[0] = rest / coef
+        return np.concatenate([q, v])
+
+    def reduce(self, z: FloatArray) -> FloatArray:
+        n = self.n
+        return np.concatenate([z[n:n + 1], z[1:n], z[n + 1:]])
+
+    def step(self, y: FloatArray) -> FloatArray | None:
+        """The next velocity maximum (reduced), or None when the slider sticks or no maximum.
+
+        Also keeps ``(period, amplitude, max velocity)`` of the run in :attr:`last`.
+        """
+        n = self.n
+        z0 = self.full_state(y)
+        if not np.all(np.isfinite(z0)) or z0[n] >= 1.0:
+            return None
+        # a period of the slowest mode bounds the search for the next maximum
+        omega = np.abs(np.linalg.eigvals(slip_matrix(self.structure, 0.0)).imag)
+        omega = omega[omega > 1e-9]
+        horizon = 3.0 * 2.0 * math.pi / float(omega.min()) if omega.size else 60.0
+        run = simulate(self.structure, self.slider, initial=InitialState(z0[:n], z0[n:]),
+                       options=self.options.with_t_max(horizon), record=True, run_to_t_max=True)
+        t_end = float(run.t_end)
+        grid = np.linspace(0.0, t_end, 400)
+        q, v, modes = run.state_at(grid)
+        if np.any(modes != 0):
+            return None  # it sticks or slides faster than the belt: not a slip oscillation
+        st = self.structure
+        force = np.zeros_like(q)
+        force[:, 0] = evaluate_bands(self.bands, 1.0 - v[:, 0]) - self.f_ref
+        acc = ((force - v @ st.damping.T - q @ st.stiffness.T) @ self.minv.T)[:, 0]
+        start = int(np.argmax(grid > 1e-6 * t_end + 1e-9))
+        for i in range(max(start, 1), grid.size - 1):
+            if acc[i] > 0.0 >= acc[i + 1]:
+                t_peak = refined_root(lambda t: self._accel_at(run, t), grid[i], grid[i + 1])
+                zq, zv, _ = run.state_at(np.array([t_peak]))
+                z1 = np.concatenate([zq[0], zv[0]])
+                x_ext = self._xi_extrema(run, t_peak)
+                self.last = (t_peak, 0.5 * (max(x_ext) - min(x_ext)), float(z1[n]))
+                return self.reduce(z1)
+        return None
+
+    def _accel_at(self, run: Any, t: float) -> float:
+        q, v, _ = run.state_at(np.array([t]))
+        return float(self.accel(np.concatenate([q[0], v[0]]))[0])
+
+    def _xi_extrema(self, run: Any, t_end: float) -> list[float]:
+        """``xi`` at the roots of ``xi'`` in ``[0, t_end]`` (and at the ends)."""
+        grid = np.linspace(0.0, t_end, 200)
+        q, v, _ = run.state_at(grid)
+        out = [float(q[0, 0]), float(q[-1, 0])]
+        for i in range(grid.size - 1):
+            if v[i, 0] * v[i + 1, 0] < 0.0:
+                t = refined_root(lambda s: float(run.state_at(np.array([s]))[1][0, 0]), grid[i], grid[i + 1])
+                out.append(float(run.state_at(np.array([t]))[0][0, 0]))
+        return out
+
+    def residual(self, y: FloatArray) -> tuple[FloatArray, FloatArray] | None:
+        py = self.step(y)
+        if py is None:
+            return None
+        last = self.last
+        jac = np.zeros((self.dim, self.dim))
+        for j in range(self.dim):
+            h = 1e-6 * max(1.0, abs(float(y[j])))
+            e = np.zeros(self.dim)
+            e[j] = h
+            plus, minus = self.step(y + e), self.step(y - e)
+            if plus is None or minus is None:
+                return None
+            jac[:, j] = (plus - minus) / (2.0 * h)
+        self.last = last
+        return py - y, jac
+
+    def gap(self, y: FloatArray) -> FloatArray | None:
+        """``P(y) - y`` without the Jacobian."""
+        py = self.step(y)
+        return None if py is None else py - y
+
+    def signature(self, y: FloatArray) -> tuple[int, ...] | None:
+        return (0,) if self.step(y) is not None else None
+
+    def measure(self, y: FloatArray) -> tuple[float, float, float] | None:
+        if self.step(y) is None or self.last is None:
+            return None
+        return self.last[0], self.last[1], 0.0
+
+
+def refined_root(f: Callable[[float], float], a: float, b: float) -> float:
+    from scipy.optimize import brentq
+
+    return float(brentq(f, a, b, xtol=1e-14, rtol=4 * np.finfo(float).eps, maxiter=200))

@@ -1,0 +1,92 @@
+"""``stickslip continue``: branches of periodic motions against one parameter (issue 20)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from stickslip.cli.console import BadInput, check_figure_path, check_output_path, parse_dva, print_json
+from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE, OVERWRITE, PLOT
+
+
+def continue_branches(
+    param: Annotated[str, typer.Option("--param", help="lam, zeta, gamma, delta, K, M or zeta_a")],
+    range_: Annotated[str, typer.Option("--range", help="A:B, the parameter's interval")],
+    lam: Annotated[float, typer.Option("--lam", help="lambda > 0 (unless continued)")] = 10.0,
+    zeta: Annotated[float, typer.Option("--zeta", help="damping ratio >= 0 (unless continued)")] = 0.1,
+    gamma: GAMMA = 2.0,
+    dva: DVA = "none",
+    k_scale: K_SCALE = 1.0,
+    friction: FRICTION = "coulomb",
+    seeds: Annotated[int, typer.Option("--seeds", help="random starts of the cycle search")] = 12,
+    max_period: Annotated[int, typer.Option("--max-period", help="longest cycle, in stick phases")] = 2,
+    max_steps: Annotated[int, typer.Option("--max-steps", help="steps per branch (bound)")] = 400,
+    out: Annotated[Path | None, typer.Option("--out", help="write the branches as netCDF here")] = None,
+    plot: PLOT = None,
+    overwrite: OVERWRITE = False,
+    json: JSON = False,
+) -> None:
+    """Bifurcation diagram: stick-slip cycles and slip oscillations, stable and unstable.
+
+    Example: stickslip continue --param lam --range 0.5:5 --zeta 0.1 --dva none --json
+    """
+    from stickslip.analysis.continuation import PARAMETERS, ContinuationSystem, continue_cycles
+    from stickslip.model.friction import parse_friction
+
+    if param not in PARAMETERS:
+        raise BadInput(f"--param {param!r} is not one of {', '.join(PARAMETERS)}")
+    lo_text, sep, hi_text = range_.partition(":")
+    try:
+        lo, hi = float(lo_text), float(hi_text)
+    except ValueError:
+        raise BadInput(f"--range {range_!r} must be A:B with two numbers") from None
+    if not sep or not lo < hi:
+        raise BadInput(f"--range {range_!r} must be A:B with A < B")
+    if not 1 <= seeds <= 10_000:
+        raise BadInput(f"--seeds {seeds} must be from 1 to 10000")
+    if not 1 <= max_period <= 8:
+        raise BadInput(f"--max-period {max_period} must be from 1 to 8")
+    if not 10 <= max_steps <= 100_000:
+        raise BadInput(f"--max-steps {max_steps} must be from 10 to 100000")
+    if out is not None:
+        check_output_path(out, overwrite=overwrite, option="--out")
+    if plot is not None:
+        check_figure_path(plot, overwrite=overwrite)
+    law = parse_friction(friction)
+    foundation = parse_dva(dva, zeta, k_scale)
+    system = ContinuationSystem(lam, zeta, gamma, foundation, law)
+    for bound in (lo, hi):  # every value of the range must make a valid system
+        system.with_value(param, bound).build()
+    result = continue_cycles(system, param, (lo, hi), max_period=max_period, seeds=seeds,
+                             max_steps=max_steps)
+    payload = result.to_dict()
+    payload.update({"dataset": None, "plot": None})
+    if out is not None:
+        from stickslip.io.netcdf import write_dataset
+        from stickslip.io.provenance import provenance_attributes
+
+        ds = result.to_xarray()
+        config = {k: v for k, v in payload.items() if k in ("param", "range", "system")}
+        ds.attrs.update(provenance_attributes(f"continuation in {param}", config))
+        payload["dataset"] = str(write_dataset(ds, out, overwrite=True))
+    if plot is not None:
+        payload["plot"] = str(result.plot().savefig(plot))
+    if json:
+        print_json(payload)
+        return
+    _print(result.summary(), payload)
+
+
+def _print(summary: str, payload: dict[str, Any]) -> None:
+    lines = [summary]
+    for key in ("dataset", "plot"):
+        if payload[key]:
+            lines.append(f"{key}: {payload[key]}")
+    typer.echo("\n".join(lines))
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``continue`` command to ``app``."""
+    app.command("continue")(continue_branches)
