@@ -10,7 +10,7 @@ tolerance. Both are given to the slider (:class:`stickslip.Slider`, ``friction=`
 import matplotlib.pyplot as plt
 
 from stickslip import Slider, rigid_base, simulate
-from stickslip.model.friction import parse_friction
+from stickslip.model.friction_input import parse_friction
 
 structure = rigid_base(0.1)
 for spec in ("coulomb", "linear:0.05", "stribeck:vs=1.05,n=6,viscous=0.5"):

@@ -137,7 +137,7 @@ def test_stribeck_law_evaluates_without_overflow() -> None:
 
 def test_spreadsheet_table_with_bom_and_semicolons(tmp_path: Path) -> None:
     # a spreadsheet in a decimal-comma locale: BOM, ';' separators, '0,25'
-    from stickslip.model.friction import parse_friction, read_friction_table
+    from stickslip.model.friction_input import parse_friction, read_friction_table
 
     plain = tmp_path / "plain.csv"
     plain.write_text("v,f\n0,1\n0.5,0.25\n2,0\n")

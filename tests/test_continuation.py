@@ -414,7 +414,7 @@ class _RotationMap:
 
 
 def _start(tracer: object, y0: np.ndarray, p0: float, direction: float) -> object:
-    from stickslip.analysis.arclength import BranchState, unit_tangent
+    from stickslip.analysis._arclength import BranchState, unit_tangent
 
     _, full, jac = tracer.jacobians(y0, p0)  # type: ignore[attr-defined]
     t = unit_tangent(full, np.append(np.zeros(y0.size), direction))
@@ -422,7 +422,7 @@ def _start(tracer: object, y0: np.ndarray, p0: float, direction: float) -> objec
 
 
 def test_fold_and_period_doubling_are_located_to_their_closed_forms() -> None:
-    from stickslip.analysis.arclength import ArclengthTracer, trace_branch
+    from stickslip.analysis._arclength import ArclengthTracer, trace_branch
 
     tracer = ArclengthTracer(ContinuationSystem(3.25, 0.1), "lam", _FoldMap)  # type: ignore[arg-type]
     start = _start(tracer, np.array([1.5]), 3.25, -1.0)
@@ -438,7 +438,7 @@ def test_fold_and_period_doubling_are_located_to_their_closed_forms() -> None:
 
 
 def test_neimark_sacker_is_located_to_its_closed_form() -> None:
-    from stickslip.analysis.arclength import ArclengthTracer, trace_branch
+    from stickslip.analysis._arclength import ArclengthTracer, trace_branch
 
     tracer = ArclengthTracer(ContinuationSystem(0.5, 0.1), "lam", _RotationMap)  # type: ignore[arg-type]
     start = _start(tracer, np.zeros(2), 0.5, 1.0)

@@ -33,13 +33,8 @@ from stickslip import (
 from stickslip.analysis.stability import critical_weakening, routh_hurwitz_2dof
 from stickslip.analysis.stability_tuning import optimal_foundation_stability
 from stickslip.analysis.theory import critical_lambda_linear
-from stickslip.model.friction import (
-    CoulombFriction,
-    LinearFriction,
-    StribeckFriction,
-    TableFriction,
-    parse_friction,
-)
+from stickslip.model.friction import CoulombFriction, LinearFriction, StribeckFriction, TableFriction
+from stickslip.model.friction_input import parse_friction
 from stickslip.model.physical import PhysicalSystem, physical_friction_from_config
 from stickslip.sweep.execution import ExecutionOptions
 

@@ -16,13 +16,8 @@ import pytest
 from stickslip import Slider, rigid_base, simulate
 from stickslip.kernel.batch import coulomb_tables, run_cells, startup_vector
 from stickslip.kernel.system import mode_code, mode_kind_band
-from stickslip.model.friction import (
-    CoulombFriction,
-    LinearFriction,
-    StribeckFriction,
-    TableFriction,
-    read_friction_table,
-)
+from stickslip.model.friction import CoulombFriction, LinearFriction, StribeckFriction, TableFriction
+from stickslip.model.friction_input import read_friction_table
 
 
 def test_mode_codes_keep_the_coulomb_values() -> None:

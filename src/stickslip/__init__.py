@@ -58,8 +58,8 @@ _EXPORTS: dict[str, str] = {
     "LinearFriction": "stickslip.model.friction",
     "StribeckFriction": "stickslip.model.friction",
     "TableFriction": "stickslip.model.friction",
-    "parse_friction": "stickslip.model.friction",
-    "read_friction_table": "stickslip.model.friction",
+    "parse_friction": "stickslip.model.friction_input",
+    "read_friction_table": "stickslip.model.friction_input",
     "DvaSpec": "stickslip.model.dva",
     # analysis: one simulation and its verdict
     "simulate": "stickslip.analysis.simulation",
@@ -120,13 +120,17 @@ _EXPORTS: dict[str, str] = {
     "Axis": "stickslip.sweep.grid",
     "occurrence_map": "stickslip.sweep.occurrence",
     "OccurrenceMap": "stickslip.sweep.occurrence",
-    "MapConfig": "stickslip.sweep.occurrence",
+    "MapConfig": "stickslip.sweep.map_config",
     "stick_slip_boundary": "stickslip.sweep.boundary",
     "BoundaryResult": "stickslip.sweep.boundary",
     "basin_stability": "stickslip.sweep.basin",
     "BasinResult": "stickslip.sweep.basin",
-    "basin_map": "stickslip.sweep.basin",
-    "BasinMap": "stickslip.sweep.basin",
+    "basin_map": "stickslip.sweep.basin_maps",
+    "BasinMap": "stickslip.sweep.basin_maps",
+    "ExecutionOptions": "stickslip.sweep.execution",
+    "continue_cycles": "stickslip.analysis.continuation",
+    "ContinuationResult": "stickslip.analysis.continuation",
+    "hopf_weakenings": "stickslip.analysis.stability",
     "sample_box": "stickslip.sweep.basin",
     "equilibrium_state": "stickslip.sweep.basin",
     # plot: the common return type of every *_plot function
@@ -142,6 +146,7 @@ __all__ = [
     "BasinMap",
     "BasinResult",
     "BoundaryResult",
+    "ContinuationResult",
     "CoulombFriction",
     "Crossing",
     "Cycle",
@@ -149,6 +154,7 @@ __all__ = [
     "DesignReport",
     "DvaSpec",
     "EngineOptions",
+    "ExecutionOptions",
     "Foundation",
     "InitialState",
     "LinearFriction",
@@ -180,6 +186,7 @@ __all__ = [
     "basin_map",
     "basin_stability",
     "chain_structure",
+    "continue_cycles",
     "critical_lambda_approx",
     "critical_lambda_exact",
     "critical_lambda_linear",
@@ -194,6 +201,7 @@ __all__ = [
     "foundation_to_dimensionless",
     "foundation_to_physical",
     "frequency_response",
+    "hopf_weakenings",
     "lowest_onset",
     "occurrence_map",
     "optimal_foundation_exact",
@@ -247,6 +255,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         tuning_curve,
     )
     from stickslip.analysis.analytic_boundary import AnalyticBoundary, analytic_boundaries
+    from stickslip.analysis.continuation import ContinuationResult, continue_cycles
     from stickslip.analysis.critical import Crossing, lowest_onset
     from stickslip.analysis.cycles import Cycle, CycleSearch, cycle_exists, find_cycles
     from stickslip.analysis.design import DesignReport, design_foundation, stability_margin
@@ -264,6 +273,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from stickslip.analysis.stability import (
         SteadySlidingStability,
         critical_weakening,
+        hopf_weakenings,
         steady_sliding_stability,
     )
     from stickslip.analysis.stability_tuning import StabilityTuning, optimal_foundation_stability
@@ -282,14 +292,8 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from stickslip.io.csv import write_map_csv
     from stickslip.io.netcdf import read_dataset, write_dataset
     from stickslip.model.dva import DvaSpec
-    from stickslip.model.friction import (
-        CoulombFriction,
-        LinearFriction,
-        StribeckFriction,
-        TableFriction,
-        parse_friction,
-        read_friction_table,
-    )
+    from stickslip.model.friction import CoulombFriction, LinearFriction, StribeckFriction, TableFriction
+    from stickslip.model.friction_input import parse_friction, read_friction_table
     from stickslip.model.initial import STARTUP_DESCRIPTION, InitialState, startup_state
     from stickslip.model.parameters import Foundation, Slider
     from stickslip.model.physical import (
@@ -303,14 +307,10 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from stickslip.model.units import to_si
     from stickslip.plot.figure import PlotResult
     from stickslip.reproduction.run import reproduce
-    from stickslip.sweep.basin import (
-        BasinMap,
-        BasinResult,
-        basin_map,
-        basin_stability,
-        equilibrium_state,
-        sample_box,
-    )
+    from stickslip.sweep.basin import BasinResult, basin_stability, equilibrium_state, sample_box
+    from stickslip.sweep.basin_maps import BasinMap, basin_map
     from stickslip.sweep.boundary import BoundaryResult, stick_slip_boundary
+    from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.grid import Axis
-    from stickslip.sweep.occurrence import MapConfig, OccurrenceMap, occurrence_map
+    from stickslip.sweep.map_config import MapConfig
+    from stickslip.sweep.occurrence import OccurrenceMap, occurrence_map

@@ -1,9 +1,9 @@
 """Continuation of periodic motions in one parameter: bifurcation diagrams (DESIGN.md section 12).
 
 Periodic motions are fixed points of exact return maps on Poincare sections
-(:mod:`stickslip.analysis.periodic_sections`: the breakaway section for stick-slip cycles, a
+(:mod:`stickslip.analysis._periodic_sections`: the breakaway section for stick-slip cycles, a
 velocity maximum for slip oscillations), traced by pseudo-arclength continuation with events
-located on the way (:mod:`stickslip.analysis.arclength`). This module seeds the branches,
+located on the way (:mod:`stickslip.analysis._arclength`). This module seeds the branches,
 joins them into a :class:`ContinuationResult` and adds steady sliding along the range:
 
 * stick-slip branches start from the cycles :func:`stickslip.analysis.cycles.find_cycles`
@@ -29,7 +29,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.arclength import (
+from stickslip.analysis._arclength import (
     EVENT_TOL,
     ArclengthTracer,
     BranchState,
@@ -38,8 +38,7 @@ from stickslip.analysis.arclength import (
     trace_branch,
     unit_tangent,
 )
-from stickslip.analysis.cycles import find_cycles
-from stickslip.analysis.periodic_sections import (
+from stickslip.analysis._periodic_sections import (
     PARAMETERS,
     ContinuationSystem,
     SlipSection,
@@ -47,6 +46,7 @@ from stickslip.analysis.periodic_sections import (
     check_parameter,
     refined_root,
 )
+from stickslip.analysis.cycles import find_cycles
 from stickslip.analysis.simulation import EngineOptions
 from stickslip.analysis.stability import growth_rate, hopf_weakenings, one_sided_slopes, slip_matrix
 from stickslip.kernel.system import SLIP_I, SLIP_II
@@ -240,6 +240,23 @@ def steady_sliding_along(system: ContinuationSystem, name: str, lo: float, hi: f
     (:func:`stickslip.analysis.stability.hopf_weakenings`). In any other parameter the local
     slope of the law enters the linearisation; a sign change of the growth rate between two
     grid points is then refined by Brent's method to :data:`EVENT_TOL`.
+
+    Parameters
+    ----------
+    system : ContinuationSystem
+        The machine and friction law continued.
+    name : str
+        The parameter varied (one of :data:`PARAMETERS`).
+    lo, hi : float
+        The range of the parameter.
+    n_points : int
+        Points of the grid over the range.
+
+    Returns
+    -------
+    tuple of (ndarray, ndarray, list of float)
+        The grid of parameter values, the growth rate of steady sliding there (1/tau, dimensionless;
+        negative: stable) and the Hopf points in the range.
     """
     grid = np.linspace(lo, hi, n_points)
 
@@ -474,6 +491,20 @@ def slip_oscillation(system: ContinuationSystem, peak_velocity: float, *,
 
     Newton's method on the velocity-maximum section at fixed parameters (the corrector of the
     continuation with the parameter held); None when it does not converge.
+
+    Parameters
+    ----------
+    system : ContinuationSystem
+        The machine and friction law, at fixed parameters.
+    peak_velocity : float
+        Guess of the largest slider velocity over the oscillation (dimensionless, belt speed 1).
+    options : EngineOptions, optional
+        Engine options of the section's runs.
+
+    Returns
+    -------
+    BranchPoint or None
+        The converged slip oscillation, or None when Newton's method does not converge.
     """
     opts = options or EngineOptions()
     tracer = ArclengthTracer(system, "lam", lambda s: SlipSection(s, opts))

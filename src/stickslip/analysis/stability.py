@@ -332,6 +332,17 @@ def hopf_weakenings(structure: Structure) -> FloatArray:
     polynomial) give the candidate ``delta = Re(P conj(Q)) / (2 |Q|^2)``; those with
     ``delta > 0`` are returned, sorted, each once. Rigid base: ``p_0 = s^2 + 2 zeta s + 1``,
     ``q = 1``, so ``omega = 1`` and ``delta = zeta``.
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless mass, damping and stiffness matrices; the contact's DOF carries the weakening.
+
+    Returns
+    -------
+    ndarray of float
+        The Hopf weakenings ``delta > 0`` (dimensionless), sorted ascending, each once;
+        empty when none exists.
     """
     m, c, k = (np.asarray(x, dtype=np.float64) for x in
                (structure.mass, structure.damping, structure.stiffness))
@@ -413,6 +424,17 @@ def stability_intervals(structure: Structure) -> list[tuple[float, float, bool]]
     Returns the intervals ``(lo, hi, stable)`` between consecutive Hopf weakenings
     (:func:`hopf_weakenings`; ``hi = inf`` for the last), the verdict of each taken from the
     eigenvalues at its midpoint (at ``lo + 1`` for the last).
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless mass, damping and stiffness matrices.
+
+    Returns
+    -------
+    list of (float, float, bool)
+        ``(lo, hi, stable)`` for each interval of ``delta`` between consecutive Hopf
+        weakenings, from 0 to infinity.
     """
     edges = [0.0, *hopf_weakenings(structure).tolist(), float("inf")]
     out: list[tuple[float, float, bool]] = []

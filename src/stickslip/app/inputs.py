@@ -13,7 +13,7 @@ import dataclasses
 from collections.abc import Mapping
 from typing import Any
 
-from stickslip.model.friction import friction_csv_columns
+from stickslip.model.friction_input import friction_csv_columns
 from stickslip.model.inputs import (
     FRICTION_FIELDS,
     FRICTION_LAWS,

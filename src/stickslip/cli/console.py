@@ -47,11 +47,11 @@ def flag_error(flag: str, value: object, exc: ValueError) -> BadInput:
 
 
 def parse_friction_option(text: str, flag: str = "--friction") -> FrictionLaw:
-    """The friction law of a ``--friction`` option (:func:`stickslip.model.friction.parse_friction`).
+    """The friction law of a ``--friction`` option (:func:`stickslip.model.friction_input.parse_friction`).
 
     Raises :class:`BadInput` naming the flag, the value and the model's reason.
     """
-    from stickslip.model.friction import parse_friction
+    from stickslip.model.friction_input import parse_friction
 
     try:
         return parse_friction(text)

@@ -33,7 +33,7 @@ def continue_branches(
     Example: stickslip continue --param lam --range 0.5:5 --zeta 0.1 --dva none --json
     """
     from stickslip.analysis.continuation import PARAMETERS, ContinuationSystem, continue_cycles
-    from stickslip.model.friction import parse_friction
+    from stickslip.model.friction_input import parse_friction
 
     if param not in PARAMETERS:
         raise BadInput(f"--param {param!r} is not one of {', '.join(PARAMETERS)}")

@@ -20,9 +20,9 @@ _EXPORTS: dict[str, str] = {
     "LinearFriction": "stickslip.model.friction",
     "StribeckFriction": "stickslip.model.friction",
     "TableFriction": "stickslip.model.friction",
-    "read_friction_table": "stickslip.model.friction",
-    "parse_friction": "stickslip.model.friction",
-    "FRICTION_SYNTAX": "stickslip.model.friction",
+    "read_friction_table": "stickslip.model.friction_input",
+    "parse_friction": "stickslip.model.friction_input",
+    "FRICTION_SYNTAX": "stickslip.model.friction_input",
     "DvaSpec": "stickslip.model.dva",
     "DVA_SYNTAX": "stickslip.model.dva",
     "PhysicalFriction": "stickslip.model.physical",
@@ -76,15 +76,13 @@ __getattr__, __dir__ = lazy_exports(__name__, globals(), _EXPORTS)
 if TYPE_CHECKING:  # pragma: no cover
     from stickslip.model.dva import DVA_SYNTAX, DvaSpec
     from stickslip.model.friction import (
-        FRICTION_SYNTAX,
         CoulombFriction,
         FrictionLaw,
         LinearFriction,
         StribeckFriction,
         TableFriction,
-        parse_friction,
-        read_friction_table,
     )
+    from stickslip.model.friction_input import FRICTION_SYNTAX, parse_friction, read_friction_table
     from stickslip.model.initial import STARTUP_DESCRIPTION, InitialState, startup_state
     from stickslip.model.parameters import Foundation, Slider
     from stickslip.model.physical import (

@@ -54,7 +54,18 @@ class InputProblems(ValueError):
 
 
 def is_given(value: Any) -> bool:
-    """A value was given: not ``None`` and not an empty (or blank) string."""
+    """A value was given: not ``None`` and not an empty (or blank) string.
+
+    Parameters
+    ----------
+    value : object
+        A raw input: a number, a text or None.
+
+    Returns
+    -------
+    bool
+        False for None and for an empty or blank text.
+    """
     return value is not None and not (isinstance(value, str) and not value.strip())
 
 
@@ -74,6 +85,11 @@ def quantities_to_si(values: Mapping[str, Any], *, source: Source | None = None)
     ------
     InputProblems
         One message per bad value (wrong unit, not a number, not finite).
+
+    Returns
+    -------
+    dict of str to float
+        The given values in SI units (kg, N/m, N s/m, N, m/s, s/m), by quantity name.
     """
     out: dict[str, float] = {}
     problems: list[tuple[str, str]] = []
@@ -98,6 +114,16 @@ def missing_system_quantities(values: Mapping[str, Any]) -> tuple[list[str], lis
     Returns ``(missing, partial_foundation)``: ``missing`` lists keys of
     :data:`REQUIRED_QUANTITIES` without a value; ``partial_foundation`` the keys of
     :data:`FOUNDATION_QUANTITIES` that are given when some, but not all three, are.
+
+    Parameters
+    ----------
+    values : mapping
+        Quantity name -> raw value (as given in a TOML file, on the command line or in the app).
+
+    Returns
+    -------
+    tuple of (list of str, list of str)
+        ``(missing, partial_foundation)`` as described above.
     """
     missing = [key for key in REQUIRED_QUANTITIES if not is_given(values.get(key))]
     given = [key for key in FOUNDATION_QUANTITIES if is_given(values.get(key))]
@@ -135,6 +161,11 @@ def friction_fields(table: Mapping[str, Any], *, source: Source | None = None,
         Unknown keys, a law that is not a string, and every bad value.
     ValueError
         ``table`` is not a mapping.
+
+    Returns
+    -------
+    dict
+        Keyword arguments of :class:`~stickslip.model.physical.PhysicalFriction`.
     """
     if not isinstance(table, Mapping):
         raise ValueError(f"{where} must be a table of keys, not {table!r}")

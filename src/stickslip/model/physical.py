@@ -386,7 +386,7 @@ def physical_friction_from_config(table: Mapping[str, Any], *, base_dir: Path | 
     PhysicalFriction
         The law in SI units.
     """
-    from stickslip.model.friction import read_friction_csv_columns
+    from stickslip.model.friction_input import read_friction_csv_columns
     from stickslip.model.inputs import friction_fields
 
     columns = None

@@ -429,10 +429,16 @@ _MOVED_TO_BASIN_MAP = ("BasinMap", "DEFAULT_MAP_BOX", "basin_map")
 
 
 def __getattr__(name: str) -> Any:
+    """A name moved to :mod:`stickslip.sweep.basin_maps`, with a ``DeprecationWarning`` (PEP 562).
+
+    Loaded by name, as ``stickslip.analysis.tuning`` does for its moved names: the shim is the
+    old path only, not an import of the layer's structure (basin_maps builds on this module).
+    """
     if name in _MOVED_TO_BASIN_MAP:
+        import importlib
         import warnings
 
-        from stickslip.sweep import basin_maps as module
+        module = importlib.import_module("stickslip.sweep.basin_maps")
 
         warnings.warn(f"stickslip.sweep.basin.{name} moved to stickslip.sweep.basin_maps.{name}; the old "
                       "path will be removed in the next release", DeprecationWarning, stacklevel=2)

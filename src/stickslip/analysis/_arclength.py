@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.periodic_sections import ContinuationSystem, SlipSection, StickSlipSection
+from stickslip.analysis._periodic_sections import ContinuationSystem, SlipSection, StickSlipSection
 
 FloatArray = NDArray[np.float64]
 
