@@ -36,9 +36,10 @@ from stickslip.kernel.system import (
     TRAP_SQRT_M,
     TRAP_V_BOUND,
     prepare_bands,
+    secant_range,
     trap_certifies,
 )
-from stickslip.model.friction import CoulombFriction, StribeckFriction
+from stickslip.model.friction import CoulombFriction, StribeckFriction, TableFriction
 from tests.friction_oracle import friction_oracle_simulate
 
 ZETA = 0.05
@@ -202,3 +203,22 @@ def test_any_region_state_slides_in_a_long_direct_run(zeta: float, u_s: float, w
         assert isum[engine.I_STATUS] == engine.STATUS_STEADY
         assert isum[engine.I_N_STICK] == 0
         assert fsum[engine.F_MAX_VELOCITY] <= prepared[22][TRAP_V_BOUND]
+
+
+@pytest.mark.parametrize("u_lo, u_hi", [(0.0, 2.0), (0.3, 0.9), (1.0, 1.7), (0.05, 1.0)])
+def test_secant_range_brackets_every_secant(u_lo: float, u_hi: float) -> None:
+    # reference: the secant (F(u) - F(1)) / (u - 1) of the band table sampled densely
+    from stickslip.model.friction import evaluate_bands
+
+    for law, lam in [(StribeckFriction(U_S, tolerance=1e-4), LAM),
+                     (TableFriction((0.2, 0.7, 1.0, 1.5), (0.9, 0.4, 0.2, 0.5)), 0.8)]:
+        table = law.bands(lam, 2.0)
+        u = np.linspace(u_lo, u_hi, 20001)
+        u = u[np.abs(u - 1.0) > 1e-6]
+        sec = (evaluate_bands(table, u) - evaluate_bands(table, 1.0)) / (u - 1.0)
+        lo, hi = secant_range(*table, u_lo, u_hi)
+        tol = 1e-9 * max(1.0, abs(lo), abs(hi))
+        assert lo <= sec.min() + tol and sec.max() <= hi + tol
+        # and the range is tight: attained up to the sampling (or at the limit u -> 1)
+        assert sec.min() - lo < 1e-3 * max(1.0, abs(lo)) + 1e-3
+        assert hi - sec.max() < 1e-3 * max(1.0, abs(hi)) + 1e-3

@@ -317,9 +317,12 @@ def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_m
     ``([0, inf], [gamma lam], [0])``.
 
     Verdicts: steady sliding (a Lyapunov bound keeps ``xi'`` inside the band of the
-    equilibrium for ever), a stick-slip cycle (repeating breakaway state) or a slip
-    oscillation (the state at a Poincare section, the equilibrium band's nearer speed edge
-    crossed outwards, repeats with no stick phase in between).
+    equilibrium for ever, or, with the data of
+    :func:`stickslip.kernel.certificate.prepare_certified`, the state is inside the slip trap
+    region; ``F_LYAPUNOV_BOUND`` is then the region's bound on ``|xi'|``), a stick-slip cycle
+    (repeating breakaway state) or a slip oscillation (the state at a Poincare section, the
+    equilibrium band's nearer speed edge crossed outwards, repeats with no stick phase in
+    between).
 
     With ``run_to_t_max`` the run goes on after the verdict until ``t_max`` (for figures);
     the verdict and its time ``F_T_CERTIFIED`` are those of the first certificate.

@@ -509,19 +509,21 @@ def secant_range(edges, intercepts, slopes, u_lo, u_hi):
     ``u = 1``, so its extremes over the band are at its ends; on the band holding ``u = 1``,
     ``sigma = s``, its slope. The extremes over ``[u_lo, u_hi]`` are therefore among the values
     at ``u_lo``, ``u_hi``, the band edges between them and the slopes of the bands touching
-    ``u = 1`` (the limits of ``sigma`` there). Returns ``(sigma_min, sigma_max)``.
+    ``u = 1`` from the sides the interval reaches (the one-sided limits of ``sigma`` there).
+    Returns ``(sigma_min, sigma_max)``.
     """
     nb = intercepts.shape[0]
     b1 = find_band(edges, 1.0)
     f_one = intercepts[b1] + slopes[b1]
     lo = np.inf
     hi = -np.inf
-    if u_lo <= 1.0 <= u_hi:
+    if u_lo <= 1.0 < u_hi:  # the limit from above
         lo = min(lo, slopes[b1])
         hi = max(hi, slopes[b1])
-        if b1 > 0 and edges[b1] == 1.0:
-            lo = min(lo, slopes[b1 - 1])
-            hi = max(hi, slopes[b1 - 1])
+    if u_lo < 1.0 <= u_hi:  # the limit from below
+        below = b1 - 1 if (b1 > 0 and edges[b1] == 1.0) else b1
+        lo = min(lo, slopes[below])
+        hi = max(hi, slopes[below])
     for k in range(nb + 1):
         u = edges[k]
         if not (u_lo < u < u_hi) or u == 1.0 or not np.isfinite(u):
