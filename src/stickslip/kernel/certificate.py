@@ -102,11 +102,11 @@ from stickslip.kernel.system import (
 #: Angle bins of the stored region.
 TRAP_BINS = 1024
 #: Samples of the bounding trajectory per undamped period.
-SAMPLES_PER_PERIOD = 2048
+SAMPLES_PER_PERIOD = 512
 #: Start radii tried, as fractions of the way from the energy disk to the belt-speed radius.
 LADDER = (0.9, 0.75, 0.6, 0.45, 0.3, 0.15)
 #: Bisection steps between the first start radius that passes and the last that failed.
-BISECTIONS = 3
+BISECTIONS = 2
 #: Time allowed for a trial motion to reach the energy disk, in undamped periods.
 TRIAL_PERIODS = 150.0
 #: Most events of a trial motion (its recorded phases).
