@@ -14,6 +14,17 @@ samples per second and the agreement of the labels on the common states are prin
 The engine side is the command's own path: 1-DOF runs stop at their first stick phase and
 take the rest from the start-up run (``stickslip.kernel.batch.run_states``; checked against
 full runs in tests/test_basin_shortcut.py).
+
+Issue 21, point 3: the small-net-damping case, 1 DOF, zeta = 0.05, exponential Stribeck law
+(n = 1, mu_0 = mu_s), v_s/V = 0.2 and lambda = 0.05 * 0.2 * e^5 = 1.484, so that the law's slope
+at the belt speed, F'(1) = -lambda exp(-1/u_s) / u_s = -0.05 = -zeta, removes half of the net
+damping 2 zeta (C + F'(1) = zeta); states uniform in xi in [-0.7, 0.7], xi' in [-0.7, 1.3]
+about steady sliding (both sides of the belt speed, xi' = 1). Its engine rate is printed
+beside the same run's with the early certificate (the slip trap region,
+stickslip.kernel.certificate) switched off, and with the oracle. Then a foundation (2 DOF)
+basin with the same law (foundation mass and stiffness ratios 1, damping ratio 0.1; at most
+FOUNDATION_SAMPLES states: every 2-DOF state runs to its own verdict): samples/s only (the trap
+region is 1-DOF; its baseline is the oracle).
 """
 
 from __future__ import annotations
@@ -30,16 +41,20 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the oracles live
 from tests.friction_oracle import friction_oracle_simulate
 from tests.oracle import oracle_simulate_structure
 
-from stickslip import InitialState, Slider, Verdict, rigid_base
+from stickslip import Foundation, InitialState, Slider, Verdict, elastic_foundation, rigid_base
+from stickslip.analysis.simulation import EngineOptions
+from stickslip.kernel.batch import run_states
 from stickslip.model.friction import CoulombFriction, StribeckFriction
-from stickslip.sweep.basin import basin_stability, sample_box
+from stickslip.sweep.basin import BasinSystem, basin_stability, sample_box
 
 HORIZON = 100.0
+FOUNDATION_SAMPLES = 2000
 STICK = 2
 
 
 def oracle_label(structure, slider, state) -> str:  # type: ignore[no-untyped-def]
-    init = InitialState(state[:1], state[1:])
+    n = len(state) // 2
+    init = InitialState(state[:n], state[n:])
     kwargs = {"rtol": 1e-10, "atol": 1e-10, "max_step": 0.05}
     if isinstance(slider.friction, CoulombFriction):
         result = oracle_simulate_structure(structure, slider, HORIZON, init, **kwargs)
@@ -58,22 +73,32 @@ def main() -> None:
     for name in ("samples", "oracle_samples", "repeats"):
         if getattr(args, name) < 1:
             parser.error(f"--{name.replace('_', '-')} {getattr(args, name)} must be at least 1")
-    structure = rigid_base(0.1)
+    wide = {"xi": (-4.0, 4.0), "v": (-3.0, 1.5)}
+    weak_law = StribeckFriction(0.2, tolerance=1e-4)
+    weak = Slider(0.05 * 0.2 * float(np.exp(5.0)), friction=weak_law)
+    narrow = {"xi": (-0.7, 0.7), "v": (-0.7, 1.3)}
     cases = [
-        ("coulomb", Slider(2.5)),
-        ("stribeck tol 1e-4", Slider(2.0, friction=StribeckFriction(0.2, tolerance=1e-4))),
-        ("stribeck tol 1e-3", Slider(2.0, friction=StribeckFriction(0.2, tolerance=1e-3))),
+        ("coulomb", rigid_base(0.1), Slider(2.5), wide),
+        ("stribeck tol 1e-4", rigid_base(0.1),
+         Slider(2.0, friction=StribeckFriction(0.2, tolerance=1e-4)), wide),
+        ("stribeck tol 1e-3", rigid_base(0.1),
+         Slider(2.0, friction=StribeckFriction(0.2, tolerance=1e-3)), wide),
+        ("weak net damping", rigid_base(0.05), weak, narrow),
+        ("foundation weak", elastic_foundation(0.05, Foundation(1.0, 1.0, 0.1)), weak,
+         {**narrow, "xi_a": (-0.2, 0.2), "v_a": (-0.2, 0.2)}),
     ]
     print(f"{'case':20s} {'engine samples/s':>17s} {'oracle samples/s':>17s} {'ratio':>8s}  "
           f"stick-slip fraction  labels equal")
-    for name, slider in cases:
-        states = sample_box(structure, slider, args.samples, {"xi": (-4.0, 4.0), "v": (-3.0, 1.5)}, seed=1)
+    ab_lines = []
+    for name, structure, slider, box in cases:
+        n_samples = min(args.samples, FOUNDATION_SAMPLES) if structure.n_dof > 1 else args.samples
+        states = sample_box(structure, slider, n_samples, box, seed=1)
         basin_stability(structure, slider, states[:64])  # compile / load the cache
         # best of --repeats, as timeit does: the machine is shared, and the best run is the
         # one least disturbed by other work (every run computes the same labels)
         results = [basin_stability(structure, slider, states) for _ in range(args.repeats)]
         result = min(results, key=lambda r: r.elapsed)
-        engine_rate = args.samples / result.elapsed
+        engine_rate = n_samples / result.elapsed
         start = time.perf_counter()
         labels = [oracle_label(structure, slider, s) for s in states[: args.oracle_samples]]
         oracle_rate = args.oracle_samples / (time.perf_counter() - start)
@@ -83,7 +108,38 @@ def main() -> None:
         fr = result.fractions["stick-slip"]
         se = result.standard_errors["stick-slip"]
         print(f"{name:20s} {engine_rate:17,.0f} {oracle_rate:17,.1f} {engine_rate / oracle_rate:8,.0f}  "
-              f"{fr:.4f} +- {se:.4f}      {agree}/{args.oracle_samples}")
+              f"{fr:.4f} +- {se:.4f}      {agree}/{args.oracle_samples}", flush=True)
+        if name == "weak net damping":
+            ab_lines.append(early_certificate_ab(structure, slider, states, args.repeats))
+    for line in ab_lines:
+        print(line)
+
+
+def early_certificate_ab(structure, slider, states, repeats: int) -> str:  # type: ignore[no-untyped-def]
+    """Samples/s of the kernel's ``run_states`` with and without the early certificate, one run."""
+    system = BasinSystem.prepare(structure, slider)
+    opts = EngineOptions()
+
+    def rate(early: bool) -> tuple[float, np.ndarray]:
+        best = np.inf
+        for _ in range(repeats):
+            start = time.perf_counter()
+            _, isum = run_states(system.mass, system.damping, system.stiffness, system.lam,
+                                 system.gamma, system.edges, system.intercepts, system.slopes,
+                                 states, float(opts.t_max), int(opts.max_events),
+                                 float(opts.cycle_tol), int(opts.max_period), True, early)
+            best = min(best, time.perf_counter() - start)
+        return len(states) / best, isum[:, 0]
+
+    run_states(system.mass, system.damping, system.stiffness, system.lam, system.gamma,
+               system.edges, system.intercepts, system.slopes, states[:64], float(opts.t_max),
+               int(opts.max_events), float(opts.cycle_tol), int(opts.max_period), True, False)
+    on, status_on = rate(True)
+    off, status_off = rate(False)
+    same = int(np.sum(status_on == status_off))
+    return (f"weak net damping, one run_states call over all {len(states)} states (best of {repeats}): "
+            f"early certificate on {on:,.0f} samples/s, off {off:,.0f} samples/s, ratio {on / off:.1f}; "
+            f"same status on {same}/{len(states)}")
 
 
 if __name__ == "__main__":

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
+from stickslip.kernel.certificate import prepare_certified
 from stickslip.kernel.engine import (
     F_AMPLITUDE,
     F_CYCLE_MAX_VELOCITY,
@@ -102,12 +103,14 @@ def coulomb_tables(lams, gammas):
 
 @njit(parallel=True, cache=True)
 def run_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0s, t_max,
-               max_events, cycle_tol, max_period, join_startup=True):
+               max_events, cycle_tol, max_period, join_startup=True, early_certificate=True):
     """Run one system from many initial states ``z0s`` (shape ``(n_states, 2 n)``) in parallel.
 
-    The system is prepared once (:func:`stickslip.kernel.system.prepare_bands`) and shared by
-    the threads. Returns the float and integer summaries, shapes ``(n_states, N_FLOAT)`` and
-    ``(n_states, N_INT)`` (layouts of :mod:`stickslip.kernel.engine`).
+    The system is prepared once (:func:`stickslip.kernel.certificate.prepare_certified`: the
+    per-system data and, for one degree of freedom and a velocity-dependent law, the slip trap
+    region that certifies steady sliding early; ``early_certificate=False`` leaves it out, for
+    A/B comparisons) and shared by the threads. Returns the float and integer summaries, shapes
+    ``(n_states, N_FLOAT)`` and ``(n_states, N_INT)`` (layouts of :mod:`stickslip.kernel.engine`).
 
     With ``join_startup`` and a single degree of freedom, each state is run only until its
     first stick phase, whose continuation is then taken from the start-up run
@@ -130,7 +133,10 @@ def run_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, 
     amplitude, stick ratio), and every later time shifted by
     ``t_s + xi_startup - xi_s``.
     """
-    prepared = prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
+    if early_certificate:
+        prepared = prepare_certified(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
+    else:
+        prepared = prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
     n_states = z0s.shape[0]
     float_summary = np.empty((n_states, N_FLOAT))
     int_summary = np.empty((n_states, N_INT), dtype=np.int64)

@@ -31,11 +31,13 @@ from stickslip.kernel.system import (
     SLIP_I,
     SLIP_II,
     STICK,
+    TRAP_V_BOUND,
     find_band,
     mode_band,
     mode_code,
     mode_kind,
     prepare_bands,
+    trap_certifies,
 )
 
 STATUS_RUNNING = 0
@@ -315,9 +317,12 @@ def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_m
     ``([0, inf], [gamma lam], [0])``.
 
     Verdicts: steady sliding (a Lyapunov bound keeps ``xi'`` inside the band of the
-    equilibrium for ever), a stick-slip cycle (repeating breakaway state) or a slip
-    oscillation (the state at a Poincare section, the equilibrium band's nearer speed edge
-    crossed outwards, repeats with no stick phase in between).
+    equilibrium for ever, or, with the data of
+    :func:`stickslip.kernel.certificate.prepare_certified`, the state is inside the slip trap
+    region; ``F_LYAPUNOV_BOUND`` is then the region's bound on ``|xi'|``), a stick-slip cycle
+    (repeating breakaway state) or a slip oscillation (the state at a Poincare section, the
+    equilibrium band's nearer speed edge crossed outwards, repeats with no stick phase in
+    between).
 
     With ``run_to_t_max`` the run goes on after the verdict until ``t_max`` (for figures);
     the verdict and its time ``F_T_CERTIFIED`` are those of the first certificate.
@@ -355,7 +360,7 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
     m = nz + 1
     (ahat, phi, hstep, sig_rows, f_start, f_sign, f_offset, stick_row, lyap, kappa, n_lyap,
      ev_count, ev_next, ev_vel, _eq_mode, z_eq, lyap_lo, lyap_hi, margin, sec_mode,
-     sec_event) = prepared
+     sec_event, trap_radius, trap_data) = prepared
     cap = max_events + 1 if record else 1
     seg_t = np.empty(cap)
     seg_mode = np.empty(cap, dtype=np.int64)
@@ -430,6 +435,14 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
                 fsum[F_T_CERTIFIED] = t
                 if not run_to_t_max:
                     break
+        if (fresh and status == STATUS_RUNNING and trap_radius.shape[0] > 0
+                and mode_kind(mode) == SLIP_I and trap_certifies(w, z_eq, trap_radius, trap_data)):
+            # inside the slip trap region (kernel.certificate; empty unless prepared there)
+            status = STATUS_STEADY
+            fsum[F_T_CERTIFIED] = t
+            last_bound = trap_data[TRAP_V_BOUND]
+            if not run_to_t_max:
+                break
         if t >= t_max:
             if status == STATUS_RUNNING:
                 status = STATUS_T_MAX

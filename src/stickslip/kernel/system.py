@@ -46,6 +46,16 @@ F_VEL = 3
 STEP_THETA = 0.5
 #: next-mode code of an event that reaches the belt speed (decided by Eq. 20)
 NEXT_BELT = -1
+# layout of the slip trap region's scalars (see :func:`trap_certifies` and
+# :mod:`stickslip.kernel.certificate`)
+TRAP_ENERGY_RADIUS = 0  # radius of the energy certificate's disk in (sqrt(K) z, sqrt(M) v)
+TRAP_SQRT_K = 1
+TRAP_SQRT_M = 2
+TRAP_V_BOUND = 3  # bound on |xi'| over the region (hence over the future of a certified state)
+TRAP_RHO0 = 4  # radius where the bounding trajectory starts on the section ray
+TRAP_R_MIN = 5  # smallest and largest stored radius (quick tests before the angle)
+TRAP_R_MAX = 6
+N_TRAP = 7
 
 
 @njit(cache=True)
@@ -216,7 +226,10 @@ def prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slope
     band holding ``u = 1`` (``eq_mode``), its equilibrium ``z_eq (2n,)``, for each Lyapunov
     function the slip-I bands ``lyap_lo..lyap_hi`` where it is valid and the ``margin``
     its bound on ``|xi'|`` must stay below (distance from ``u = 1`` to the edges of those
-    bands), and the mode and event used as Poincare section (-1: none).
+    bands), the mode and event used as Poincare section (-1: none), and the slip trap region
+    ``trap_radius (0,)``, ``trap_data (N_TRAP,)``: here always empty (no region), with
+    ``trap_data[TRAP_ENERGY_RADIUS]`` the radius of the energy certificate's disk (0 when there
+    is none or ``n > 1``); :func:`stickslip.kernel.certificate.prepare_certified` fills it.
 
     The energy ``V = (q - q_eq)' K (q - q_eq)/2 + v' Mass v/2`` obeys
     ``dV/dt = -v' C v - sigma(u) v_0^2`` in slip-I with the secant slope
@@ -396,8 +409,16 @@ def prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slope
     if edges[b_eq + 1] < np.inf and edges[b_eq + 1] - 1.0 < dist:
         sec_mode = eq_mode
         sec_event = 1
+    trap_radius = np.zeros(0)
+    trap_data = np.zeros(N_TRAP)
+    if n == 1 and use_energy:
+        # the energy certificate holds where sqrt(K z^2 + M v^2) < sqrt(M) margin[0]
+        trap_data[TRAP_ENERGY_RADIUS] = np.sqrt(mass[0, 0]) * margin[0]
+        trap_data[TRAP_SQRT_K] = np.sqrt(stiffness[0, 0])
+        trap_data[TRAP_SQRT_M] = np.sqrt(mass[0, 0])
     return (ahat, phi, hstep, sig_rows, f_start, f_sign, f_offset, stick_row, lyap, kappa, n_lyap,
-            ev_count, ev_next, ev_vel, eq_mode, z_eq, lyap_lo, lyap_hi, margin, sec_mode, sec_event)
+            ev_count, ev_next, ev_vel, eq_mode, z_eq, lyap_lo, lyap_hi, margin, sec_mode, sec_event,
+            trap_radius, trap_data)
 
 
 @njit(cache=True)
@@ -477,3 +498,78 @@ def lyapunov_data(mass, damping, stiffness, a, use_energy):
             kappa[n_lyap] = x[n]
             n_lyap += 1
     return lyap, kappa, n_lyap
+
+
+@njit(cache=True)
+def secant_range(edges, intercepts, slopes, u_lo, u_hi):
+    """Extremes of the secant slope ``sigma(u) = (F(u) - F(1)) / (u - 1)`` for ``u`` in ``[u_lo, u_hi]``.
+
+    ``F`` is the band table's piecewise-affine law (continuous). On a band not holding
+    ``u = 1``, ``sigma(u) = s + (a + s - F(1)) / (u - 1)`` is monotone on each side of
+    ``u = 1``, so its extremes over the band are at its ends; on the band holding ``u = 1``,
+    ``sigma = s``, its slope. The extremes over ``[u_lo, u_hi]`` are therefore among the values
+    at ``u_lo``, ``u_hi``, the band edges between them and the slopes of the bands touching
+    ``u = 1`` from the sides the interval reaches (the one-sided limits of ``sigma`` there).
+    Returns ``(sigma_min, sigma_max)``.
+    """
+    nb = intercepts.shape[0]
+    b1 = find_band(edges, 1.0)
+    f_one = intercepts[b1] + slopes[b1]
+    lo = np.inf
+    hi = -np.inf
+    if u_lo <= 1.0 < u_hi:  # the limit from above
+        lo = min(lo, slopes[b1])
+        hi = max(hi, slopes[b1])
+    if u_lo < 1.0 <= u_hi:  # the limit from below
+        below = b1 - 1 if (b1 > 0 and edges[b1] == 1.0) else b1
+        lo = min(lo, slopes[below])
+        hi = max(hi, slopes[below])
+    for k in range(nb + 1):
+        u = edges[k]
+        if not (u_lo < u < u_hi) or u == 1.0 or not np.isfinite(u):
+            continue
+        b = find_band(edges, u)
+        sig = (intercepts[b] + slopes[b] * u - f_one) / (u - 1.0)
+        lo = min(lo, sig)
+        hi = max(hi, sig)
+    for u in (u_lo, u_hi):
+        if u == 1.0 or not np.isfinite(u):
+            continue
+        b = find_band(edges, u)
+        sig = (intercepts[b] + slopes[b] * u - f_one) / (u - 1.0)
+        lo = min(lo, sig)
+        hi = max(hi, sig)
+    return lo, hi
+
+
+@njit(cache=True)
+def trap_certifies(w, z_eq, trap_radius, trap_data):
+    """True when the 1-DOF state ``w`` lies inside the slip trap region (steady sliding for ever).
+
+    The region (built by :func:`stickslip.kernel.certificate.slip_trap_region`, where the
+    argument is derived) is star-shaped about the equilibrium in the coordinates
+    ``x = sqrt(K) (q - q_eq)``, ``y = sqrt(M) v``: with ``phi`` the clockwise angle from the
+    ray ``y = 0, x > 0`` and ``rho = |(x, y)|``, it holds every point with ``rho`` below the
+    bounding trajectory's radius at ``phi``; ``trap_radius[b]`` is a lower bound of that radius
+    over the angle bin ``b`` (of ``len(trap_radius)`` equal bins), so the test is conservative.
+    Empty ``trap_radius``: no region, never true.
+    """
+    nbin = trap_radius.shape[0]
+    if nbin == 0:
+        return False
+    x = trap_data[TRAP_SQRT_K] * (w[0] - z_eq[0])
+    y = trap_data[TRAP_SQRT_M] * (w[1] - z_eq[1])
+    rho2 = x * x + y * y
+    r_max = trap_data[TRAP_R_MAX]
+    if rho2 >= r_max * r_max:
+        return False
+    r_min = trap_data[TRAP_R_MIN]
+    if rho2 < r_min * r_min:
+        return True
+    rho = np.sqrt(rho2)
+    phi = np.arctan2(-y, x)
+    if phi < 0.0:
+        phi += 2.0 * np.pi
+    b = int(phi * (nbin / (2.0 * np.pi)))
+    b = min(max(b, 0), nbin - 1)
+    return rho < trap_radius[b]
