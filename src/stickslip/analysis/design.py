@@ -26,6 +26,7 @@ from stickslip.analysis.theory import (
     optimal_foundation_fit,
 )
 from stickslip.analysis.verdict import Verdict
+from stickslip.model._validate import positive
 from stickslip.model.friction import CoulombFriction
 from stickslip.model.parameters import Foundation
 from stickslip.model.physical import (
@@ -76,6 +77,7 @@ class DesignReport:
     warnings: tuple[str, ...] = ()
     stick_slip_optimum: dict[str, Any] | None = None
     stability: dict[str, Any] | None = None
+    stability_optimum: dict[str, Any] | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """JSON keys of the ``design`` command (issue 6)."""
@@ -116,6 +118,7 @@ class DesignReport:
             "stick_slip_optimal_foundation": self.stick_slip_optimum,
             "friction": self.system.slider().friction.describe(),
             "stability": self.stability,
+            "stability_optimal_foundation": self.stability_optimum,
         }
 
     def plot(self, **kwargs: Any) -> Any:
@@ -140,7 +143,8 @@ def _label(stick_slip: bool) -> str:
 
 
 def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
-                      rtol: float = 1e-6, stick_slip_optimum: bool = False) -> DesignReport:
+                      rtol: float = 1e-6, stick_slip_optimum: bool = False,
+                      max_foundation_deflection: float | None = None) -> DesignReport:
     """Run the design procedure of the paper's Fig. 16 and check it by simulation.
 
     Parameters
@@ -157,6 +161,13 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
         Also search the foundation that maximises the simulated stick-slip onset (with the
         mass bounded by the recommended ``m_a``) and report it in SI units, with its critical
         speed and load (a few seconds more).
+    max_foundation_deflection : float, optional
+        Largest static deflection the foundation may take under the kinetic friction force
+        ``mu_k W``, in m: the bound of the stability-optimal foundation, which is searched
+        (and reported as ``stability_optimal_foundation``) when the friction law depends on
+        the sliding speed. Default: four times the slider spring's deflection under the same
+        force, ``4 mu_k W / k`` (the dimensionless default
+        :data:`~stickslip.analysis.stability_tuning.MAX_FOUNDATION_DEFLECTION_RATIO`).
 
     Returns
     -------
@@ -223,8 +234,63 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
         )
     optimum = _stick_slip_optimum(system, zeta, gamma, lam) if stick_slip_optimum else None
     stability = stability_margin(system, {"rigid": rigid, "foundation": with_foundation})
+    stable_best = None
+    if not isinstance(slider.friction, CoulombFriction) or max_foundation_deflection is not None:
+        stable_best = stability_optimum(system, max_foundation_deflection)
     return DesignReport(system, lam, zeta, gamma, zeta_eq, zeta_eq_source, foundation, dimensionless,
-                        source, recommended, verdicts, crit, tuple(warnings), optimum, stability)
+                        source, recommended, verdicts, crit, tuple(warnings), optimum, stability,
+                        stable_best)
+
+
+def stability_optimum(system: PhysicalSystem, max_foundation_deflection: float | None = None
+                      ) -> dict[str, Any]:
+    """The foundation that lets steady sliding tolerate the steepest friction weakening, in SI.
+
+    The search is :func:`~stickslip.analysis.stability_tuning.optimal_foundation_stability`
+    (exact ``delta_crit`` from the characteristic polynomial), with the foundation's static
+    deflection under the kinetic friction force bounded: ``mu_k W / k_a <= d_max``. In the
+    dimensionless form this is ``1 / K^2 <= d_max k / (mu_k W)``, the ratio of ``d_max`` to the
+    slider spring's own deflection ``mu_k W / k``.
+
+    Parameters
+    ----------
+    system : PhysicalSystem
+        The machine in SI units.
+    max_foundation_deflection : float, optional
+        ``d_max`` in m; default ``4 mu_k W / k``.
+
+    Returns
+    -------
+    dict
+        ``m_a`` kg, ``k_a`` N/m, ``c_a`` N s/m, ``M``, ``K``, ``zeta_a``, ``delta_crit`` and the
+        friction slope it tolerates ``sigma_crit`` (s/m), ``foundation_deflection`` (m, under
+        ``mu_k W``) and the bound ``max_foundation_deflection`` (m).
+    """
+    from stickslip.analysis.stability_tuning import (
+        MAX_FOUNDATION_DEFLECTION_RATIO,
+        optimal_foundation_stability,
+    )
+
+    own = system.mu_k * system.load / system.stiffness  # slider spring's deflection under mu_k W, m
+    if max_foundation_deflection is None:
+        d_max = MAX_FOUNDATION_DEFLECTION_RATIO * own
+    else:
+        d_max = positive("max_foundation_deflection", max_foundation_deflection)
+    if own <= 0.0:
+        raise ValueError("a foundation deflection bound needs a kinetic friction force mu_k W > 0")
+    result = optimal_foundation_stability(system.zeta, max_deflection_ratio=d_max / own)
+    phys = foundation_to_physical(result.foundation, system.mass, system.stiffness)
+    per_slope = 2.0 * math.sqrt(system.mass * system.stiffness) / system.load
+    return {
+        "m_a": phys.m_a, "k_a": phys.k_a, "c_a": phys.c_a,
+        "M": result.foundation.mass_ratio, "K": result.foundation.stiffness_ratio,
+        "zeta_a": result.foundation.damping_ratio,
+        "delta_crit": result.delta_crit,
+        "sigma_crit": result.delta_crit * per_slope,
+        "foundation_deflection": system.mu_k * system.load / phys.k_a,
+        "max_foundation_deflection": d_max,
+        "source": "largest exact delta_crit, M <= M_opt of Eq. (28), foundation deflection <= bound",
+    }
 
 
 def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -> dict[str, Any]:

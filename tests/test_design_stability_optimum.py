@@ -1,0 +1,67 @@
+"""The stability-optimal foundation of ``design`` under a bound on its static deflection (issue 20, point 3).
+
+Sources: the bound is the definition ``mu_k W / k_a <= d_max`` (Hooke's law for the foundation
+spring under the kinetic friction force); ``delta_crit`` is checked against the eigenvalues of
+the slip-I linearisation computed here with numpy (the first weakening at which a root crosses
+into the right half-plane).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from stickslip import PhysicalSystem, design_foundation
+from stickslip.model.parameters import Foundation
+from stickslip.model.physical import PhysicalFriction
+from stickslip.model.structure import elastic_foundation
+
+MACHINE = {"mass": 2.0, "stiffness": 5e4, "damping": 20.0, "mu_s": 0.5, "mu_k": 0.3, "load": 150.0,
+           "speed": 0.05}
+
+
+def _max_real_eigenvalue(zeta: float, f: Foundation, delta: float) -> float:
+    s = elastic_foundation(zeta, f)
+    c = s.damping.copy()
+    c[0, 0] -= 2.0 * delta  # the weakening acts as a negative damper on the slider (DESIGN.md 8)
+    n = s.n_dof
+    minv = np.linalg.inv(s.mass)
+    a = np.block([[np.zeros((n, n)), np.eye(n)], [-minv @ s.stiffness, -minv @ c]])
+    return float(np.linalg.eigvals(a).real.max())
+
+
+@pytest.mark.parametrize("d_max", [None, 0.01, 0.002])
+def test_stability_optimum_respects_the_deflection_bound_and_delta_crit_is_the_first_crossing(
+        d_max: float | None) -> None:
+    system = PhysicalSystem(**MACHINE, friction=PhysicalFriction(law="linear", slope=0.5))
+    best = design_foundation(system, max_foundation_deflection=d_max).to_dict()[
+        "stability_optimal_foundation"]
+    own = MACHINE["mu_k"] * MACHINE["load"] / MACHINE["stiffness"]
+    bound = 4.0 * own if d_max is None else d_max
+    assert best["max_foundation_deflection"] == pytest.approx(bound, rel=1e-12)
+    assert best["foundation_deflection"] <= bound * (1.0 + 1e-9)
+    assert best["foundation_deflection"] == pytest.approx(MACHINE["mu_k"] * MACHINE["load"] / best["k_a"])
+    f = Foundation(best["M"], best["K"], best["zeta_a"])
+    zeta = system.zeta
+    delta_crit = best["delta_crit"]
+    # stable everywhere below delta_crit (a grid, as an independent check), unstable just above
+    for delta in np.linspace(0.0, delta_crit * (1.0 - 1e-6), 200):
+        assert _max_real_eigenvalue(zeta, f, float(delta)) < 0.0
+    assert _max_real_eigenvalue(zeta, f, delta_crit * (1.0 + 1e-6)) > 0.0
+
+
+def test_a_looser_bound_never_tolerates_less_weakening() -> None:
+    system = PhysicalSystem(**MACHINE, friction=PhysicalFriction(law="linear", slope=0.5))
+    tight = design_foundation(system, max_foundation_deflection=0.002).to_dict()["stability_optimal_foundation"]
+    loose = design_foundation(system, max_foundation_deflection=0.01).to_dict()["stability_optimal_foundation"]
+    assert loose["delta_crit"] >= tight["delta_crit"] * (1.0 - 1e-6)
+
+
+def test_coulomb_design_reports_no_stability_optimum_unless_asked() -> None:
+    report = design_foundation(PhysicalSystem(**MACHINE)).to_dict()
+    assert report["stability_optimal_foundation"] is None
+
+
+def test_a_non_positive_bound_is_refused() -> None:
+    with pytest.raises(ValueError, match="max_foundation_deflection"):
+        design_foundation(PhysicalSystem(**MACHINE), max_foundation_deflection=-1.0)
