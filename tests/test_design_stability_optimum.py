@@ -52,8 +52,9 @@ def test_stability_optimum_respects_the_deflection_bound_and_delta_crit_is_the_f
 
 def test_a_looser_bound_never_tolerates_less_weakening() -> None:
     system = PhysicalSystem(**MACHINE, friction=PhysicalFriction(law="linear", slope=0.5))
-    tight = design_foundation(system, max_foundation_deflection=0.002).to_dict()["stability_optimal_foundation"]
-    loose = design_foundation(system, max_foundation_deflection=0.01).to_dict()["stability_optimal_foundation"]
+    key = "stability_optimal_foundation"
+    tight = design_foundation(system, max_foundation_deflection=0.002).to_dict()[key]
+    loose = design_foundation(system, max_foundation_deflection=0.01).to_dict()[key]
     assert loose["delta_crit"] >= tight["delta_crit"] * (1.0 - 1e-6)
 
 
