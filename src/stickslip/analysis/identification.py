@@ -76,7 +76,7 @@ LAW_PARAMETERS: dict[str, tuple[str, ...]] = {
 #: Nodes of a fitted ``table`` law, as fractions of the largest sliding speed of the record.
 TABLE_FRACTIONS = (0.0, 0.25, 0.5, 0.75, 1.0)
 #: Law approximation tolerance of the Stribeck interpolant during a fit (units of lambda).
-STRIBECK_TOLERANCE = 1e-5
+STRIBECK_TOLERANCE = 1e-4
 #: Iteration budget of one least-squares fit (function evaluations).
 MAX_EVALUATIONS = 100
 #: Forward-difference step of the Jacobian in the scaled coordinates (parameters over their
@@ -84,6 +84,7 @@ MAX_EVALUATIONS = 100
 FD_STEP = 1e-6
 #: ``ftol``, ``xtol`` and ``gtol`` of ``least_squares``.
 TOLERANCE = 1e-8
+TR_SOLVER = "exact"
 
 __all__ = ["LAWS", "UNDETERMINED_RULE", "IdentificationResult", "MeasuredRecord", "RecordError",
            "identify"]
@@ -359,7 +360,7 @@ def _solve(problem: _Problem, z0: FloatArray, weights: FloatArray | None = None,
     lower = np.concatenate([problem.lower, np.full(n_seg, -np.inf)])
     upper = np.concatenate([problem.upper, np.full(n_seg, np.inf)])
     return least_squares(problem.residuals, z0, jac=problem.jacobian, bounds=(lower, upper),
-                         method="trf", tr_solver="exact", x_scale=1.0, ftol=TOLERANCE, xtol=TOLERANCE,
+                         method="trf", tr_solver=TR_SOLVER, x_scale=1.0, ftol=TOLERANCE, xtol=TOLERANCE,
                          gtol=TOLERANCE, max_nfev=max_nfev, kwargs={"weights": weights})
 
 

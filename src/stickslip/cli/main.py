@@ -65,6 +65,7 @@ def _register() -> None:
     for module in (simulate_command, absorber_commands, map_commands, design_command,
                    basin_command, basin_map_command, cycles_command, reproduce_command, app_command):
         module.register(app)
+    __import__("stickslip.cli.identify_command", fromlist=["register"]).register(app)
 
 
 _register()
