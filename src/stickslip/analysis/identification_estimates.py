@@ -163,11 +163,13 @@ def _dominant_period(t: FloatArray, y: FloatArray) -> float:
     ac = ac / ac[0]
     neg = np.nonzero(ac < 0.0)[0]
     if neg.size == 0:
-        raise RecordError("the record shows no oscillation: no stick-slip cycle to identify")
+        raise RecordError("the record shows no oscillation: no stick phases to identify from "
+                          f"(identification needs at least {MIN_STICK_PHASES} stick-slip cycles)")
     lag = int(np.argmax(ac[neg[0]:])) + neg[0]
     if ac[lag] < 0.2:
         raise RecordError("the record shows no repeating stick-slip cycle (autocorrelation "
-                          f"{ac[lag]:.2f} at its best lag)")
+                          f"{ac[lag]:.2f} at its best lag): identification needs at least "
+                          f"{MIN_STICK_PHASES} stick phases; record more stick-slip periods")
     return float(lag * (t[-1] / (n - 1)))
 
 
@@ -195,7 +197,7 @@ def estimate(record: MeasuredRecord, *, mass: float, load: float, speed: float) 
         raise RecordError(f"the record has {period / dt:.0f} samples per stick-slip period; "
                           f"at least {MIN_SAMPLES_PER_PERIOD} are needed")
     half = max(2, round(period / dt / 60.0))
-    wide = max(half, round(period / dt / 20.0))
+    wide = max(half, round(period / dt / 10.0))
     smooth = savgol_filter(main, 2 * half + 1, 2)
     slope = savgol_filter(main, 2 * wide + 1, 2, deriv=1, delta=dt)
     sigma = noise_level(main)
@@ -206,7 +208,7 @@ def estimate(record: MeasuredRecord, *, mass: float, load: float, speed: float) 
     stick: list[StickPhase] = []
     for p in peaks:
         lo = max(0, p - span)
-        if p - lo < 4 * wide:
+        if p - lo < 2 * wide:
             continue
         region = slope[lo:p]
         rate = float(np.percentile(region, 90))
@@ -214,12 +216,12 @@ def estimate(record: MeasuredRecord, *, mass: float, load: float, speed: float) 
             continue
         top = lo + int(np.argmax(region))
         a = top
-        while a > lo and region[a - 1 - lo] > 0.85 * rate:
+        while a > lo and region[a - 1 - lo] > 0.75 * rate:
             a -= 1
         b = top
-        while b < p - 1 and region[b + 1 - lo] > 0.85 * rate:
+        while b < p - 1 and region[b + 1 - lo] > 0.75 * rate:
             b += 1
-        fa, fb = (a + wide, b - wide) if a > 0 else (0, b - wide)
+        fa, fb = (a + wide // 2, b - wide // 2) if a > 0 else (0, b - wide // 2)
         if fb - fa < 4:
             continue
         line = np.polyfit(t[fa:fb], main[fa:fb], 1)
