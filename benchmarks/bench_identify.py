@@ -38,8 +38,9 @@ import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from stickslip.analysis.identification import MeasuredRecord, identify  # noqa: E402
 from tests.record_oracle import coulomb, noisy, simulate_rig  # noqa: E402
+
+from stickslip.analysis.identification import MeasuredRecord, identify  # noqa: E402
 
 TRUTH = {"m": 1.0, "k": 1.0e4, "c": 5.0, "mu_s": 0.6, "mu_k": 0.4, "load": 100.0, "speed": 0.05}
 PERIOD = 0.1124  # s, of this rig's stick-slip cycle (from the simulator's breakaway times)

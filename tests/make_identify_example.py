@@ -22,8 +22,9 @@ PATH = Path(__file__).resolve().parents[1] / "examples" / "rig_record.csv"
 
 def main() -> None:
     rng = np.random.default_rng(19)
-    rig = simulate_rig(m=TRUTH["m"], k=TRUTH["k"], c=TRUTH["c"], mu_s=TRUTH["mu_s"], mu=coulomb(TRUTH["mu_k"]),
-                       load=TRUTH["load"], speed=TRUTH["speed"], t_end=1.43, fs=2000.0, t_start=0.23)
+    rig = simulate_rig(m=TRUTH["m"], k=TRUTH["k"], c=TRUTH["c"], mu_s=TRUTH["mu_s"],
+                       mu=coulomb(TRUTH["mu_k"]), load=TRUTH["load"], speed=TRUTH["speed"], t_end=1.43,
+                       fs=2000.0, t_start=0.23)
     force = noisy(rig.F, 0.005, rng) + OFFSET + DRIFT * rig.t
     x = noisy(rig.x, 0.005, rng)
     rows = "\n".join(f"{t:.6f},{1e3 * xi:.6f},{f:.5f}" for t, xi, f in zip(rig.t, x, force, strict=True))

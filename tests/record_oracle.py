@@ -83,7 +83,7 @@ def simulate_rig(*, m: float, k: float, c: float, mu_s: float, mu: Callable[[flo
 
     pieces: list[tuple[float, float, str, object, float]] = []
     breakaways: list[float] = []
-    t, x, mode, n_stick = 0.0, 0.0, "stick", 0
+    t, _x, mode, n_stick = 0.0, 0.0, "stick", 0
     y = np.array([0.0, vb])
     for _ in range(max_events):
         if t >= t_end:
@@ -128,7 +128,7 @@ def simulate_rig(*, m: float, k: float, c: float, mu_s: float, mu: Callable[[flo
     starts = np.array([p[0] for p in pieces])
     for i, tt in enumerate(ts):
         j = int(np.searchsorted(starts, tt, side="right") - 1)
-        a, b, kind, data, _ = pieces[j]
+        _a, _b, kind, data, _ = pieces[j]
         if kind == "stick":
             x0, t0 = data  # type: ignore[misc]
             xs[i], vs[i] = x0 + vb * (tt - t0), vb

@@ -126,7 +126,7 @@ def test_result_exports_and_plot(coulomb_fit, tmp_path):
     ds = coulomb_fit.to_xarray()
     assert ds["F_fitted"].attrs["units"] == "N"
     assert coulomb_fit.to_csv().splitlines()[0].startswith("t [s],F_measured [N]")
-    fig, axes, artists = coulomb_fit.plot()
+    _fig, axes, artists = coulomb_fit.plot()
     assert len(axes) == 3 and artists
     mu, se = coulomb_fit.friction_curve([0.01, 0.1])
     assert mu == pytest.approx([coulomb_fit.parameters["mu_k"].value] * 2)
@@ -145,14 +145,15 @@ def test_record_reader_units_signs_and_columns(tmp_path):
     assert rec.x == pytest.approx(0.001 * np.arange(6))
     assert rec.F == pytest.approx(40.0 * np.arange(6))
     spec = tmp_path / "cols.toml"
-    spec.write_text('[columns.t]\nname = "time"\nunit = "ms"\n[columns.F]\nname = "load"\nunit = "kN"\nsign = -1\n')
+    spec.write_text('[columns.t]\nname = "time"\nunit = "ms"\n'
+                    '[columns.F]\nname = "load"\nunit = "kN"\nsign = -1\n')
     rec2 = read_record(path, read_columns_toml(spec))
     assert rec2.F == pytest.approx(rec.F) and rec2.x is None
     head = tmp_path / "head.csv"
     head.write_text("t [ms],F (kN)\n0,1\n1,2\n2,3\n")
     rec3 = read_record(head)
     assert rec3.t == pytest.approx([0.0, 1e-3, 2e-3]) and rec3.F == pytest.approx([1e3, 2e3, 3e3])
-    with pytest.raises(RecordError, match="not a .*length.* unit"):
+    with pytest.raises(RecordError, match=r"not a .*length.* unit"):
         read_record(path, parse_columns("t=time:ms,x=disp:kg"))
     with pytest.raises(RecordError, match="no column 'nope'"):
         read_record(path, parse_columns("t=time,F=nope"))
@@ -206,7 +207,8 @@ def test_cli_missing_record_and_too_short(tmp_path, capsys):
     short = tmp_path / "short.csv"
     rig = _rig(t_end=0.38)
     short.write_text("t,F\n" + "\n".join(f"{a},{b}" for a, b in zip(rig.t, rig.F, strict=True)))
-    code, _, err = run_cli(["identify", str(short), "--mass", "1", "--load", "100", "--speed", "0.05"], capsys)
+    code, _, err = run_cli(["identify", str(short), "--mass", "1", "--load", "100", "--speed", "0.05"],
+                           capsys)
     assert code == 2 and "stick phase" in err and len(err.strip().splitlines()) == 1
 
 

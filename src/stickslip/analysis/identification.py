@@ -36,9 +36,10 @@ Dimensionless mapping (DESIGN.md section 1, paper Section 2.3): ``omega_n = sqrt
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -119,6 +120,7 @@ class _Problem:
     seg_slots: list[list[int]]  # indices of each segment's parameters in the segment block
     sigma: dict[str, float]
     table_v: tuple[float, ...] = ()
+    start: FloatArray = field(default_factory=lambda: np.zeros(0))
     n_calls: int = 0
     engine_seconds: float = 0.0
 
@@ -171,7 +173,8 @@ class _Problem:
             x0 = states[slots[0]]
             v0 = self.speed if seg.in_stick else states[slots[1]]
             tau = omega * (t[seg.start:seg.stop] - t[seg.start])
-            initial = InitialState([x0 / length - shift], [v0 / self.speed], "measured state")
+            initial = InitialState(np.array([x0 / length - shift]), np.array([v0 / self.speed]),
+                                   "measured state")
             res = simulate(structure, slider, initial=initial, t_max=tau[-1] * (1 + 1e-12) + 1e-12,
                            run_to_t_max=True)
             q, qd, _ = res.state_at(np.minimum(tau, res.t_end))
@@ -228,7 +231,7 @@ def _segments(record: MeasuredRecord, est: RecordEstimates, start: dict[str, flo
     """Cut the record at a point inside each stick phase; starting states of each piece."""
     n = record.t.size
     dt = record.t[-1] / (n - 1)
-    k, c, speed = start["k"], start["c"], speed_of(start)
+    k, c, speed = start["k"], start["c"], start["speed"]
     sm: dict[str, FloatArray] = {}
     dsm: dict[str, FloatArray] = {}
     for name in record.channels:
@@ -260,7 +263,7 @@ def _segments(record: MeasuredRecord, est: RecordEstimates, start: dict[str, flo
         ref += [position(0) if "x" in sm else float((sm["F"][0] - start["force_offset"] - c * v0) / k), v0]
         scale += [length, speed]
     bounds = [*anchors, n]
-    for a, b in zip(bounds[:-1], bounds[1:], strict=True):
+    for a, b in itertools.pairwise(bounds):
         if b - a < 2:
             continue
         segments.append(_Segment(a, b, in_stick=True))
@@ -270,16 +273,13 @@ def _segments(record: MeasuredRecord, est: RecordEstimates, start: dict[str, flo
     return segments, ref, scale, slots
 
 
-def speed_of(start: Mapping[str, float]) -> float:
-    return start["speed"]
-
-
 def _problem(record: MeasuredRecord, est: RecordEstimates, *, mass: float, load: float, speed: float,
              law: str, known: Mapping[str, float], fit_offset: bool, start: Mapping[str, float] | None
              ) -> _Problem:
     """Free parameters, their scales, bounds and starting values for one law."""
     duration = float(record.t[-1])
-    f_range = float(np.ptp(record.F)) if record.F is not None else est.k * float(np.ptp(record.x))
+    main = record.F if record.F is not None else est.k * record.x  # type: ignore[operator]
+    f_range = float(np.ptp(main))
     c_crit = 2.0 * math.sqrt(mass * est.k)
     gap = est.mu_s - est.mu_k
     guess: dict[str, float] = {
@@ -350,7 +350,7 @@ def _problem(record: MeasuredRecord, est: RecordEstimates, *, mass: float, load:
     )
     z0 = np.concatenate([np.array(values) / scales, np.zeros(len(ref))])
     problem_start = np.clip(z0[: len(names)], problem.lower + 1e-12, problem.upper - 1e-12)
-    problem.start = np.concatenate([problem_start, z0[len(names):]])  # type: ignore[attr-defined]
+    problem.start = np.concatenate([problem_start, z0[len(names):]])
     return problem
 
 
@@ -375,7 +375,7 @@ def _covariance(problem: _Problem, jac: FloatArray, chi2: float, n_obs: int
     p = jac.shape[1]
     norms = np.linalg.norm(jac, axis=0)
     norms[norms == 0.0] = 1.0
-    u, s, vt = np.linalg.svd(jac / norms, full_matrices=False)
+    _u, s, vt = np.linalg.svd(jac / norms, full_matrices=False)
     null = s < 1e-8 * s[0]
     s_inv = np.where(null, 0.0, 1.0 / np.where(s == 0.0, 1.0, s))
     cov_scaled = (vt.T * s_inv**2) @ vt / np.outer(norms, norms)
@@ -399,8 +399,8 @@ def _fit_law(record: MeasuredRecord, est: RecordEstimates, *, mass: float, load:
              start: Mapping[str, float] | None = None) -> tuple[_Problem, Any]:
     problem = _problem(record, est, mass=mass, load=load, speed=speed, law=law, known=known,
                        fit_offset=fit_offset, start=start)
-    z0 = problem.start  # type: ignore[attr-defined]
-    # first the segment states alone (cheap, well conditioned), then everything
+    z0 = problem.start
+    # Stribeck: the optimiser can stall with the Stribeck velocity far off; two more starts
     best = _solve(problem, z0)
     if law == "stribeck" and not {"stribeck_velocity", "exponent"} & set(known):
         for frac in (0.05, 1.0):
@@ -485,7 +485,8 @@ def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulo
         if coulomb_values is not None:
             start = dict(coulomb_values)
             if name == "stribeck":  # Coulomb's mu_k averages the curve; the high-speed limit is lower
-                start["mu_k"] = coulomb_values["mu_k"] - 0.3 * (coulomb_values["mu_s"] - coulomb_values["mu_k"])
+                gap = coulomb_values["mu_s"] - coulomb_values["mu_k"]
+                start["mu_k"] = coulomb_values["mu_k"] - 0.3 * gap
         problem, res = _fit_law(record, est, mass=mass, load=load, speed=speed, law=name, known=known,
                                 fit_offset=fit_offset, start=start)
         if name == "coulomb":
@@ -567,7 +568,8 @@ def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tup
             params[name] = FitParameter(name, values[name], None, PARAMETER_UNITS[name], free=False,
                                         estimate=values[name])
     model = problem.simulate_record(res.x)
-    criteria = {name: dict(zip(("aic", "bic"), _criteria(p, r), strict=True)) for name, (p, r) in fits.items()}
+    criteria = {name: dict(zip(("aic", "bic"), _criteria(p, r), strict=True))
+                for name, (p, r) in fits.items()}
     rms = {n: float(np.sqrt(np.mean((model[n] - getattr(record, n)) ** 2))) for n in record.channels}
     stick_cycles = sum(1 for seg in problem.segments if seg.in_stick and seg.stop - seg.start > 1)
     return IdentificationResult(
@@ -595,8 +597,8 @@ def friction_coefficient(law: str, values: Mapping[str, float], v_r: Sequence[fl
     if law == "linear":
         mu = mu_k - values["slope"] * v
     elif law == "stribeck":
-        mu = (mu_k + (values["mu_s"] - mu_k) * np.exp(-((v / values["stribeck_velocity"]) ** values["exponent"]))
-              + values["viscous"] * v)
+        decay = np.exp(-((v / values["stribeck_velocity"]) ** values["exponent"]))
+        mu = mu_k + (values["mu_s"] - mu_k) * decay + values["viscous"] * v
     elif law == "table":
         mus = [min(values[f"table_mu_{i}"], values["mu_s"]) for i in range(len(table_v))]
         mu = np.interp(v, table_v, mus)

@@ -24,6 +24,7 @@ These are starting values, not answers: the least-squares fit of
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, field
 
@@ -83,7 +84,8 @@ class MeasuredRecord:
                 continue
             arr = np.asarray(value, dtype=np.float64).reshape(-1)
             if arr.size != t.size:
-                raise RecordError(f"record {self.source}: column {name} has {arr.size} samples, t has {t.size}")
+                raise RecordError(f"record {self.source}: column {name} has {arr.size} samples, "
+                                  f"t has {t.size}")
             if not np.all(np.isfinite(arr)):
                 raise RecordError(f"record {self.source}: column {name} has NaN or infinite values")
             object.__setattr__(self, name, arr)
@@ -255,7 +257,7 @@ def estimate(record: MeasuredRecord, *, mass: float, load: float, speed: float) 
     peak = float(np.median([ph.peak_value for ph in stick]))
     onset = float(np.median([ph.onset_value for ph in stick if ph.start > 0] or [stick[-1].onset_value]))
     # slip duration: from a breakaway to the next stick onset
-    slips = [(b.start - a.breakaway) * dt for a, b in zip(stick[:-1], stick[1:], strict=True)
+    slips = [(b.start - a.breakaway) * dt for a, b in itertools.pairwise(stick)
              if b.start > a.breakaway]
     t_slip = float(np.median(slips)) if slips else 0.5 * period
     offset = 0.0

@@ -220,7 +220,8 @@ class IdentificationResult:
         v = {n: (p.value if p.value is not None else p.estimate) for n, p in self.parameters.items()}
         lines = [
             f"# identified by stickslip identify from {self.source} (law {self.law})",
-            f"# residual RMS: {', '.join(f'{n} {r:.4g} {_CHANNEL_UNITS[n]}' for n, r in self.residual_rms.items())}",
+            "# residual RMS: " + ", ".join(f"{n} {r:.4g} {_CHANNEL_UNITS[n]}"
+                                           for n, r in self.residual_rms.items()),
             "[system]",
             f'm = "{self.mass!r} kg"',
             f'k = "{v["k"]!r} N/m"',

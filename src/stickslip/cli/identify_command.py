@@ -91,7 +91,8 @@ def identify(
         check_figure_path(plot, overwrite=overwrite)
     spec = None
     if columns is not None:
-        spec = read_columns_toml(columns) if columns.strip().lower().endswith(".toml") else parse_columns(columns)
+        is_file = columns.strip().lower().endswith(".toml")
+        spec = read_columns_toml(columns) if is_file else parse_columns(columns)
     data = read_record(record, spec)
     fit_offset = None if offset == "auto" else offset == "fit"
     result = run_identify(data, known, law=law, bootstrap=bootstrap, fit_offset=fit_offset)
