@@ -75,11 +75,13 @@ LAW_PARAMETERS: dict[str, tuple[str, ...]] = {
     "table": (),
 }
 #: Nodes of a fitted ``table`` law, as fractions of the largest sliding speed of the record.
-TABLE_FRACTIONS = (0.0, 0.25, 0.5, 0.75, 1.0)
+TABLE_FRACTIONS = (0.0, 0.05, 0.15, 0.4, 1.0)
 #: Law approximation tolerance of the Stribeck interpolant during a fit (units of lambda).
 STRIBECK_TOLERANCE = 1e-4
 #: Iteration budget of one least-squares fit (function evaluations).
 MAX_EVALUATIONS = 100
+#: Iteration budget of each trial start of a Stribeck fit.
+MULTISTART_EVALUATIONS = 12
 #: Forward-difference step of the Jacobian in the scaled coordinates (parameters over their
 #: natural scales, segment states over ``V / omega_n``).
 FD_STEP = 1e-6
@@ -401,17 +403,20 @@ def _fit_law(record: MeasuredRecord, est: RecordEstimates, *, mass: float, load:
                        fit_offset=fit_offset, start=start)
     z0 = problem.start
     # Stribeck: the optimiser can stall with the Stribeck velocity far off; two more starts
-    best = _solve(problem, z0)
-    if law == "stribeck" and not {"stribeck_velocity", "exponent"} & set(known):
-        for frac in (0.05, 1.0):
-            z1 = z0.copy()
-            i = problem.names.index("stribeck_velocity")
-            z1[i] = np.clip(frac * est.max_sliding_speed / problem.scales[i], problem.lower[i],
-                            problem.upper[i])
-            trial = _solve(problem, z1)
-            if trial.cost < best.cost:
-                best = trial
-    return problem, best
+    if law != "stribeck" or "stribeck_velocity" in known:
+        return problem, _solve(problem, z0)
+    # short trial fits from three Stribeck velocities; the best one is carried to convergence
+    i = problem.names.index("stribeck_velocity")
+    best = None
+    for frac in (0.05, 0.3, 1.0):
+        z1 = z0.copy()
+        z1[i] = np.clip(frac * est.max_sliding_speed / problem.scales[i], problem.lower[i] * 1.001,
+                        problem.upper[i] * 0.999)
+        trial = _solve(problem, z1, max_nfev=MULTISTART_EVALUATIONS)
+        if best is None or trial.cost < best.cost:
+            best = trial
+    assert best is not None
+    return problem, _solve(problem, best.x)
 
 
 def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulomb", *,

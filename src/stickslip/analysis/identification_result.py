@@ -211,7 +211,8 @@ class IdentificationResult:
         and a ``[friction]`` table. Raises ``ValueError`` when a parameter the file needs is
         undetermined (the file would carry a number the record does not support).
         """
-        needed = ["k", "c", "mu_s", "mu_k", *[n for n in _FRICTION_KEYS[self.law]]]
+        needed = ["k", "c", "mu_s", "mu_k", *_FRICTION_KEYS[self.law],
+                  *[n for n in self.parameters if n.startswith("table_mu_")]]
         missing = [n for n in needed if n in self.parameters and self.parameters[n].value is None
                    and self.parameters[n].free]
         if missing:
