@@ -434,8 +434,9 @@ def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulo
         ``mu_s``, ``mu_k``, ``slope``, ``stribeck_velocity``, ``exponent``, ``viscous``,
         ``force_offset``, ``force_drift``) given here is held fixed.
     law : {"coulomb", "linear", "stribeck", "table", "auto"}
-        Friction law to fit; ``auto`` fits coulomb, linear and stribeck and keeps the one with
-        the lowest Bayesian information criterion (each one's AIC and BIC are reported).
+        Friction law to fit; ``auto`` fits coulomb, linear and stribeck (its exponent held at
+        1 unless known) and keeps the one with the lowest Bayesian information criterion (each
+        one's AIC and BIC are reported).
     bootstrap : int
         Number of bootstrap refits over resampled cycles (0: none); gives 95 % percentile
         intervals.
@@ -492,7 +493,10 @@ def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulo
             if name == "stribeck":  # Coulomb's mu_k averages the curve; the high-speed limit is lower
                 gap = coulomb_values["mu_s"] - coulomb_values["mu_k"]
                 start["mu_k"] = coulomb_values["mu_k"] - 0.3 * gap
-        problem, res = _fit_law(record, est, mass=mass, load=load, speed=speed, law=name, known=known,
+        law_known = dict(known)
+        if law == "auto" and name == "stribeck":
+            law_known.setdefault("exponent", 1.0)  # the comparison: exponential Stribeck decay
+        problem, res = _fit_law(record, est, mass=mass, load=load, speed=speed, law=name, known=law_known,
                                 fit_offset=fit_offset, start=start)
         if name == "coulomb":
             coulomb_values = problem.values(res.x)
