@@ -38,7 +38,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -595,22 +595,3 @@ def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tup
         fit_offset=fit_offset, condition=float(singular[0] / singular[-1]) if singular[-1] > 0 else math.inf,
         covariance=cov, covariance_names=tuple(reported), bootstrap=bootstrap,
     )
-
-
-def friction_coefficient(law: str, values: Mapping[str, float], v_r: Sequence[float] | FloatArray,
-                         table_v: Sequence[float] = ()) -> FloatArray:
-    """The fitted friction coefficient ``mu(v_r)`` at sliding speeds ``v_r`` [m/s] (SI law,
-    DESIGN.md section 8, floored at zero as the engine does)."""
-    v = np.abs(np.asarray(v_r, dtype=np.float64))
-    mu_k = values["mu_k"]
-    if law == "linear":
-        mu = mu_k - values["slope"] * v
-    elif law == "stribeck":
-        decay = np.exp(-((v / values["stribeck_velocity"]) ** values["exponent"]))
-        mu = mu_k + (values["mu_s"] - mu_k) * decay + values["viscous"] * v
-    elif law == "table":
-        mus = [min(values[f"table_mu_{i}"], values["mu_s"]) for i in range(len(table_v))]
-        mu = np.interp(v, table_v, mus)
-    else:
-        mu = np.full_like(v, mu_k)
-    return np.maximum(mu, 0.0)

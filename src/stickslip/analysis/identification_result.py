@@ -9,7 +9,7 @@ force zero are ``force_offset`` [N] and ``force_drift`` [N/s].
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -154,8 +154,6 @@ class IdentificationResult:
 
     def friction_curve(self, v_r: Any) -> tuple[FloatArray, FloatArray]:
         """``mu(v_r)`` of the fitted law and its standard error (delta method) at ``v_r`` [m/s]."""
-        from stickslip.analysis.identification import friction_coefficient
-
         v = np.asarray(v_r, dtype=np.float64)
         base = self.values()
         mu = friction_coefficient(self.law, base, v, self.table_v)
@@ -334,3 +332,22 @@ _FRICTION_KEYS: dict[str, tuple[str, ...]] = {
 
 def _rule() -> str:
     return UNDETERMINED_RULE
+
+
+def friction_coefficient(law: str, values: Mapping[str, float], v_r: Sequence[float] | FloatArray,
+                         table_v: Sequence[float] = ()) -> FloatArray:
+    """The fitted friction coefficient ``mu(v_r)`` at sliding speeds ``v_r`` [m/s] (SI law,
+    DESIGN.md section 8, floored at zero as the engine does)."""
+    v = np.abs(np.asarray(v_r, dtype=np.float64))
+    mu_k = values["mu_k"]
+    if law == "linear":
+        mu = mu_k - values["slope"] * v
+    elif law == "stribeck":
+        decay = np.exp(-((v / values["stribeck_velocity"]) ** values["exponent"]))
+        mu = mu_k + (values["mu_s"] - mu_k) * decay + values["viscous"] * v
+    elif law == "table":
+        mus = [min(values[f"table_mu_{i}"], values["mu_s"]) for i in range(len(table_v))]
+        mu = np.interp(v, table_v, mus)
+    else:
+        mu = np.full_like(v, mu_k)
+    return np.maximum(mu, 0.0)
