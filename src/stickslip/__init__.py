@@ -128,6 +128,10 @@ _EXPORTS: dict[str, str] = {
     "basin_map": "stickslip.sweep.basin_maps",
     "BasinMap": "stickslip.sweep.basin_maps",
     "ExecutionOptions": "stickslip.sweep.execution",
+    "identify": "stickslip.analysis.identification",
+    "IdentificationResult": "stickslip.analysis.identification_result",
+    "MeasuredRecord": "stickslip.analysis.identification_estimates",
+    "read_record": "stickslip.io.record",
     "continue_cycles": "stickslip.analysis.continuation",
     "ContinuationResult": "stickslip.analysis.continuation",
     "hopf_weakenings": "stickslip.analysis.stability",
@@ -156,9 +160,11 @@ __all__ = [
     "EngineOptions",
     "ExecutionOptions",
     "Foundation",
+    "IdentificationResult",
     "InitialState",
     "LinearFriction",
     "MapConfig",
+    "MeasuredRecord",
     "Mode",
     "OccurrenceMap",
     "PhysicalFoundation",
@@ -202,6 +208,7 @@ __all__ = [
     "foundation_to_physical",
     "frequency_response",
     "hopf_weakenings",
+    "identify",
     "lowest_onset",
     "occurrence_map",
     "optimal_foundation_exact",
@@ -212,6 +219,7 @@ __all__ = [
     "peak_response_fit",
     "read_dataset",
     "read_friction_table",
+    "read_record",
     "reproduce",
     "resolve_dva",
     "response_curves",
@@ -269,6 +277,9 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         response_curves,
         response_peak,
     )
+    from stickslip.analysis.identification import identify
+    from stickslip.analysis.identification_estimates import MeasuredRecord
+    from stickslip.analysis.identification_result import IdentificationResult
     from stickslip.analysis.simulation import EngineOptions, SimulationResult, TimeHistory, simulate
     from stickslip.analysis.stability import (
         SteadySlidingStability,
@@ -291,6 +302,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from stickslip.analysis.verdict import Mode, RunStatus, Verdict
     from stickslip.io.csv import write_map_csv
     from stickslip.io.netcdf import read_dataset, write_dataset
+    from stickslip.io.record import read_record
     from stickslip.model.dva import DvaSpec
     from stickslip.model.friction import CoulombFriction, LinearFriction, StribeckFriction, TableFriction
     from stickslip.model.friction_input import parse_friction, read_friction_table

@@ -59,17 +59,19 @@ def _register() -> None:
         app_command,
         basin_command,
         basin_map_command,
+        continue_command,
         cycles_command,
         design_command,
+        identify_command,
         map_commands,
         reproduce_command,
         simulate_command,
     )
 
     for module in (simulate_command, absorber_commands, map_commands, design_command,
-                   basin_command, basin_map_command, cycles_command, reproduce_command, app_command):
+                   basin_command, basin_map_command, cycles_command, continue_command, identify_command,
+                   reproduce_command, app_command):
         module.register(app)
-    __import__("stickslip.cli.continue_command", fromlist=["register"]).register(app)  # issue 20
 
 
 _register()

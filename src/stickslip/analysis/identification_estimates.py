@@ -1,0 +1,315 @@
+"""A measured stick-slip record and the starting values read from it (issue 19, DESIGN.md section 11).
+
+The 1DOF rig of the paper's Fig. 1 (rigid base), in SI units: a slider of mass ``m`` [kg] on
+a belt (or drive) moving at ``V`` [m/s] under the normal load ``W`` [N], held by a spring ``k``
+[N/m] and a dashpot ``c`` [N s/m]. ``x`` [m] is the slider's displacement from where the spring
+is relaxed, positive along the belt's motion; the load cell between the spring-damper and the
+slider reads ``F = k x + c x'`` [N] (tension positive).
+
+Everything that is exact about a stick phase is used to start the fit:
+
+* during stick the slider moves with the belt, ``x' = V``, so ``F`` rises linearly with the
+  slope ``k V`` (``k`` from the force record, or from the displacement record through the
+  slip-phase frequency below);
+* stick ends at the breakaway force ``F = mu_s W`` (a peak of the force record);
+* for the paper's Coulomb law without damping the slip phase is half an ellipse about the
+  kinetic equilibrium ``k x_eq = mu_k W``: it starts at ``x_eq + D`` with ``x' = V`` and ends
+  (stick onset) at ``x_eq - D`` with ``x' = V``, after ``omega T_slip = pi + 2 atan(V / (omega D))``
+  (paper Section 3.1, Eqs. 34-35 in the dimensionless form). So the midpoint of the breakaway
+  and stick-onset forces is ``mu_k W`` and the slip duration gives ``omega = sqrt(k / m)``.
+
+These are starting values, not answers: the least-squares fit of
+:mod:`stickslip.analysis.identification` refines them against the exact engine.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.optimize import brentq
+from scipy.signal import find_peaks, savgol_filter
+
+FloatArray = NDArray[np.float64]
+
+#: Fewest breakaways (stick phases ending in a peak of the force) a record must show.
+MIN_STICK_PHASES = 2
+#: Fewest samples per stick-slip period the estimates need.
+MIN_SAMPLES_PER_PERIOD = 40
+
+
+class RecordError(ValueError):
+    """The record cannot support an identification (too short, no stick phases, ...)."""
+
+
+@dataclass(frozen=True)
+class MeasuredRecord:
+    """A sampled stick-slip record in SI units and the rig's sign conventions.
+
+    Parameters
+    ----------
+    t : array_like
+        Sample times, s, strictly increasing (shifted so that the record starts at 0).
+    F : array_like, optional
+        Load-cell force ``F = k x + c x'``, N (tension positive).
+    x : array_like, optional
+        Slider displacement from where the spring is relaxed, m, positive along the belt.
+    v : array_like, optional
+        Slider velocity, m/s.
+    source : str
+        Where the record came from (file name), for reports.
+
+    At least one of ``F`` and ``x`` is needed (``v`` alone does not show the stick force).
+    """
+
+    t: FloatArray
+    F: FloatArray | None = None
+    x: FloatArray | None = None
+    v: FloatArray | None = None
+    source: str = "(array)"
+
+    def __post_init__(self) -> None:
+        t = np.asarray(self.t, dtype=np.float64).reshape(-1)
+        if t.size < 3:
+            raise RecordError(f"record {self.source} has {t.size} samples; it needs many stick-slip periods")
+        if not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0.0):
+            raise RecordError(f"record {self.source}: the times t must be finite and strictly increasing")
+        object.__setattr__(self, "t", t - t[0])
+        for name in ("F", "x", "v"):
+            value = getattr(self, name)
+            if value is None:
+                continue
+            arr = np.asarray(value, dtype=np.float64).reshape(-1)
+            if arr.size != t.size:
+                raise RecordError(f"record {self.source}: column {name} has {arr.size} samples, "
+                                  f"t has {t.size}")
+            if not np.all(np.isfinite(arr)):
+                raise RecordError(f"record {self.source}: column {name} has NaN or infinite values")
+            object.__setattr__(self, name, arr)
+        if self.F is None and self.x is None:
+            raise RecordError(f"record {self.source} needs a force column F or a displacement column x")
+
+    @property
+    def channels(self) -> tuple[str, ...]:
+        """The measured signals present, in the order ``F``, ``x``, ``v``."""
+        return tuple(n for n in ("F", "x", "v") if getattr(self, n) is not None)
+
+    @property
+    def sample_rate(self) -> float:
+        """Mean sampling rate, Hz."""
+        return float((self.t.size - 1) / self.t[-1])
+
+    def subset(self, index: NDArray[np.intp]) -> MeasuredRecord:
+        """The samples at ``index`` (sorted), as a record of its own."""
+        pick = {n: getattr(self, n)[index] for n in self.channels}
+        return MeasuredRecord(self.t[index], source=self.source, **pick)
+
+
+def noise_level(signal: FloatArray) -> float:
+    """Standard deviation of white noise on a smooth signal, from its second differences.
+
+    ``d2 = y[i+1] - 2 y[i] + y[i-1]`` removes a smooth signal sampled finely and multiplies
+    white noise's variance by 6; the median absolute deviation (/0.6745) ignores the few
+    kinks at mode switches. Floored at ``1e-6`` of the signal's range.
+
+    Parameters
+    ----------
+    signal : ndarray
+        A finely sampled signal (any unit).
+
+    Returns
+    -------
+    float
+        The noise standard deviation, in the signal's unit.
+    """
+    d2 = np.diff(signal, 2)
+    mad = float(np.median(np.abs(d2 - np.median(d2)))) / 0.6745
+    return max(mad / math.sqrt(6.0), 1e-6 * float(np.ptp(signal)) + 1e-300)
+
+
+@dataclass(frozen=True)
+class StickPhase:
+    """One stick phase read from the record: sample indices of its start, a point inside it
+    (where a fit segment starts), and its end (the breakaway, a peak of the force)."""
+
+    start: int
+    anchor: int
+    breakaway: int
+    onset_value: float
+    peak_value: float
+
+
+@dataclass(frozen=True)
+class RecordEstimates:
+    """Starting values read from the record (SI) and the stick phases found in it."""
+
+    period: float
+    k: float
+    c: float
+    mu_s: float
+    mu_k: float
+    force_offset: float
+    max_sliding_speed: float
+    stick_phases: tuple[StickPhase, ...]
+    noise: dict[str, float] = field(default_factory=dict)
+    starts_in_stick: bool = False
+
+    @property
+    def breakaway_times_index(self) -> list[int]:
+        """Sample indices of the breakaways."""
+        return [p.breakaway for p in self.stick_phases]
+
+
+def _dominant_period(t: FloatArray, y: FloatArray) -> float:
+    """The stick-slip period from the first peak of the autocorrelation, s."""
+    z = y - np.linspace(y[0], y[-1], y.size)
+    z = z - z.mean()
+    n = z.size
+    spec = np.fft.rfft(z, 2 * n)
+    ac = np.fft.irfft(spec * np.conj(spec))[:n]
+    if ac[0] <= 0.0:
+        raise RecordError("the record is constant: no stick-slip to identify")
+    ac = ac / ac[0]
+    neg = np.nonzero(ac < 0.0)[0]
+    if neg.size == 0:
+        raise RecordError("the record shows no oscillation: no stick phases to identify from "
+                          f"(identification needs at least {MIN_STICK_PHASES} stick-slip cycles)")
+    lag = int(np.argmax(ac[neg[0]:])) + neg[0]
+    if ac[lag] < 0.2:
+        raise RecordError("the record shows no repeating stick-slip cycle (autocorrelation "
+                          f"{ac[lag]:.2f} at its best lag): identification needs at least "
+                          f"{MIN_STICK_PHASES} stick phases; record more stick-slip periods")
+    return float(lag * (t[-1] / (n - 1)))
+
+
+def _slip_omega(t_slip: float, d: float, speed: float) -> float:
+    """``omega`` solving ``omega T_slip = pi + 2 atan(V / (omega D))`` (undamped Coulomb slip)."""
+    def g(w: float) -> float:
+        return w * t_slip - math.pi - 2.0 * math.atan(speed / (w * max(d, 1e-300)))
+
+    lo, hi = math.pi / t_slip, 2.0 * math.pi / t_slip
+    return float(brentq(g, lo, hi)) if g(lo) < 0.0 < g(hi) else 1.5 * math.pi / t_slip
+
+
+def estimate(record: MeasuredRecord, *, mass: float, load: float, speed: float) -> RecordEstimates:
+    """Read starting values from the record: period, stick phases, ``k``, ``mu_s``, ``mu_k``.
+
+    Raises :class:`RecordError` with a sentence saying what is missing when the record shows
+    fewer than :data:`MIN_STICK_PHASES` stick phases or is sampled too coarsely.
+
+    Parameters
+    ----------
+    record : MeasuredRecord
+        The measured record (SI units).
+    mass : float
+        Slider mass, kg.
+    load : float
+        Normal load W, N.
+    speed : float
+        Drive (belt) speed V, m/s.
+
+    Returns
+    -------
+    RecordEstimates
+        The period (s), the stick phases found and starting values of ``k`` (N/m), ``mu_s`` and ``mu_k``.
+    """
+    t = record.t
+    main = record.F if record.F is not None else record.x
+    assert main is not None
+    period = _dominant_period(t, main)
+    dt = t[-1] / (t.size - 1)
+    if period / dt < MIN_SAMPLES_PER_PERIOD:
+        raise RecordError(f"the record has {period / dt:.0f} samples per stick-slip period; "
+                          f"at least {MIN_SAMPLES_PER_PERIOD} are needed")
+    half = max(2, round(period / dt / 60.0))
+    wide = max(half, round(period / dt / 10.0))
+    smooth = savgol_filter(main, 2 * half + 1, 2)
+    slope = savgol_filter(main, 2 * wide + 1, 2, deriv=1, delta=dt)
+    sigma = noise_level(main)
+    sigma_smooth = sigma * math.sqrt(3.0 / (2 * half + 1))
+    peaks, _ = find_peaks(smooth, distance=max(1, int(0.6 * period / dt)),
+                          prominence=0.3 * float(np.ptp(smooth)))
+    span = int(0.9 * period / dt)
+    stick: list[StickPhase] = []
+    for p in peaks:
+        lo = max(0, p - span)
+        if p - lo < 2 * wide:
+            continue
+        region = slope[lo:p]
+        rate = float(np.percentile(region, 90))
+        if rate <= 0.0:
+            continue
+        top = lo + int(np.argmax(region))
+        a = top
+        while a > lo and region[a - 1 - lo] > 0.75 * rate:
+            a -= 1
+        b = top
+        while b < p - 1 and region[b + 1 - lo] > 0.75 * rate:
+            b += 1
+        fa, fb = (a + wide // 2, b - wide // 2) if a > 0 else (0, b - wide // 2)
+        if fb - fa < 4:
+            continue
+        line = np.polyfit(t[fa:fb], main[fa:fb], 1)
+        dev = np.abs(smooth - np.polyval(line, t))
+        end = fb
+        while end < p and dev[end + 1] < 3.0 * sigma_smooth:
+            end += 1
+        start = fa
+        while start > 0 and dev[start - 1] < 3.0 * sigma_smooth and start > lo:
+            start -= 1
+        start_value = float(np.polyval(line, t[start]))
+        stick.append(StickPhase(start=start, anchor=(fa + fb) // 2, breakaway=end,
+                                onset_value=start_value, peak_value=float(np.polyval(line, t[end]))))
+    if len(stick) < MIN_STICK_PHASES:
+        raise RecordError(
+            f"the record shows {len(stick)} complete stick phase(s) (a linear rise of the force "
+            f"ending in a breakaway); identification needs at least {MIN_STICK_PHASES}: record "
+            "more stick-slip periods, or check that the drive speed is low enough to stick-slip"
+        )
+    noise = {name: noise_level(getattr(record, name)) for name in record.channels}
+    # stick-phase regressions: slope of the main signal, and F against x when both exist
+    rates, f_vs_x = [], []
+    for ph in stick:
+        sl = slice(ph.start + half, ph.breakaway - half)
+        if sl.stop - sl.start < 3:
+            sl = slice(ph.start, ph.breakaway + 1)
+        rates.append(np.polyfit(t[sl], main[sl], 1)[0])
+        if record.F is not None and record.x is not None:
+            f_vs_x.append(np.polyfit(record.x[sl], record.F[sl], 1))
+    rate = float(np.median(rates))
+    peak = float(np.median([ph.peak_value for ph in stick]))
+    onset = float(np.median([ph.onset_value for ph in stick if ph.start > 0] or [stick[-1].onset_value]))
+    # slip duration: from a breakaway to the next stick onset
+    slips = [(b.start - a.breakaway) * dt for a, b in itertools.pairwise(stick)
+             if b.start > a.breakaway]
+    t_slip = float(np.median(slips)) if slips else 0.5 * period
+    offset = 0.0
+    c0 = 0.0
+    if record.F is not None:
+        k0 = rate / speed
+        if f_vs_x:
+            k0 = float(np.median([s for s, _ in f_vs_x]))
+            offset = float(np.median([b for _, b in f_vs_x]))  # = c V + offset; c starts at 0
+        force_peak, force_onset = peak - offset, onset - offset
+    else:
+        d_x = 0.5 * (peak - onset)
+        omega = _slip_omega(t_slip, d_x, speed)
+        k0 = mass * omega**2
+        force_peak, force_onset = k0 * peak, k0 * onset
+    mu_s0 = force_peak / load
+    mu_k0 = 0.5 * (force_peak + force_onset) / load
+    if not (0.0 < mu_k0 < mu_s0):
+        mu_k0 = 0.5 * mu_s0
+    omega0 = math.sqrt(k0 / mass)
+    d0 = (mu_s0 - mu_k0) * load / k0
+    u_max = speed + math.hypot(d0 * omega0, speed)
+    if k0 <= 0.0 or not math.isfinite(k0):
+        raise RecordError("the stick phases of the record do not rise: cannot read the stiffness")
+    return RecordEstimates(
+        period=period, k=k0, c=c0, mu_s=mu_s0, mu_k=mu_k0, force_offset=offset,
+        max_sliding_speed=u_max, stick_phases=tuple(stick), noise=noise,
+        starts_in_stick=stick[0].start == 0,
+    )

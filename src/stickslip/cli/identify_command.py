@@ -1,0 +1,120 @@
+"""``stickslip identify``: stiffness, damping and a friction law from a measured record (issue 19)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from stickslip.cli.console import BadInput, check_figure_path, check_output_path, print_json
+
+#: Quantities the user may hold fixed, with the unit family ``to_si`` checks.
+_FIXABLE = ("k", "c", "mu_s", "mu_k", "slope", "stribeck_velocity", "exponent", "viscous")
+
+
+def _parse_fixed(items: list[str]) -> dict[str, float]:
+    from stickslip.model.units import to_si
+
+    out: dict[str, float] = {}
+    for item in items:
+        name, eq, value = item.partition("=")
+        name = name.strip()
+        if not eq or name not in (*_FIXABLE, "force_offset", "force_drift"):
+            raise BadInput(f"--fix {item!r} must be NAME=VALUE with NAME one of "
+                           f"{', '.join((*_FIXABLE, 'force_offset', 'force_drift'))}")
+        if name in ("force_offset", "force_drift"):
+            try:
+                out[name] = float(value)
+            except ValueError:
+                raise BadInput(f"--fix {item!r}: {value!r} is not a number (SI: N or N/s)") from None
+        else:
+            out[name] = to_si(name, value.strip(), source=f"--fix {name} =")
+    return out
+
+
+def identify(
+    record: Annotated[Path, typer.Argument(help="CSV record: t and F and/or x (and v); see --columns")],
+    mass: Annotated[str, typer.Option("--mass", help="slider mass [kg]; units allowed, e.g. '2 kg'")],
+    load: Annotated[str, typer.Option("--load", help="normal load W [N]; units allowed")],
+    speed: Annotated[str, typer.Option("--speed", help="belt or drive speed V [m/s]; units allowed")],
+    law: Annotated[str, typer.Option("--law", help="coulomb | linear | stribeck | table | auto")] = "coulomb",
+    columns: Annotated[
+        str | None,
+        typer.Option("--columns", help="roles of the columns: t,x,F (file order), "
+                     "'t=time:ms,F=-load:kN' (ROLE=[-]NAME[:UNIT]) or a TOML file with [columns.F] ..."),
+    ] = None,
+    fix: Annotated[
+        list[str] | None, typer.Option("--fix", help="hold a parameter fixed, e.g. --fix 'c=0.5 N*s/m'")
+    ] = None,
+    offset: Annotated[
+        str, typer.Option("--offset", help="force offset and drift: auto (fit with x) | fit | zero")
+    ] = "auto",
+    bootstrap: Annotated[int, typer.Option("--bootstrap", help="bootstrap refits over cycles (0: none)")] = 0,
+    write_config: Annotated[
+        Path | None, typer.Option("--write-config", help="write the fitted machine file (TOML) here")
+    ] = None,
+    plot: Annotated[Path | None, typer.Option("--plot", help="write the fit figure here")] = None,
+    overwrite: Annotated[bool, typer.Option("--overwrite", help="replace existing output files")] = False,
+    json: Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")] = False,
+) -> None:
+    """Fit k, c and a friction law to a measured stick-slip record, with uncertainties.
+
+    Example: stickslip identify examples/rig_record.csv --mass "1 kg" --load "100 N" --speed "5 cm/s" --json
+
+    Then: stickslip identify ... --write-config machine.toml; stickslip design --config machine.toml
+    """
+    from stickslip.analysis.identification import LAWS
+    from stickslip.analysis.identification import identify as run_identify
+    from stickslip.io.atomic import atomic_write_text
+    from stickslip.io.record import parse_columns, read_columns_toml, read_record
+    from stickslip.model.units import to_si
+
+    known = {"m": to_si("m", mass, source="--mass"), "load": to_si("load", load),
+             "speed": to_si("speed", speed)}
+    for name, value in known.items():
+        if value <= 0.0:
+            raise BadInput(f"--{'mass' if name == 'm' else name} {value!r} must be positive")
+    law = law.strip().lower()
+    if law not in (*LAWS, "auto"):
+        raise BadInput(f"--law {law!r} is not one of {', '.join(LAWS)}, auto")
+    if offset not in ("auto", "fit", "zero"):
+        raise BadInput(f"--offset {offset!r} is not one of auto, fit, zero")
+    if bootstrap < 0 or bootstrap > 10_000:
+        raise BadInput(f"--bootstrap {bootstrap} must lie between 0 and 10000")
+    known.update(_parse_fixed(fix or []))
+    if write_config is not None:
+        check_output_path(write_config, overwrite=overwrite, option="--write-config")
+        if write_config.suffix.lower() != ".toml":
+            raise BadInput(f"--write-config {str(write_config)!r} must end in .toml")
+    if plot is not None:
+        check_figure_path(plot, overwrite=overwrite)
+    spec = None
+    if columns is not None:
+        is_file = columns.strip().lower().endswith(".toml")
+        spec = read_columns_toml(columns) if is_file else parse_columns(columns)
+    data = read_record(record, spec)
+    fit_offset = None if offset == "auto" else offset == "fit"
+    result = run_identify(data, known, law=law, bootstrap=bootstrap, fit_offset=fit_offset)
+    payload = result.to_dict()
+    if write_config is not None:
+        table_name = write_config.with_suffix(".friction.csv").name
+        text = result.to_config(table_file=table_name)
+        if result.law == "table":
+            atomic_write_text(write_config.with_name(table_name), result.table_csv())
+        atomic_write_text(write_config, text)
+        payload["config"] = str(write_config)
+    if plot is not None:
+        payload["plot"] = str(result.plot().savefig(plot))
+    if json:
+        print_json(payload)
+        return
+    typer.echo(result.summary())
+    for key in ("config", "plot"):
+        if key in payload:
+            typer.echo(f"{key:<8} {payload[key]}")
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``identify`` command to ``app``."""
+    app.command("identify")(identify)

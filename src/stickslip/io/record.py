@@ -1,0 +1,202 @@
+"""Read a measured stick-slip record (CSV) into SI units and the rig's sign conventions.
+
+The record is a CSV file with a header row (``#`` starts a comment line). Its roles:
+
+* ``t``: time (default unit s);
+* ``x``: the slider's displacement from where the spring is relaxed, positive along the belt's
+  motion (default m);
+* ``v``: the slider's velocity (default m/s);
+* ``F``: the load-cell force between the spring-damper and the slider, ``F = k x + c x'``,
+  tension positive (default N).
+
+Without a column specification the header names are the roles (``t``, ``x``, ``v``, ``F``;
+``time``, ``force``, ``displacement`` and ``velocity`` too), and a unit may follow in brackets:
+``F [kN]``, ``x (mm)``. A specification maps roles to columns, with an optional unit and sign:
+
+* on the command line, ``--columns "t=time:ms,x=-disp:mm,F=load:kN"`` (``ROLE=[-]NAME[:UNIT]``;
+  ``--columns t,x,F`` names the columns of each role in a header-less order);
+* in a small TOML file, one table per role::
+
+      [columns.F]
+      name = "load"
+      unit = "kN"
+      sign = -1       # the load cell reads compression positive
+
+Units are converted by pint; a unit of the wrong dimension is refused with one line.
+"""
+
+from __future__ import annotations
+
+import csv
+import re
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from stickslip.analysis.identification_estimates import MeasuredRecord, RecordError
+
+ROLES: dict[str, tuple[str, str]] = {
+    "t": ("[time]", "s"),
+    "x": ("[length]", "m"),
+    "v": ("[length] / [time]", "m/s"),
+    "F": ("[force]", "N"),
+}
+ALIASES = {"t": "t", "time": "t", "x": "x", "displacement": "x", "v": "v", "velocity": "v",
+           "f": "F", "force": "F"}
+_HEADER_UNIT = re.compile(r"^\s*(.*?)\s*(?:\[(.*)\]|\((.*)\))\s*$")
+
+
+@dataclass(frozen=True)
+class ColumnSpec:
+    """Where one role is in the file: column ``name``, its ``unit`` and a ``sign`` (+1 or -1)."""
+
+    role: str
+    name: str
+    unit: str | None = None
+    sign: float = 1.0
+
+
+def unit_factor(role: str, unit: str | None, where: str) -> float:
+    """Factor taking values in ``unit`` to the role's SI unit (pint); 1 for no unit."""
+    if unit is None or not unit.strip():
+        return 1.0
+    import pint
+
+    dim, si = ROLES[role]
+    ureg = pint.get_application_registry()
+    try:
+        quantity = ureg.Quantity(1.0, ureg.parse_units(unit.strip()))
+    except Exception:
+        raise RecordError(f"{where}: {unit!r} is not a unit pint understands") from None
+    if not quantity.check(dim):
+        raise RecordError(f"{where}: unit {unit!r} is not a {dim} unit for column role {role} "
+                          f"(expected something convertible to {si})")
+    return float(quantity.to(si.replace("/", " / ")).magnitude)
+
+
+def parse_columns(text: str) -> list[ColumnSpec]:
+    """``--columns`` text: ``t,x,F`` (roles in file order) or ``ROLE=[-]NAME[:UNIT],...``."""
+    specs: list[ColumnSpec] = []
+    for item in (p.strip() for p in text.split(",")):
+        if not item:
+            raise RecordError(f"--columns {text!r}: empty entry")
+        role, eq, rest = item.partition("=")
+        role = ALIASES.get(role.strip().lower(), role.strip())
+        if role not in ROLES:
+            raise RecordError(f"--columns {text!r}: {item!r} does not start with a role t, x, v or F")
+        if not eq:
+            specs.append(ColumnSpec(role, f"#{len(specs)}"))
+            continue
+        sign = 1.0
+        rest = rest.strip()
+        if rest.startswith("-"):
+            sign, rest = -1.0, rest[1:].strip()
+        name, _, unit = rest.partition(":")
+        if not name.strip():
+            raise RecordError(f"--columns {text!r}: {item!r} names no column")
+        specs.append(ColumnSpec(role, name.strip(), unit.strip() or None, sign))
+    roles = [s.role for s in specs]
+    if len(set(roles)) != len(roles):
+        raise RecordError(f"--columns {text!r} gives a role twice")
+    return specs
+
+
+def read_columns_toml(path: str | Path) -> list[ColumnSpec]:
+    """A column specification from a TOML file with ``[columns.ROLE]`` tables (name, unit, sign)."""
+    p = Path(path)
+    try:
+        data = tomllib.loads(p.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise RecordError(f"--columns {str(p)!r} does not exist") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise RecordError(f"--columns {str(p)!r} is not valid TOML: {exc}") from None
+    table = data.get("columns")
+    if not isinstance(table, dict) or not table:
+        raise RecordError(f"--columns {str(p)!r} needs [columns.t], [columns.F], ... tables")
+    specs = []
+    for role_text, entry in table.items():
+        role = ALIASES.get(role_text.lower(), role_text)
+        if role not in ROLES or not isinstance(entry, dict):
+            raise RecordError(f"--columns {str(p)!r}: [columns.{role_text}] is not a role t, x, v or F")
+        sign = entry.get("sign", 1)
+        if sign not in (1, -1):
+            raise RecordError(f"--columns {str(p)!r}: [columns.{role_text}] sign = {sign!r} must be 1 or -1")
+        specs.append(ColumnSpec(role, str(entry.get("name", role_text)), entry.get("unit"), float(sign)))
+    return specs
+
+
+def read_record(path: str | Path, columns: list[ColumnSpec] | None = None) -> MeasuredRecord:
+    """Read a record CSV into a :class:`MeasuredRecord` (SI units, the rig's signs)."""
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise RecordError(f"record {str(p)!r} does not exist") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise RecordError(f"cannot read record {str(p)!r}: {exc}") from None
+    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+    if len(lines) < 2:
+        raise RecordError(f"record {str(p)!r} needs a header row and data rows")
+    rows = list(csv.reader(lines))
+    header_raw = [h.strip() for h in rows[0]]
+    header: list[tuple[str, str | None]] = []
+    for h in header_raw:
+        m = _HEADER_UNIT.match(h)
+        header.append((m.group(1), m.group(2) or m.group(3)) if m else (h, None))
+    names = [n for n, _ in header]
+    if columns is None:
+        columns = []
+        for (name, unit) in header:
+            role = ALIASES.get(name.lower())
+            if role is not None and role not in [c.role for c in columns]:
+                columns.append(ColumnSpec(role, name, unit))
+        if not any(c.role == "t" for c in columns):
+            raise RecordError(f"record {str(p)!r}: no time column (header {', '.join(header_raw)}); "
+                              "name one t or give --columns")
+    try:
+        data = np.array([[float(v) for v in row] for row in rows[1:]], dtype=np.float64)
+    except ValueError:
+        bad = next(i for i, row in enumerate(rows[1:], start=2) if not _numeric(row))
+        raise RecordError(f"record {str(p)!r}, data row {bad}: not all numbers") from None
+    if data.ndim != 2 or data.shape[1] != len(header):
+        raise RecordError(f"record {str(p)!r}: rows do not all have {len(header)} values")
+    arrays: dict[str, Any] = {}
+    for spec in columns:
+        if spec.name.startswith("#"):
+            idx = int(spec.name[1:])
+        elif spec.name in names:
+            idx = names.index(spec.name)
+        else:
+            raise RecordError(f"record {str(p)!r} has no column {spec.name!r} (columns: {', '.join(names)})")
+        if idx >= len(names):
+            raise RecordError(f"record {str(p)!r} has {len(names)} columns, fewer than --columns names")
+        unit = spec.unit if spec.unit is not None else header[idx][1]
+        factor = unit_factor(spec.role, unit, f"record {str(p)!r}, column {names[idx]!r}")
+        arrays[spec.role] = spec.sign * factor * data[:, idx]
+    if "t" not in arrays:
+        raise RecordError("the column specification has no time column t")
+    return MeasuredRecord(arrays.pop("t"), source=p.name, **arrays)
+
+
+def _numeric(row: list[str]) -> bool:
+    try:
+        [float(v) for v in row]
+    except ValueError:
+        return False
+    return True
+
+
+def write_record(path: str | Path, record: MeasuredRecord, *, comment: str = "") -> Path:
+    """Write a record as CSV with SI units in the header (``t [s]``, ``x [m]``, ``F [N]``)."""
+    from stickslip.io.atomic import atomic_write_text
+
+    cols = ["t", *record.channels]
+    units = {"t": "s", **{r: ROLES[r][1] for r in record.channels}}
+    table = np.column_stack([record.t] + [getattr(record, c) for c in record.channels])
+    head = "".join(f"# {ln}\n" for ln in comment.splitlines())
+    body = "\n".join(",".join(f"{x:.9g}" for x in row) for row in table)
+    atomic_write_text(path, head + ",".join(f"{c} [{units[c]}]" for c in cols) + "\n" + body + "\n")
+    return Path(path)
