@@ -94,8 +94,48 @@ def _aborted() -> NoReturn:
     raise SystemExit(EXIT_INTERRUPTED) from None
 
 
+#: Commands that run the compiled engine; the first of them after an install compiles it.
+ENGINE_COMMANDS = frozenset({"simulate", "map", "boundary", "basin", "basin-map", "cycles",
+                             "reproduce", "tune"})
+
+
+def engine_cache_is_cold() -> bool:
+    """True when numba has no compiled engine cached for the installed sources.
+
+    numba keeps an index (``*.nbi``) per compiled function next to the source (in
+    ``__pycache__``, or under ``NUMBA_CACHE_DIR``) and discards it when the source is newer;
+    the run loop's index stands for the engine. Found without importing numba.
+    """
+    import os
+    from importlib.util import find_spec
+    from pathlib import Path
+
+    spec = find_spec("stickslip.kernel.engine")
+    if spec is None or spec.origin is None:
+        return False
+    source = Path(spec.origin)
+    folders = [source.parent / "__pycache__"]
+    if os.environ.get("NUMBA_CACHE_DIR"):
+        folders.append(Path(os.environ["NUMBA_CACHE_DIR"]))
+    stamp = source.stat().st_mtime
+    return not any(index.stat().st_mtime >= stamp for folder in folders if folder.is_dir()
+                   for index in folder.rglob("engine.run_prepared-*.nbi"))
+
+
+def _announce_compilation(argv: list[str]) -> None:
+    """On the first engine command after an install, say on stderr that numba compiles now.
+
+    Never on stdout (``--json`` prints one object there), never for ``--help``.
+    """
+    command = next((a for a in argv if not a.startswith("-")), None)
+    if command in ENGINE_COMMANDS and "--help" not in argv and engine_cache_is_cold():
+        print("stickslip: first run: compiling the simulation engine with numba, about a minute "
+              "(once; later runs load it from the cache)", file=sys.stderr, flush=True)
+
+
 def run(argv: list[str] | None = None) -> None:
     """Console entry point: one line on stderr and exit code 2 for any bad input."""
+    _announce_compilation(sys.argv[1:] if argv is None else list(argv))
     with warnings.catch_warnings():
         warnings.showwarning = _show_warning
         _run(argv)

@@ -1,4 +1,10 @@
-"""Many independent runs at once, in parallel over numba threads (arrays only)."""
+"""Many independent runs at once, in parallel over numba threads (arrays only).
+
+The compiled kernels here contain the engine's run loop (numba compiles callees into the
+caller). numba's cache checks only this file's time stamp, not the engine's: after editing
+:mod:`stickslip.kernel.engine` or :mod:`stickslip.kernel.events` alone, ``make clean-cache``
+(or a change here), or these kernels keep running the engine they were cached with.
+"""
 
 from __future__ import annotations
 
