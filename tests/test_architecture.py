@@ -324,16 +324,19 @@ def test_public_functions_document_parameters_and_returns(layer: str) -> None:
 
 
 def test_no_file_over_600_lines_and_no_long_function_without_a_reason() -> None:
-    # one concept per module (issue 17, point 2), for the layers this test's author owns
+    # one concept per module (issue 17, point 2), in every layer: a long function says why in a
+    # comment above it or in its docstring
     bad = []
-    for path in sorted([*PACKAGE.joinpath("analysis").glob("*.py"), *PACKAGE.joinpath("model").glob("*.py")]):
+    for path in sorted(PACKAGE.rglob("*.py")):
         text = path.read_text(encoding="utf-8")
         if text.count("\n") > 600:
             bad.append(f"{path.name}: {text.count(chr(10))} lines")
         lines = text.splitlines()
         for node in ast.walk(ast.parse(text)):
             if isinstance(node, ast.FunctionDef) and (node.end_lineno or 0) - node.lineno + 1 > 120:
-                before = lines[node.lineno - 2] if node.lineno >= 2 else ""
-                if not before.strip().startswith("#"):
+                first = min([node.lineno, *(d.lineno for d in node.decorator_list)])
+                before = lines[first - 2] if first >= 2 else ""
+                why_in_doc = "longer than the house's 120 lines" in (ast.get_docstring(node) or "")
+                if not (before.strip().startswith("#") or why_in_doc):
                     bad.append(f"{path.name}:{node.lineno} {node.name} is over 120 lines, no comment why")
     assert not bad, "\n".join(bad)

@@ -181,6 +181,9 @@ def slip_trap_region(mass, damping, stiffness, lam, gamma, edges, intercepts, sl
     return empty, data
 
 
+# Longer than the house's 120 lines: one trial of the trap construction is one proof, step by
+# step (follow a turn, close the region, follow on into the energy disk), each check beside the
+# step it guards; split up, the conservative error bounds would travel between functions.
 @njit(cache=True)
 def _trial(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, prepared, data,
            rho0):

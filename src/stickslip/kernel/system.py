@@ -208,6 +208,9 @@ def prepare(mass, damping, stiffness, lam, gamma):
     return prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
 
 
+# Longer than the house's 120 lines: it fills every per-mode table of one parameter point in
+# one pass over the modes (matrices, exponentials, signatures, event tables, certificates);
+# each block is commented, and split into njit helpers it would pass a dozen arrays each way.
 @njit(cache=True)
 def prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes):
     """Everything the run loop needs, computed once per parameter point.
