@@ -10,7 +10,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
-from matplotlib.ticker import NullLocator
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter, NullLocator
 
 from stickslip.analysis.continuation import ContinuationResult
 from stickslip.analysis.simulation import SimulationResult
@@ -92,7 +92,7 @@ def _lambda_in_si(ax: Axes, system: PhysicalSystem, lam: float, axis: LambdaAxis
         label = "normal load W [N] (same speed)"
     if which == "x":
         sec = ax.secondary_xaxis("top", functions=functions)
-        sec.xaxis.set_minor_locator(NullLocator())
+        _plain_log_ticks(sec.xaxis)
         sec.set_xlabel(label)
     else:
         sec = ax.secondary_yaxis("right", functions=functions)
@@ -100,12 +100,21 @@ def _lambda_in_si(ax: Axes, system: PhysicalSystem, lam: float, axis: LambdaAxis
         sec.set_ylabel(label)
 
 
+def _plain_log_ticks(axis: Any) -> None:
+    """Ticks at 1, 2, 5 times powers of ten, written as plain numbers (no minor labels)."""
+    axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    axis.set_major_formatter(FuncFormatter(lambda x, _: f"{x:g}"))
+    axis.set_minor_locator(NullLocator())
+    axis.set_minor_formatter(NullFormatter())
+
+
 def bifurcation_figure(results: Mapping[str, ContinuationResult], system: PhysicalSystem,
                        lam: float, axis: LambdaAxis | None) -> Figure:
     """The bifurcation diagrams side by side, the operating ``lambda`` marked.
 
     Each panel is :meth:`ContinuationResult.plot` (stable solid, unstable dashed, steady
-    sliding on the axis, events marked); a secondary axis on top reads ``lambda`` as the belt
+    sliding on the axis, events marked) on a logarithmic ``lambda`` axis; a secondary axis on
+    top reads ``lambda`` as the belt
     speed or the load (:func:`stickslip.app.computations.lambda_axis`; none when neither).
     """
     fig = Figure(figsize=(11.0, 4.4), layout="constrained")
@@ -115,9 +124,14 @@ def bifurcation_figure(results: Mapping[str, ContinuationResult], system: Physic
         ax.axvline(lam, color="gold", lw=1.2, zorder=0, label="operating point")
         ax.legend(loc="best", fontsize="small")
         ax.set_title(name)
+        ax.set_xscale("log")  # the range spans decades; V = lam V_op / lambda stays legible
+        _plain_log_ticks(ax.xaxis)
         ax.set_xlabel("λ")
+        ax.set_ylabel("")
         if axis is not None:
             _lambda_in_si(ax, system, lam, axis, "x")
+    top = max([1.0] + [p.amplitude for r in results.values() for b in r.branches for p in b.points])
+    axes[0].set_ylim(top=1.05 * top)  # shared: every branch of both panels in view
     axes[0].set_ylabel("amplitude (V / ω_n)")
     return fig
 
