@@ -5,7 +5,8 @@ units ("2 kg", "50 kN/m"), parsed by :mod:`stickslip.model.inputs` as the comman
 after that is SI floats and dimensionless groups. Every number shown comes from the public
 Python API (:func:`~stickslip.analysis.design.design_foundation`, :func:`~stickslip.simulate`,
 :func:`~stickslip.sweep.occurrence_map`,
-:func:`~stickslip.analysis.stick_slip_tuning.optimal_foundation_stick_slip`); this script
+:func:`~stickslip.analysis.stick_slip_tuning.optimal_foundation_stick_slip`,
+:func:`~stickslip.analysis.continuation.continue_cycles`); this script
 only lays out inputs and results. Invalid input shows one line per problem and nothing is
 computed.
 
