@@ -260,6 +260,31 @@ def test_bifurcation_diagram_on_demand() -> None:
     assert not [d for d in at.dataframe if "event" in d.value.columns]
 
 
+@pytest.mark.slow
+def test_bifurcation_diagram_of_a_stribeck_law_reads_lambda_as_the_load() -> None:
+    # a Stribeck curve is given in m/s (u_s = v_s / V): lambda is the load at the same speed
+    from stickslip.app.streamlit_app import _fmt
+
+    at = _started()
+    at.selectbox(key="friction_law").set_value("stribeck").run()
+    at.button(key="continue_cycles").click().run()
+    assert not at.exception and not at.error
+    (shown,) = [d.value for d in at.dataframe if "event" in d.value.columns]
+    assert "load W [N]" in shown.columns and "belt speed V [m/s]" not in shown.columns
+    root_mk = math.sqrt(2.0 * 5e4)
+    for _, row in shown.iterrows():  # Eq. 22 solved for W at V = 5 cm/s
+        assert row["load W [N]"] == _fmt(float(row["λ"]) * 0.05 * root_mk / 0.2)
+    # on the rigid base steady sliding loses stability where the law's weakening outgrows the
+    # damping: xi'' + (2 zeta + F'(1)) xi' + xi = 0 with F(u) = lam (gamma + r0 exp(-u/u_s)),
+    # u_s = v_s / V = 10, r0 = 1 (mu_0 = mu_s), so the Hopf point is lam = 2 zeta u_s e^(1/u_s)
+    zeta = 20.0 / (2.0 * root_mk)
+    rigid = shown[shown["machine"] == "rigid base"]
+    (hopf,) = [float(x) for x in rigid.loc[rigid["event"] == "hopf", "λ"]]
+    assert hopf == pytest.approx(2.0 * zeta * 10.0 * math.exp(0.1), rel=1e-6)
+    # and the slip oscillation born there is continued
+    assert any("slip-oscillation branch" in c.value for c in at.caption)
+
+
 @pytest.mark.parametrize(
     ("fields", "axis"),
     [
