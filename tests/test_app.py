@@ -185,7 +185,7 @@ def test_disturbed_starts_on_demand() -> None:
     assert len(at.get("image")) == images
 
 
-def test_bifurcation_diagram_on_demand() -> None:
+def test_bifurcation_diagram_on_demand(tmp_path: Path) -> None:
     # issue 20, point 5: the bifurcation diagram of the design point's machine in lambda
     import csv as csv_module
 
@@ -208,7 +208,7 @@ def test_bifurcation_diagram_on_demand() -> None:
     at.button(key="continue_cycles").click().run()
     assert not at.exception and not at.error
     assert len(at.get("image")) == images + 1  # the two diagrams, one figure
-    assert len(at.get("download_button")) == downloads + 1
+    assert len(at.get("download_button")) == downloads + 2  # CSV and netCDF
     (shown,) = [d.value for d in at.dataframe if "event" in d.value.columns]
 
     # reference: continue_cycles on the same inputs (Eq. 22: lambda = (mu_s - mu_k) W /
@@ -254,6 +254,20 @@ def test_bifurcation_diagram_on_demand() -> None:
                                                           rel=1e-12)
         assert float(row["period_s"]) == pytest.approx(p.period / math.sqrt(5e4 / 2.0), rel=1e-12)
         assert int(row["stable"]) == int(p.stable)
+    # the netCDF: each machine's to_xarray under its prefix, read back as written
+    from stickslip.app.exports import bifurcation_netcdf
+    from stickslip.io.netcdf import read_dataset
+
+    path = tmp_path / "bifurcation.nc"
+    path.write_bytes(bifurcation_netcdf(results))
+    ds = read_dataset(path)
+    for name, result in results.items():
+        prefix = name.replace(" ", "_") + "_"
+        ref = result.to_xarray()
+        for var in ("lam", "amplitude", "period", "stable", "steady_growth_rate", "event_lam"):
+            assert list(ds[prefix + var].values) == list(ref[var].values), (name, var)
+        assert list(ds[prefix + "event_type"].values) == [e.type for e in result.events]
+    assert ds.attrs["Conventions"] == "CF-1.10"
     # another damping is another machine: its diagram is not shown until asked for
     at.text_input(key="c").set_value("30 N*s/m").run()
     assert len(at.get("image")) == images

@@ -6,7 +6,9 @@ from __future__ import annotations
 import csv
 import io
 import json
+import tempfile
 from collections.abc import Mapping
+from pathlib import Path
 from typing import Any
 
 from stickslip import Mode
@@ -14,7 +16,8 @@ from stickslip.analysis.continuation import ContinuationResult
 from stickslip.analysis.simulation import SimulationResult
 from stickslip.app.computations import LambdaAxis, length_scale_at, si_of_lambda
 from stickslip.app.inputs import DEFAULTS, FRICTION_FIELDS, FRICTION_TABLE_NAME
-from stickslip.io.provenance import package_version
+from stickslip.io.netcdf import write_dataset
+from stickslip.io.provenance import package_version, provenance_attributes
 from stickslip.model.initial import STARTUP_DESCRIPTION
 from stickslip.model.physical import PhysicalSystem
 
@@ -110,3 +113,30 @@ def bifurcation_csv(results: Mapping[str, ContinuationResult], system: PhysicalS
                              repr(float(ds["stick_ratio"].values[i])),
                              repr(float(ds["multiplier"].values[i])), int(ds["stable"].values[i])])
     return buffer.getvalue()
+
+
+def bifurcation_netcdf(results: Mapping[str, ContinuationResult]) -> bytes:
+    """The diagrams as one netCDF-4 file: each result's ``to_xarray`` under a prefix.
+
+    Every variable, dimension and attribute of the dataset of ``stickslip continue --out``
+    (branch points, steady sliding and its growth rate, events) is prefixed with the
+    machine's name (``rigid_base_``, ``with_foundation_``), with the provenance attributes
+    and the continued systems as the configuration.
+    """
+    import xarray as xr
+
+    parts = []
+    config: dict[str, Any] = {}
+    for name, result in results.items():
+        prefix = name.replace(" ", "_") + "_"
+        ds = result.to_xarray()
+        ds = ds.rename({str(k): prefix + str(k) for k in [*ds.data_vars, *ds.dims]})
+        ds.attrs = {prefix + k: v for k, v in ds.attrs.items()}
+        parts.append(ds)
+        summary = result.to_dict()
+        config[name] = {k: summary[k] for k in ("param", "range", "system")}
+    merged = xr.merge(parts, combine_attrs="no_conflicts")
+    merged.attrs.update(provenance_attributes("continuation in lam, the web app's design point",
+                                              config))
+    with tempfile.TemporaryDirectory() as folder:
+        return write_dataset(merged, Path(folder) / "bifurcation.nc").read_bytes()

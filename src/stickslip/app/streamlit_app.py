@@ -42,7 +42,7 @@ from stickslip.app.computations import (
     operating_point_runs,
     stick_slip_optimum,
 )
-from stickslip.app.exports import bifurcation_csv, history_csv, report_json
+from stickslip.app.exports import bifurcation_csv, bifurcation_netcdf, history_csv, report_json
 from stickslip.app.figures import (
     bifurcation_events_table,
     bifurcation_figure,
@@ -332,9 +332,13 @@ def _show_bifurcation(report: Mapping[str, Any], system: PhysicalSystem,
                 f"{b.kind} branch ({len(b.points)} points) stopped: {b.stop_reason}"
                 for b in result.branches) if result.branches else f"{name}: no periodic motion "
                 f"found in the range")
-        st.download_button("Bifurcation diagrams (CSV)", bifurcation_csv(results, system, axis),
-                           file_name="stickslip-bifurcation.csv", mime="text/csv",
-                           key="download_bifurcation_csv")
+        col1, col2 = st.columns(2)
+        col1.download_button("Bifurcation diagrams (CSV)", bifurcation_csv(results, system, axis),
+                             file_name="stickslip-bifurcation.csv", mime="text/csv",
+                             key="download_bifurcation_csv")
+        col2.download_button("Bifurcation diagrams (netCDF)", bifurcation_netcdf(results),
+                             file_name="stickslip-bifurcation.nc", mime="application/x-netcdf",
+                             key="download_bifurcation_netcdf")
 
 
 def main() -> None:
