@@ -62,7 +62,7 @@ def occurrence_figure(maps: Mapping[str, OccurrenceMap], system: PhysicalSystem,
         top = ax.secondary_xaxis("top", functions=(lambda z: 2.0 * root_mk * z,
                                                    lambda c: c / (2.0 * root_mk)))
         top.set_xlabel("damping c [N s/m]")
-    _lambda_in_si(axes[-1], system, lam, "speed", "y")
+    _lambda_in_si(axes[-1], system, lam, "speed", "y", label="belt speed V [m/s]")
     entries["operating point"] = star
     fig.legend(list(entries.values()), list(entries), loc="outside lower center",
                ncols=min(len(entries), 4), frameon=False, fontsize="small")
@@ -70,7 +70,7 @@ def occurrence_figure(maps: Mapping[str, OccurrenceMap], system: PhysicalSystem,
 
 
 def _lambda_in_si(ax: Axes, system: PhysicalSystem, lam: float, axis: LambdaAxis,
-                  which: str) -> None:
+                  which: str, label: str | None = None) -> None:
     """A secondary axis of ``ax`` reading ``lambda`` (on its x or y axis, ``which``) in SI.
 
     Eq. (22) at the operating point ``lam``: the belt speed ``V = lam V_op / lambda`` at the
@@ -85,11 +85,11 @@ def _lambda_in_si(ax: Axes, system: PhysicalSystem, lam: float, axis: LambdaAxis
 
         # V(lambda) is its own inverse
         functions: tuple[Callable[[Any], Any], Callable[[Any], Any]] = (forward, forward)
-        label = "belt speed V [m/s] (same load)"
+        label = label or "belt speed V [m/s] (same load)"
     else:
         ratio = system.load / lam
         functions = (lambda x: x * ratio, lambda w: w / ratio)
-        label = "normal load W [N] (same speed)"
+        label = label or "normal load W [N] (same speed)"
     if which == "x":
         sec = ax.secondary_xaxis("top", functions=functions)
         _plain_log_ticks(sec.xaxis)
