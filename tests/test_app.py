@@ -185,6 +185,143 @@ def test_disturbed_starts_on_demand() -> None:
     assert len(at.get("image")) == images
 
 
+def test_bifurcation_diagram_on_demand(tmp_path: Path) -> None:
+    # issue 20, point 5: the bifurcation diagram of the design point's machine in lambda
+    import csv as csv_module
+
+    from stickslip import Foundation
+    from stickslip.analysis.continuation import ContinuationSystem, continue_cycles
+    from stickslip.analysis.design import design_foundation
+    from stickslip.app.computations import (
+        BIFURCATION_MAX_PERIOD,
+        BIFURCATION_MAX_STEPS,
+        BIFURCATION_SEEDS,
+        bifurcation_range,
+    )
+    from stickslip.app.exports import bifurcation_csv
+    from stickslip.app.streamlit_app import _fmt
+    from stickslip.model.physical import PhysicalSystem
+
+    at = _started()
+    images, downloads = len(at.get("image")), len(at.get("download_button"))
+    assert not [d for d in at.dataframe if "event" in d.value.columns]
+    at.button(key="continue_cycles").click().run()
+    assert not at.exception and not at.error
+    assert len(at.get("image")) == images + 1  # the two diagrams, one figure
+    assert len(at.get("download_button")) == downloads + 2  # CSV and netCDF
+    (shown,) = [d.value for d in at.dataframe if "event" in d.value.columns]
+
+    # reference: continue_cycles on the same inputs (Eq. 22: lambda = (mu_s - mu_k) W /
+    # (V sqrt(m k)); zeta = c / (2 sqrt(m k)); gamma = mu_k / (mu_s - mu_k); the foundation the
+    # design report assesses), over the range the page states
+    system = PhysicalSystem(mass=2.0, stiffness=5e4, damping=20.0, mu_s=0.5, mu_k=0.3, load=500.0,
+                            speed=0.05)
+    report = design_foundation(system).to_dict()
+    root_mk = math.sqrt(2.0 * 5e4)
+    lam, zeta = 0.2 * 500.0 / (0.05 * root_mk), 20.0 / (2.0 * root_mk)
+    crit = report["critical_lambda"]
+    lo, hi = bifurcation_range(lam, [crit["rigid_exact"], crit["rigid_simulation"],
+                                     crit["foundation_simulation"]])
+    assert lo < crit["rigid_exact"] < lam < hi  # the birth of the rigid-base cycle is inside
+    assert any(f"for λ from {_fmt(lo)} to {_fmt(hi)}" in m.value for m in at.markdown)
+    f = report["foundation"]
+    results = {name: continue_cycles(ContinuationSystem(lam, zeta, 1.5, found), "lam", (lo, hi),
+                                     max_period=BIFURCATION_MAX_PERIOD, seeds=BIFURCATION_SEEDS,
+                                     max_steps=BIFURCATION_MAX_STEPS)
+               for name, found in (("rigid base", None),
+                                   ("with foundation", Foundation(f["M"], f["K"], f["zeta_a"])))}
+    expected = [(name, e) for name, r in results.items() for e in r.events]
+    assert len(shown) == len(expected) > 0
+    for (_, row), (name, e) in zip(shown.iterrows(), expected, strict=True):
+        assert (row["machine"], row["event"], row["λ"]) == (name, e.type, f"{e.param:.8g}")
+        # the belt speed of that lambda at the same load (Eq. 22 solved for V)
+        assert row["belt speed V [m/s]"] == _fmt(0.2 * 500.0 / (e.param * root_mk))
+        assert row["amplitude (V/ω_n)"] == _fmt(e.amplitude)
+    # physics: on the rigid base with the Coulomb law the stick-slip cycle is born at the
+    # exact boundary of Eq. (36), which the design report gives
+    (graze,) = [e for e in results["rigid base"].events if e.type == "grazing"]
+    assert graze.param == pytest.approx(crit["rigid_exact"], rel=1e-6)
+
+    # the download: every branch point, in SI by Eqs. (15)-(16) and (22)
+    rows = list(csv_module.DictReader(io.StringIO(bifurcation_csv(results, system, "speed"))))
+    points = [(name, p) for name, r in results.items() for b in r.branches for p in b.points]
+    assert len(rows) == len(points) > 0
+    for row, (name, p) in zip(rows, points, strict=True):
+        speed = 0.2 * 500.0 / (p.param * root_mk)
+        assert row["structure"] == name and float(row["lam"]) == p.param
+        assert float(row["speed_m_s"]) == pytest.approx(speed, rel=1e-12)
+        assert float(row["amplitude_m"]) == pytest.approx(p.amplitude * speed / math.sqrt(5e4 / 2.0),
+                                                          rel=1e-12)
+        assert float(row["period_s"]) == pytest.approx(p.period / math.sqrt(5e4 / 2.0), rel=1e-12)
+        assert int(row["stable"]) == int(p.stable)
+    # the netCDF: each machine's to_xarray under its prefix, read back as written
+    from stickslip.app.exports import bifurcation_netcdf
+    from stickslip.io.netcdf import read_dataset
+
+    path = tmp_path / "bifurcation.nc"
+    path.write_bytes(bifurcation_netcdf(results))
+    ds = read_dataset(path)
+    for name, result in results.items():
+        prefix = name.replace(" ", "_") + "_"
+        ref = result.to_xarray()
+        for var in ("lam", "amplitude", "period", "stable", "steady_growth_rate", "event_lam"):
+            assert list(ds[prefix + var].values) == list(ref[var].values), (name, var)
+        assert list(ds[prefix + "event_type"].values) == [e.type for e in result.events]
+    assert ds.attrs["Conventions"] == "CF-1.10"
+    # another damping is another machine: its diagram is not shown until asked for
+    at.text_input(key="c").set_value("30 N*s/m").run()
+    assert len(at.get("image")) == images
+    assert not [d for d in at.dataframe if "event" in d.value.columns]
+
+
+@pytest.mark.slow
+def test_bifurcation_diagram_of_a_stribeck_law_reads_lambda_as_the_load() -> None:
+    # a Stribeck curve is given in m/s (u_s = v_s / V): lambda is the load at the same speed
+    from stickslip.app.streamlit_app import _fmt
+
+    at = _started()
+    at.selectbox(key="friction_law").set_value("stribeck").run()
+    at.button(key="continue_cycles").click().run()
+    assert not at.exception and not at.error
+    (shown,) = [d.value for d in at.dataframe if "event" in d.value.columns]
+    assert "load W [N]" in shown.columns and "belt speed V [m/s]" not in shown.columns
+    root_mk = math.sqrt(2.0 * 5e4)
+    for _, row in shown.iterrows():  # Eq. 22 solved for W at V = 5 cm/s
+        assert row["load W [N]"] == _fmt(float(row["λ"]) * 0.05 * root_mk / 0.2)
+    # on the rigid base steady sliding loses stability where the law's weakening outgrows the
+    # damping: xi'' + (2 zeta + F'(1)) xi' + xi = 0 with F(u) = lam (gamma + r0 exp(-u/u_s)),
+    # u_s = v_s / V = 10, r0 = 1 (mu_0 = mu_s), so the Hopf point is lam = 2 zeta u_s e^(1/u_s)
+    zeta = 20.0 / (2.0 * root_mk)
+    rigid = shown[shown["machine"] == "rigid base"]
+    (hopf,) = [float(x) for x in rigid.loc[rigid["event"] == "hopf", "λ"]]
+    assert hopf == pytest.approx(2.0 * zeta * 10.0 * math.exp(0.1), rel=1e-6)
+    # and the slip oscillation born there is continued
+    assert any("slip-oscillation branch" in c.value for c in at.caption)
+
+
+@pytest.mark.parametrize(
+    ("fields", "axis"),
+    [
+        # PhysicalFriction.dimensionless: Coulomb has no parameter; linear delta = sigma W /
+        # (2 sqrt(m k)) holds at any V; table u_i = v_i / V and Stribeck u_s = v_s / V hold at
+        # any W (f_i, r0 need no W); a viscous slope d_v = sigma_v W / (2 sqrt(m k)) needs both
+        ({"law": "coulomb"}, "speed"),
+        ({"law": "linear", "slope": 0.02}, "speed"),
+        ({"law": "table", "table_v": (0.0, 0.5), "table_mu": (0.45, 0.3)}, "load"),
+        ({"law": "stribeck", "stribeck_velocity": 0.5}, "load"),
+        ({"law": "stribeck", "stribeck_velocity": 0.5, "viscous": 0.01}, None),
+    ],
+)
+def test_lambda_stands_for_the_speed_or_the_load_the_law_does_not_depend_on(
+        fields: dict[str, Any], axis: str | None) -> None:
+    from stickslip.app.computations import lambda_axis
+    from stickslip.model.physical import PhysicalFriction, PhysicalSystem
+
+    system = PhysicalSystem(mass=2.0, stiffness=5e4, damping=20.0, mu_s=0.5, mu_k=0.3, load=500.0,
+                            speed=0.05, friction=PhysicalFriction(**fields))
+    assert lambda_axis(system) == axis
+
+
 # ---- the friction law (issue 10, point 5) -------------------------------------------------
 
 def _design_stability(friction: Any) -> dict[str, Any]:

@@ -6,11 +6,13 @@ so that Streamlit's ``cache_data`` recognises a computation it has done.
 
 from __future__ import annotations
 
-from typing import Any
+import math
+from typing import Any, Literal
 
 import numpy as np
 import streamlit as st
 
+from stickslip.analysis.continuation import ContinuationResult, ContinuationSystem, continue_cycles
 from stickslip.analysis.design import design_foundation
 from stickslip.analysis.simulation import EngineOptions, SimulationResult, simulate
 from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
@@ -18,6 +20,7 @@ from stickslip.app.inputs import FoundationKey, SiKey, system_from_key
 from stickslip.model.dva import DvaSpec
 from stickslip.model.friction import CoulombFriction, FrictionLaw
 from stickslip.model.parameters import Foundation, Slider
+from stickslip.model.physical import PhysicalSystem
 from stickslip.model.structure import Structure, elastic_foundation, rigid_base
 from stickslip.sweep.basin import BasinResult, basin_stability, equilibrium_state, sample_box
 from stickslip.sweep.execution import ExecutionOptions
@@ -35,6 +38,15 @@ PLOT_HORIZON = (40.0, 3000.0)
 BASIN_SAMPLES = 4000
 BASIN_XI = 6.0
 BASIN_V = (-4.0, 1.5)
+#: Bifurcation diagram in lambda: from half the smallest to twice the largest of the operating
+#: lambda and the onsets of stick-slip, within a factor BIFURCATION_LIMIT of the operating lambda.
+BIFURCATION_MARGIN = 2.0
+BIFURCATION_LIMIT = 100.0
+#: Bounds of each continuation (those of ``stickslip continue``): random starts of the cycle
+#: search, longest cycle (stick phases), steps per branch.
+BIFURCATION_SEEDS = 12
+BIFURCATION_MAX_PERIOD = 2
+BIFURCATION_MAX_STEPS = 400
 
 @st.cache_data(show_spinner="Running the design procedure (Fig. 16)...", max_entries=128)
 def design_report(key: SiKey) -> dict[str, Any]:
@@ -110,3 +122,73 @@ def occurrence_maps(lam: float, zeta: float, gamma: float, foundation: Foundatio
 def stick_slip_optimum(zeta: float, gamma: float, lam_max: float) -> dict[str, Any]:
     """:func:`optimal_foundation_stick_slip` at ``(zeta, gamma)``, as its dictionary."""
     return optimal_foundation_stick_slip(zeta, gamma, lam_max=lam_max).to_dict()
+
+
+LambdaAxis = Literal["speed", "load"]
+
+
+def lambda_axis(system: PhysicalSystem) -> LambdaAxis | None:
+    """The SI quantity that varying ``lambda`` at the operating point's friction law stands for.
+
+    ``lambda = (mu_s - mu_k) W / (V sqrt(m k))`` (Eq. 22) moves with the belt speed ``V`` and the
+    normal load ``W``, and nothing else does except the dimensionless friction law
+    (:meth:`~stickslip.model.physical.PhysicalFriction.dimensionless`): ``u = v / V`` for a
+    Stribeck or a table law, ``delta = sigma W / (2 sqrt(m k))`` for a linear one. A
+    continuation in ``lambda`` holds that law fixed, so it is a change of belt speed exactly
+    when the law does not depend on ``V`` (Coulomb, linear), else of the load when the law does
+    not depend on ``W`` (Coulomb, table, Stribeck without viscous slope), else of neither
+    (None: Stribeck with a viscous slope).
+    """
+    s = system
+    law = s.friction.dimensionless(s.mass, s.stiffness, s.mu_s, s.mu_k, s.load, s.speed)
+    if s.friction.dimensionless(s.mass, s.stiffness, s.mu_s, s.mu_k, s.load, 2.0 * s.speed) == law:
+        return "speed"
+    if s.friction.dimensionless(s.mass, s.stiffness, s.mu_s, s.mu_k, 2.0 * s.load, s.speed) == law:
+        return "load"
+    return None
+
+
+def bifurcation_range(lam: float, onsets: list[float | None]) -> tuple[float, float]:
+    """The range of ``lambda`` of the bifurcation diagram around the operating point.
+
+    From :data:`BIFURCATION_MARGIN` below the smallest to :data:`BIFURCATION_MARGIN` above the
+    largest of ``lam`` and the finite ``onsets`` (critical lambdas of the design report), so
+    the operating point and the births of the stick-slip cycles are inside; clipped to a
+    factor :data:`BIFURCATION_LIMIT` either side of ``lam``.
+    """
+    values = [lam] + [x for x in onsets if x is not None and math.isfinite(x) and x > 0.0]
+    lo = max(min(values) / BIFURCATION_MARGIN, lam / BIFURCATION_LIMIT)
+    hi = min(max(values) * BIFURCATION_MARGIN, lam * BIFURCATION_LIMIT)
+    return lo, hi
+
+
+@st.cache_data(show_spinner="Continuing the periodic motions...", max_entries=16)
+def bifurcation_diagrams(lam_range: tuple[float, float], lam: float, zeta: float, gamma: float,
+                         foundation: FoundationKey, friction: FrictionLaw | None = None
+                         ) -> dict[str, ContinuationResult]:
+    """:func:`continue_cycles` in ``lambda`` over ``lam_range``, without and with the foundation.
+
+    Stick-slip cycles and slip oscillations, stable and unstable, steady sliding and the
+    events (issue 20), for the machine at ``(zeta, gamma)`` with the dimensionless friction law
+    ``friction`` (Coulomb by default) and the foundation ``(M, K, zeta_a)``; the bounds of
+    each run are those of ``stickslip continue`` (:data:`BIFURCATION_SEEDS`,
+    :data:`BIFURCATION_MAX_PERIOD`, :data:`BIFURCATION_MAX_STEPS`).
+    """
+    law = friction or CoulombFriction()
+    return {name: continue_cycles(ContinuationSystem(lam, zeta, gamma, found, law), "lam", lam_range,
+                                  max_period=BIFURCATION_MAX_PERIOD, seeds=BIFURCATION_SEEDS,
+                                  max_steps=BIFURCATION_MAX_STEPS)
+            for name, found in (("rigid base", None), ("with foundation", Foundation(*foundation)))}
+
+
+def si_of_lambda(system: PhysicalSystem, axis: LambdaAxis, lam: float) -> float:
+    """The belt speed (m/s, at the operating load) or the load (N, at the operating speed) at
+    which the dimensionless ``lambda`` takes the value ``lam`` (Eq. 22)."""
+    return system.speed_for_lambda(lam) if axis == "speed" else system.load_for_lambda(lam)
+
+
+def length_scale_at(system: PhysicalSystem, axis: LambdaAxis, lam: float) -> float:
+    """Metres per unit of the dimensionless amplitude at ``lam``: ``V / omega_n`` (Eqs. 15-16)
+    with the belt speed ``V`` of that point (the operating one when the load varies)."""
+    speed = system.speed_for_lambda(lam) if axis == "speed" else system.speed
+    return speed / system.natural_frequency

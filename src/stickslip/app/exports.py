@@ -1,17 +1,23 @@
-"""The web app's downloads: the design report as JSON and the time histories as CSV."""
+"""The web app's downloads: the design report as JSON, the time histories and the bifurcation
+diagrams as CSV."""
 
 from __future__ import annotations
 
 import csv
 import io
 import json
+import tempfile
 from collections.abc import Mapping
+from pathlib import Path
 from typing import Any
 
 from stickslip import Mode
+from stickslip.analysis.continuation import ContinuationResult
 from stickslip.analysis.simulation import SimulationResult
+from stickslip.app.computations import LambdaAxis, length_scale_at, si_of_lambda
 from stickslip.app.inputs import DEFAULTS, FRICTION_FIELDS, FRICTION_TABLE_NAME
-from stickslip.io.provenance import package_version
+from stickslip.io.netcdf import write_dataset
+from stickslip.io.provenance import package_version, provenance_attributes
 from stickslip.model.initial import STARTUP_DESCRIPTION
 from stickslip.model.physical import PhysicalSystem
 
@@ -73,3 +79,64 @@ def history_csv(runs: Mapping[str, SimulationResult], system: PhysicalSystem,
                 Mode(int(modes[i])).label,
             ])
     return buffer.getvalue()
+
+
+def bifurcation_csv(results: Mapping[str, ContinuationResult], system: PhysicalSystem,
+                    axis: LambdaAxis | None) -> str:
+    """The points of every continued branch, one row each, from the results' ``to_xarray``.
+
+    Columns: ``structure``, ``branch`` (index in that diagram), ``kind`` (``stick-slip`` or
+    ``slip-oscillation``), ``lam``, ``period`` (tau), ``period_s``, ``amplitude`` (V/omega_n),
+    ``stick_ratio``, ``multiplier`` (largest Floquet multiplier modulus), ``stable`` (0/1), and
+    when ``lambda`` stands for an SI quantity (``axis``) ``speed_m_s`` or ``load_n`` and
+    ``amplitude_m`` (``V / omega_n`` of that point). Steady sliding and the events are in the
+    page's table and in ``stickslip continue --out``.
+    """
+    buffer = io.StringIO()
+    writer = csv.writer(buffer)
+    si_column = {"speed": ["speed_m_s"], "load": ["load_n"], None: []}[axis]
+    amplitude_m = ["amplitude_m"] if axis is not None else []
+    writer.writerow(["structure", "branch", "kind", "lam", *si_column, "period", "period_s", "amplitude",
+                     *amplitude_m, "stick_ratio", "multiplier", "stable"])
+    for name, result in results.items():
+        ds = result.to_xarray()
+        kinds = [b.kind for b in result.branches]
+        for i in range(ds.sizes["point"]):
+            lam = float(ds[result.param].values[i])
+            amplitude = float(ds["amplitude"].values[i])
+            period = float(ds["period"].values[i])
+            si = [repr(si_of_lambda(system, axis, lam))] if axis is not None else []
+            metres = [repr(amplitude * length_scale_at(system, axis, lam))] if axis is not None else []
+            branch = int(ds["branch"].values[i])
+            writer.writerow([name, branch, kinds[branch], repr(lam), *si, repr(period),
+                             repr(period * system.time_scale), repr(amplitude), *metres,
+                             repr(float(ds["stick_ratio"].values[i])),
+                             repr(float(ds["multiplier"].values[i])), int(ds["stable"].values[i])])
+    return buffer.getvalue()
+
+
+def bifurcation_netcdf(results: Mapping[str, ContinuationResult]) -> bytes:
+    """The diagrams as one netCDF-4 file: each result's ``to_xarray`` under a prefix.
+
+    Every variable, dimension and attribute of the dataset of ``stickslip continue --out``
+    (branch points, steady sliding and its growth rate, events) is prefixed with the
+    machine's name (``rigid_base_``, ``with_foundation_``), with the provenance attributes
+    and the continued systems as the configuration.
+    """
+    import xarray as xr
+
+    parts = []
+    config: dict[str, Any] = {}
+    for name, result in results.items():
+        prefix = name.replace(" ", "_") + "_"
+        ds = result.to_xarray()
+        ds = ds.rename({str(k): prefix + str(k) for k in [*ds.data_vars, *ds.dims]})
+        ds.attrs = {prefix + k: v for k, v in ds.attrs.items()}
+        parts.append(ds)
+        summary = result.to_dict()
+        config[name] = {k: summary[k] for k in ("param", "range", "system")}
+    merged = xr.merge(parts, combine_attrs="no_conflicts")
+    merged.attrs.update(provenance_attributes("continuation in lam, the web app's design point",
+                                              config))
+    with tempfile.TemporaryDirectory() as folder:
+        return write_dataset(merged, Path(folder) / "bifurcation.nc").read_bytes()

@@ -3,15 +3,18 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
+import pandas as pd
+from matplotlib.axes import Axes
 from matplotlib.figure import Figure
-from matplotlib.ticker import NullLocator
-from numpy.typing import NDArray
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter, NullLocator
 
+from stickslip.analysis.continuation import ContinuationResult
 from stickslip.analysis.simulation import SimulationResult
+from stickslip.app.computations import LambdaAxis, length_scale_at, si_of_lambda
 from stickslip.model.physical import PhysicalSystem
 from stickslip.plot.figure import new_grid
 from stickslip.plot.simulation import phase_portrait_plot, time_history_plot
@@ -47,13 +50,7 @@ def occurrence_figure(maps: Mapping[str, OccurrenceMap], system: PhysicalSystem,
     """
     fig = Figure(figsize=(11.0, 4.6), layout="constrained")
     axes = fig.subplots(1, len(maps), sharey=True, squeeze=False)[0]
-    speed_times_lam = lam * system.speed
     root_mk = math.sqrt(system.mass * system.stiffness)
-
-    def reciprocal(x: NDArray[np.float64]) -> NDArray[np.float64]:
-        x = np.asarray(x, dtype=np.float64)
-        return np.divide(speed_times_lam, x, out=np.full_like(x, np.inf), where=x > 0)
-
     entries: dict[str, Any] = {}
     for ax, (name, result) in zip(axes, maps.items(), strict=True):
         result.plot(ax=ax, style="image", legend=True, title=name)
@@ -65,10 +62,97 @@ def occurrence_figure(maps: Mapping[str, OccurrenceMap], system: PhysicalSystem,
         top = ax.secondary_xaxis("top", functions=(lambda z: 2.0 * root_mk * z,
                                                    lambda c: c / (2.0 * root_mk)))
         top.set_xlabel("damping c [N s/m]")
-    speed = axes[-1].secondary_yaxis("right", functions=(reciprocal, reciprocal))
-    speed.yaxis.set_minor_locator(NullLocator())  # unlabelled, and slow to lay out
-    speed.set_ylabel("belt speed V [m/s]")
+    _lambda_in_si(axes[-1], system, lam, "speed", "y", label="belt speed V [m/s]")
     entries["operating point"] = star
     fig.legend(list(entries.values()), list(entries), loc="outside lower center",
                ncols=min(len(entries), 4), frameon=False, fontsize="small")
     return fig
+
+
+def _lambda_in_si(ax: Axes, system: PhysicalSystem, lam: float, axis: LambdaAxis,
+                  which: str, label: str | None = None) -> None:
+    """A secondary axis of ``ax`` reading ``lambda`` (on its x or y axis, ``which``) in SI.
+
+    Eq. (22) at the operating point ``lam``: the belt speed ``V = lam V_op / lambda`` at the
+    same load, or the load ``W = lambda W_op / lam`` at the same speed.
+    """
+    if axis == "speed":
+        product = lam * system.speed
+
+        def forward(x: Any) -> Any:
+            x = np.asarray(x, dtype=np.float64)
+            return np.divide(product, x, out=np.full_like(x, np.inf), where=x > 0)
+
+        # V(lambda) is its own inverse
+        functions: tuple[Callable[[Any], Any], Callable[[Any], Any]] = (forward, forward)
+        label = label or "belt speed V [m/s] (same load)"
+    else:
+        ratio = system.load / lam
+        functions = (lambda x: x * ratio, lambda w: w / ratio)
+        label = label or "normal load W [N] (same speed)"
+    if which == "x":
+        sec = ax.secondary_xaxis("top", functions=functions)
+        _plain_log_ticks(sec.xaxis)
+        sec.set_xlabel(label)
+    else:
+        sec = ax.secondary_yaxis("right", functions=functions)
+        sec.yaxis.set_minor_locator(NullLocator())  # unlabelled, and slow to lay out
+        sec.set_ylabel(label)
+
+
+def _plain_log_ticks(axis: Any) -> None:
+    """Ticks at 1, 2, 5 times powers of ten, written as plain numbers (no minor labels)."""
+    axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    axis.set_major_formatter(FuncFormatter(lambda x, _: f"{x:g}"))
+    axis.set_minor_locator(NullLocator())
+    axis.set_minor_formatter(NullFormatter())
+
+
+def bifurcation_figure(results: Mapping[str, ContinuationResult], system: PhysicalSystem,
+                       lam: float, axis: LambdaAxis | None) -> Figure:
+    """The bifurcation diagrams side by side, the operating ``lambda`` marked.
+
+    Each panel is :meth:`ContinuationResult.plot` (stable solid, unstable dashed, steady
+    sliding on the axis, events marked) on a logarithmic ``lambda`` axis; a secondary axis on
+    top reads ``lambda`` as the belt
+    speed or the load (:func:`stickslip.app.computations.lambda_axis`; none when neither).
+    """
+    fig = Figure(figsize=(11.0, 4.4), layout="constrained")
+    axes = fig.subplots(1, len(results), sharey=True, squeeze=False)[0]
+    for ax, (name, result) in zip(axes, results.items(), strict=True):
+        result.plot(ax=ax)
+        ax.axvline(lam, color="gold", lw=1.2, zorder=0, label="operating point")
+        ax.legend(loc="best", fontsize="small")
+        ax.set_title(name)
+        ax.set_xscale("log")  # the range spans decades; V = lam V_op / lambda stays legible
+        _plain_log_ticks(ax.xaxis)
+        ax.set_xlabel("λ")
+        ax.set_ylabel("")
+        if axis is not None:
+            _lambda_in_si(ax, system, lam, axis, "x")
+    top = max([1.0] + [p.amplitude for r in results.values() for b in r.branches for p in b.points])
+    axes[0].set_ylim(top=1.05 * top)  # shared: every branch of both panels in view
+    axes[0].set_ylabel("amplitude (V / ω_n)")
+    return fig
+
+
+def bifurcation_events_table(results: Mapping[str, ContinuationResult], system: PhysicalSystem,
+                             axis: LambdaAxis | None) -> pd.DataFrame:
+    """One row per event of every diagram: where, its type, its amplitude (also in metres).
+
+    The SI columns (belt speed or load, amplitude in m from ``V / omega_n`` at that point)
+    are present when ``lambda`` stands for one of them (``axis``).
+    """
+    rows = []
+    for name, result in results.items():
+        for e in result.events:
+            row = {"machine": name, "event": e.type, "λ": f"{e.param:.8g}"}
+            if axis is not None:
+                si = si_of_lambda(system, axis, e.param)
+                row["belt speed V [m/s]" if axis == "speed" else "load W [N]"] = fmt(si)
+            row["amplitude (V/ω_n)"] = fmt(e.amplitude)
+            if axis is not None:
+                row["amplitude [m]"] = fmt(e.amplitude * length_scale_at(system, axis, e.param))
+            row["detail"] = e.detail
+            rows.append(row)
+    return pd.DataFrame(rows)

@@ -5,7 +5,8 @@ units ("2 kg", "50 kN/m"), parsed by :mod:`stickslip.model.inputs` as the comman
 after that is SI floats and dimensionless groups. Every number shown comes from the public
 Python API (:func:`~stickslip.analysis.design.design_foundation`, :func:`~stickslip.simulate`,
 :func:`~stickslip.sweep.occurrence_map`,
-:func:`~stickslip.analysis.stick_slip_tuning.optimal_foundation_stick_slip`); this script
+:func:`~stickslip.analysis.stick_slip_tuning.optimal_foundation_stick_slip`,
+:func:`~stickslip.analysis.continuation.continue_cycles`); this script
 only lays out inputs and results. Invalid input shows one line per problem and nothing is
 computed.
 
@@ -33,13 +34,22 @@ from stickslip.app.computations import (
     BASIN_V,
     BASIN_XI,
     basin_runs,
+    bifurcation_diagrams,
+    bifurcation_range,
     design_report,
+    lambda_axis,
     occurrence_maps,
     operating_point_runs,
     stick_slip_optimum,
 )
-from stickslip.app.exports import history_csv, report_json
-from stickslip.app.figures import figure_of_run, fmt, occurrence_figure
+from stickslip.app.exports import bifurcation_csv, bifurcation_netcdf, history_csv, report_json
+from stickslip.app.figures import (
+    bifurcation_events_table,
+    bifurcation_figure,
+    figure_of_run,
+    fmt,
+    occurrence_figure,
+)
 from stickslip.app.inputs import (
     DEFAULTS,
     FOUNDATION_INPUTS,
@@ -275,6 +285,62 @@ def _show_disturbances(report: Mapping[str, Any], system: PhysicalSystem,
                    "with the foundation, the foundation mass starts at rest in its steady state.")
 
 
+def _show_bifurcation(report: Mapping[str, Any], system: PhysicalSystem,
+                      foundation: FoundationKey) -> None:
+    """Bifurcation diagrams in lambda around the operating point, on demand (issue 20)."""
+    with st.expander("Bifurcation diagram: every cycle, stable or not (beyond the paper)"):
+        onsets = [report["critical_lambda"][k] for k in ("rigid_exact", "rigid_simulation",
+                                                           "foundation_simulation")]
+        lo, hi = bifurcation_range(report["lambda"], onsets)
+        axis = lambda_axis(system)
+        if axis == "speed":
+            reading = (f"belt speed from {_fmt(system.speed_for_lambda(hi), 'm/s')} to "
+                       f"{_fmt(system.speed_for_lambda(lo), 'm/s')} at the load "
+                       f"{_fmt(system.load, 'N')}")
+        elif axis == "load":
+            reading = (f"normal load from {_fmt(system.load_for_lambda(lo), 'N')} to "
+                       f"{_fmt(system.load_for_lambda(hi), 'N')} at the belt speed "
+                       f"{_fmt(system.speed, 'm/s')} (this friction law is given in m/s, so "
+                       f"changing the speed would change the law itself)")
+        else:
+            reading = ("the friction law held as it is at the operating point: with this law a "
+                       "change of λ is neither a change of belt speed nor of load alone")
+        st.markdown(
+            f"Pseudo-arclength continuation of the exact return map (`continue_cycles`, as "
+            f"`stickslip continue`): the stick-slip cycles and slip oscillations of the machine, "
+            f"stable (solid) and unstable (dashed), steady sliding on the axis, folds, grazing and "
+            f"Hopf points marked, for λ from {_fmt(lo)} to {_fmt(hi)} (operating λ = "
+            f"{_fmt(report['lambda'])}): {reading}. Rigid base and the assessed foundation. "
+            f"It takes a few seconds to a minute."
+        )
+        law = system.slider().friction
+        key = ((lo, hi), report["lambda"], report["zeta"], report["gamma"], foundation, law)
+        if st.button("Continue the cycles (seconds to a minute)", key="continue_cycles"):
+            st.session_state["bifurcation"] = (key, bifurcation_diagrams(*key))
+        stored = st.session_state.get("bifurcation")
+        if stored is None or stored[0] != key:
+            return
+        results = stored[1]
+        st.pyplot(bifurcation_figure(results, system, report["lambda"], axis))
+        st.caption("Amplitude in units of V/ω_n of each point (the belt speed there). The "
+                   "interval where a stable cycle and stable steady sliding coexist is "
+                   "bistable: which one the machine settles to depends on its start and knocks.")
+        st.dataframe(bifurcation_events_table(results, system, axis), key="bifurcation_events",
+                     hide_index=True)
+        for name, result in results.items():
+            st.caption(f"{name}: " + "; ".join(
+                f"{b.kind} branch ({len(b.points)} points) stopped: {b.stop_reason}"
+                for b in result.branches) if result.branches else f"{name}: no periodic motion "
+                f"found in the range")
+        col1, col2 = st.columns(2)
+        col1.download_button("Bifurcation diagrams (CSV)", bifurcation_csv(results, system, axis),
+                             file_name="stickslip-bifurcation.csv", mime="text/csv",
+                             key="download_bifurcation_csv")
+        col2.download_button("Bifurcation diagrams (netCDF)", bifurcation_netcdf(results),
+                             file_name="stickslip-bifurcation.nc", mime="application/x-netcdf",
+                             key="download_bifurcation_netcdf")
+
+
 def main() -> None:
     """Lay out the page; the script body that Streamlit runs on every interaction."""
     st.set_page_config(page_title="stickslip: stick-slip design", layout="wide")
@@ -336,6 +402,7 @@ def _show_results(raw: Mapping[str, str], system: PhysicalSystem) -> None:
                   "Right: the foundation of Eqs. (28)-(30) tuned at each ζ of the grid."))
 
     _show_disturbances(report, system, assessed)
+    _show_bifurcation(report, system, assessed)
 
     st.subheader("Download")
     col1, col2 = st.columns(2)
