@@ -62,9 +62,9 @@ class SteadySlidingStability:
 
 
 def linearised_damping(structure: Structure, slope: float) -> FloatArray:
-    """Damping matrix of the linearisation: ``C + slope e_0 e_0'``."""
+    """Damping matrix of the linearisation: ``C + slope e_c e_c'`` (``c`` the contact DOF)."""
     c = np.array(structure.damping, dtype=np.float64)
-    c[0, 0] += slope
+    c[structure.contact_dof, structure.contact_dof] += slope
     return c
 
 
@@ -207,7 +207,7 @@ def critical_weakening(structure: Structure, *, rtol: float = 1e-10) -> float:
     if growth_rate(structure, 0.0) >= 0.0:
         return 0.0
     minv = np.linalg.inv(structure.mass)
-    upper = float(np.trace(minv @ structure.damping)) / (2.0 * float(minv[0, 0]))
+    upper = float(np.trace(minv @ structure.damping)) / (2.0 * float(minv[structure.contact_dof, structure.contact_dof]))
     grid = np.linspace(0.0, upper, 65)[1:]
     lo, hi = 0.0, upper
     for d in grid:
