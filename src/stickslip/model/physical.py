@@ -163,6 +163,11 @@ class PhysicalSystem:
                 f"mu_k={self.mu_k!r} must be smaller than mu_s={self.mu_s!r} "
                 "(stick-slip needs static friction above kinetic friction)"
             )
+        mu_0 = self.friction.mu_0
+        if self.friction.law == "stribeck" and mu_0 is not None and not self.mu_k <= mu_0 <= self.mu_s:
+            raise ValueError(f"[friction] mu_0 = {mu_0!r} must lie in [mu_k, mu_s] = "
+                             f"[{self.mu_k!r}, {self.mu_s!r}] (friction at rest between kinetic "
+                             "and static)")
 
     @property
     def natural_frequency(self) -> float:
@@ -278,6 +283,15 @@ def foundation_to_physical(foundation: Foundation, m: float, k: float) -> Physic
     )
 
 
+#: Keys of the ``[friction]`` table each law takes (besides ``law``); any other is refused.
+LAW_KEYS: dict[str, frozenset[str]] = {
+    "coulomb": frozenset(),
+    "linear": frozenset({"slope"}),
+    "stribeck": frozenset({"mu_0", "stribeck_velocity", "exponent", "viscous", "tolerance"}),
+    "table": frozenset({"table"}),
+}
+
+
 def physical_friction_from_config(table: Mapping[str, Any], *, base_dir: Path | None = None,
                                   source: str = "[friction]") -> PhysicalFriction:
     """The ``[friction]`` table of a TOML configuration (DESIGN.md section 8) in SI units.
@@ -300,6 +314,13 @@ def physical_friction_from_config(table: Mapping[str, Any], *, base_dir: Path | 
     if not isinstance(law, str):
         raise ValueError(f"{source}: law = {law!r} must be a string")
     values: dict[str, Any] = {"law": law.strip().lower()}
+    allowed = LAW_KEYS.get(values["law"])
+    if allowed is not None:
+        foreign = sorted(set(table) - allowed - {"law"})
+        if foreign:
+            raise ValueError(f"{source}: {', '.join(foreign)} = {table[foreign[0]]!r} does not belong "
+                             f"to the {values['law']} law (its keys: "
+                             f"{', '.join(sorted(allowed)) or 'none'})")
     for key in FRICTION_QUANTITIES:
         if key in table:
             values[key] = to_si(key, table[key], source=f"{source}: {key} =")

@@ -54,7 +54,8 @@ def _moving_dofs(vector: FloatArray) -> str:
     return ", ".join(str(int(i)) for i in moving)
 
 
-def _matrix(name: str, value: object, n: int | None = None) -> FloatArray:
+def _matrix(name: str, value: object, n: int | None = None,
+            limit: float | None = MAX_MATRIX_ENTRY) -> FloatArray:
     raw = np.asarray(value)
     if np.iscomplexobj(raw):
         raise ValueError(f"{name} has complex entries; the matrices must be real")
@@ -68,7 +69,7 @@ def _matrix(name: str, value: object, n: int | None = None) -> FloatArray:
         raise ValueError(f"{name} is {a.shape[0]}x{a.shape[0]}, expected {n}x{n}")
     if not np.all(np.isfinite(a)):
         raise ValueError(f"{name} has NaN or infinite entries")
-    if np.abs(a).max() > MAX_MATRIX_ENTRY:
+    if limit is not None and np.abs(a).max() > limit:
         raise ValueError(
             f"{name} has an entry of magnitude {np.abs(a).max():.3g}, beyond the supported "
             f"{MAX_MATRIX_ENTRY:g} (the engine's products would overflow)"
@@ -80,6 +81,25 @@ def _matrix(name: str, value: object, n: int | None = None) -> FloatArray:
     a = 0.5 * (a + a.T)
     a.setflags(write=False)
     return a
+
+
+def checked_matrices(mass: object, damping: object, stiffness: object, *,
+                     names: tuple[str, str, str] = ("mass matrix", "damping matrix",
+                                                    "stiffness matrix"),
+                     limit: float | None = MAX_MATRIX_ENTRY,
+                     ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """``(mass, damping, stiffness)`` as checked, symmetrised, read-only float arrays.
+
+    Square, same size, real, finite, symmetric to :data:`SYMMETRY_RTOL` (relative), entries
+    below ``limit`` (None: no bound, for matrices in SI units), then :func:`check_matrices`.
+    ``names`` label the matrices in the one-line messages (e.g. the files they came from).
+    """
+    m = _matrix(names[0], mass, limit=limit)
+    n = m.shape[0]
+    c = _matrix(names[1], damping, n, limit=limit)
+    k = _matrix(names[2], stiffness, n, limit=limit)
+    check_matrices(m, c, k)
+    return m, c, k
 
 
 def check_matrices(mass: FloatArray, damping: FloatArray, stiffness: FloatArray) -> None:
@@ -132,11 +152,8 @@ class Structure:
     contact_dof: int = 0
 
     def __post_init__(self) -> None:
-        mass = _matrix("mass matrix", self.mass)
+        mass, damping, stiffness = checked_matrices(self.mass, self.damping, self.stiffness)
         n = mass.shape[0]
-        damping = _matrix("damping matrix", self.damping, n)
-        stiffness = _matrix("stiffness matrix", self.stiffness, n)
-        check_matrices(mass, damping, stiffness)
         cd = self.contact_dof
         if isinstance(cd, bool) or not isinstance(cd, (int, np.integer)) or not 0 <= cd < n:
             raise ValueError(f"contact_dof={cd!r} must be a whole number from 0 to {n - 1} "
