@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import tomllib
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
 
@@ -15,6 +14,8 @@ if TYPE_CHECKING:
     from stickslip.model.physical import PhysicalFriction
 
 REQUIRED = ("m", "k", "mu_s", "mu_k", "load", "speed")
+#: With a ``[structure]`` table the file's matrices replace ``m``, ``k``, ``c``, ``m_a``, ...
+MACHINE_REQUIRED = ("mu_s", "mu_k", "load", "speed")
 FOUNDATION = ("m_a", "k_a", "c_a")
 
 
@@ -25,43 +26,48 @@ def _opt(name: str) -> Any:
 
 
 def read_config(path: Path) -> dict[str, Any]:
-    """Read a TOML file whose keys are the quantity names (``m``, ``k``, ``mu_s``, ...)."""
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise BadInput(f"--config {str(path)!r} does not exist") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise BadInput(f"--config {str(path)!r} is not valid TOML: {exc}") from None
-    section = data.get("system", {k: v for k, v in data.items() if k != "friction"})
-    if not isinstance(section, dict):
-        raise BadInput(f"--config {str(path)!r}: 'system' must be a table of quantities, "
-                       f"not {section!r}")
-    unknown = sorted(set(section) - set(QUANTITIES))
-    if unknown:
-        raise BadInput(f"--config {str(path)!r}: unknown keys {', '.join(unknown)}")
-    return dict(section)
+    """The flat quantities of the machine file (``m``, ``k``, ``mu_s``, ...), as written.
+
+    The one reader of the machine file is :func:`stickslip.io.machine_file.read_machine_file`
+    (used by design, basin and the app); this keeps its flat part for the flags to override.
+    """
+    from stickslip.io.machine_file import read_machine_file
+
+    return dict(read_machine_file(path).raw)
 
 
 def read_friction_config(path: Path | None) -> PhysicalFriction:
     """The ``[friction]`` table of the TOML file (DESIGN.md section 8); Coulomb without one."""
-    from stickslip.model.physical import PhysicalFriction, physical_friction_from_config
+    from stickslip.io.machine_file import read_machine_file
+    from stickslip.model.physical import PhysicalFriction
 
     if path is None:
         return PhysicalFriction()
-    data = tomllib.loads(path.read_text(encoding="utf-8"))
-    if "friction" not in data:
-        return PhysicalFriction()
-    return physical_friction_from_config(data["friction"], base_dir=path.parent,
-                                         source=f"--config {str(path)!r}: [friction]")
+    return read_machine_file(path).friction()
 
 
 def collect_inputs(flags: dict[str, Any], config: Path | None) -> dict[str, float]:
-    """Merge the TOML file (if any) and the flags (flags win), convert to SI, check presence."""
-    merged: dict[str, Any] = read_config(config) if config is not None else {}
+    """Merge the TOML file (if any) and the flags (flags win), convert to SI, check presence.
+
+    With a ``[structure]`` in the file the slider and foundation keys are not needed, and
+    giving them as flags too is refused (one structure per run).
+    """
+    from stickslip.io.machine_file import PAPER_STRUCTURE_KEYS, read_machine_file
+
+    machine_file = read_machine_file(config) if config is not None else None
+    merged: dict[str, Any] = dict(machine_file.raw) if machine_file is not None else {}
     from_file = set(merged)
-    merged.update({k: v for k, v in flags.items() if v is not None})
-    from_file -= {k for k, v in flags.items() if v is not None}
-    missing = [f"--{k.replace('_', '-')}" for k in REQUIRED if k not in merged]
+    given_flags = {k: v for k, v in flags.items() if v is not None}
+    has_structure = machine_file is not None and machine_file.has_structure
+    if has_structure:
+        mixed = [f"--{k.replace('_', '-')}" for k in PAPER_STRUCTURE_KEYS if k in given_flags]
+        if mixed:
+            raise BadInput(f"{', '.join(mixed)} cannot be given with --config {str(config)!r}: its "
+                           "[structure] is the structure")
+    merged.update(given_flags)
+    from_file -= set(given_flags)
+    required = MACHINE_REQUIRED if has_structure else REQUIRED
+    missing = [f"--{k.replace('_', '-')}" for k in required if k not in merged]
     if missing:
         raise BadInput(f"missing {', '.join(missing)} (give them as flags or in --config)")
     given = [k for k in FOUNDATION if k in merged]
@@ -71,8 +77,27 @@ def collect_inputs(flags: dict[str, Any], config: Path | None) -> dict[str, floa
         key: to_si(key, value, source=f"--config {str(config)!r}: {key} =" if key in from_file else None)
         for key, value in merged.items()
     }
-    values.setdefault("c", 0.0)
+    if not has_structure:
+        values.setdefault("c", 0.0)
     return values
+
+
+def design_machine_file(flags: dict[str, Any], config: Path, *, stick_slip: bool) -> Any:
+    """The machine of a ``[structure]`` file designed: verdict, critical speed/load, absorbers."""
+    from stickslip.analysis.machine_absorber import design_machine
+    from stickslip.io.machine_file import machine_from_file, read_machine_file
+
+    values = collect_inputs(flags, config)
+    machine_file = read_machine_file(config)
+    machine, reduction = machine_from_file(machine_file, values)
+    absorber = machine_file.absorber()
+    attach = None
+    if absorber is not None and absorber.attach_dof is not None:
+        attach = (absorber.attach_dof if reduction is None
+                  else reduction.kept_dofs.index(absorber.attach_dof))
+    report = design_machine(machine, None if absorber is None else absorber.mass, attach,
+                            stick_slip=stick_slip)
+    return report, reduction
 
 
 def design(
@@ -101,12 +126,27 @@ def design(
     Example: stickslip design --m "2 kg" --k "50 kN/m" --mu-s 0.5 --mu-k 0.3 --load "500 N" --speed "5 cm/s"
 
     The same keys, and a friction table, from a TOML file: stickslip design --config machine.toml
+
+    Any linear structure: a [structure] table in the file (matrices from .mtx/.npy/.csv or
+    modes, contact_dof), and an [absorber] table (mass, attach_dof) for the absorber that
+    fixes it (DESIGN.md section 10).
     """
     from stickslip.analysis.design import design_foundation
     from stickslip.model.physical import PhysicalFoundation, PhysicalSystem
 
     flags = {"m": m, "k": k, "c": c, "mu_s": mu_s, "mu_k": mu_k, "load": load, "speed": speed,
              "m_a": m_a, "k_a": k_a, "c_a": c_a}
+    if config is not None and _has_structure(config):
+        machine_report, reduction = design_machine_file(flags, config, stick_slip=stick_slip_optimum)
+        machine_payload = machine_report.to_dict()
+        machine_payload["reduction"] = None if reduction is None else reduction.summary()
+        if json:
+            print_json(machine_payload)
+            return
+        if reduction is not None:
+            typer.echo(reduction.summary())
+        typer.echo(machine_report.summary())
+        return
     v = collect_inputs(flags, config)
     foundation = None
     if "m_a" in v:
@@ -120,6 +160,12 @@ def design(
         print_json(payload)
         return
     typer.echo(format_report(payload))
+
+
+def _has_structure(config: Path) -> bool:
+    from stickslip.io.machine_file import read_machine_file
+
+    return read_machine_file(config).has_structure
 
 
 def format_report(p: dict[str, Any]) -> str:
