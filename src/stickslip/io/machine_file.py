@@ -295,8 +295,8 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
         except ValueError as exc:
             raise ValueError(f"{source} rayleigh: {exc}") from None
     elif "modal_damping" in table:
-        checked_matrices(m, np.zeros_like(m), k, names=names, limit=None)
         try:
+            checked_matrices(m, np.zeros_like(m), k, names=names, limit=None)
             c = modal_damping(m, k, _numbers(table["modal_damping"], f"{source} modal_damping")
                               if isinstance(table["modal_damping"], list)
                               else _numbers(table["modal_damping"], f"{source} modal_damping")[0])
@@ -304,7 +304,11 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
             raise ValueError(f"{source} modal_damping: {exc}") from None
     elif c is None:
         c = np.zeros_like(m)
-    m, c, k = checked_matrices(m, c, k, names=names, limit=None)
+    try:
+        m, c, k = checked_matrices(m, c, k, names=names, limit=None)
+    except ValueError as exc:
+        message = str(exc)
+        raise ValueError(message if message.startswith(source) else f"{source}: {message}") from None
     if reduction is not None and absorber is not None and absorber.attach_dof is not None:
         absorber_index = reduction.kept_dofs.index(absorber.attach_dof)
         name = f"{name} (absorber DOF {absorber.attach_dof} is reduced DOF {absorber_index})"
