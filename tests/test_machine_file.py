@@ -105,7 +105,8 @@ BAD_FILES = [
          "contact_dof = 0\n", "", "free rigid-body mode .* moves DOFs 0, 1"),
     ("", f"mass = {M3}\nstiffness = {K3}\ncontact_dof = 0\nrayleigh = [1, 0]\nmodal_damping = 0.1\n", "",
      "rayleigh and modal_damping both give the damping"),
-    ("", f"mass = {M3}\nstiffness = [[1.0, 2.0], [2.0, 5.0]]\ncontact_dof = 0\n", "", "is 2x2, but mass is 3x3"),
+    ("", f"mass = {M3}\nstiffness = [[1.0, 2.0], [2.0, 5.0]]\ncontact_dof = 0\n", "",
+     "is 2x2, but mass is 3x3"),
     ("", f'mass = {M3}\nstiffness = {K3}\ncontact_dof = 0\nmass_unit = "2 percent"\n', "",
      "mass_unit"),
     ("", f'mass = {M3}\nstiffness = {K3}\ncontact_dof = 0\nstiffness_unit = "percent"\n', "",
@@ -169,5 +170,6 @@ def test_design_config_with_a_structure_reports_in_si(tmp_path: Path,
     lam_c = report["critical"]["lambda_c"]
     assert report["critical_speed"] == pytest.approx(0.2 * 100.0 / (lam_c * root), rel=1e-12)
     assert report["critical_load"] == pytest.approx(lam_c * 0.01 * root / 0.2, rel=1e-12)
-    assert report["machine"]["contact_dof"] == 1 and report["lambda"] == pytest.approx(0.2 * 100 / (0.01 * root))
+    assert report["machine"]["contact_dof"] == 1
+    assert report["lambda"] == pytest.approx(0.2 * 100 / (0.01 * root))
     assert report["verdict"] in ("stick-slip", "steady-sliding", "undetermined")

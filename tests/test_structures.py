@@ -15,7 +15,6 @@ import math
 import numpy as np
 import pytest
 
-from tests.oracle import STICK, oracle_simulate
 from stickslip.analysis.simulation import simulate
 from stickslip.analysis.theory import critical_lambda_exact
 from stickslip.analysis.verdict import Verdict
@@ -24,6 +23,7 @@ from stickslip.model.machine import Machine, machine_from_physical_system, modal
 from stickslip.model.parameters import Foundation, Slider
 from stickslip.model.physical import PhysicalFoundation, PhysicalSystem
 from stickslip.model.structure import Structure, elastic_foundation
+from tests.oracle import STICK, oracle_simulate
 
 GAMMA = 2.0
 
@@ -221,20 +221,23 @@ def test_modal_structure_has_the_modal_receptance_at_the_contact() -> None:
     for w in (1.0, 18.0, 70.0, 160.0):
         dyn = stiffness - w**2 * mass + 1j * w * damping
         h = np.linalg.solve(dyn, np.eye(3)[0])[0]
-        expect = sum(p**2 / (wi**2 - w**2 + 2j * zi * wi * w) for p, zi, wi in zip(phi, z, w_i))
+        expect = sum(p**2 / (wi**2 - w**2 + 2j * zi * wi * w) for p, zi, wi in zip(phi, z, w_i, strict=True))
         assert h == pytest.approx(expect, rel=1e-10)
 
 
 BAD_MATRICES = [
     ("not square", [[1.0, 0.0]], [[1.0, 0.0]], [[1.0, 0.0]], "square"),
     ("asymmetric", np.eye(2), np.zeros((2, 2)), [[2.0, -1.0], [-1.1, 2.0]], "not symmetric"),
-    ("mass not PD", [[1.0, 0.0], [0.0, -1.0]], np.zeros((2, 2)), np.eye(2), "mass matrix must be positive definite"),
+    ("mass not PD", [[1.0, 0.0], [0.0, -1.0]], np.zeros((2, 2)), np.eye(2),
+     "mass matrix must be positive definite"),
     ("free mode", np.eye(3), np.zeros((3, 3)), [[1.0, -1.0, 0.0], [-1.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
      "free rigid-body mode .* moves DOFs 0, 1"),
-    ("negative stiffness", np.eye(2), np.zeros((2, 2)), [[1.0, 0.0], [0.0, -1.0]], "not positive semi-definite"),
+    ("negative stiffness", np.eye(2), np.zeros((2, 2)), [[1.0, 0.0], [0.0, -1.0]],
+     "not positive semi-definite"),
     ("nan", np.eye(2), np.zeros((2, 2)), [[1.0, math.nan], [math.nan, 1.0]], "NaN"),
     ("sizes", np.eye(2), np.zeros((3, 3)), np.eye(2), "3x3, expected 2x2"),
-    ("damping", np.eye(2), [[-1.0, 0.0], [0.0, 0.0]], np.eye(2), "damping matrix must be positive semi-definite"),
+    ("damping", np.eye(2), [[-1.0, 0.0], [0.0, 0.0]], np.eye(2),
+     "damping matrix must be positive semi-definite"),
 ]
 
 

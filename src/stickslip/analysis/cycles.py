@@ -383,11 +383,11 @@ def find_cycles(
     """
     if structure.contact_dof != 0:  # search the contact-first twin; states back in user order
         inner, perm = structure.contact_first()
-        found = find_cycles(inner, slider, seeds=seeds, box=box, max_period=max_period, seed=seed,
-                            options=options)
+        search = find_cycles(inner, slider, seeds=seeds, box=box, max_period=max_period, seed=seed,
+                             options=options)
         mapped = tuple(replace(c, breakaway_state=to_user_order(c.breakaway_state, perm))
-                       for c in found.cycles)
-        return replace(found, structure=structure, cycles=mapped)
+                       for c in search.cycles)
+        return replace(search, structure=structure, cycles=mapped)
     opts = options or EngineOptions()
     n = structure.n_dof
     if np.any(structure.mass != np.diag(np.diag(structure.mass))):

@@ -258,7 +258,8 @@ def tune_machine_absorber(machine: Machine, mass: float, attach_dof: int | None,
         y0 = np.log(x_h)
         res = minimize(objective, y0, method="Nelder-Mead",
                        options={"maxiter": maxiter, "xatol": 1e-3, "fatol": 1e-5,
-                                "initial_simplex": [y0, y0 + [0.2, 0.0], y0 + [0.0, 0.4]]})
+                                "initial_simplex": [y0, y0 + np.array([0.2, 0.0]),
+                                                    y0 + np.array([0.0, 0.4])]})
         y = res.x if res.fun <= objective(y0) else y0
         x_s = np.exp(y)
         ss_machine = build_si(x_s)

@@ -375,7 +375,8 @@ def simulate(
         Dimensionless mass, damping and stiffness matrices, contact on
         ``structure.contact_dof`` (``rigid_base``, ``elastic_foundation``, any chain or any
         machine's structure); a contact elsewhere than DOF 0 runs through
-        :meth:`Structure.contact_first`, with inputs and outputs in the user's order. The primary damping ratio
+        :meth:`Structure.contact_first`, with inputs and outputs in the user's order. The
+        primary damping ratio
         ``zeta`` is part of it (:attr:`Structure.zeta`).
     slider : Slider
         The frictional contact: ``lambda`` and ``gamma``.

@@ -207,7 +207,8 @@ def critical_weakening(structure: Structure, *, rtol: float = 1e-10) -> float:
     if growth_rate(structure, 0.0) >= 0.0:
         return 0.0
     minv = np.linalg.inv(structure.mass)
-    upper = float(np.trace(minv @ structure.damping)) / (2.0 * float(minv[structure.contact_dof, structure.contact_dof]))
+    cd = structure.contact_dof
+    upper = float(np.trace(minv @ structure.damping)) / (2.0 * float(minv[cd, cd]))
     grid = np.linspace(0.0, upper, 65)[1:]
     lo, hi = 0.0, upper
     for d in grid:

@@ -227,6 +227,9 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
         freqs = [to_si("frequency", f, source=f"{source} modes.frequencies =")
                  for f in (modes["frequencies"] if isinstance(modes["frequencies"], list)
                            else [modes["frequencies"]])]
+        m: Any
+        c: Any
+        k: Any
         try:
             m, c, k = modal_structure(freqs, _numbers(modes["damping_ratios"],
                                                       f"{source} modes.damping_ratios"),
@@ -278,13 +281,12 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
         c = reduction.project(mats["damping"]) if "damping" in mats else None
         contact = 0
     else:
-        m = mats["mass"].toarray() if scipy.sparse.issparse(mats["mass"]) else mats["mass"]
-        k = mats["stiffness"].toarray() if scipy.sparse.issparse(mats["stiffness"]) else mats["stiffness"]
-        c = mats.get("damping")
-        if c is not None and scipy.sparse.issparse(c):
-            c = c.toarray()
-    names = tuple(f"{source} {key} = {table[key]!r}" if key in table else f"{source} {key}"
-                  for key in ("mass", "damping", "stiffness"))
+        dense = {key: mat.toarray() if scipy.sparse.issparse(mat) else mat for key, mat in mats.items()}
+        m, k = dense["mass"], dense["stiffness"]
+        c = dense.get("damping")
+    label = {key: f"{source} {key} = {table[key]!r}" if key in table else f"{source} {key}"
+             for key in ("mass", "damping", "stiffness")}
+    names = (label["mass"], label["damping"], label["stiffness"])
     if "rayleigh" in table:
         alpha_beta = _numbers(table["rayleigh"], f"{source} rayleigh")
         if len(alpha_beta) != 2:

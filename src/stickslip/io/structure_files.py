@@ -48,7 +48,7 @@ def _read_file(path: Path, source: str) -> Any:
                 raise ValueError("it has no %%MatrixMarket header")
             if " complex" in header.lower():
                 raise ValueError("it holds complex numbers; the matrices must be real")
-            rows, cols, entries, fmt, _field, _symm = scipy.io.mminfo(str(path))
+            rows, cols, _entries, fmt, _field, _symm = scipy.io.mminfo(str(path))
             if rows != cols:
                 raise ValueError(f"it is {rows}x{cols}, not square")
             if rows > MAX_SPARSE_DOF:

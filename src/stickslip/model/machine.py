@@ -159,7 +159,7 @@ class Machine:
     mu_k: float
     load: float
     speed: float
-    friction: PhysicalFriction = PhysicalFriction()
+    friction: PhysicalFriction = field(default_factory=PhysicalFriction)
     name: str = field(default="machine", compare=False)
 
     def __post_init__(self) -> None:
