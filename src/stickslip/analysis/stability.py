@@ -62,36 +62,36 @@ class SteadySlidingStability:
 
 
 def linearised_damping(structure: Structure, slope: float) -> FloatArray:
-    """Damping matrix of the linearisation: ``C + slope e_0 e_0'``.
+    """Damping matrix of the linearisation: ``C + slope e_c e_c'`` (``c`` the contact DOF).
 
     Parameters
     ----------
     structure : Structure
-        Dimensionless mass, damping and stiffness matrices, contact on DOF 0.
+        Dimensionless mass, damping and stiffness matrices, contact on ``structure.contact_dof``.
     slope : float
         Friction slope ``dF/du`` at the belt speed (``u = 1``), dimensionless; it adds to the
-        damping of DOF 0.
+        damping of the contact DOF.
 
     Returns
     -------
     ndarray
-        The damping matrix with the friction slope on DOF 0.
+        The damping matrix with the friction slope on the contact DOF.
     """
     c = np.array(structure.damping, dtype=np.float64)
-    c[0, 0] += slope
+    c[structure.contact_dof, structure.contact_dof] += slope
     return c
 
 
 def slip_matrix(structure: Structure, slope: float) -> FloatArray:
-    """First-order matrix ``[[0, I], [-M^-1 K, -M^-1 (C + slope e_0 e_0')]]`` of slip-I.
+    """First-order matrix ``[[0, I], [-M^-1 K, -M^-1 (C + slope e_c e_c')]]`` of slip-I.
 
     Parameters
     ----------
     structure : Structure
-        Dimensionless mass, damping and stiffness matrices, contact on DOF 0.
+        Dimensionless mass, damping and stiffness matrices, contact on ``structure.contact_dof``.
     slope : float
         Friction slope ``dF/du`` at the belt speed (``u = 1``), dimensionless; it adds to the
-        damping of DOF 0.
+        damping of the contact DOF.
 
     Returns
     -------
@@ -321,7 +321,8 @@ def critical_weakening(structure: Structure, *, rtol: float = 1e-10) -> float:
     if growth_rate(structure, 0.0) >= 0.0:
         return 0.0
     minv = np.linalg.inv(structure.mass)
-    upper = float(np.trace(minv @ structure.damping)) / (2.0 * float(minv[0, 0]))
+    cd = structure.contact_dof
+    upper = float(np.trace(minv @ structure.damping)) / (2.0 * float(minv[cd, cd]))
     grid = np.linspace(0.0, upper, 65)[1:]
     lo, hi = 0.0, upper
     for d in grid:

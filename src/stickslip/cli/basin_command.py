@@ -217,14 +217,9 @@ def _need_distributed() -> None:
 
 
 def _system_from_config(config: Path) -> Any:
-    from stickslip.cli.design_command import collect_inputs, read_friction_config
-    from stickslip.model.physical import PhysicalFoundation, PhysicalSystem
+    from stickslip.cli.machine_config import config_system
 
-    v = collect_inputs({}, config)
-    foundation = PhysicalFoundation(v["m_a"], v["k_a"], v["c_a"]) if "m_a" in v else None
-    return PhysicalSystem(mass=v["m"], stiffness=v["k"], damping=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"],
-                          load=v["load"], speed=v["speed"], foundation=foundation,
-                          friction=read_friction_config(config))
+    return config_system(config)
 
 
 def _sample_physical(system: Any, samples: int, box: dict[str, tuple[float, float]], seed: int) -> Any:

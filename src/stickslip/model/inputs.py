@@ -38,6 +38,15 @@ FRICTION_FIELDS: dict[str, tuple[str, ...]] = {
     "table": (),
 }
 
+#: Keys of the ``[friction]`` table each law takes (besides ``law``); any other is refused
+#: (issue 22 point 2: a ``slope`` under ``law = "coulomb"`` is a mistake, not a no-op).
+LAW_KEYS: dict[str, frozenset[str]] = {
+    "coulomb": frozenset(),
+    "linear": frozenset({"slope"}),
+    "stribeck": frozenset({"mu_0", "stribeck_velocity", "exponent", "viscous", "tolerance"}),
+    "table": frozenset({"table"}),
+}
+
 Source = Callable[[str], str | None]
 
 
@@ -132,7 +141,8 @@ def friction_fields(table: Mapping[str, Any], *, source: Source | None = None,
     Raises
     ------
     InputProblems
-        Unknown keys, a law that is not a string, and every bad value.
+        Unknown keys, keys that do not belong to the law (:data:`LAW_KEYS`), a law that is
+        not a string, and every bad value.
     ValueError
         ``table`` is not a mapping.
     """
@@ -146,6 +156,13 @@ def friction_fields(table: Mapping[str, Any], *, source: Source | None = None,
     if not isinstance(law, str):
         raise InputProblems([("law", f"{where}: law = {law!r} must be a string")])
     values: dict[str, Any] = {"law": law.strip().lower()}
+    allowed = LAW_KEYS.get(values["law"])
+    if allowed is not None:
+        foreign = sorted(set(table) - allowed - {"law"})
+        if foreign:
+            raise InputProblems([(foreign[0], f"{where}: {', '.join(foreign)} = {table[foreign[0]]!r} "
+                                              f"does not belong to the {values['law']} law (its "
+                                              f"keys: {', '.join(sorted(allowed)) or 'none'})")])
     values.update(quantities_to_si({key: table[key] for key in FRICTION_QUANTITIES if key in table},
                                    source=source))
     if table_columns is not None:
