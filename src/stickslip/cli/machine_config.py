@@ -67,10 +67,9 @@ def refuse_mix(ctx: typer.Context, config: Path | None,
     """
     if config is None:
         return
-    from click.core import ParameterSource
-
+    # by name: Typer ships its own copy of click, whose ParameterSource is another enum
     typed = [name for name in names if name in ctx.params
-             and ctx.get_parameter_source(name) == ParameterSource.COMMANDLINE]
+             and getattr(ctx.get_parameter_source(name), "name", None) == "COMMANDLINE"]
     if typed:
         flags = ", ".join(f"--{name.replace('_', '-')}" for name in typed)
         raise BadInput(f"{flags} cannot be given with --config {str(config)!r}: the machine file "
