@@ -87,8 +87,9 @@ def basin(
     k_scale: K_SCALE = 1.0,
     friction: FRICTION = "coulomb",
     config: Annotated[
-        Path | None, typer.Option("--config", help="machine.toml in SI (m, k, c or a [structure], "
-                                  "[friction]); states in SI, x/v the contact DOF, x_a, x_a2, ... "
+        Path | None, typer.Option("--config", help="machine.toml in SI ([system] keys m, k, c, ... or "
+                                  "a [structure]; [friction]); states in SI, x/v the contact DOF, "
+                                  "x_a, x_a2, ... "
                                   "the other DOFs in order; not with --lam, --zeta, --gamma, --dva, "
                                   "--k-scale, --friction")
     ] = None,
@@ -120,7 +121,7 @@ def basin(
     Example: stickslip basin --lam 2.5 --zeta 0.1 --samples 200000 --backend dask --workers 2 --out run
     """
     from stickslip.analysis.simulation import EngineOptions
-    from stickslip.cli.machine_config import configured_machine, refuse_mix
+    from stickslip.cli.machine_config import configured_machine, refuse_mix, require_dimensionless
     from stickslip.model.parameters import Slider
     from stickslip.model.structure import chain_structure
     from stickslip.sweep.basin import (
@@ -139,8 +140,8 @@ def basin(
         structure, _ = run.structure.contact_first()
         slider = run.slider
     else:
-        if lam is None or zeta is None:
-            raise BadInput("give --lam and --zeta (dimensionless), or --config machine.toml")
+        require_dimensionless(lam=lam, zeta=zeta)
+        assert lam is not None and zeta is not None
         slider = Slider(lam, gamma=gamma, friction=parse_friction_option(friction))
         found = parse_dva(dva, zeta, k_scale)
         structure = chain_structure(zeta, () if found is None else (found,))

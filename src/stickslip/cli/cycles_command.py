@@ -37,13 +37,13 @@ def cycles(
     """
     from stickslip.analysis.cycles import find_cycles
     from stickslip.cli.console import BadInput
-    from stickslip.cli.machine_config import configured_machine, refuse_mix
+    from stickslip.cli.machine_config import configured_machine, refuse_mix, require_dimensionless
     from stickslip.model.parameters import Slider
     from stickslip.model.structure import chain_structure
 
     refuse_mix(ctx, config)
-    if config is None and (lam is None or zeta is None):
-        raise BadInput("give --lam and --zeta (dimensionless), or --config machine.toml")
+    if config is None:
+        require_dimensionless(lam=lam, zeta=zeta)
     if not 1 <= seeds <= 10_000:
         raise BadInput(f"--seeds {seeds} must be from 1 to 10000")
     if not 1 <= max_period <= 8:

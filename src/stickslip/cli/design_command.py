@@ -83,9 +83,9 @@ def design(
     k_a: Annotated[str | None, _opt("k_a")] = None,
     c_a: Annotated[str | None, _opt("c_a")] = None,
     config: Annotated[
-        Path | None, typer.Option("--config", help="machine TOML file: the same keys (m, k, ...) or a "
-                                           "[structure] table, optional [friction] and [absorber] "
-                                           "tables")
+        Path | None, typer.Option("--config", help="machine TOML file: the same keys (m, k, ..., flat or "
+                                           "in a [system] table) or a [structure] table; optional "
+                                           "[friction] and [absorber] tables")
     ] = None,
     stick_slip_optimum: Annotated[
         bool,

@@ -77,6 +77,18 @@ def refuse_mix(ctx: typer.Context, config: Path | None,
                        "there, or drop --config and give the dimensionless system")
 
 
+def require_dimensionless(**given: object) -> None:
+    """Without ``--config`` the dimensionless options are required: name the first missing one.
+
+    The message starts as click's own (``Missing option '--zeta'``) and says the alternative.
+    """
+    for name, value in given.items():
+        if value is None:
+            flags = " and ".join(f"--{key.replace('_', '-')}" for key in given)
+            raise BadInput(f"Missing option '--{name.replace('_', '-')}' (give {flags}, or "
+                           "--config machine.toml)")
+
+
 def collect_inputs(flags: Mapping[str, Any], config: Path | None) -> dict[str, float]:
     """Merge the machine file (if any) and the flags (flags win), convert to SI, check presence.
 

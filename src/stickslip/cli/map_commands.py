@@ -229,7 +229,7 @@ def map_command(
 
     Example: stickslip map --config machine.toml --speed log:1e-4:0.1:40 --load 10:1000:40 --out vw.nc
     """
-    from stickslip.cli.machine_config import refuse_mix
+    from stickslip.cli.machine_config import refuse_mix, require_dimensionless
 
     refuse_mix(ctx, machine_file, ("lam", "zeta", "lam_spacing", "zeta_spacing", "dva", "k_scale",
                              "gamma", "friction", "delta", "backend", "workers", "scheduler",
@@ -240,9 +240,8 @@ def map_command(
         return
     if speed is not None or load is not None:
         raise BadInput("--speed and --load map a machine file: give them with --config machine.toml")
-    if lam is None or zeta is None:
-        raise BadInput("give --lam and --zeta (dimensionless grids), or --config machine.toml "
-                       "with --speed and --load")
+    require_dimensionless(lam=lam, zeta=zeta)
+    assert lam is not None and zeta is not None
     from stickslip.io.lock import output_lock
     from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.executors import check_backend

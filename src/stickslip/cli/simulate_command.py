@@ -88,7 +88,7 @@ def simulate(
     """
     from stickslip.analysis.simulation import EngineOptions
     from stickslip.analysis.simulation import simulate as run_simulation
-    from stickslip.cli.machine_config import configured_machine, refuse_mix
+    from stickslip.cli.machine_config import configured_machine, refuse_mix, require_dimensionless
     from stickslip.model import Slider, chain_structure
 
     refuse_mix(ctx, config)
@@ -99,8 +99,8 @@ def simulate(
         structure, slider = run.structure, run.slider
         check_run_limits(slider.lam, slider.gamma, max_events=max_events, plot_from=t_plot_start)
     else:
-        if lam is None or zeta is None:
-            raise BadInput("give --lam and --zeta (dimensionless), or --config machine.toml")
+        require_dimensionless(lam=lam, zeta=zeta)
+        assert lam is not None and zeta is not None
         slider = Slider(lam, gamma=gamma, friction=parse_friction_option(friction))
         check_run_limits(slider.lam, slider.gamma, max_events=max_events, plot_from=t_plot_start)
         foundation = parse_dva(dva, zeta, k_scale)
