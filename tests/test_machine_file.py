@@ -173,3 +173,11 @@ def test_design_config_with_a_structure_reports_in_si(tmp_path: Path,
     assert report["machine"]["contact_dof"] == 1
     assert report["lambda"] == pytest.approx(0.2 * 100 / (0.01 * root))
     assert report["verdict"] in ("stick-slip", "steady-sliding", "undetermined")
+
+
+def test_basin_config_with_a_structure_is_refused_with_one_line(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    # basin takes the paper's slider only so far (issue 18 point 3 is the next step)
+    code, out, err = run_cli(["basin", "--config", str(SLIDEWAY / "machine.toml"), "--samples", "10"],
+                             capsys)
+    assert code == 2 and out == "" and len(err.strip().splitlines()) == 1 and "[structure]" in err

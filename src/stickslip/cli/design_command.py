@@ -46,7 +46,8 @@ def read_friction_config(path: Path | None) -> PhysicalFriction:
     return read_machine_file(path).friction()
 
 
-def collect_inputs(flags: dict[str, Any], config: Path | None) -> dict[str, float]:
+def collect_inputs(flags: dict[str, Any], config: Path | None, *,
+                   allow_structure: bool = False) -> dict[str, float]:
     """Merge the TOML file (if any) and the flags (flags win), convert to SI, check presence.
 
     With a ``[structure]`` in the file the slider and foundation keys are not needed, and
@@ -59,6 +60,9 @@ def collect_inputs(flags: dict[str, Any], config: Path | None) -> dict[str, floa
     from_file = set(merged)
     given_flags = {k: v for k, v in flags.items() if v is not None}
     has_structure = machine_file is not None and machine_file.has_structure
+    if has_structure and not allow_structure:
+        raise BadInput(f"--config {str(config)!r} has a [structure]: this command takes the paper's "
+                       "slider (m, k, c, m_a, k_a, c_a) so far; design --config takes any structure")
     if has_structure:
         mixed = [f"--{k.replace('_', '-')}" for k in PAPER_STRUCTURE_KEYS if k in given_flags]
         if mixed:
@@ -87,7 +91,7 @@ def design_machine_file(flags: dict[str, Any], config: Path, *, stick_slip: bool
     from stickslip.analysis.machine_absorber import design_machine
     from stickslip.io.machine_file import machine_from_file, read_machine_file
 
-    values = collect_inputs(flags, config)
+    values = collect_inputs(flags, config, allow_structure=True)
     machine_file = read_machine_file(config)
     machine, reduction = machine_from_file(machine_file, values)
     absorber = machine_file.absorber()
