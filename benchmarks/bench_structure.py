@@ -8,20 +8,20 @@ Usage::
 
 Case 1: a grounded 20-DOF chain (masses 0.8-1.6, springs 1-6.7 and a cross spring, Rayleigh
 damping 0.05 M + 0.05 K, dimensionless) with the contact on DOF 10, lambda = 10 (stick-slip,
-certified near tau = 1160 after some 4,000 switches) and 0.3 (steady sliding)
-(gamma = 2, start-up state). The engine runs ``simulate`` to its certified verdict
-(``t_end``); the oracle (``tests/oracle.py``, DOP853 with terminal events, contact DOF
-native) is timed on exactly ``[0, t_end]``, like for like. The engine's compile is paid before
-timing (one warm-up run). The ratio is oracle time / engine time, best of ``--repeats``. Measured (2 cores shared with
-other jobs, --quick): 29x on the stick-slip case (target 100x, not met), and the engine is
-*slower* than the oracle on the steady case, whose horizon is only tau = 1.9 (the engine's
-fixed cost per run at 20 DOF is ~0.1 s).
+certified at tau = 1156) and 0.3 (steady sliding), gamma = 2, start-up state. The engine runs
+``simulate`` to its certified verdict (``t_end``); the oracle (``tests/oracle.py``, DOP853 with
+terminal events, contact DOF native) is timed on exactly ``[0, t_end]``, like for like. The
+engine's compile is paid before timing (one warm-up run). The ratio is oracle time / engine
+time, best of ``--repeats``. Measured (2 cores shared with other jobs, --quick): 29x on the
+stick-slip case (target 100x, not met), and the engine is *slower* than the oracle on the
+steady case, whose horizon is only tau = 1.9 (the engine's fixed cost per run at 20 DOF is
+~0.1 s).
 
-Case 2: a 20,000-DOF sparse chain frame (5 kg nodes, 1e8 N/m links, 2e7 N/m to the floor at both
-ends) with a 1 kg slider on 1e6 N/m at its middle:
-:func:`stickslip.analysis.reduction.reduce_structure` at the default cut-off (sparse LU and ``eigsh`` in shift-invert), time and size of the reduced model. The
-baseline measured in the same run is one sparse LU factorisation of the same stiffness (the
-least any reduction must do).
+Case 2: a 20,000-DOF sparse chain frame (5 kg nodes, 1e8 N/m links, 2e7 N/m to the floor at
+both ends) with a 1 kg slider on 1e6 N/m at its middle:
+:func:`stickslip.analysis.reduction.reduce_structure` at the default cut-off (sparse LU and
+``eigsh`` in shift-invert), time and size of the reduced model. The baseline measured in the
+same run is one sparse LU factorisation of the same stiffness (the least any reduction must do).
 """
 
 from __future__ import annotations
