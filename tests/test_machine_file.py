@@ -173,3 +173,14 @@ def test_design_config_with_a_structure_reports_in_si(tmp_path: Path,
     assert report["machine"]["contact_dof"] == 1
     assert report["lambda"] == pytest.approx(0.2 * 100 / (0.01 * root))
     assert report["verdict"] in ("stick-slip", "steady-sliding", "undetermined")
+
+
+def test_a_reader_of_the_paper_slider_refuses_a_structure_with_one_line() -> None:
+    # every command takes a [structure] now (tests/test_cli_machine.py); what needs the slider's
+    # m, k, c itself says so in one line instead of a KeyError
+    from stickslip.cli.console import BadInput
+    from stickslip.cli.machine_config import config_system
+
+    with pytest.raises(BadInput, match=r"has a \[structure\]") as info:
+        config_system(SLIDEWAY / "machine.toml")
+    assert len(str(info.value).splitlines()) == 1

@@ -134,8 +134,17 @@ def collect_inputs(flags: Mapping[str, Any], config: Path | None) -> dict[str, f
 
 
 def config_system(config: Path, flags: Mapping[str, Any] | None = None) -> PhysicalSystem:
-    """The paper's slider (rigid base or foundation) of a flat machine file, in SI."""
+    """The paper's slider (rigid base or foundation) of a flat machine file, in SI.
+
+    A file with a ``[structure]`` is refused with one line (its machine is
+    :func:`config_machine`'s): a caller that needs the slider's ``m``, ``k``, ``c`` says so
+    instead of failing on a missing key.
+    """
     from stickslip.model.physical import PhysicalFoundation, PhysicalSystem
+
+    if load_machine_file(config).has_structure:
+        raise BadInput(f"--config {str(config)!r} has a [structure]: this needs the paper's slider "
+                       "(m, k, c; m_a, k_a, c_a)")
 
     values = collect_inputs(flags or {}, config)
     foundation = (PhysicalFoundation(values["m_a"], values["k_a"], values["c_a"])
