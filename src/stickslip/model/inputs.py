@@ -63,7 +63,18 @@ class InputProblems(ValueError):
 
 
 def is_given(value: Any) -> bool:
-    """A value was given: not ``None`` and not an empty (or blank) string."""
+    """A value was given: not ``None`` and not an empty (or blank) string.
+
+    Parameters
+    ----------
+    value : object
+        A field's value as given (a number, text, or ``None``).
+
+    Returns
+    -------
+    bool
+        True when the value counts as given.
+    """
     return value is not None and not (isinstance(value, str) and not value.strip())
 
 
@@ -78,6 +89,11 @@ def quantities_to_si(values: Mapping[str, Any], *, source: Source | None = None)
     source : callable, optional
         ``source(key)``: where the value came from, the prefix of its error message (default
         :func:`~stickslip.model.units.to_si`'s own).
+
+    Returns
+    -------
+    dict
+        Quantity name -> value in SI units, for every given value.
 
     Raises
     ------
@@ -104,9 +120,18 @@ def quantities_to_si(values: Mapping[str, Any], *, source: Source | None = None)
 def missing_system_quantities(values: Mapping[str, Any]) -> tuple[list[str], list[str]]:
     """The required system quantities not given, and the foundation ones given (if not all).
 
-    Returns ``(missing, partial_foundation)``: ``missing`` lists keys of
-    :data:`REQUIRED_QUANTITIES` without a value; ``partial_foundation`` the keys of
-    :data:`FOUNDATION_QUANTITIES` that are given when some, but not all three, are.
+    Parameters
+    ----------
+    values : mapping
+        Quantity name -> value as given (:func:`is_given` decides what counts).
+
+    Returns
+    -------
+    missing : list of str
+        Keys of :data:`REQUIRED_QUANTITIES` without a value.
+    partial_foundation : list of str
+        The keys of :data:`FOUNDATION_QUANTITIES` that are given when some, but not all three,
+        are (else empty).
     """
     missing = [key for key in REQUIRED_QUANTITIES if not is_given(values.get(key))]
     given = [key for key in FOUNDATION_QUANTITIES if is_given(values.get(key))]
@@ -137,6 +162,11 @@ def friction_fields(table: Mapping[str, Any], *, source: Source | None = None,
         coefficients.
     where : str
         Names the table in messages about the table itself (unknown keys, the law).
+
+    Returns
+    -------
+    dict
+        Keyword arguments of :class:`~stickslip.model.physical.PhysicalFriction`.
 
     Raises
     ------

@@ -35,7 +35,6 @@ if TYPE_CHECKING:
     import xarray as xr
 
     from stickslip.model.machine import Machine
-    from stickslip.plot.figure import PlotResult
 
 FloatArray = NDArray[np.float64]
 
@@ -121,8 +120,11 @@ class OperatingMap:
                 f"to {self.load.max():.4g} N (lambda {self.lam.min():.4g} to {self.lam.max():.4g}, "
                 f"zeta={self.zeta:.4g}, gamma={self.gamma:.4g}, {self.friction}): {parts}")
 
-    def plot(self, **kwargs: Any) -> PlotResult:
-        """The verdict map over speed and load (:func:`stickslip.plot.operating.operating_map_plot`)."""
+    def plot(self, **kwargs: Any) -> Any:
+        """The verdict map over speed and load, a ``PlotResult``.
+
+        Drawn by :func:`stickslip.plot.operating.operating_map_plot` (keywords passed on).
+        """
         from stickslip.plot.operating import operating_map_plot
 
         return operating_map_plot(self, **kwargs)
