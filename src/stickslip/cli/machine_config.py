@@ -120,6 +120,9 @@ def collect_inputs(flags: Mapping[str, Any], config: Path | None) -> dict[str, f
     if has_structure:
         missing = [key for key in missing if key not in PAPER_STRUCTURE_KEYS]
         partial = [key for key in partial if key not in FOUNDATION_QUANTITIES]
+    if missing and not flags and machine_file is not None:  # a command without these flags
+        raise BadInput(f"{machine_file.label} lacks {', '.join(missing)} (keys of the machine "
+                       "file, e.g. speed = \"5 cm/s\")")
     if missing:
         flags_missing = ", ".join(f"--{key.replace('_', '-')}" for key in missing)
         raise BadInput(f"missing {flags_missing} (give them as flags or in --config)")
