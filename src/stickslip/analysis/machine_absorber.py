@@ -55,6 +55,18 @@ def mounted_on_foundation(machine: Machine, mass: float, stiffness: float, dampi
     spring from each DOF to the ground); they now join each DOF to the new last DOF ``x_f``:
     ``K' = [[K, -g], [-g', 1'K1 + k_f]]`` (and the same for the damping). For the paper's
     slider (``K = [k]``) this is Fig. 1: ``[[k, -k], [-k, k + k_a]]``.
+
+    Parameters
+    ----------
+    machine : Machine
+        The structure in SI.
+    mass, stiffness, damping : float
+        Foundation mass (kg), its spring (N/m) and dashpot (N s/m) to the ground.
+
+    Returns
+    -------
+    Machine
+        The machine with the foundation as its last DOF.
     """
     from stickslip.model._validate import non_negative, positive
 
@@ -78,7 +90,23 @@ def mounted_on_foundation(machine: Machine, mass: float, stiffness: float, dampi
 
 def with_absorber(machine: Machine, mass: float, stiffness: float, damping: float,
                   attach_dof: int | None) -> Machine:
-    """The machine with the absorber on ``attach_dof``, or mounted on it (``None``)."""
+    """The machine with the absorber on ``attach_dof``, or mounted on it (``None``).
+
+    Parameters
+    ----------
+    machine : Machine
+        The structure in SI.
+    mass, stiffness, damping : float
+        Absorber mass (kg), spring (N/m) and dashpot (N s/m).
+    attach_dof : int or None
+        The DOF it hangs on (:meth:`Machine.with_absorber`); None mounts the machine on it
+        (:func:`mounted_on_foundation`).
+
+    Returns
+    -------
+    Machine
+        The machine with the absorber as its last DOF.
+    """
     if attach_dof is None:
         return mounted_on_foundation(machine, mass, stiffness, damping)
     return machine.with_absorber(mass, stiffness, damping, attach_dof)
@@ -226,7 +254,26 @@ def _den_hartog_start(machine: Machine, mass: float, attach_dof: int | None) -> 
 
 def tune_machine_absorber(machine: Machine, mass: float, attach_dof: int | None, *,
                           stick_slip: bool = True, maxiter: int = 40) -> tuple[AbsorberDesign, ...]:
-    """The H-infinity optimum and (if ``stick_slip``) the stick-slip optimum, module docstring."""
+    """The H-infinity optimum and (if ``stick_slip``) the stick-slip optimum, module docstring.
+
+    Parameters
+    ----------
+    machine : Machine
+        The structure in SI with its contact and operating point.
+    mass : float
+        Absorber mass, kg.
+    attach_dof : int or None
+        The DOF the absorber hangs on; None mounts the machine on it.
+    stick_slip : bool
+        Also search the absorber that maximises the critical speed (many simulations).
+    maxiter : int
+        Iterations of the stick-slip search.
+
+    Returns
+    -------
+    tuple of AbsorberDesign
+        ``hinf`` first, then (with ``stick_slip``) the stick-slip optimum.
+    """
     from scipy.optimize import minimize
 
     from stickslip.analysis.peak_minimiser import minimise_peak
@@ -283,6 +330,11 @@ def design_machine(machine: Machine, absorber_mass: float | None = None,
         The DOF the absorber hangs on; None mounts the machine on it (the paper's foundation).
     stick_slip : bool
         Also find the stick-slip optimum (many simulations).
+
+    Returns
+    -------
+    MachineDesign
+        Verdict, period and amplitude in SI, critical point and absorbers.
     """
     structure, slider = machine.to_dimensionless()
     run = simulate(structure, slider, record=False)

@@ -108,7 +108,24 @@ def _sparse(matrix: Any) -> Any:
 
 def default_cutoff_hz(mass: Any, stiffness: Any, contact_dof: int, *, speed: float, load: float,
                       mu_s: float, mu_k: float) -> float:
-    """``CUTOFF_FACTOR * max(f_c, 1 / T_load)``, Hz (module docstring), one sparse solve."""
+    """``CUTOFF_FACTOR * max(f_c, 1 / T_load)``, Hz (module docstring), one sparse solve.
+
+    Parameters
+    ----------
+    mass, stiffness : array_like or sparse matrix
+        Mass (kg) and stiffness (N/m) of the full model.
+    contact_dof : int
+        The DOF the belt rubs.
+    speed, load : float
+        Belt speed (m/s) and normal load (N).
+    mu_s, mu_k : float
+        Static and kinetic friction coefficients.
+
+    Returns
+    -------
+    float
+        The cut-off frequency, Hz.
+    """
     from scipy.sparse.linalg import splu
 
     k = _sparse(stiffness)

@@ -48,7 +48,20 @@ MAX_DIRECT_DOF = 60
 
 
 def rayleigh_damping(mass: ArrayLike, stiffness: ArrayLike, alpha: float, beta: float) -> FloatArray:
-    """``C = alpha M + beta K`` (N s/m for ``alpha`` in 1/s and ``beta`` in s), both >= 0."""
+    """``C = alpha M + beta K`` (N s/m for ``alpha`` in 1/s and ``beta`` in s), both >= 0.
+
+    Parameters
+    ----------
+    mass, stiffness : array_like
+        kg and N/m.
+    alpha, beta : float
+        Rayleigh coefficients, 1/s and s (>= 0).
+
+    Returns
+    -------
+    ndarray
+        The damping matrix, N s/m.
+    """
     a, b = non_negative("rayleigh alpha", alpha), non_negative("rayleigh beta", beta)
     return np.asarray(a * np.asarray(mass, dtype=np.float64) + b * np.asarray(stiffness, dtype=np.float64))
 
@@ -59,6 +72,18 @@ def modal_damping(mass: ArrayLike, stiffness: ArrayLike, ratios: float | Sequenc
     With the mass-normalised modes ``Phi`` (``Phi' M Phi = I``, ``Phi' K Phi = diag(w_i^2)``,
     ascending ``w_i``), ``C = M Phi diag(2 zeta_i w_i) Phi' M``: then ``Phi' C Phi`` is
     diagonal with ``2 zeta_i w_i``, which is the definition of modal damping.
+
+    Parameters
+    ----------
+    mass, stiffness : array_like
+        kg and N/m.
+    ratios : float or sequence of float
+        One damping ratio for every mode, or one per mode (ascending frequency), >= 0.
+
+    Returns
+    -------
+    ndarray
+        The damping matrix, N s/m.
     """
     from scipy.linalg import eigh
 
@@ -289,6 +314,16 @@ def machine_from_physical_system(system: PhysicalSystem) -> Machine:
 
     Slider mass ``m`` on spring ``k`` and dashpot ``c`` to the foundation mass ``m_a`` (or the
     ground), the foundation on ``k_a``, ``c_a`` to the ground (Fig. 1).
+
+    Parameters
+    ----------
+    system : PhysicalSystem
+        The paper's system in SI.
+
+    Returns
+    -------
+    Machine
+        Its 1- or 2-DOF machine.
     """
     f = system.foundation
     m, k, c = system.mass, system.stiffness, system.damping

@@ -93,6 +93,20 @@ def checked_matrices(mass: object, damping: object, stiffness: object, *,
     Square, same size, real, finite, symmetric to :data:`SYMMETRY_RTOL` (relative), entries
     below ``limit`` (None: no bound, for matrices in SI units), then :func:`check_matrices`.
     ``names`` label the matrices in the one-line messages (e.g. the files they came from).
+
+    Parameters
+    ----------
+    mass, damping, stiffness : array_like
+        The matrices.
+    names : tuple of str
+        Their labels in messages.
+    limit : float or None
+        Largest magnitude of an entry (None: no bound).
+
+    Returns
+    -------
+    mass, damping, stiffness : ndarray
+        Checked, symmetrised, read-only.
     """
     m = _matrix(names[0], mass, limit=limit)
     n = m.shape[0]
@@ -109,6 +123,16 @@ def check_matrices(mass: FloatArray, damping: FloatArray, stiffness: FloatArray)
     vector of ``stiffness`` is a free rigid-body mode (the structure would drift away under
     the friction force), refused naming the DOFs that move in it; ``damping`` positive
     semi-definite. The matrices are already square, symmetric and finite (``_matrix``).
+
+    Parameters
+    ----------
+    mass, damping, stiffness : ndarray
+        Square, symmetric, finite matrices.
+
+    Returns
+    -------
+    None
+        Raises ``ValueError`` (one line) for a matrix the engine cannot take.
     """
     m_eig = np.linalg.eigvalsh(mass)
     if m_eig.min() <= 0.0:
@@ -212,7 +236,18 @@ class Structure:
 
 
 def state_permutation(perm: NDArray[np.int64]) -> NDArray[np.int64]:
-    """The permutation of a state ``(q, q')`` of ``2n`` entries from a DOF permutation ``perm``."""
+    """The permutation of a state ``(q, q')`` of ``2n`` entries from a DOF permutation ``perm``.
+
+    Parameters
+    ----------
+    perm : ndarray of int, shape (n,)
+        DOF permutation (:meth:`Structure.contact_first`).
+
+    Returns
+    -------
+    ndarray of int, shape (2n,)
+        ``perm`` for the positions, then for the velocities.
+    """
     return np.concatenate([perm, perm + perm.size])
 
 
@@ -220,6 +255,20 @@ def to_user_order(values: FloatArray, perm: NDArray[np.int64], axis: int = -1) -
     """Per-DOF (``n``) or per-state (``2n``) values along ``axis`` back from engine order.
 
     The inverse of indexing with ``perm`` (or :func:`state_permutation` of it).
+
+    Parameters
+    ----------
+    values : ndarray
+        Values in the engine's order along ``axis`` (``n`` or ``2n`` long there).
+    perm : ndarray of int
+        DOF permutation (:meth:`Structure.contact_first`).
+    axis : int
+        The axis to reorder.
+
+    Returns
+    -------
+    ndarray
+        The values in the user's order.
     """
     a = np.asarray(values)
     p = perm if a.shape[axis] == perm.size else state_permutation(perm)
