@@ -1,7 +1,8 @@
 """Independent reference simulator of the piecewise-linear stick-slip system (test oracle).
 
 Built directly from the paper's dimensionless equations (Section 2.3, Eqs. 19-27) written in
-matrix form for a linear structure with one frictional contact on DOF 0; it does not use any
+matrix form for a linear structure with one frictional contact on DOF ``c`` (``contact_dof``,
+0 by default; handled natively with index sets, not by reordering); it does not use any
 code of the ``stickslip`` package. It integrates each friction mode with
 ``scipy.integrate.solve_ivp`` (DOP853, tight tolerances, bounded step) and switches modes on
 terminal events. It is a cross-check and a benchmark baseline, never the engine: it can miss a
@@ -111,13 +112,13 @@ class OracleResult:
         n = self.n_dof
         q, v = y[:n].copy(), y[n:].copy()
         if p.mode == STICK:
-            v[0] = 1.0
+            v[self._system.c] = 1.0
         return q, v
 
     def stick_force_at(self, t: float) -> float:
         """Stick force ``S`` that would hold the slider at the state at time ``t``."""
         q, v = self.state_at(t)
-        v[0] = 1.0
+        v[self._system.c] = 1.0
         return float(self._system.stick_force(np.concatenate([q, v])))
 
 
@@ -131,9 +132,13 @@ class _System:
         stiffness: FloatArray,
         lam: float,
         gamma: float,
+        contact_dof: int = 0,
     ) -> None:
         n = mass.shape[0]
         self.n = n
+        c = int(contact_dof)
+        self.c = c
+        r = np.array([i for i in range(n) if i != c], dtype=np.int64)  # the other DOFs
         self.lam = float(lam)
         self.gamma = float(gamma)
         self.upper = self.lam
@@ -145,7 +150,7 @@ class _System:
         # slip modes: q' = v, v' = Minv (f - C v - K q)
         a_slip = np.block([[zero, ident], [-minv @ stiffness, -minv @ damping]])
         e0 = np.zeros(n)
-        e0[0] = 1.0
+        e0[c] = 1.0
         b_slip1 = np.zeros(2 * n)
         b_slip2 = np.concatenate([np.zeros(n), minv @ (-2.0 * self.gamma * self.lam * e0)])
 
@@ -153,13 +158,13 @@ class _System:
         a_stick = np.zeros((2 * n, 2 * n))
         a_stick[:n, n:] = ident
         if n > 1:
-            mrr_inv = np.linalg.inv(mass[1:, 1:])
-            a_stick[n + 1 :, :n] = -mrr_inv @ stiffness[1:, :]
-            a_stick[n + 1 :, n:] = -mrr_inv @ damping[1:, :]
-        # S = (Mass a + C v + K q)_0 with a_0 = 0: linear in y
-        s_row = np.concatenate([stiffness[0, :], damping[0, :]])
+            mrr_inv = np.linalg.inv(mass[np.ix_(r, r)])
+            a_stick[n + r, :n] = -mrr_inv @ stiffness[r, :]
+            a_stick[n + r, n:] = -mrr_inv @ damping[r, :]
+        # S = (Mass a + C v + K q)_c with a_c = 0: linear in y
+        s_row = np.concatenate([stiffness[c, :], damping[c, :]])
         if n > 1:
-            s_row = s_row + mass[0, 1:] @ a_stick[n + 1 :, :]
+            s_row = s_row + mass[c, r] @ a_stick[n + r, :]
         self.s_row = s_row
         self.a_stick = a_stick
 
@@ -168,7 +173,7 @@ class _System:
 
         # events: (row c, offset d, direction, target-mode-or-None); g(y) = c.y + d
         c_v0 = np.zeros(2 * n)
-        c_v0[n] = 1.0
+        c_v0[n + c] = 1.0
         self.events: dict[int, list[tuple[FloatArray, float, int, str]]] = {
             SLIP_I: [(c_v0, -1.0, +1, "v0=1 from below")],
             SLIP_II: [(c_v0, -1.0, -1, "v0=1 from above")],
@@ -222,7 +227,7 @@ class _System:
         return funcs
 
     def initial_mode(self, y: FloatArray) -> int:
-        v0 = y[self.n]
+        v0 = y[self.n + self.c]
         if v0 < 1.0:
             return SLIP_I
         if v0 > 1.0:
@@ -257,13 +262,14 @@ def oracle_simulate(
     rtol: float = 1e-12,
     atol: float = 1e-12,
     max_events: int = 10000,
+    contact_dof: int = 0,
 ) -> OracleResult:
     """Simulate the stick-slip system with solve_ivp (DOP853) and terminal events.
 
     Parameters
     ----------
     mass, damping, stiffness : array_like, shape (n, n)
-        Dimensionless matrices; the frictional contact acts on DOF 0.
+        Dimensionless matrices; the frictional contact acts on DOF ``contact_dof``.
     lam, gamma : float
         ``lambda`` and ``gamma`` of the paper (Section 2.3).
     q0, v0 : array_like, shape (n,)
@@ -279,14 +285,15 @@ def oracle_simulate(
     damping = np.atleast_2d(np.asarray(damping, dtype=np.float64))
     stiffness = np.atleast_2d(np.asarray(stiffness, dtype=np.float64))
     n = mass.shape[0]
-    system = _System(mass, damping, stiffness, lam, gamma)
+    system = _System(mass, damping, stiffness, lam, gamma, contact_dof)
+    c = system.c
     y = np.concatenate(
         [np.asarray(q0, dtype=np.float64).reshape(n), np.asarray(v0, dtype=np.float64).reshape(n)]
     )
     mode = system.initial_mode(y)
     initial_mode = mode
     if mode == STICK:
-        y[n] = 1.0
+        y[n + c] = 1.0
 
     t = 0.0
     t_max = float(t_max)
@@ -331,7 +338,7 @@ def oracle_simulate(
             continue
         masked = set()
         pieces.append(OraclePiece(t, t_e, mode, sol.sol if t_e > t else None))
-        y_e[n] = 1.0  # every switch happens at (or enters) v_0 = 1 exactly
+        y_e[n + c] = 1.0  # every switch happens at (or enters) v_0 = 1 exactly
         new_mode = system.after_event(mode, k, y_e)
         event_times.append(float(t_e))
         event_modes.append(new_mode)
@@ -368,5 +375,6 @@ def oracle_simulate_structure(
         initial.position,
         initial.velocity,
         t_max,
+        contact_dof=getattr(structure, "contact_dof", 0),
         **kwargs,
     )

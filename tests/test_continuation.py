@@ -445,3 +445,18 @@ def test_neimark_sacker_is_located_to_its_closed_form() -> None:
     run = trace_branch(tracer, start, 0.4, 1.5, 0.05, 0.2, 400)  # type: ignore[arg-type]
     (event,) = run.events
     assert event[0] == "torus" and event[1].p == pytest.approx(1.0, abs=1e-8)
+
+
+def test_hopf_weakenings_do_not_depend_on_where_the_contact_sits() -> None:
+    # a permutation of the DOFs with the contact moved along is the same machine (issue 18,
+    # point 2), so its Hopf weakenings are the same; the oracle is the contact-first structure
+    from stickslip.analysis.stability import hopf_weakenings
+    from stickslip.model.parameters import Foundation
+    from stickslip.model.structure import Structure, chain_structure
+
+    base = chain_structure(0.05, (Foundation(1.2, 0.6, 0.3), Foundation(0.8, 1.4, 0.1)))
+    perm = np.array([1, 2, 0])  # engine DOF i is the user's DOF perm[i]: the contact is user DOF 1
+    inv = np.argsort(perm)
+    moved = Structure(base.mass[inv][:, inv], base.damping[inv][:, inv], base.stiffness[inv][:, inv],
+                      contact_dof=int(perm[0]))
+    np.testing.assert_allclose(hopf_weakenings(moved), hopf_weakenings(base), rtol=1e-10)

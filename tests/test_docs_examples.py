@@ -44,3 +44,19 @@ def test_disturbance_worked_example_states_the_documented_numbers(tmp_path: Path
     fractions = [float(pair.split(": ")[1]) for pair in line.split("delta: ")[1].split(", ")]
     assert fractions == sorted(fractions) and fractions[-1] == 1.0 and fractions[0] < 0.5
     assert (tmp_path / "basin_map_delta.png").stat().st_size > 10_000
+
+
+def test_slideway_gallery_example_goes_from_matrices_to_the_absorber(tmp_path: Path) -> None:
+    """examples/plot_10_slideway.py (issue 18): the lines its text quotes come out."""
+    proc = subprocess.run([sys.executable, str(ROOT / "examples" / "plot_10_slideway.py")],
+                          capture_output=True, text=True, timeout=600, check=True, cwd=tmp_path,
+                          env={**__import__("os").environ, "MPLBACKEND": "Agg"})
+    out = proc.stdout
+    assert "slideway: 6 DOF, contact on DOF 2" in out
+    assert out.count("stick-slip |") == 1  # the certified run at the feed speed
+    bare = next(x for x in out.splitlines() if x.startswith("bare machine:"))
+    tuned = next(x for x in out.splitlines() if x.startswith("with absorber:"))
+    v_bare = float(bare.split("V_c = ")[1].split()[0])
+    v_tuned = float(tuned.split("V_c = ")[1].split()[0])
+    assert v_tuned < v_bare  # stick-slip only below V_c: the tuned absorber widens the safe range
+    assert "operating points" in out

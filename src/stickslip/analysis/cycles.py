@@ -27,7 +27,7 @@ either piece and reported once (the slip-I piece first).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -40,7 +40,7 @@ from stickslip.kernel.system import SLIP_I, SLIP_II, STICK, mode_kind_band, mode
 from stickslip.model._validate import random_seed
 from stickslip.model.initial import InitialState
 from stickslip.model.parameters import Slider
-from stickslip.model.structure import Structure
+from stickslip.model.structure import Structure, to_user_order
 
 FloatArray = NDArray[np.float64]
 #: Events allowed per friction band in a run of the return map: a stick-slip cycle crosses
@@ -434,6 +434,13 @@ def find_cycles(
     CycleSearch
         The distinct cycles found, each with its period, amplitude and Floquet multipliers.
     """
+    if structure.contact_dof != 0:  # search the contact-first twin; states back in user order
+        inner, perm = structure.contact_first()
+        search = find_cycles(inner, slider, seeds=seeds, box=box, max_period=max_period, seed=seed,
+                             options=options)
+        mapped = tuple(replace(c, breakaway_state=to_user_order(c.breakaway_state, perm))
+                       for c in search.cycles)
+        return replace(search, structure=structure, cycles=mapped)
     opts = options or EngineOptions()
     n = structure.n_dof
     if np.any(structure.mass != np.diag(np.diag(structure.mass))):

@@ -36,7 +36,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.stability import slip_matrix
+from stickslip.analysis.stability import linearised_damping, slip_matrix
 from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
 
@@ -122,8 +122,7 @@ def _lyapunov_matrices(structure: Structure, slope: float) -> list[tuple[str, Fl
     energy = np.zeros((2 * n, 2 * n))
     energy[:n, :n] = 0.5 * structure.stiffness
     energy[n:, n:] = 0.5 * structure.mass
-    damping = np.array(structure.damping, dtype=np.float64)
-    damping[0, 0] += slope
+    damping = linearised_damping(structure, slope)
     if np.linalg.eigvalsh(0.5 * (damping + damping.T)).min() >= -1e-14 * max(1.0, abs(damping).max()):
         out.append(("energy", energy))
     a = slip_matrix(structure, slope)
@@ -152,6 +151,7 @@ def safe_disturbance(structure: Structure, slider: Slider) -> SafeDisturbance:
         derivation); all zero with the reason when no Lyapunov function exists (steady
         sliding unstable, or its equilibrium on a band edge).
     """
+    structure = structure.contact_first()[0]  # the margins below read the contact at 0
     n = structure.n_dof
     v_lim, slope = _band_at_belt_speed(slider)
     if not v_lim > 0.0:

@@ -39,7 +39,8 @@ _UNDAMPED = 1e-13
 def _dynamic_solution(
     structure: Structure, omega: FloatArray
 ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
-    """``H = [D^-1]_00`` and ``dH/dOmega`` at every ``omega`` (complex, vectorised)."""
+    """``H = [D^-1]_cc`` (``c`` the contact DOF) and ``dH/dOmega`` at every ``omega``."""
+    structure = structure.contact_first()[0]  # the receptance at the contact, now DOF 0
     w = omega[:, None, None]
     dyn = structure.stiffness - w**2 * structure.mass + 1j * w * structure.damping
     e0 = np.zeros((omega.size, structure.n_dof, 1), dtype=np.complex128)
@@ -204,8 +205,10 @@ def _stationary(structure: Structure) -> _Stationary:
     structure and the zeros ``z`` those of the structure with DOF 0 held fixed, and
     ``|H|^2 = c prod|i Omega - z|^2 / prod|i Omega - p|^2 = c A(Omega) / B(Omega)``. Its
     stationary points are the real roots of the polynomial ``A' B - A B'``: all of them,
-    which is what makes the peak search complete.
+    which is what makes the peak search complete. (DOF 0 after
+    :meth:`Structure.contact_first`: the contact DOF.)
     """
+    structure = structure.contact_first()[0]
     poles = _state_eigenvalues(structure.mass, structure.damping, structure.stiffness)
     zeros = _state_eigenvalues(
         structure.mass[1:, 1:], structure.damping[1:, 1:], structure.stiffness[1:, 1:]

@@ -37,7 +37,7 @@ from stickslip.kernel.system import mode_kind_band
 from stickslip.model._validate import friction_range, positive
 from stickslip.model.initial import InitialState, startup_state
 from stickslip.model.parameters import Slider
-from stickslip.model.structure import Structure
+from stickslip.model.structure import Structure, state_permutation, to_user_order
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -167,7 +167,10 @@ class SimulationResult:
         if t.size and (not np.all(np.isfinite(t)) or t.min() < 0.0 or t.max() > self.t_end):
             raise ValueError(f"times must lie in [0, t_end={self.t_end:g}]")
         order = np.argsort(t, kind="stable")
-        st = self.structure
+        st, perm = self.structure.contact_first()
+        seg_states = self.segment_states
+        if self.structure.contact_dof != 0:
+            seg_states = np.ascontiguousarray(seg_states[:, state_permutation(perm)])
         states, modes = engine.evaluate(
             st.mass,
             st.damping,
@@ -177,9 +180,11 @@ class SimulationResult:
             *self._bands(),
             self.segment_times,
             self.segment_modes,
-            self.segment_states,
+            seg_states,
             t[order],
         )
+        if self.structure.contact_dof != 0:
+            states = to_user_order(states, perm, axis=1)
         out = np.empty_like(states)
         out[order] = states
         out_modes = np.empty_like(modes)
@@ -235,6 +240,7 @@ class SimulationResult:
             return out
 
         return {
+            "contact_dof": st.contact_dof,
             "verdict": self.verdict.value,
             "certificate": self.certificate,
             "status": self.status.label,
@@ -407,8 +413,11 @@ def simulate(
     Parameters
     ----------
     structure : Structure
-        Dimensionless mass, damping and stiffness matrices, contact on DOF 0
-        (``rigid_base``, ``elastic_foundation`` or any chain). The primary damping ratio
+        Dimensionless mass, damping and stiffness matrices, contact on
+        ``structure.contact_dof`` (``rigid_base``, ``elastic_foundation``, any chain or any
+        machine's structure); a contact elsewhere than DOF 0 runs through
+        :meth:`Structure.contact_first`, with inputs and outputs in the user's order. The
+        primary damping ratio
         ``zeta`` is part of it (:attr:`Structure.zeta`).
     slider : Slider
         The frictional contact: ``lambda`` and ``gamma``.
@@ -437,6 +446,8 @@ def simulate(
                       DeprecationWarning, stacklevel=2)
     opts = (options or EngineOptions()).with_t_max(t_max)
     friction_range(slider.lam, slider.gamma)  # 2 gamma lambda must not overflow (issue 12)
+    if structure.contact_dof != 0:
+        return _simulate_contact_first(structure, slider, initial, opts, record, run_to_t_max)
     if initial is None:
         initial = startup_state(structure, slider)
     z0 = initial.as_vector(structure.n_dof)
@@ -493,4 +504,33 @@ def simulate(
         growth_rate=stability.growth_rate,
         steady_sliding_stable=stability.stable,
         friction_bands=bands,
+    )
+
+
+def _simulate_contact_first(structure: Structure, slider: Slider, initial: InitialState | None,
+                            options: EngineOptions, record: bool,
+                            run_to_t_max: bool) -> SimulationResult:
+    """:func:`simulate` of a structure whose contact is not DOF 0, via its contact-first twin.
+
+    The engine runs :meth:`Structure.contact_first` (an exact permutation, so verdict, period,
+    amplitude and event times are those of the twin); the initial state goes in and every
+    per-DOF output (phase states, final state) comes back in the user's order.
+    """
+    inner, perm = structure.contact_first()
+    sp = state_permutation(perm)
+    inner_initial = None
+    if initial is not None:
+        z = initial.as_vector(structure.n_dof)[sp]
+        inner_initial = InitialState(z[: inner.n_dof], z[inner.n_dof:], initial.description)
+    res = simulate(inner, slider, initial=inner_initial, options=options, record=record,
+                   run_to_t_max=run_to_t_max)
+    z0 = to_user_order(res.initial.as_vector(inner.n_dof), perm)
+    user_initial = initial or InitialState(z0[: inner.n_dof], z0[inner.n_dof:],
+                                           res.initial.description)
+    return replace(
+        res,
+        structure=structure,
+        initial=user_initial,
+        segment_states=to_user_order(res.segment_states, perm, axis=1),
+        final_state=to_user_order(res.final_state, perm),
     )

@@ -64,36 +64,36 @@ class SteadySlidingStability:
 
 
 def linearised_damping(structure: Structure, slope: float) -> FloatArray:
-    """Damping matrix of the linearisation: ``C + slope e_0 e_0'``.
+    """Damping matrix of the linearisation: ``C + slope e_c e_c'`` (``c`` the contact DOF).
 
     Parameters
     ----------
     structure : Structure
-        Dimensionless mass, damping and stiffness matrices, contact on DOF 0.
+        Dimensionless mass, damping and stiffness matrices, contact on ``structure.contact_dof``.
     slope : float
         Friction slope ``dF/du`` at the belt speed (``u = 1``), dimensionless; it adds to the
-        damping of DOF 0.
+        damping of the contact DOF.
 
     Returns
     -------
     ndarray
-        The damping matrix with the friction slope on DOF 0.
+        The damping matrix with the friction slope on the contact DOF.
     """
     c = np.array(structure.damping, dtype=np.float64)
-    c[0, 0] += slope
+    c[structure.contact_dof, structure.contact_dof] += slope
     return c
 
 
 def slip_matrix(structure: Structure, slope: float) -> FloatArray:
-    """First-order matrix ``[[0, I], [-M^-1 K, -M^-1 (C + slope e_0 e_0')]]`` of slip-I.
+    """First-order matrix ``[[0, I], [-M^-1 K, -M^-1 (C + slope e_c e_c')]]`` of slip-I.
 
     Parameters
     ----------
     structure : Structure
-        Dimensionless mass, damping and stiffness matrices, contact on DOF 0.
+        Dimensionless mass, damping and stiffness matrices, contact on ``structure.contact_dof``.
     slope : float
         Friction slope ``dF/du`` at the belt speed (``u = 1``), dimensionless; it adds to the
-        damping of DOF 0.
+        damping of the contact DOF.
 
     Returns
     -------
@@ -344,8 +344,9 @@ def hopf_weakenings(structure: Structure) -> FloatArray:
         The Hopf weakenings ``delta > 0`` (dimensionless), sorted ascending, each once;
         empty when none exists.
     """
+    contact_first, _ = structure.contact_first()  # the minor q drops the contact's row and column
     m, c, k = (np.asarray(x, dtype=np.float64) for x in
-               (structure.mass, structure.damping, structure.stiffness))
+               (contact_first.mass, contact_first.damping, contact_first.stiffness))
     p0 = _characteristic_polynomial(m, c, k)
     q = _characteristic_polynomial(m[1:, 1:], c[1:, 1:], k[1:, 1:])
     q = np.append(q, 0.0)  # s q(s)

@@ -114,6 +114,9 @@ def parse_inputs(raw: Mapping[str, str]) -> tuple[PhysicalSystem | None, list[st
     errors += friction_errors
     if errors or friction is None:
         return None, errors
+    if friction.mu_0 is not None and friction.mu_0 > values["mu_s"]:  # in the app's words
+        return None, [f"{FRICTION_INPUTS['mu_0'][0]}: {friction.mu_0:g} is above μs = "
+                      f"{values['mu_s']:g} (friction at vanishing speed is at most static friction)"]
     try:
         foundation = None
         if given_foundation:
@@ -124,9 +127,6 @@ def parse_inputs(raw: Mapping[str, str]) -> tuple[PhysicalSystem | None, list[st
                                 foundation=foundation, friction=friction)
     except ValueError as exc:
         return None, [f"Invalid input: {exc}"]
-    if friction.mu_0 is not None and friction.mu_0 > system.mu_s:
-        return None, [f"{FRICTION_INPUTS['mu_0'][0]}: {friction.mu_0:g} is above μs = "
-                      f"{system.mu_s:g} (friction at vanishing speed is at most static friction)"]
     try:
         system.slider()  # the law in the engine's units: mu >= 0, ...
     except ValueError as exc:

@@ -344,6 +344,13 @@ def _show_bifurcation(report: Mapping[str, Any], system: PhysicalSystem,
 def main() -> None:
     """Lay out the page; the script body that Streamlit runs on every interaction."""
     st.set_page_config(page_title="stickslip: stick-slip design", layout="wide")
+    page = st.sidebar.radio("Machine", ("paper's slider", "your machine (matrices or modes)"),
+                            key="page")
+    if page != "paper's slider":
+        from stickslip.app.machine_page import show_machine_page
+
+        show_machine_page()
+        return
     st.title("Stick-slip on an elastic foundation")
     st.caption("Will this sliding system stick-slip, at which belt speed or load, and which "
                "foundation suppresses it? The design procedure of the paper's Fig. 16, checked "

@@ -114,7 +114,14 @@ def frf(
 
 
 def tune(
-    zeta: ZETA,
+    ctx: typer.Context,
+    zeta: Annotated[float | None, typer.Option(
+        "--zeta", help="damping ratio c / (2 sqrt(m k)) >= 0 (required without --config)")] = None,
+    config: Annotated[Path | None, typer.Option(
+        "--config", help="machine.toml with a [structure] and an [absorber] (mass, attach_dof): "
+        "tune that absorber on your machine (objective absorber: H-infinity at the contact; "
+        "stick-slip: also the absorber that maximises the critical speed); not with --zeta, "
+        "--mass-ratio, --gamma, --lam-max")] = None,
     mass_ratio: Annotated[
         float | None,
         typer.Option("--mass-ratio", help="fix M = m_a/m and optimise only K and zeta_a"),
@@ -139,11 +146,19 @@ def tune(
     friction weakening ``delta`` for which steady sliding stays linearly stable (same bound).
 
     Example: stickslip tune --zeta 0.1 --objective stability --json
+
+    Your machine (DESIGN.md section 10): stickslip tune --config machine.toml --objective stick-slip
     """
     from stickslip.analysis.absorber_tuning import tune_foundation
     from stickslip.analysis.theory import MAX_TUNING_ZETA
     from stickslip.model._validate import at_most, non_negative, positive, ratio
 
+    if config is not None:
+        _tune_machine(ctx, config, objective, json)
+        return
+    if zeta is None:
+        raise BadInput("give --zeta (the dimensionless slider), or --config machine.toml with an "
+                       "[absorber] table")
     zeta = _zeta(zeta)
     if zeta > MAX_TUNING_ZETA:
         raise BadInput(f"--zeta {zeta!r} is above {MAX_TUNING_ZETA}: no tuning is defined there")
@@ -189,6 +204,51 @@ def tune(
     )
     if any(result.at_bound):
         lines.append("note: the optimum lies on a search bound (see DEFAULT_MASS_BOUNDS)")
+    typer.echo("\n".join(lines))
+
+
+def _tune_machine(ctx: typer.Context, config: Path, objective: str, json: bool) -> None:
+    """``tune --config``: the absorber of the file's ``[absorber]`` tuned on its ``[structure]``.
+
+    ``absorber``: the H-infinity optimum (minimum peak receptance at the contact, the paper's
+    criterion generalised, :func:`stickslip.analysis.machine_absorber.tune_machine_absorber`);
+    ``stick-slip``: that and the absorber that maximises the critical speed. Each is reported
+    with the critical speed and load it gives, next to those of the bare machine.
+    """
+    from stickslip.analysis.machine_absorber import CriticalPoint, tune_machine_absorber
+    from stickslip.cli.machine_config import config_machine, load_machine_file, refuse_mix
+
+    refuse_mix(ctx, config, ("zeta", "mass_ratio", "gamma", "lam_max"))
+    if objective not in ("absorber", "stick-slip"):
+        raise BadInput(f"--objective {objective!r} with --config must be 'absorber' or 'stick-slip' "
+                       "(the stability objective is for the dimensionless slider)")
+    machine_file = load_machine_file(config)
+    try:
+        absorber = machine_file.absorber()
+    except ValueError as exc:
+        raise BadInput(str(exc)) from None
+    if absorber is None:
+        raise BadInput(f"{machine_file.label} has no [absorber] table (mass = \"3 kg\", attach_dof "
+                       "= N): tune --config tunes that absorber on the file's [structure]")
+    machine, reduction = config_machine(config)
+    attach = absorber.attach_dof
+    if attach is not None and reduction is not None:
+        attach = reduction.kept_dofs.index(attach)
+    designs = tune_machine_absorber(machine, absorber.mass, attach,
+                                    stick_slip=objective == "stick-slip")
+    bare = CriticalPoint.of(machine)
+    payload = {"config": str(config), "objective": objective, "machine": machine.to_dict(),
+               "critical": bare.to_dict(), "absorbers": [d.to_dict() for d in designs],
+               "reduction": None if reduction is None else reduction.summary()}
+    if json:
+        print_json(payload)
+        return
+    lines = [machine.summary(),
+             f"without absorber: stick-slip below V_c={bare.speed:.4g} m/s / above W_c={bare.load:.4g} N"]
+    for d in designs:
+        lines.append(f"absorber ({d.objective}): m_a={d.mass:.4g} kg, k_a={d.stiffness:.4g} N/m, "
+                     f"c_a={d.damping:.4g} N s/m -> V_c={d.critical.speed:.4g} m/s, "
+                     f"W_c={d.critical.load:.4g} N, peak receptance {d.peak_receptance:.4g} m/N")
     typer.echo("\n".join(lines))
 
 

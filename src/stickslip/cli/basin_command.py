@@ -82,6 +82,7 @@ def read_states(path: Path, names: list[str]) -> tuple[list[dict[str, str]], lis
 # (check every input, then write), which split up would scatter the checks that must all pass
 # before any file is made.
 def basin(
+    ctx: typer.Context,
     lam: Annotated[float | None, typer.Option("--lam", help="lambda > 0 (dimensionless system)")] = None,
     zeta: Annotated[float | None, typer.Option("--zeta", help="damping ratio >= 0")] = None,
     gamma: GAMMA = 2.0,
@@ -89,7 +90,11 @@ def basin(
     k_scale: K_SCALE = 1.0,
     friction: FRICTION = "coulomb",
     config: Annotated[
-        Path | None, typer.Option("--config", help="machine.toml in physical units ([system], [friction])")
+        Path | None, typer.Option("--config", help="machine.toml in SI ([system] keys m, k, c, ... or "
+                                  "a [structure]; [friction]); states in SI, x/v the contact DOF, "
+                                  "x_a, x_a2, ... "
+                                  "the other DOFs in order; not with --lam, --zeta, --gamma, --dva, "
+                                  "--k-scale, --friction")
     ] = None,
     samples: Annotated[int, typer.Option("--samples", help="number of states drawn in --box")] = 10_000,
     seed: Annotated[int, typer.Option("--seed", help="seed of the sampling")] = 0,
@@ -119,6 +124,7 @@ def basin(
     Example: stickslip basin --lam 2.5 --zeta 0.1 --samples 200000 --backend dask --workers 2 --out run
     """
     from stickslip.analysis.simulation import EngineOptions
+    from stickslip.cli.machine_config import configured_machine, refuse_mix, require_dimensionless
     from stickslip.model.parameters import Slider
     from stickslip.model.structure import chain_structure
     from stickslip.sweep.basin import (
@@ -127,19 +133,19 @@ def basin(
         physical_names,
         sample_box,
         state_names,
-        states_from_physical,
         write_labels,
     )
 
-    system = None
+    refuse_mix(ctx, config)
+    run = None
     if config is not None:
-        if lam is not None or zeta is not None:
-            raise BadInput("give either --config (physical units) or --lam/--zeta, not both")
-        system = _system_from_config(config)
-        structure, slider = system.structure(), system.slider()
+        run = configured_machine(config)
+        # the engine's order: the contact DOF first (the presets are already so: no change)
+        structure, _ = run.structure.contact_first()
+        slider = run.slider
     else:
-        if lam is None or zeta is None:
-            raise BadInput("give --lam and --zeta (dimensionless), or --config machine.toml")
+        require_dimensionless(lam=lam, zeta=zeta)
+        assert lam is not None and zeta is not None
         slider = Slider(lam, gamma=gamma, friction=parse_friction_option(friction))
         found = parse_dva(dva, zeta, k_scale)
         structure = chain_structure(zeta, () if found is None else (found,))
@@ -150,7 +156,7 @@ def basin(
     if chosen == "dask":
         _need_distributed()
     n_dof = structure.n_dof
-    names = physical_names(n_dof) if system is not None else state_names(n_dof)
+    names = physical_names(n_dof) if run is not None else state_names(n_dof)
     if box is not None and initial_states is not None:
         raise BadInput("give either --box (sampling) or --initial-states, not both")
     labels = None if out is None else out / "labels.csv"
@@ -168,7 +174,7 @@ def basin(
         raw = np.array(values, dtype=np.float64)
         try:  # the bound of simulate --initial, before any file is made
             check_states(raw, names)
-            states = states_from_physical(system, raw) if system is not None else raw
+            states = raw if run is None else _physical_to_states(structure, slider, run.reference, raw)
             check_states(states, state_names(n_dof))
         except ValueError as exc:
             raise BadInput(f"--initial-states {str(initial_states)!r}: {exc}") from None
@@ -177,8 +183,8 @@ def basin(
         unknown = sorted(set(intervals) - set(names))
         if unknown:
             raise BadInput(f"--box columns {', '.join(unknown)} are not among {', '.join(names)}")
-        if system is not None:
-            states = _sample_physical(system, samples, intervals, seed)
+        if run is not None:
+            states = _sample_physical(structure, slider, run.reference, samples, intervals, seed)
         else:
             states = sample_box(structure, slider, samples, intervals, seed)
     from contextlib import nullcontext
@@ -227,27 +233,37 @@ def _need_distributed() -> None:
         raise BadInput("the dask backend needs dask.distributed: pip install 'stickslip[dask]'")
 
 
-def _system_from_config(config: Path) -> Any:
-    from stickslip.cli.design_command import collect_inputs, read_friction_config
-    from stickslip.model.physical import PhysicalFoundation, PhysicalSystem
+def _physical_to_states(structure: Any, slider: Any, reference: Any, physical: Any) -> Any:
+    """Physical states ``(x, x_a, ..., v, v_a, ...)`` [m, m/s] to shifted dimensionless states.
 
-    v = collect_inputs({}, config)
-    foundation = PhysicalFoundation(v["m_a"], v["k_a"], v["c_a"]) if "m_a" in v else None
-    return PhysicalSystem(mass=v["m"], stiffness=v["k"], damping=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"],
-                          load=v["load"], speed=v["speed"], foundation=foundation,
-                          friction=read_friction_config(config))
+    As :func:`stickslip.sweep.basin.states_from_physical` (positions from where every spring
+    is relaxed, ground-frame velocities; ``xi = x / (V / omega_n) - gamma lambda K^-1 e_0``,
+    ``xi' = v / V``, Eqs. 15-16) for any machine: ``structure`` in the engine's order (contact
+    first) and ``omega_n`` of the contact's reference system (:mod:`stickslip.model.machine`).
+    """
+    import numpy as np
+
+    n = structure.n_dof
+    physical = np.asarray(physical, dtype=np.float64)
+    shift = slider.gamma * slider.lam * structure.kinetic_equilibrium_offset()
+    out = np.empty_like(physical)
+    out[:, :n] = physical[:, :n] / reference.length_scale - shift
+    out[:, n:] = physical[:, n:] / reference.speed
+    return out
 
 
-def _sample_physical(system: Any, samples: int, box: dict[str, tuple[float, float]], seed: int) -> Any:
+def _sample_physical(structure: Any, slider: Any, reference: Any, samples: int,
+                     box: dict[str, tuple[float, float]], seed: int) -> Any:
     """Uniform samples of a box in SI units (``x``, ``v``, ``x_a``, ``v_a``), made dimensionless.
 
     A position ``x`` [m] from where the springs are relaxed is ``xi = x / L - shift`` with
     ``L = V / omega_n`` and the kinetic-equilibrium shift of Eqs. (15)-(16); a velocity ``v``
     [m/s] is ``xi' = v / V``. The map is affine per column, so uniform stays uniform.
+    ``structure`` is in the engine's order (contact first): ``x`` is the contact DOF, ``x_a``,
+    ``x_a2``, ... the other DOFs in the file's order.
     """
     from stickslip.sweep.basin import physical_names, sample_box, state_names
 
-    structure, slider = system.structure(), system.slider()
     n = structure.n_dof
     shift = slider.gamma * slider.lam * structure.kinetic_equilibrium_offset()
     names, dimensionless = physical_names(n), state_names(n)
@@ -255,10 +271,10 @@ def _sample_physical(system: Any, samples: int, box: dict[str, tuple[float, floa
     for name, (lo, hi) in box.items():
         i = names.index(name)
         if i < n:
-            scale = system.length_scale
+            scale = reference.length_scale
             converted[dimensionless[i]] = (lo / scale - shift[i], hi / scale - shift[i])
         else:
-            converted[dimensionless[i]] = (lo / system.speed, hi / system.speed)
+            converted[dimensionless[i]] = (lo / reference.speed, hi / reference.speed)
     return sample_box(structure, slider, samples, converted, seed)
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Annotated, Any
 
 import typer
@@ -11,8 +12,14 @@ from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE
 
 
 def cycles(
-    lam: Annotated[float, typer.Option("--lam", help="lambda > 0")],
-    zeta: Annotated[float, typer.Option("--zeta", help="damping ratio >= 0")],
+    ctx: typer.Context,
+    lam: Annotated[float | None, typer.Option("--lam", help="lambda > 0 (required without --config)")] = None,
+    zeta: Annotated[float | None, typer.Option(
+        "--zeta", help="damping ratio >= 0 (required without --config)")] = None,
+    config: Annotated[Path | None, typer.Option(
+        "--config", help="machine.toml in SI (m, k, c or a [structure], [friction]): the cycles of "
+        "that machine, periods in s and amplitudes in m beside the dimensionless ones; not with "
+        "--lam, --zeta, --gamma, --dva, --k-scale, --friction")] = None,
     gamma: GAMMA = 2.0,
     dva: DVA = "none",
     k_scale: K_SCALE = 1.0,
@@ -25,21 +32,41 @@ def cycles(
     """Stick-slip cycles at a point: fixed points of the breakaway return map, with stability.
 
     Example: stickslip cycles --lam 15 --zeta 0.1 --dva optimal --json
+
+    Your machine: stickslip cycles --config machine.toml --json (DESIGN.md section 10)
     """
     from stickslip.analysis.cycles import find_cycles
     from stickslip.cli.console import BadInput
+    from stickslip.cli.machine_config import configured_machine, refuse_mix, require_dimensionless
     from stickslip.model.parameters import Slider
     from stickslip.model.structure import chain_structure
 
+    refuse_mix(ctx, config)
+    if config is None:
+        require_dimensionless(lam=lam, zeta=zeta)
     if not 1 <= seeds <= 10_000:
         raise BadInput(f"--seeds {seeds} must be from 1 to 10000")
     if not 1 <= max_period <= 8:
         raise BadInput(f"--max-period {max_period} must be from 1 to 8")
-    slider = Slider(lam, gamma=gamma, friction=parse_friction_option(friction))
-    found = parse_dva(dva, zeta, k_scale)
-    structure = chain_structure(zeta, () if found is None else (found,))
+    run = None
+    if config is not None:
+        run = configured_machine(config)
+        structure, slider = run.structure, run.slider
+    else:
+        assert lam is not None and zeta is not None
+        slider = Slider(lam, gamma=gamma, friction=parse_friction_option(friction))
+        found = parse_dva(dva, zeta, k_scale)
+        structure = chain_structure(zeta, () if found is None else (found,))
     result = find_cycles(structure, slider, seeds=seeds, max_period=max_period, seed=seed)
     payload = result.to_dict()
+    if run is not None:
+        # seconds and metres: tau = omega_n t (Eq. 17), displacements in V / omega_n (Eqs. 15-16)
+        scales = run.scales()
+        payload.update({"config": str(config), "scales": scales, "machine": run.machine.to_dict()})
+        for c in payload["cycles"]:
+            c["period_s"] = None if c["period"] is None else c["period"] * scales["time_scale_s"]
+            c["amplitude_m"] = (None if c["amplitude"] is None
+                                else c["amplitude"] * scales["length_scale_m"])
     if json:
         print_json(payload)
         return

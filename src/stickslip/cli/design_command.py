@@ -7,11 +7,11 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from stickslip.cli.console import BadInput, print_json
+from stickslip.cli.console import print_json
+from stickslip.cli.machine_config import collect_inputs, load_machine_file
 from stickslip.model.units import QUANTITIES
 
 if TYPE_CHECKING:
-    from stickslip.io.config import MachineConfig
     from stickslip.model.physical import PhysicalFriction
 
 
@@ -37,48 +37,38 @@ def _opt(name: str) -> Any:
 
 
 def read_config(path: Path) -> dict[str, Any]:
-    """The ``[system]`` table of a machine's TOML file (:func:`stickslip.io.config.read_machine_config`)."""
-    return _machine(path).system
+    """The flat quantities of the machine file (``m``, ``k``, ``mu_s``, ...), as written.
+
+    The one reader of the machine file is :func:`stickslip.io.machine_file.read_machine_file`;
+    this keeps its flat part for the flags to override.
+    """
+    return dict(load_machine_file(path).raw)
 
 
 def read_friction_config(path: Path | None) -> PhysicalFriction:
     """The ``[friction]`` table of the TOML file (DESIGN.md section 8); Coulomb without one."""
     from stickslip.model.physical import PhysicalFriction
 
-    return PhysicalFriction() if path is None else _machine(path).friction
+    if path is None:
+        return PhysicalFriction()
+    return load_machine_file(path).friction()
 
 
-def _machine(path: Path) -> MachineConfig:
-    from stickslip.io.config import read_machine_config
+def design_machine_file(flags: dict[str, Any], config: Path, *, stick_slip: bool) -> Any:
+    """The machine of a ``[structure]`` file designed: verdict, critical speed/load, absorbers."""
+    from stickslip.analysis.machine_absorber import design_machine
+    from stickslip.cli.machine_config import config_machine
 
-    try:
-        return read_machine_config(path, label=f"--config {str(path)!r}")
-    except ValueError as exc:
-        raise BadInput(str(exc)) from None
-
-
-def collect_inputs(flags: dict[str, Any], config: Path | None) -> dict[str, float]:
-    """Merge the TOML file (if any) and the flags (flags win), convert to SI, check presence.
-
-    The rules are :mod:`stickslip.model.inputs`' (the web app's too); a value from the file is
-    named ``--config 'FILE': KEY =`` in messages, a flag by its name.
-    """
-    from stickslip.model.inputs import missing_system_quantities, quantities_to_si
-
-    merged: dict[str, Any] = read_config(config) if config is not None else {}
-    from_file = set(merged)
-    merged.update({k: v for k, v in flags.items() if v is not None})
-    from_file -= {k for k, v in flags.items() if v is not None}
-    missing, partial = missing_system_quantities(merged)
-    if missing:
-        flags_missing = ", ".join(f"--{k.replace('_', '-')}" for k in missing)
-        raise BadInput(f"missing {flags_missing} (give them as flags or in --config)")
-    if partial:
-        raise BadInput("an existing foundation needs all of --m-a, --k-a and --c-a")
-    values = quantities_to_si(
-        merged, source=lambda key: f"--config {str(config)!r}: {key} =" if key in from_file else None)
-    values.setdefault("c", 0.0)
-    return values
+    machine_file = load_machine_file(config)
+    machine, reduction = config_machine(config, flags)
+    absorber = machine_file.absorber()
+    attach = None
+    if absorber is not None and absorber.attach_dof is not None:
+        attach = (absorber.attach_dof if reduction is None
+                  else reduction.kept_dofs.index(absorber.attach_dof))
+    report = design_machine(machine, None if absorber is None else absorber.mass, attach,
+                            stick_slip=stick_slip)
+    return report, reduction
 
 
 def design(
@@ -93,8 +83,9 @@ def design(
     k_a: Annotated[str | None, _opt("k_a")] = None,
     c_a: Annotated[str | None, _opt("c_a")] = None,
     config: Annotated[
-        Path | None, typer.Option("--config", help="TOML file: a [system] table with the same keys "
-                                           "(m, k, ...) and an optional [friction] table")
+        Path | None, typer.Option("--config", help="machine TOML file: the same keys (m, k, ..., flat or "
+                                           "in a [system] table) or a [structure] table; optional "
+                                           "[friction] and [absorber] tables")
     ] = None,
     stick_slip_optimum: Annotated[
         bool,
@@ -108,12 +99,27 @@ def design(
     Example: stickslip design --m "2 kg" --k "50 kN/m" --mu-s 0.5 --mu-k 0.3 --load "500 N" --speed "5 cm/s"
 
     The same keys, and a friction table, from a TOML file: stickslip design --config machine.toml
+
+    Any linear structure: a [structure] table in the file (matrices from .mtx/.npy/.csv or
+    modes, contact_dof), and an [absorber] table (mass, attach_dof) for the absorber that
+    fixes it (DESIGN.md section 10).
     """
     from stickslip.analysis.design import design_foundation
     from stickslip.model.physical import PhysicalFoundation, PhysicalSystem
 
     flags = {"m": m, "k": k, "c": c, "mu_s": mu_s, "mu_k": mu_k, "load": load, "speed": speed,
              "m_a": m_a, "k_a": k_a, "c_a": c_a}
+    if config is not None and _has_structure(config):
+        machine_report, reduction = design_machine_file(flags, config, stick_slip=stick_slip_optimum)
+        machine_payload = machine_report.to_dict()
+        machine_payload["reduction"] = None if reduction is None else reduction.summary()
+        if json:
+            print_json(machine_payload)
+            return
+        if reduction is not None:
+            typer.echo(reduction.summary())
+        typer.echo(machine_report.summary())
+        return
     v = collect_inputs(flags, config)
     foundation = None
     if "m_a" in v:
@@ -127,6 +133,10 @@ def design(
         print_json(payload)
         return
     typer.echo(format_report(payload))
+
+
+def _has_structure(config: Path) -> bool:
+    return load_machine_file(config).has_structure
 
 
 def format_report(p: dict[str, Any]) -> str:

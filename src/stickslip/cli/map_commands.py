@@ -8,6 +8,7 @@ output is written. ``boundary`` finds every critical lambda at each zeta.
 
 from __future__ import annotations
 
+import math
 import sys
 import time
 from pathlib import Path
@@ -21,6 +22,7 @@ from stickslip.cli.console import (
     check_grid_memory,
     check_output_path,
     check_run_limits,
+    flag_error,
     parse_dva_option,
     parse_friction_option,
     print_json,
@@ -173,9 +175,21 @@ def _check_existing_output(out: Path, fingerprint: str, overwrite: bool) -> bool
 
 
 def map_command(
-    lam: LAM_SPEC,
-    zeta: ZETA_SPEC,
+    ctx: typer.Context,
     out: Annotated[Path, typer.Option("--out", help="netCDF file to write (.nc)")],
+    lam: Annotated[str | None, typer.Option(
+        "--lam", help="lambda grid: start:stop:n, log:start:stop:n or v1,v2,... (> 0)")] = None,
+    zeta: Annotated[str | None, typer.Option(
+        "--zeta", help="zeta grid: start:stop:n, log:start:stop:n or v1,v2,... (>= 0)")] = None,
+    machine_file: Annotated[Path | None, typer.Option(
+        "--config", help="machine.toml in SI: map that machine over --speed and --load instead of "
+        "(lambda, zeta); not with --lam, --zeta, --dva, --k-scale, --gamma, --friction, --delta")] = None,
+    speed: Annotated[str | None, typer.Option(
+        "--speed", help="with --config: belt speeds [m/s], start:stop:n, log:start:stop:n or "
+        "v1,v2,...")] = None,
+    load: Annotated[str | None, typer.Option(
+        "--load", help="with --config: normal loads [N], start:stop:n, log:start:stop:n or "
+        "v1,v2,...")] = None,
     lam_spacing: LAM_SPACING = None,
     zeta_spacing: ZETA_SPACING = None,
     dva: DVA = "none",
@@ -211,7 +225,26 @@ def map_command(
     With --delta: a (lambda, delta) grid at one zeta, each cell with the law linear:DELTA.
 
     Example: stickslip map --lam log:0.1:50:100 --delta -0.1:0.3:41 --zeta 0.1 --out dmap.nc
+
+    Your machine over belt speed and normal load (DESIGN.md section 10), each cell a certified
+    run with lambda = (mu_s - mu_k) W / (V sqrt(m_ref k_ref)) and the friction law's own shape
+    at (V, W):
+
+    Example: stickslip map --config machine.toml --speed log:1e-4:0.1:40 --load 10:1000:40 --out vw.nc
     """
+    from stickslip.cli.machine_config import refuse_mix, require_dimensionless
+
+    refuse_mix(ctx, machine_file, ("lam", "zeta", "lam_spacing", "zeta_spacing", "dva", "k_scale",
+                             "gamma", "friction", "delta", "backend", "workers", "scheduler",
+                             "chunk_size"))
+    if machine_file is not None:
+        operating_map_command(machine_file, speed, load, out=out, t_max=t_max, csv=csv, plot=plot,
+                              overwrite=overwrite, json=json)
+        return
+    if speed is not None or load is not None:
+        raise BadInput("--speed and --load map a machine file: give them with --config machine.toml")
+    require_dimensionless(lam=lam, zeta=zeta)
+    assert lam is not None and zeta is not None
     from stickslip.cli.cleanup import UndoOnRefusal
     from stickslip.io.lock import output_lock
     from stickslip.sweep.execution import ExecutionOptions
@@ -414,6 +447,74 @@ def _print_boundary_table(p: dict[str, Any]) -> None:
     if p.get("plot"):
         lines.append(f"figure      {p['plot']}")
     typer.echo("\n".join(lines))
+
+
+def operating_map_command(config: Path, speed: str | None, load: str | None, *, out: Path,
+                          t_max: float | None, csv: Path | None, plot: Path | None,
+                          overwrite: bool, json: bool) -> None:
+    """``map --config``: a machine's verdicts over belt speed and normal load, written to ``out``.
+
+    Every input is checked before the first run and before any file is made; the map is
+    computed in this process (one core; :data:`stickslip.sweep.operating_map.MAX_CELLS` bounds
+    it) and written once at the end.
+    """
+    from stickslip.analysis.simulation import EngineOptions
+    from stickslip.cli.machine_config import config_machine
+    from stickslip.io.lock import output_lock
+    from stickslip.sweep.grid import Axis
+    from stickslip.sweep.operating_map import MAX_CELLS, operating_map
+
+    if speed is None or load is None:
+        raise BadInput("map --config needs --speed (m/s) and --load (N) grids, e.g. "
+                       "--speed log:1e-4:0.1:40 --load 10:1000:40")
+    axes = []
+    for flag, text, unit in (("--speed", speed, "m/s"), ("--load", load, "N")):
+        try:
+            axis = Axis.parse(text, flag.lstrip("-"))
+        except ValueError as exc:
+            raise flag_error(flag, text, exc) from None
+        values = axis.values
+        if not (all(math.isfinite(x) for x in values) and min(values) > 0.0):
+            raise BadInput(f"{flag} {text!r}: every value must be positive and finite [{unit}]")
+        axes.append(axis)
+    n_cells = len(axes[0]) * len(axes[1])
+    if n_cells > MAX_CELLS:
+        raise BadInput(f"--speed x --load is {n_cells:,} operating points, more than {MAX_CELLS:,} "
+                       "(each is a full certified run); use fewer points")
+    try:
+        options = EngineOptions() if t_max is None else EngineOptions(t_max=t_max)
+    except ValueError as exc:
+        raise flag_error("--t-max", t_max, exc) from None
+    machine, _ = config_machine(config)
+    if out.suffix.lower() != ".nc":
+        raise BadInput(f"output file {str(out)!r} must end in .nc (netCDF)")
+    check_output_path(out, overwrite=overwrite, option="--out")
+    if csv is not None:
+        check_output_path(csv, overwrite=overwrite, option="--csv")
+    if plot is not None:
+        check_figure_path(plot, overwrite=overwrite)
+    enabled = not json and sys.stderr.isatty()
+    with _ProgressBar(enabled, f"map {len(axes[0])}x{len(axes[1])} (V, W)") as bar:
+        result = operating_map(machine, axes[0], axes[1], options=options,
+                               progress=lambda done: bar(done, n_cells))
+    out.parent.mkdir(parents=True, exist_ok=True)  # every check passed: writing starts
+    from stickslip.io.netcdf import write_dataset
+
+    with output_lock(out):
+        dataset = result.to_xarray()
+        write_dataset(dataset, out, overwrite=True)
+        if csv is not None:
+            dataset.to_dataframe().reset_index().to_csv(csv, index=False)
+    payload = result.to_dict()
+    payload.update({"config": str(config), "dataset": str(out),
+                    "csv": None if csv is None else str(csv), "plot": None})
+    if plot is not None:
+        payload["plot"] = str(result.plot().savefig(plot))
+    if json:
+        print_json(payload)
+        return
+    typer.echo(result.summary())
+    typer.echo(f"dataset     {out}")
 
 
 def register(app: typer.Typer) -> None:

@@ -19,10 +19,17 @@ from stickslip.cli.console import (
 from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE, OVERWRITE
 
 if TYPE_CHECKING:
+    from stickslip.cli.machine_config import ConfiguredMachine
     from stickslip.model.initial import InitialState
 
-LAM = Annotated[float, typer.Option("--lam", help="lambda = (mu_s - mu_k) W / (V sqrt(m k)) > 0")]
-ZETA = Annotated[float, typer.Option("--zeta", help="damping ratio c / (2 sqrt(m k)) >= 0")]
+LAM = Annotated[float | None, typer.Option(
+    "--lam", help="lambda = (mu_s - mu_k) W / (V sqrt(m k)) > 0 (required without --config)")]
+ZETA = Annotated[float | None, typer.Option(
+    "--zeta", help="damping ratio c / (2 sqrt(m k)) >= 0 (required without --config)")]
+CONFIG = Annotated[Path | None, typer.Option(
+    "--config", help="machine.toml in SI (the paper's m, k, c or a [structure] table, [friction]): "
+    "one run of that machine, answers in seconds and metres beside the dimensionless ones; "
+    "not with --lam, --zeta, --gamma, --dva, --k-scale, --friction")]
 T_MAX = Annotated[float, typer.Option("--t-max", help="dimensionless time horizon")]
 
 
@@ -47,8 +54,10 @@ def parse_initial(text: str, n_dof: int) -> InitialState | None:
 
 
 def simulate(
-    lam: LAM,
-    zeta: ZETA,
+    ctx: typer.Context,
+    lam: LAM = None,
+    zeta: ZETA = None,
+    config: CONFIG = None,
     gamma: GAMMA = 2.0,
     dva: DVA = "none",
     k_scale: K_SCALE = 1.0,
@@ -71,22 +80,41 @@ def simulate(
     """One simulation: certified verdict, period, amplitude, events.
 
     Example: stickslip simulate --lam 3 --zeta 0.1 --dva optimal --friction linear:0.05 --json
+
+    Your machine in SI (DESIGN.md section 10): stickslip simulate --config machine.toml --json
+    gives period_s, amplitude_m (half the peak-to-peak displacement of the contact DOF) next to
+    the dimensionless period, amplitude, lambda, zeta and gamma; --t-max and --initial stay
+    dimensionless (tau = omega_n t, displacements in V / omega_n of the contact DOF).
     """
     from stickslip.analysis.simulation import EngineOptions
     from stickslip.analysis.simulation import simulate as run_simulation
+    from stickslip.cli.machine_config import configured_machine, refuse_mix, require_dimensionless
     from stickslip.model import Slider, chain_structure
 
-    slider = Slider(lam, gamma=gamma, friction=parse_friction_option(friction))
-    check_run_limits(slider.lam, slider.gamma, max_events=max_events, plot_from=t_plot_start)
-    foundation = parse_dva(dva, zeta, k_scale)
-    structure = chain_structure(zeta, () if foundation is None else (foundation,))
+    refuse_mix(ctx, config)
+    foundation = None
+    run = None
+    if config is not None:
+        run = configured_machine(config)
+        structure, slider = run.structure, run.slider
+        check_run_limits(slider.lam, slider.gamma, max_events=max_events, plot_from=t_plot_start)
+    else:
+        require_dimensionless(lam=lam, zeta=zeta)
+        assert lam is not None and zeta is not None
+        slider = Slider(lam, gamma=gamma, friction=parse_friction_option(friction))
+        check_run_limits(slider.lam, slider.gamma, max_events=max_events, plot_from=t_plot_start)
+        foundation = parse_dva(dva, zeta, k_scale)
+        structure = chain_structure(zeta, () if foundation is None else (foundation,))
     init = parse_initial(initial, structure.n_dof)
     if plot is not None:
         check_figure_path(plot, overwrite=overwrite)
-    warn_fitted_range(dva, [zeta])
+    if config is None:
+        warn_fitted_range(dva, [zeta])
     result = run_simulation(structure, slider, initial=init,
                             options=EngineOptions(t_max=t_max, max_events=max_events))
     payload = result.to_dict()
+    if run is not None and config is not None:
+        payload.update(machine_answers(payload, run, config))
     payload["safe_disturbance_sentence"] = result.safe_disturbance.sentence()
     if foundation is not None:
         payload["foundation"] = {
@@ -102,6 +130,33 @@ def simulate(
         print_json(payload)
         return
     _print_summary(payload)
+
+
+def machine_answers(payload: dict[str, Any], run: ConfiguredMachine, config: Path) -> dict[str, Any]:
+    """The SI answers of a machine-file run, from the dimensionless ones and the scales.
+
+    ``period_s = period / omega_n`` (Eq. 17, ``tau = omega_n t``), ``amplitude_m = amplitude
+    V / omega_n`` (Eqs. 15-16: displacements are in units of ``V / omega_n``; a half
+    peak-to-peak is unchanged by the equilibrium shift), with ``omega_n = sqrt(k_ref / m_ref)``
+    of the contact DOF (:mod:`stickslip.model.machine`). No cycle: None.
+    """
+    scales = run.scales()
+
+    def times(key: str, scale: float) -> float | None:
+        value = payload.get(key)
+        return None if value is None else float(value) * scale
+
+    return {
+        "config": str(config),
+        "period_s": times("period", scales["time_scale_s"]),
+        "amplitude_m": times("amplitude", scales["length_scale_m"]),
+        "t_end_s": times("t_end", scales["time_scale_s"]),
+        "dimensionless": {**run.groups(), "period": payload.get("period"),
+                          "amplitude": payload.get("amplitude")},
+        "scales": scales,
+        "machine": run.machine.to_dict(),
+        "reduction": None if run.reduction is None else run.reduction.summary(),
+    }
 
 
 def _print_summary(p: dict[str, Any]) -> None:
@@ -126,6 +181,10 @@ def _print_summary(p: dict[str, Any]) -> None:
     if p.get("foundation"):
         f = p["foundation"]
         lines.insert(1, f"foundation  M={fmt(f['M'])}, K={fmt(f['K'])}, zeta_a={fmt(f['zeta_a'])}")
+    if p.get("config"):
+        lines.insert(1, f"machine     {p['config']}: {p['machine']['n_dof']} DOF, contact on DOF "
+                        f"{p['machine']['contact_dof']}; period {fmt(p['period_s'])} s, amplitude "
+                        f"{fmt(p['amplitude_m'])} m")
     if p.get("plot"):
         lines.append(f"figure      {p['plot']}")
     typer.echo("\n".join(lines))

@@ -1,25 +1,24 @@
-"""Reading a machine's TOML file: the ``[system]`` and ``[friction]`` tables (DESIGN.md section 8).
+"""The flat view of a machine's TOML file: its quantities and its friction law (DESIGN.md 8).
 
-``stickslip design --config`` and ``stickslip basin --config`` read the same file through
-:func:`read_machine_config`; the values are parsed by :mod:`stickslip.model.inputs`, the one
-parser the web app's fields go through as well. This module only reads files (the TOML file
-and the friction curve it names).
+The file has one reader, :func:`stickslip.io.machine_file.read_machine_file` (the
+``[structure]`` and ``[absorber]`` tables of section 10 as well); its quantities are parsed by
+:mod:`stickslip.model.inputs`, the one parser the web app's fields go through too. This module
+keeps the name ``stickslip design --config`` used before section 10: :func:`read_machine_config`
+is that reader's answer for a file of the paper's slider (``m``, ``k``, ``c``; ``m_a``, ...).
 """
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from stickslip.model.physical import PhysicalFriction, physical_friction_from_config
-from stickslip.model.units import QUANTITIES
+from stickslip.model.physical import PhysicalFriction
 
 
 @dataclass(frozen=True)
 class MachineConfig:
-    """The tables of a machine's TOML file.
+    """The flat quantities and the friction law of a machine's TOML file.
 
     Attributes
     ----------
@@ -35,39 +34,28 @@ class MachineConfig:
 
 
 def read_machine_config(path: str | Path, label: str | None = None) -> MachineConfig:
-    """Read and check a machine's TOML file.
+    """Read and check a machine's TOML file (:func:`~stickslip.io.machine_file.read_machine_file`).
 
     Parameters
     ----------
     path : path
         The TOML file; a friction curve it names (``table = "curve.csv"``) is relative to it.
     label : str, optional
-        How messages name the file (the command line passes ``"--config 'machine.toml'"``);
-        default the quoted path.
+        How messages name the file; default ``--config 'PATH'``.
+
+    Returns
+    -------
+    MachineConfig
+        Its flat quantities and friction law (a ``[structure]`` is read by
+        :meth:`~stickslip.io.machine_file.MachineFile.structure_matrices`).
 
     Raises
     ------
     ValueError
-        One line: the file does not exist or is not valid TOML, ``system`` is not a table, it
-        has unknown keys, or the ``[friction]`` table is bad
-        (:func:`stickslip.model.physical.physical_friction_from_config`).
+        One line: the file does not exist or is not valid TOML, a table is not a table, it has
+        unknown keys, or the ``[friction]`` table is bad.
     """
-    path = Path(path)
-    name = label or repr(str(path))
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise ValueError(f"{name} does not exist") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{name} is not valid TOML: {exc}") from None
-    section = data.get("system", {k: v for k, v in data.items() if k != "friction"})
-    if not isinstance(section, dict):
-        raise ValueError(f"{name}: 'system' must be a table of quantities, not {section!r}")
-    unknown = sorted(set(section) - set(QUANTITIES))
-    if unknown:
-        raise ValueError(f"{name}: unknown keys {', '.join(unknown)}")
-    if "friction" not in data:
-        return MachineConfig(dict(section))
-    return MachineConfig(dict(section), physical_friction_from_config(
-        data["friction"], base_dir=path.parent, source=f"{name}: [friction]"))
+    from stickslip.io.machine_file import read_machine_file
 
+    machine_file = read_machine_file(Path(path), label=label)
+    return MachineConfig(dict(machine_file.raw), machine_file.friction())

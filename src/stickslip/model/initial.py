@@ -100,5 +100,5 @@ def startup_state(structure: Structure, slider: Slider) -> InitialState:
             "times the structure's static deflection is not finite"
         )
     velocity = np.zeros(structure.n_dof)
-    velocity[0] = 1.0
+    velocity[structure.contact_dof] = 1.0
     return InitialState(position, velocity, STARTUP_DESCRIPTION)

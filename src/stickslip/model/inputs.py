@@ -38,6 +38,15 @@ FRICTION_FIELDS: dict[str, tuple[str, ...]] = {
     "table": (),
 }
 
+#: Keys of the ``[friction]`` table each law takes (besides ``law``); any other is refused
+#: (issue 22 point 2: a ``slope`` under ``law = "coulomb"`` is a mistake, not a no-op).
+LAW_KEYS: dict[str, frozenset[str]] = {
+    "coulomb": frozenset(),
+    "linear": frozenset({"slope"}),
+    "stribeck": frozenset({"mu_0", "stribeck_velocity", "exponent", "viscous", "tolerance"}),
+    "table": frozenset({"table"}),
+}
+
 Source = Callable[[str], str | None]
 
 
@@ -59,12 +68,12 @@ def is_given(value: Any) -> bool:
     Parameters
     ----------
     value : object
-        A raw input: a number, a text or None.
+        A field's value as given (a number, text, or ``None``).
 
     Returns
     -------
     bool
-        False for None and for an empty or blank text.
+        True when the value counts as given.
     """
     return value is not None and not (isinstance(value, str) and not value.strip())
 
@@ -80,6 +89,11 @@ def quantities_to_si(values: Mapping[str, Any], *, source: Source | None = None)
     source : callable, optional
         ``source(key)``: where the value came from, the prefix of its error message (default
         :func:`~stickslip.model.units.to_si`'s own).
+
+    Returns
+    -------
+    dict
+        Quantity name -> value in SI units, for every given value.
 
     Raises
     ------
@@ -111,19 +125,18 @@ def quantities_to_si(values: Mapping[str, Any], *, source: Source | None = None)
 def missing_system_quantities(values: Mapping[str, Any]) -> tuple[list[str], list[str]]:
     """The required system quantities not given, and the foundation ones given (if not all).
 
-    Returns ``(missing, partial_foundation)``: ``missing`` lists keys of
-    :data:`REQUIRED_QUANTITIES` without a value; ``partial_foundation`` the keys of
-    :data:`FOUNDATION_QUANTITIES` that are given when some, but not all three, are.
-
     Parameters
     ----------
     values : mapping
-        Quantity name -> raw value (as given in a TOML file, on the command line or in the app).
+        Quantity name -> value as given (:func:`is_given` decides what counts).
 
     Returns
     -------
-    tuple of (list of str, list of str)
-        ``(missing, partial_foundation)`` as described above.
+    missing : list of str
+        Keys of :data:`REQUIRED_QUANTITIES` without a value.
+    partial_foundation : list of str
+        The keys of :data:`FOUNDATION_QUANTITIES` that are given when some, but not all three,
+        are (else empty).
     """
     missing = [key for key in REQUIRED_QUANTITIES if not is_given(values.get(key))]
     given = [key for key in FOUNDATION_QUANTITIES if is_given(values.get(key))]
@@ -155,10 +168,16 @@ def friction_fields(table: Mapping[str, Any], *, source: Source | None = None,
     where : str
         Names the table in messages about the table itself (unknown keys, the law).
 
+    Returns
+    -------
+    dict
+        Keyword arguments of :class:`~stickslip.model.physical.PhysicalFriction`.
+
     Raises
     ------
     InputProblems
-        Unknown keys, a law that is not a string, and every bad value.
+        Unknown keys, keys that do not belong to the law (:data:`LAW_KEYS`), a law that is
+        not a string, and every bad value.
     ValueError
         ``table`` is not a mapping.
 
@@ -177,6 +196,13 @@ def friction_fields(table: Mapping[str, Any], *, source: Source | None = None,
     if not isinstance(law, str):
         raise InputProblems([("law", f"{where}: law = {law!r} must be a string")])
     values: dict[str, Any] = {"law": law.strip().lower()}
+    allowed = LAW_KEYS.get(values["law"])
+    if allowed is not None:
+        foreign = sorted(set(table) - allowed - {"law"})
+        if foreign:
+            raise InputProblems([(foreign[0], f"{where}: {', '.join(foreign)} = {table[foreign[0]]!r} "
+                                              f"does not belong to the {values['law']} law (its "
+                                              f"keys: {', '.join(sorted(allowed)) or 'none'})")])
     values.update(quantities_to_si({key: table[key] for key in FRICTION_QUANTITIES if key in table},
                                    source=source))
     if table_columns is not None:

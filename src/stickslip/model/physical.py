@@ -196,6 +196,11 @@ class PhysicalSystem:
                 f"mu_k={self.mu_k!r} must be smaller than mu_s={self.mu_s!r} "
                 "(stick-slip needs static friction above kinetic friction)"
             )
+        mu_0 = self.friction.mu_0
+        if self.friction.law == "stribeck" and mu_0 is not None and not self.mu_k <= mu_0 <= self.mu_s:
+            raise ValueError(f"[friction] mu_0 = {mu_0!r} must lie in [mu_k, mu_s] = "
+                             f"[{self.mu_k!r}, {self.mu_s!r}] (friction at rest between kinetic "
+                             "and static)")
 
     @property
     def m(self) -> float:

@@ -6,9 +6,15 @@ equilibrium (Eqs. 15-16),
     Mass q'' + Damping q' + Stiffness q = f,
 
 with ``f = 0`` in slip-I, ``f = (-2 gamma lambda, 0)`` in slip-II and ``xi' = 1`` in stick.
-Any number of degrees of freedom is allowed; the frictional contact is on DOF 0. The rigid
-base (1DOF) and the elastic foundation (2DOF) are presets; a chain of several foundation
-masses is obtained by passing several :class:`Foundation` stages.
+Any number of degrees of freedom is allowed; the frictional contact is on DOF
+``contact_dof`` (0 for the presets). The rigid base (1DOF) and the elastic foundation (2DOF)
+are presets; a chain of several foundation masses is obtained by passing several
+:class:`Foundation` stages.
+
+The engine keeps the contact as its first coordinate. :meth:`Structure.contact_first` is the
+one place that reorders a structure for it: a permutation is exact, so a structure given in
+any order gives the answers of its contact-first twin, and the presets (already contact
+first) are untouched.
 """
 
 from __future__ import annotations
@@ -31,7 +37,25 @@ FloatArray = NDArray[np.float64]
 MAX_MATRIX_ENTRY = 1e13
 
 
-def _matrix(name: str, value: object, n: int | None = None) -> FloatArray:
+#: Relative asymmetry accepted (then symmetrised): ``max|A - A^T| <= 1e-9 max|A|``, what a
+#: finite-element export written with 10 significant digits keeps.
+SYMMETRY_RTOL = 1e-9
+
+#: A stiffness eigenvalue at or below this fraction of the largest is a free (rigid-body)
+#: mode: the round-off of a free-free assembly is ~1e-16 of the largest, while a grounded
+#: preset at the parameter bounds (springs 1e-12 beside 1) stays above 1e-13.
+FREE_MODE_RTOL = 1e-14
+
+
+def _moving_dofs(vector: FloatArray) -> str:
+    """The DOFs that take part in a mode shape (above 1e-6 of its largest entry)."""
+    big = np.abs(vector)
+    moving = np.flatnonzero(big > 1e-6 * big.max())
+    return ", ".join(str(int(i)) for i in moving)
+
+
+def _matrix(name: str, value: object, n: int | None = None,
+            limit: float | None = MAX_MATRIX_ENTRY) -> FloatArray:
     raw = np.asarray(value)
     if raw.dtype == np.bool_:
         raise ValueError(f"{name} has boolean entries; the matrices must be real numbers")
@@ -47,62 +71,155 @@ def _matrix(name: str, value: object, n: int | None = None) -> FloatArray:
         raise ValueError(f"{name} is {a.shape[0]}x{a.shape[0]}, expected {n}x{n}")
     if not np.all(np.isfinite(a)):
         raise ValueError(f"{name} has NaN or infinite entries")
-    if np.abs(a).max() > MAX_MATRIX_ENTRY:
+    if limit is not None and np.abs(a).max() > limit:
         raise ValueError(
             f"{name} has an entry of magnitude {np.abs(a).max():.3g}, beyond the supported "
             f"{MAX_MATRIX_ENTRY:g} (the engine's products would overflow)"
         )
-    if not np.allclose(a, a.T, rtol=1e-12, atol=1e-14):
-        raise ValueError(f"{name} must be symmetric")
+    asym = float(np.abs(a - a.T).max())
+    if asym > SYMMETRY_RTOL * float(np.abs(a).max()):
+        raise ValueError(f"{name} is not symmetric: |A - A^T| reaches {asym:.3g}, beyond "
+                         f"{SYMMETRY_RTOL:g} of its largest entry")
     a = 0.5 * (a + a.T)
     a.setflags(write=False)
     return a
 
 
+def checked_matrices(mass: object, damping: object, stiffness: object, *,
+                     names: tuple[str, str, str] = ("mass matrix", "damping matrix",
+                                                    "stiffness matrix"),
+                     limit: float | None = MAX_MATRIX_ENTRY,
+                     ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """``(mass, damping, stiffness)`` as checked, symmetrised, read-only float arrays.
+
+    Square, same size, real, finite, symmetric to :data:`SYMMETRY_RTOL` (relative), entries
+    below ``limit`` (None: no bound, for matrices in SI units), then :func:`check_matrices`.
+    ``names`` label the matrices in the one-line messages (e.g. the files they came from).
+
+    Parameters
+    ----------
+    mass, damping, stiffness : array_like
+        The matrices.
+    names : tuple of str
+        Their labels in messages.
+    limit : float or None
+        Largest magnitude of an entry (None: no bound).
+
+    Returns
+    -------
+    mass, damping, stiffness : ndarray
+        Checked, symmetrised, read-only.
+    """
+    m = _matrix(names[0], mass, limit=limit)
+    n = m.shape[0]
+    c = _matrix(names[1], damping, n, limit=limit)
+    k = _matrix(names[2], stiffness, n, limit=limit)
+    check_matrices(m, c, k)
+    return m, c, k
+
+
+def check_matrices(mass: FloatArray, damping: FloatArray, stiffness: FloatArray) -> None:
+    """Refuse matrices the engine cannot take, with one line saying which and why.
+
+    ``mass`` positive definite; ``stiffness`` positive semi-definite *and* grounded: a null
+    vector of ``stiffness`` is a free rigid-body mode (the structure would drift away under
+    the friction force), refused naming the DOFs that move in it; ``damping`` positive
+    semi-definite. The matrices are already square, symmetric and finite (``_matrix``).
+
+    Parameters
+    ----------
+    mass, damping, stiffness : ndarray
+        Square, symmetric, finite matrices.
+
+    Returns
+    -------
+    None
+        Raises ``ValueError`` (one line) for a matrix the engine cannot take.
+    """
+    m_eig = np.linalg.eigvalsh(mass)
+    if m_eig.min() <= 0.0:
+        raise ValueError(f"mass matrix must be positive definite (every mass > 0): its smallest "
+                         f"eigenvalue is {m_eig.min():.3g}")
+    k_eig, k_vec = np.linalg.eigh(stiffness)
+    k_top = max(float(np.abs(k_eig).max()), np.finfo(float).tiny)
+    if k_eig.min() < -FREE_MODE_RTOL * k_top:
+        raise ValueError(f"stiffness matrix is not positive semi-definite: eigenvalue "
+                         f"{k_eig.min():.3g} < 0 (its mode moves DOFs {_moving_dofs(k_vec[:, 0])})")
+    if k_eig.min() <= FREE_MODE_RTOL * k_top:
+        raise ValueError(f"the structure is not grounded: a free rigid-body mode (zero stiffness) "
+                         f"moves DOFs {_moving_dofs(k_vec[:, 0])}; add a spring to the ground")
+    scale = max(1.0, float(np.abs(damping).max()))
+    if np.linalg.eigvalsh(damping).min() < -1e-12 * scale:
+        raise ValueError("damping matrix must be positive semi-definite (dampers >= 0)")
+
+
 @dataclass(frozen=True)
 class Structure:
-    """Dimensionless mass, damping and stiffness matrices with the contact on DOF 0.
+    """Dimensionless mass, damping and stiffness matrices with the contact on ``contact_dof``.
 
     Parameters
     ----------
     mass, damping, stiffness : array_like, shape (n, n)
-        Symmetric matrices. ``mass`` and ``stiffness`` must be positive definite (the
-        structure is anchored), ``damping`` positive semi-definite. Dimensionless: masses
-        are referred to ``m``, stiffnesses to ``k``, damping to ``sqrt(m k)``.
+        Symmetric matrices. ``mass`` must be positive definite, ``stiffness`` positive
+        definite (the structure is grounded: no free rigid-body mode), ``damping`` positive
+        semi-definite. Dimensionless: masses are referred to ``m``, stiffnesses to ``k``,
+        damping to ``sqrt(m k)`` (for a machine: ``m = M[c, c]``, ``k = K[c, c]`` of the
+        contact DOF ``c``, see :class:`stickslip.model.machine.Machine`).
     name : str
         A label used in plots and output files.
+    contact_dof : int
+        Index of the degree of freedom the belt rubs (0-based; 0 for every preset).
     """
 
     mass: FloatArray
     damping: FloatArray
     stiffness: FloatArray
     name: str = field(default="structure", compare=False)
+    contact_dof: int = 0
 
     def __post_init__(self) -> None:
-        mass = _matrix("mass matrix", self.mass)
+        mass, damping, stiffness = checked_matrices(self.mass, self.damping, self.stiffness)
         n = mass.shape[0]
-        damping = _matrix("damping matrix", self.damping, n)
-        stiffness = _matrix("stiffness matrix", self.stiffness, n)
-        if np.linalg.eigvalsh(mass).min() <= 0.0:
-            raise ValueError("mass matrix must be positive definite (every mass > 0)")
-        if np.linalg.eigvalsh(stiffness).min() <= 0.0:
-            raise ValueError("stiffness matrix must be positive definite (every spring > 0)")
-        scale = max(1.0, float(np.abs(damping).max()))
-        if np.linalg.eigvalsh(damping).min() < -1e-12 * scale:
-            raise ValueError("damping matrix must be positive semi-definite (dampers >= 0)")
+        cd = self.contact_dof
+        if isinstance(cd, bool) or not isinstance(cd, (int, np.integer)) or not 0 <= cd < n:
+            raise ValueError(f"contact_dof={cd!r} must be a whole number from 0 to {n - 1} "
+                             f"(the structure has {n} degrees of freedom)")
+        object.__setattr__(self, "contact_dof", int(cd))
         object.__setattr__(self, "mass", mass)
         object.__setattr__(self, "damping", damping)
         object.__setattr__(self, "stiffness", stiffness)
 
+    def contact_first(self) -> tuple[Structure, NDArray[np.int64]]:
+        """The same structure with its contact DOF moved to position 0, and the permutation.
+
+        Returns
+        -------
+        structure : Structure
+            ``mass[perm][:, perm]`` etc. with ``contact_dof = 0``: the engine's ordering.
+            ``self`` itself when the contact is already first (the presets), so their
+            answers cannot move.
+        perm : ndarray of int, shape (n,)
+            ``perm[i]`` is the user's DOF at engine position ``i``: the contact first, the
+            others in their order. A per-DOF vector ``x`` in the user's order is
+            ``x[perm]`` in the engine's; back with ``y[np.argsort(perm)]``
+            (:func:`to_user_order`).
+        """
+        n, c = self.n_dof, self.contact_dof
+        perm = np.array([c] + [i for i in range(n) if i != c], dtype=np.int64)
+        if c == 0:
+            return self, perm
+        ix = np.ix_(perm, perm)
+        return Structure(self.mass[ix], self.damping[ix], self.stiffness[ix], name=self.name), perm
+
     @property
     def zeta(self) -> float:
-        """Primary damping ratio ``zeta = c / (2 sqrt(m k))``: half the damping on DOF 0.
+        """Primary damping ratio ``zeta = c / (2 sqrt(m k))``: half the damping on the contact DOF.
 
-        ``C_00 / 2`` counts every damper attached to the slider; for the paper's structures
+        ``C_cc / 2`` counts every damper attached to the slider; for the paper's structures
         (:func:`chain_structure`) that is the slider's own damper ``c``. This is the one place
         ``zeta`` lives: every result reads it from here.
         """
-        return 0.5 * float(self.damping[0, 0])
+        return 0.5 * float(self.damping[self.contact_dof, self.contact_dof])
 
     @property
     def n_dof(self) -> int:
@@ -110,14 +227,54 @@ class Structure:
         return int(self.mass.shape[0])
 
     def kinetic_equilibrium_offset(self) -> FloatArray:
-        """Displacement of each DOF per unit force on DOF 0: ``Stiffness^-1 e_0``.
+        """Displacement of each DOF per unit force on the contact DOF: ``Stiffness^-1 e_c``.
 
         The shift of Eqs. (15)-(16) is ``gamma lambda`` times this vector: the deflection
         under the kinetic friction force ``mu_k W`` in units of ``V / omega_n``.
         """
         e0 = np.zeros(self.n_dof)
-        e0[0] = 1.0
+        e0[self.contact_dof] = 1.0
         return np.asarray(np.linalg.solve(self.stiffness, e0), dtype=np.float64)
+
+
+def state_permutation(perm: NDArray[np.int64]) -> NDArray[np.int64]:
+    """The permutation of a state ``(q, q')`` of ``2n`` entries from a DOF permutation ``perm``.
+
+    Parameters
+    ----------
+    perm : ndarray of int, shape (n,)
+        DOF permutation (:meth:`Structure.contact_first`).
+
+    Returns
+    -------
+    ndarray of int, shape (2n,)
+        ``perm`` for the positions, then for the velocities.
+    """
+    return np.concatenate([perm, perm + perm.size])
+
+
+def to_user_order(values: FloatArray, perm: NDArray[np.int64], axis: int = -1) -> FloatArray:
+    """Per-DOF (``n``) or per-state (``2n``) values along ``axis`` back from engine order.
+
+    The inverse of indexing with ``perm`` (or :func:`state_permutation` of it).
+
+    Parameters
+    ----------
+    values : ndarray
+        Values in the engine's order along ``axis`` (``n`` or ``2n`` long there).
+    perm : ndarray of int
+        DOF permutation (:meth:`Structure.contact_first`).
+    axis : int
+        The axis to reorder.
+
+    Returns
+    -------
+    ndarray
+        The values in the user's order.
+    """
+    a = np.asarray(values)
+    p = perm if a.shape[axis] == perm.size else state_permutation(perm)
+    return np.take(a, np.argsort(p), axis=axis)
 
 
 def chain_structure(zeta: float, foundations: Sequence[Foundation] = ()) -> Structure:

@@ -35,6 +35,19 @@ FRICTION_QUANTITIES: dict[str, tuple[str, str, str]] = {
     "tolerance": ("", "", "Stribeck law: law approximation error in units of lambda"),
 }
 
+#: Quantities of the ``[structure]`` and ``[absorber]`` tables (DESIGN.md section 10): the unit
+#: of each matrix's entries, modal data and the absorber.
+STRUCTURE_QUANTITIES: dict[str, tuple[str, str, str]] = {
+    "mass": ("[mass]", "kg", "mass matrix entries"),
+    "stiffness": ("[force] / [length]", "N/m", "stiffness matrix entries"),
+    "damping": ("[force] * [time] / [length]", "N s/m", "damping matrix entries"),
+    "frequency": ("1 / [time]", "Hz", "natural frequency"),
+    "mode_shape": ("1 / [mass] ** 0.5", "kg**-0.5", "mass-normalised mode shape value"),
+    "rayleigh_alpha": ("1 / [time]", "1/s", "Rayleigh damping alpha of C = alpha M + beta K"),
+    "rayleigh_beta": ("[time]", "s", "Rayleigh damping beta of C = alpha M + beta K"),
+    "absorber_mass": ("[mass]", "kg", "absorber mass"),
+}
+
 
 @lru_cache(maxsize=1)
 def _registry() -> Any:
@@ -95,7 +108,8 @@ def to_si(name: str, value: str | float | int, *, source: str | None = None) -> 
     float
         The value in SI units.
     """
-    dim, si_unit, what = QUANTITIES[name] if name in QUANTITIES else FRICTION_QUANTITIES[name]
+    table = next(t for t in (QUANTITIES, FRICTION_QUANTITIES, STRUCTURE_QUANTITIES) if name in t)
+    dim, si_unit, what = table[name]
     flag = source or f"--{name.replace('_', '-')}"
     if isinstance(value, bool) or not isinstance(value, (int, float, str)):
         raise ValueError(f"{flag} {value!r} is not a number or a quantity string such as '2 kg'")
@@ -117,8 +131,9 @@ def to_si(name: str, value: str | float | int, *, source: str | None = None) -> 
                 if not quantity.dimensionless:
                     raise ValueError(f"{flag} {text!r} must be dimensionless ({what})")
                 number = float(quantity.to("dimensionless").magnitude)
-            elif quantity.dimensionless:
-                number = float(quantity.to("dimensionless").magnitude)
+            elif quantity.dimensionless:  # "3 percent" for a mass: a unit, and the wrong one
+                raise ValueError(f"{flag} {text!r} has a dimensionless unit, but the {what} is "
+                                 f"in {si_unit}: give it in {si_unit} (or a bare number, taken as SI)")
             elif not quantity.check(dim):
                 raise ValueError(
                     f"{flag} {text!r} has the wrong unit for the {what}: expected {si_unit} "

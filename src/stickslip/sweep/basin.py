@@ -289,6 +289,10 @@ class BasinSystem:
     @classmethod
     def prepare(cls, structure: Structure, slider: Slider) -> BasinSystem:
         """The arrays of ``structure`` and the band table of ``slider.friction``."""
+        if structure.contact_dof != 0:  # states and box columns are in the contact-first order
+            raise ValueError(f"basin sampling needs the contact on DOF 0 (this structure has it on "
+                             f"DOF {structure.contact_dof}): pass structure.contact_first()[0] and "
+                             "states in that order")
         edges, intercepts, slopes = slider.friction.bands(slider.lam, slider.gamma)
         return cls(structure.mass, structure.damping, structure.stiffness, float(slider.lam),
                    float(slider.gamma), edges, intercepts, slopes)

@@ -1,0 +1,348 @@
+"""Which absorber fixes my machine: tuning an absorber of given mass on any structure (issue 18.4).
+
+An absorber of mass ``m_a`` (kg) is placed on the machine in one of two ways
+(:meth:`stickslip.model.machine.Machine.with_absorber` / :func:`mounted_on_foundation`):
+
+* on DOF ``attach_dof`` (a tuned-mass damper hanging from that DOF by ``k_a``, ``c_a``);
+* as the machine's foundation (``attach_dof = None``): every spring and dashpot the structure
+  has to the ground now ends on the absorber mass, which sits on ``k_a``, ``c_a`` to the
+  ground. For the paper's slider this *is* the paper's elastic foundation (Fig. 1), so on
+  the 1DOF machine both objectives below are today's tuning problems.
+
+Two objectives over ``(k_a, c_a)`` (searched in the dimensionless ``k_a / k_ref`` and
+``c_a / sqrt(m_ref k_ref)`` of the machine's contact scaling, :mod:`stickslip.model.machine`):
+
+(a) ``hinf``: minimise the peak receptance at the contact, ``max_w |H_cc(w)|`` (the paper's
+    H-infinity criterion, Section 3.1, generalised), with the exact peak search of
+    :mod:`stickslip.analysis.frequency_response` and the minimax optimiser of
+    :func:`stickslip.analysis.tuning.minimise_peak`. Starts: Den Hartog's tuning on the mode
+    with the largest receptance peak at the contact (``phi_c^2 / (2 zeta_r w_r^2)``), i.e. the
+    mode that stick-slips, seen from the absorber's DOF.
+(b) ``stick-slip``: maximise the simulated onset ``lambda_c`` of stick-slip (Coulomb law, from
+    the start-up state, :func:`stickslip.analysis.critical.lowest_onset`): the critical belt
+    speed ``V_c`` below which the machine stick-slips is then the lowest (the stick-slip-free
+    range of speeds the widest), and the critical load ``W_c`` above which it stick-slips
+    the highest. Nelder-Mead from the H-infinity optimum (the objective is piecewise
+    constant at the scale of the onset's tolerance: a good design, not a certified optimum).
+
+Each result reports the critical speed and load without and with the absorber.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from stickslip.analysis.critical import lowest_onset
+from stickslip.analysis.frequency_response import response_peak
+from stickslip.analysis.simulation import simulate
+from stickslip.model.machine import Machine
+
+FloatArray = NDArray[np.float64]
+
+#: Scan limits of the onset search, dimensionless lambda.
+LAM_MIN, LAM_MAX = 0.01, 200.0
+
+
+def mounted_on_foundation(machine: Machine, mass: float, stiffness: float, damping: float) -> Machine:
+    """The machine on a foundation mass (kg) with ``stiffness`` (N/m), ``damping`` (N s/m) to ground.
+
+    The ground springs of the structure are the row sums ``g = K 1`` (for a lumped model, the
+    spring from each DOF to the ground); they now join each DOF to the new last DOF ``x_f``:
+    ``K' = [[K, -g], [-g', 1'K1 + k_f]]`` (and the same for the damping). For the paper's
+    slider (``K = [k]``) this is Fig. 1: ``[[k, -k], [-k, k + k_a]]``.
+
+    Parameters
+    ----------
+    machine : Machine
+        The structure in SI.
+    mass, stiffness, damping : float
+        Foundation mass (kg), its spring (N/m) and dashpot (N s/m) to the ground.
+
+    Returns
+    -------
+    Machine
+        The machine with the foundation as its last DOF.
+    """
+    from stickslip.model._validate import non_negative, positive
+
+    n = machine.n_dof
+    mats = []
+    for matrix, value in ((machine.stiffness, positive("absorber stiffness", stiffness)),
+                          (machine.damping, non_negative("absorber damping", damping))):
+        g = matrix.sum(axis=1)
+        big = np.zeros((n + 1, n + 1))
+        big[:n, :n] = matrix
+        big[:n, n] = -g
+        big[n, :n] = -g
+        big[n, n] = g.sum() + value
+        mats.append(big)
+    mass_matrix = np.zeros((n + 1, n + 1))
+    mass_matrix[:n, :n] = machine.mass
+    mass_matrix[n, n] = positive("absorber mass", mass)
+    return replace(machine, mass=mass_matrix, stiffness=mats[0], damping=mats[1],
+                   name=f"{machine.name} on a foundation")
+
+
+def with_absorber(machine: Machine, mass: float, stiffness: float, damping: float,
+                  attach_dof: int | None) -> Machine:
+    """The machine with the absorber on ``attach_dof``, or mounted on it (``None``).
+
+    Parameters
+    ----------
+    machine : Machine
+        The structure in SI.
+    mass, stiffness, damping : float
+        Absorber mass (kg), spring (N/m) and dashpot (N s/m).
+    attach_dof : int or None
+        The DOF it hangs on (:meth:`Machine.with_absorber`); None mounts the machine on it
+        (:func:`mounted_on_foundation`).
+
+    Returns
+    -------
+    Machine
+        The machine with the absorber as its last DOF.
+    """
+    if attach_dof is None:
+        return mounted_on_foundation(machine, mass, stiffness, damping)
+    return machine.with_absorber(mass, stiffness, damping, attach_dof)
+
+
+@dataclass(frozen=True)
+class CriticalPoint:
+    """Critical ``lambda`` (dimensionless), belt speed (m/s) and load (N) of one machine."""
+
+    lam: float
+    speed: float
+    load: float
+
+    @classmethod
+    def of(cls, machine: Machine) -> CriticalPoint:
+        """Onset of stick-slip of ``machine``: ``lambda_c`` in its own contact scaling, SI values.
+
+        The verdict at a belt speed does not depend on the scaling, so ``V_c`` and ``W_c``
+        of machines with different ``m_ref``, ``k_ref`` (an absorber on the contact DOF) are
+        comparable; their ``lambda_c`` are not.
+        """
+        structure = machine.structure()
+        lam = lowest_onset(structure, gamma=machine.slider().gamma, lam_min=LAM_MIN,
+                           lam_max=LAM_MAX, rtol=1e-6)
+        if not math.isfinite(lam):
+            return cls(lam, 0.0, math.inf)
+        return cls(lam, machine.speed_for_lambda(lam), machine.load_for_lambda(lam))
+
+    def to_dict(self) -> dict[str, Any]:
+        """``lambda_c``, ``critical_speed_m_per_s``, ``critical_load_N`` (None when infinite)."""
+        def num(x: float) -> float | None:
+            return float(x) if math.isfinite(x) else None
+
+        return {"lambda_c": num(self.lam), "critical_speed_m_per_s": num(self.speed),
+                "critical_load_N": num(self.load)}
+
+
+@dataclass(frozen=True)
+class AbsorberDesign:
+    """One tuned absorber: parameters (SI and dimensionless), its objective and critical point."""
+
+    objective: str
+    mass: float
+    stiffness: float
+    damping: float
+    attach_dof: int | None
+    peak_receptance: float
+    critical: CriticalPoint
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready with units in the key names."""
+        return {"objective": self.objective, "mass_kg": self.mass, "stiffness_N_per_m": self.stiffness,
+                "damping_N_s_per_m": self.damping,
+                "attach": "foundation" if self.attach_dof is None else self.attach_dof,
+                "peak_receptance_m_per_N": self.peak_receptance, **self.critical.to_dict()}
+
+
+@dataclass(frozen=True)
+class MachineDesign:
+    """Verdict at the operating point, critical speed and load, and the absorbers (issue 18).
+
+    Attributes
+    ----------
+    machine : Machine
+    verdict : str
+        Certified verdict of one run at the operating point (file's friction law).
+    period_s, amplitude_m : float
+        Of the stick-slip cycle (NaN otherwise); amplitude = half the peak-to-peak of the
+        contact DOF over one cycle, in metres.
+    peak_receptance : float
+        ``max |H_cc|`` of the bare machine, m/N.
+    critical : CriticalPoint
+        Onset of stick-slip without absorber (Coulomb law).
+    absorbers : tuple of AbsorberDesign
+        The H-infinity and the stick-slip optimum (empty without ``[absorber]``).
+    """
+
+    machine: Machine
+    verdict: str
+    period_s: float
+    amplitude_m: float
+    certificate: str
+    peak_receptance: float
+    critical: CriticalPoint
+    absorbers: tuple[AbsorberDesign, ...] = field(default=())
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready report (SI units in the key names, dimensionless numbers beside them)."""
+        def num(x: float) -> float | None:
+            return float(x) if math.isfinite(x) else None
+
+        sl = self.machine.slider()
+        return {"machine": self.machine.to_dict(), "verdict": self.verdict,
+                "certificate": self.certificate, "period_s": num(self.period_s),
+                "amplitude_m": num(self.amplitude_m), "lambda": sl.lam, "gamma": sl.gamma,
+                "zeta": self.machine.structure().zeta,
+                "peak_receptance_m_per_N": self.peak_receptance,
+                "critical": self.critical.to_dict(),
+                "critical_speed": num(self.critical.speed), "critical_load": num(self.critical.load),
+                "absorbers": [a.to_dict() for a in self.absorbers]}
+
+    def summary(self) -> str:
+        """Plain-text report."""
+        c = self.critical
+        lines = [self.machine.summary(),
+                 f"at V={self.machine.speed:.4g} m/s, W={self.machine.load:.4g} N: {self.verdict}"
+                 + (f" (period {self.period_s:.4g} s, amplitude {self.amplitude_m:.4g} m)"
+                    if math.isfinite(self.period_s) else ""),
+                 f"stick-slip below V_c={c.speed:.4g} m/s / above W_c={c.load:.4g} N "
+                 f"(lambda_c={c.lam:.4g}); peak receptance {self.peak_receptance:.4g} m/N"]
+        for a in self.absorbers:
+            lines.append(f"absorber ({a.objective}): m_a={a.mass:.4g} kg, k_a={a.stiffness:.4g} N/m, "
+                         f"c_a={a.damping:.4g} N s/m -> V_c={a.critical.speed:.4g} m/s, "
+                         f"W_c={a.critical.load:.4g} N, peak {a.peak_receptance:.4g} m/N")
+        return "\n".join(lines)
+
+
+def _peak_si(machine: Machine) -> float:
+    """``max |H_cc|`` in m/N: the dimensionless peak over ``k_ref``."""
+    return float(response_peak(machine.structure()).h_max) / machine.reference_stiffness
+
+
+def _den_hartog_start(machine: Machine, mass: float, attach_dof: int | None) -> tuple[float, float]:
+    """Den Hartog's ``(k_a, c_a)`` (SI) on the mode with the largest receptance peak at the contact.
+
+    Mode ``r`` (mass-normalised ``phi``) seen from the absorber's DOF has the modal mass
+    ``1 / phi_a^2`` (for the foundation placement: the mass of the whole machine); with
+    ``mu = m_a / m_r``: ``f = 1 / (1 + mu)``, ``zeta_a = sqrt(3 mu / (8 (1 + mu)^3))``.
+    """
+    from scipy.linalg import eigh
+
+    w2, phi = eigh(machine.stiffness, machine.mass)
+    w = np.sqrt(np.maximum(w2, 0.0))
+    modal_c = np.einsum("ir,ij,jr->r", phi, machine.damping, phi)
+    zeta = np.maximum(modal_c / (2.0 * np.maximum(w, 1e-300)), 1e-6)
+    c = machine.contact_dof
+    r = int(np.argmax(phi[c] ** 2 / (2.0 * zeta * w2)))
+    m_r = float(np.trace(machine.mass)) if attach_dof is None else 1.0 / max(phi[attach_dof, r] ** 2, 1e-300)
+    mu = mass / m_r
+    f = 1.0 / (1.0 + mu)
+    zeta_a = math.sqrt(3.0 * mu / (8.0 * (1.0 + mu) ** 3))
+    w_a = f * float(w[r])
+    return mass * w_a**2, 2.0 * zeta_a * mass * w_a
+
+
+def tune_machine_absorber(machine: Machine, mass: float, attach_dof: int | None, *,
+                          stick_slip: bool = True, maxiter: int = 40) -> tuple[AbsorberDesign, ...]:
+    """The H-infinity optimum and (if ``stick_slip``) the stick-slip optimum, module docstring.
+
+    Parameters
+    ----------
+    machine : Machine
+        The structure in SI with its contact and operating point.
+    mass : float
+        Absorber mass, kg.
+    attach_dof : int or None
+        The DOF the absorber hangs on; None mounts the machine on it.
+    stick_slip : bool
+        Also search the absorber that maximises the critical speed (many simulations).
+    maxiter : int
+        Iterations of the stick-slip search.
+
+    Returns
+    -------
+    tuple of AbsorberDesign
+        ``hinf`` first, then (with ``stick_slip``) the stick-slip optimum.
+    """
+    from scipy.optimize import minimize
+
+    from stickslip.analysis.peak_minimiser import minimise_peak
+
+    m_ref, k_ref = machine.reference_mass, machine.reference_stiffness
+    c_scale = math.sqrt(m_ref * k_ref)
+
+    def build_si(x: FloatArray) -> Machine:
+        return with_absorber(machine, mass, float(x[0]) * k_ref, float(x[1]) * c_scale, attach_dof)
+
+    k0, c0 = _den_hartog_start(machine, mass, attach_dof)
+    x0 = np.array([k0 / k_ref, c0 / c_scale])
+    starts = [x0, x0 * np.array([1.0, 3.0]), x0 * np.array([1.0, 1.0 / 3.0])]
+    bounds = [(x0[0] * 1e-3, x0[0] * 1e3), (x0[1] * 1e-3, x0[1] * 1e3)]
+    scale = (m_ref, k_ref)  # one unit of receptance for every candidate: 1 / k_ref of the bare machine
+    best = minimise_peak(lambda x: build_si(x).structure(scale), starts, bounds)
+    x_h = np.asarray(best.params, dtype=np.float64)
+    hinf_machine = build_si(x_h)
+    designs = [AbsorberDesign("hinf", mass, float(x_h[0]) * k_ref, float(x_h[1]) * c_scale, attach_dof,
+                              _peak_si(hinf_machine), CriticalPoint.of(hinf_machine))]
+    if stick_slip:
+        def objective(y: FloatArray) -> float:
+            x = np.exp(np.clip(y, np.log([b[0] for b in bounds]), np.log([b[1] for b in bounds])))
+            m = build_si(x)
+            lam = lowest_onset(m.structure(scale), gamma=m.slider().gamma, lam_min=LAM_MIN,
+                               lam_max=LAM_MAX, rtol=1e-4)
+            return -lam  # lambda_c in the bare machine's scaling: V_c = dmu W / (lam sqrt(m k))
+
+        y0 = np.log(x_h)
+        res = minimize(objective, y0, method="Nelder-Mead",
+                       options={"maxiter": maxiter, "xatol": 1e-3, "fatol": 1e-5,
+                                "initial_simplex": [y0, y0 + np.array([0.2, 0.0]),
+                                                    y0 + np.array([0.0, 0.4])]})
+        y = res.x if res.fun <= objective(y0) else y0
+        x_s = np.exp(y)
+        ss_machine = build_si(x_s)
+        designs.append(AbsorberDesign("stick-slip", mass, float(x_s[0]) * k_ref,
+                                      float(x_s[1]) * c_scale, attach_dof, _peak_si(ss_machine),
+                                      CriticalPoint.of(ss_machine)))
+    return tuple(designs)
+
+
+def design_machine(machine: Machine, absorber_mass: float | None = None,
+                   attach_dof: int | None = None, *, stick_slip: bool = True) -> MachineDesign:
+    """Verdict at the operating point, critical speed and load, and the tuned absorbers.
+
+    Parameters
+    ----------
+    machine : Machine
+        The structure in SI with its contact and operating point.
+    absorber_mass : float, optional
+        Absorber mass, kg; no absorber design without it.
+    attach_dof : int or None
+        The DOF the absorber hangs on; None mounts the machine on it (the paper's foundation).
+    stick_slip : bool
+        Also find the stick-slip optimum (many simulations).
+
+    Returns
+    -------
+    MachineDesign
+        Verdict, period and amplitude in SI, critical point and absorbers.
+    """
+    structure, slider = machine.to_dimensionless()
+    run = simulate(structure, slider, record=False)
+    ref = machine.reference_system()
+    period = run.period * ref.time_scale
+    amplitude = run.amplitude * ref.length_scale
+    absorbers: tuple[AbsorberDesign, ...] = ()
+    if absorber_mass is not None:
+        absorbers = tune_machine_absorber(machine, absorber_mass, attach_dof, stick_slip=stick_slip)
+    return MachineDesign(machine, run.verdict.value, period, amplitude, run.certificate,
+                         _peak_si(machine), CriticalPoint.of(machine), absorbers)

@@ -1,0 +1,158 @@
+"""The web app's "your machine" page: a machine file with its matrices, or modes typed in.
+
+Issue 18 point 3: the app takes the machine the command line takes. Either the machine TOML
+and the matrix files it names are uploaded together (they are written to a temporary folder and
+read by :func:`stickslip.io.machine_file.read_machine_file`, the one reader, so every check and
+message is the command line's), or the modes from a modal test are typed (frequencies in Hz,
+damping ratios, mass-normalised mode-shape values at the contact in 1/sqrt(kg)) with the
+operating point; the typed fields become a ``[structure]`` ``modes`` table read by the same
+reader. The answers are :func:`stickslip.analysis.machine_absorber.design_machine`'s.
+"""
+
+from __future__ import annotations
+
+import tempfile
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+#: The typed modal machine's fields: key -> (label, default).
+MODE_INPUTS: dict[str, tuple[str, str]] = {
+    "frequencies": ("Natural frequencies [Hz], comma-separated", "55, 150"),
+    "damping_ratios": ("Damping ratios, comma-separated", "0.03, 0.02"),
+    "shapes": ("Mode shapes at the contact [1/sqrt(kg)], mass-normalised", "0.07, 0.03"),
+    "mu_s": ("Static friction coefficient mu_s", "0.15"),
+    "mu_k": ("Kinetic friction coefficient mu_k", "0.10"),
+    "load": ("Normal load W", "2600 N"),
+    "speed": ("Belt speed V", "0.5 mm/s"),
+}
+
+
+def _toml_value(text: str) -> str:
+    """A typed value as TOML: a number stays a number, anything else a quoted string."""
+    try:
+        return repr(float(text))
+    except ValueError:
+        return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def _number_list(text: str, label: str) -> str:
+    items = [item.strip() for item in str(text).split(",") if item.strip()]
+    if not items:
+        raise ValueError(f"{label}: give at least one number")
+    try:
+        return "[" + ", ".join(repr(float(item)) for item in items) + "]"
+    except ValueError:
+        raise ValueError(f"{label}: {text!r} is not a comma-separated list of numbers") from None
+
+
+def modes_machine_toml(raw: Mapping[str, str]) -> str:
+    """The machine TOML of the typed modes and operating point (:data:`MODE_INPUTS`)."""
+    lines = [f"{key} = {_toml_value(str(raw.get(key, '')).strip())}"
+             for key in ("mu_s", "mu_k", "load", "speed")]
+    modes = ", ".join(f"{key} = {_number_list(raw.get(key, ''), MODE_INPUTS[key][0])}"
+                      for key in ("frequencies", "damping_ratios", "shapes"))
+    return "\n".join([*lines, "", "[structure]", 'name = "modal model"', f"modes = {{{modes}}}", ""])
+
+
+def machine_from_files(files: Mapping[str, bytes], toml_name: str | None = None) -> tuple[Any, Any, Any]:
+    """``(machine, absorber, reduction)`` of uploaded files: one ``.toml`` and what it names.
+
+    Parameters
+    ----------
+    files : mapping
+        File name -> content. The names are the base names the TOML refers to.
+    toml_name : str, optional
+        Which file is the machine TOML (default: the one ``.toml`` among them).
+
+    Returns
+    -------
+    machine, absorber, reduction
+        :class:`~stickslip.model.machine.Machine`, the ``[absorber]`` (or None) and the
+        reduction of a large model (or None).
+
+    Raises
+    ------
+    ValueError
+        One line: no or several TOML files, or the reader's message (which names the file).
+    """
+    from stickslip.io.machine_file import machine_from_file, read_machine_file
+    from stickslip.model.inputs import quantities_to_si
+
+    if toml_name is None:
+        tomls = [name for name in files if name.lower().endswith(".toml")]
+        if len(tomls) != 1:
+            raise ValueError(f"upload exactly one machine .toml file with its matrices "
+                             f"(got {len(tomls)})")
+        toml_name = tomls[0]
+    with tempfile.TemporaryDirectory(prefix="stickslip-machine-") as folder:
+        for name, content in files.items():
+            (Path(folder) / Path(name).name).write_bytes(content)
+        machine_file = read_machine_file(Path(folder) / Path(toml_name).name,
+                                         label=f"machine file {Path(toml_name).name!r}")
+        if not machine_file.has_structure:
+            raise ValueError(f"machine file {toml_name!r} has no [structure] table: the paper's "
+                             "slider is entered on the main page")
+        values = quantities_to_si({key: machine_file.raw.get(key)
+                                   for key in ("mu_s", "mu_k", "load", "speed")},
+                                  source=lambda key: f"machine file {toml_name!r}: {key} =")
+        missing = [key for key in ("mu_s", "mu_k", "load", "speed") if key not in values]
+        if missing:
+            raise ValueError(f"machine file {toml_name!r} lacks {', '.join(missing)}")
+        machine, reduction = machine_from_file(machine_file, values)
+        absorber = machine_file.absorber()
+    return machine, absorber, reduction
+
+
+def machine_design(machine: Any, absorber: Any, reduction: Any, *, stick_slip: bool = False) -> Any:
+    """The design report of the machine (:func:`~stickslip.analysis.machine_absorber.design_machine`)."""
+    from stickslip.analysis.machine_absorber import design_machine
+
+    attach = None
+    if absorber is not None and absorber.attach_dof is not None:
+        attach = (absorber.attach_dof if reduction is None
+                  else reduction.kept_dofs.index(absorber.attach_dof))
+    return design_machine(machine, None if absorber is None else absorber.mass, attach,
+                          stick_slip=stick_slip)
+
+
+def show_machine_page() -> None:
+    """Lay out the "your machine" page (Streamlit)."""
+    import streamlit as st
+
+    from stickslip.plot.operating import machine_modes_plot
+
+    st.title("Your machine: any linear structure, the contact on any DOF")
+    st.caption("Upload the machine TOML of 'stickslip design --config' with the matrix files it "
+               "names (.mtx, .npy, .csv), or type the modes of a modal test at the contact.")
+    source = st.radio("Structure from", ("typed modes", "uploaded files"), key="machine_source",
+                      horizontal=True)
+    try:
+        if source == "uploaded files":
+            uploads = st.file_uploader("Machine file and matrices", accept_multiple_files=True,
+                                       type=["toml", "mtx", "npy", "csv"], key="machine_files")
+            if not uploads:
+                st.info("Nothing is computed until the machine .toml and its files are uploaded.")
+                return
+            machine, absorber, reduction = machine_from_files(
+                {str(u.name): u.getvalue() for u in uploads})
+        else:
+            raw = {key: st.text_input(label, value=default, key=f"machine_{key}")
+                   for key, (label, default) in MODE_INPUTS.items()}
+            with tempfile.TemporaryDirectory(prefix="stickslip-modes-") as folder:
+                path = Path(folder) / "modes.toml"
+                path.write_text(modes_machine_toml(raw), encoding="utf-8")
+                machine, absorber, reduction = machine_from_files({path.name: path.read_bytes()})
+        report = machine_design(machine, absorber, reduction)
+    except ValueError as exc:
+        st.error(" ".join(str(exc).split()))
+        return
+    payload = report.to_dict()
+    st.subheader("Verdict at the operating point")
+    st.text(report.summary())
+    if reduction is not None:
+        st.caption(reduction.summary())
+    st.pyplot(machine_modes_plot(machine).figure)
+    st.download_button("Design report (JSON)", __import__("json").dumps(payload, indent=2, default=str),
+                       file_name="stickslip-machine.json", mime="application/json",
+                       key="download_machine_json")

@@ -1,0 +1,349 @@
+"""The machine TOML file (DESIGN.md sections 8 and 10): the one reader, for every command and the app.
+
+Layout::
+
+    mu_s = 0.5            # top level (or in a [system] table, the old layout)
+    mu_k = 0.3
+    load = "500 N"
+    speed = "5 cm/s"
+    m = "2 kg"            # the paper's slider ... (m, k, c; m_a, k_a, c_a for a foundation)
+
+    [structure]           # ... or any linear structure instead of m, k, c, m_a, k_a, c_a
+    mass = "M.mtx"        # .mtx / .npy / .csv path (relative to the file) or inline rows
+    stiffness = "K.mtx"
+    damping = "C.mtx"     # or rayleigh = [alpha, beta], or modal_damping = 0.02 (or a list)
+    mass_unit = "kg"      # stiffness_unit = "N/m", damping_unit = "N*s/m" (SI by default)
+    contact_dof = 2       # 0-based DOF the belt rubs
+    # or modes from a modal test, the structure seen from the contact:
+    # modes = {frequencies = [12.0, 40.0], damping_ratios = [0.02, 0.03], shapes = [0.5, 0.2]}
+    # (Hz, -, mass-normalised values at the contact in 1/sqrt(kg))
+    # cutoff = "500 Hz"   # reduction of models above 60 DOF (default: analysis.reduction)
+
+    [absorber]            # the absorber to tune on this machine
+    mass = "3 kg"
+    attach_dof = 2        # or attach = "foundation": the whole machine mounted on it
+
+    [friction]            # as DESIGN.md section 8
+
+Every problem is one ``ValueError`` line naming the file, the key, the value and why. This
+module reads; the flat quantities and the ``[friction]`` table are parsed by
+:mod:`stickslip.model.inputs` (through :func:`stickslip.model.inputs.quantities_to_si` and
+:func:`stickslip.model.physical.physical_friction_from_config`), the structure is checked and
+built in :mod:`stickslip.model.machine`. :mod:`stickslip.io.config` is its flat view.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from stickslip.model.units import QUANTITIES, to_si
+
+#: The paper's slider and foundation keys, replaced by ``[structure]``.
+PAPER_STRUCTURE_KEYS = ("m", "k", "c", "m_a", "k_a", "c_a")
+#: Keys of the ``[structure]`` table.
+STRUCTURE_KEYS = frozenset({"mass", "stiffness", "damping", "rayleigh", "modal_damping", "mass_unit",
+                            "stiffness_unit", "damping_unit", "contact_dof", "modes", "name",
+                            "cutoff"})
+MODE_KEYS = frozenset({"frequencies", "damping_ratios", "shapes"})
+ABSORBER_KEYS = frozenset({"mass", "attach_dof", "attach"})
+
+
+@dataclass(frozen=True)
+class AbsorberSpec:
+    """The ``[absorber]`` table: a mass (kg) on DOF ``attach_dof``, or under the whole machine.
+
+    ``attach_dof`` None means ``attach = "foundation"``: the machine is mounted on the
+    absorber mass (the paper's elastic foundation, generalised).
+    """
+
+    mass: float
+    attach_dof: int | None
+
+
+@dataclass(frozen=True)
+class MachineFile:
+    """A parsed machine file.
+
+    Attributes
+    ----------
+    path : Path
+        The file.
+    raw : dict
+        The flat quantities as written (``mu_s``, ``load``, ``m``, ...), converted later by
+        the caller (flags may override them).
+    friction_table, structure_table, absorber_table : dict or None
+        The ``[friction]``, ``[structure]`` and ``[absorber]`` tables.
+    """
+
+    path: Path
+    raw: dict[str, Any]
+    friction_table: dict[str, Any] | None = None
+    structure_table: dict[str, Any] | None = field(default=None)
+    absorber_table: dict[str, Any] | None = None
+    shown_as: str | None = field(default=None, compare=False)
+
+    @property
+    def label(self) -> str:
+        """How messages name the file: ``--config 'machine.toml'`` unless told otherwise."""
+        return self.shown_as or f"--config {str(self.path)!r}"
+
+    @property
+    def has_structure(self) -> bool:
+        """True when the file gives a ``[structure]`` table."""
+        return self.structure_table is not None
+
+    def friction(self) -> Any:
+        """The ``[friction]`` table as :class:`PhysicalFriction` (Coulomb without one)."""
+        from stickslip.model.physical import PhysicalFriction, physical_friction_from_config
+
+        if self.friction_table is None:
+            return PhysicalFriction()
+        return physical_friction_from_config(self.friction_table, base_dir=self.path.parent,
+                                             source=f"{self.label}: [friction]")
+
+    def absorber(self) -> AbsorberSpec | None:
+        """The ``[absorber]`` table, checked (mass in kg; ``attach_dof`` or ``attach``)."""
+        table = self.absorber_table
+        if table is None:
+            return None
+        src = f"{self.label}: [absorber]"
+        unknown = sorted(set(table) - ABSORBER_KEYS)
+        if unknown:
+            raise ValueError(f"{src}: unknown keys {', '.join(unknown)} (allowed: "
+                             f"{', '.join(sorted(ABSORBER_KEYS))})")
+        if "mass" not in table:
+            raise ValueError(f"{src}: mass is missing (the absorber mass, e.g. mass = \"3 kg\")")
+        mass = to_si("absorber_mass", table["mass"], source=f"{src} mass =")
+        if not mass > 0.0:
+            raise ValueError(f"{src} mass = {table['mass']!r} must be positive")
+        if ("attach_dof" in table) == ("attach" in table):
+            raise ValueError(f"{src}: give either attach_dof (the DOF it hangs on) or "
+                             "attach = \"foundation\" (the machine mounted on it)")
+        if "attach" in table:
+            if table["attach"] != "foundation":
+                raise ValueError(f"{src} attach = {table['attach']!r}: the only placement by name is "
+                                 "\"foundation\" (else give attach_dof)")
+            return AbsorberSpec(mass, None)
+        return AbsorberSpec(mass, _whole(table["attach_dof"], f"{src} attach_dof"))
+
+    def structure_matrices(self, *, speed: float, load: float, mu_s: float, mu_k: float) -> Any:
+        """Mass, damping, stiffness (SI), contact DOF, name and the reduction (or None).
+
+        Models above :data:`stickslip.model.machine.MAX_DIRECT_DOF` are reduced
+        (:mod:`stickslip.analysis.reduction`) to the contact and absorber DOFs plus the
+        fixed-interface modes below ``cutoff`` (default from the operating point).
+        """
+        return build_structure(self.structure_table or {}, base_dir=self.path.parent,
+                               source=f"{self.label}: [structure]", absorber=self.absorber(),
+                               operating_point=(speed, load, mu_s, mu_k))
+
+
+def _whole(value: object, src: str) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or value < 0:
+        raise ValueError(f"{src} = {value!r} must be a whole number >= 0 (a 0-based DOF index)")
+    return int(value)
+
+
+def _numbers(value: object, src: str) -> list[float]:
+    items = value if isinstance(value, list) else [value]
+    out = []
+    for item in items:
+        if isinstance(item, bool) or not isinstance(item, (int, float)) or not math.isfinite(item):
+            raise ValueError(f"{src} = {value!r} must be a number or a list of numbers")
+        out.append(float(item))
+    return out
+
+
+def read_machine_file(path: Path, *, label: str | None = None) -> MachineFile:
+    """Parse the machine TOML file; the structure's files are read by :meth:`structure_matrices`.
+
+    Refused with one line: a missing or invalid file, unknown keys, ``[structure]`` together
+    with ``m``, ``k``, ``c``, ``m_a``, ``k_a`` or ``c_a``, a table that is not a table.
+
+    Parameters
+    ----------
+    path : Path
+        The TOML file; the files it names are relative to it.
+    label : str, optional
+        How messages name the file (default ``--config 'PATH'``).
+    """
+    path = Path(path)
+    label = label or f"--config {str(path)!r}"
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8-sig"))
+    except FileNotFoundError:
+        raise ValueError(f"{label} does not exist") from None
+    except IsADirectoryError:
+        raise ValueError(f"{label} is a directory, not a TOML file") from None
+    except UnicodeDecodeError:
+        raise ValueError(f"{label} is not a UTF-8 text file") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"{label} is not valid TOML: {exc}") from None
+    tables = {name: data.get(name) for name in ("friction", "structure", "absorber")}
+    for name, table in tables.items():
+        if table is not None and not isinstance(table, dict):
+            raise ValueError(f"{label}: {name} = {table!r} must be a table ([{name}])")
+    section = data.get("system", {k: v for k, v in data.items() if k not in tables})
+    if not isinstance(section, dict):
+        raise ValueError(f"{label}: 'system' must be a table of quantities, not {section!r}")
+    unknown = sorted(set(section) - set(QUANTITIES))
+    if unknown:
+        raise ValueError(f"{label}: unknown keys {', '.join(unknown)}")
+    if tables["structure"] is not None:
+        both = [k for k in PAPER_STRUCTURE_KEYS if k in section]
+        if both:
+            raise ValueError(f"{label}: {', '.join(both)} and [structure] both describe the "
+                             "structure; give one of them")
+    if tables["absorber"] is not None and tables["structure"] is None:
+        raise ValueError(f"{label}: [absorber] needs a [structure] (for the paper's slider, the "
+                         "foundation is m_a, k_a, c_a)")
+    return MachineFile(path, dict(section), tables["friction"], tables["structure"],
+                       tables["absorber"], shown_as=label)
+
+
+def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str,
+                    absorber: AbsorberSpec | None = None,
+                    operating_point: tuple[float, float, float, float] | None = None,
+                    ) -> tuple[Any, Any, Any, int, str, Any]:
+    """``(mass, damping, stiffness, contact_dof, name, reduction)`` of a ``[structure]`` table.
+
+    Matrices in SI, checked by :class:`stickslip.model.machine.Machine` next; ``reduction``
+    is the :class:`~stickslip.analysis.reduction.ReducedStructure` when the model was larger
+    than :data:`~stickslip.model.machine.MAX_DIRECT_DOF`, else None.
+    """
+    import scipy.sparse
+
+    from stickslip.io.structure_files import read_matrix
+    from stickslip.model.machine import MAX_DIRECT_DOF, modal_damping, modal_structure, rayleigh_damping
+    from stickslip.model.structure import checked_matrices
+
+    unknown = sorted(set(table) - STRUCTURE_KEYS)
+    if unknown:
+        raise ValueError(f"{source}: unknown keys {', '.join(unknown)} (allowed: "
+                         f"{', '.join(sorted(STRUCTURE_KEYS))})")
+    name = str(table.get("name", "machine"))
+    if "modes" in table:
+        extra = sorted(set(table) - {"modes", "name"})
+        if extra:
+            raise ValueError(f"{source}: modes describe the structure as seen from the contact; "
+                             f"{', '.join(extra)} cannot be given with them")
+        modes = table["modes"]
+        if not isinstance(modes, dict) or set(modes) != MODE_KEYS:
+            raise ValueError(f"{source}: modes = {modes!r} must be a table with exactly "
+                             f"{', '.join(sorted(MODE_KEYS))}")
+        freqs = [to_si("frequency", f, source=f"{source} modes.frequencies =")
+                 for f in (modes["frequencies"] if isinstance(modes["frequencies"], list)
+                           else [modes["frequencies"]])]
+        m: Any
+        c: Any
+        k: Any
+        try:
+            m, c, k = modal_structure(freqs, _numbers(modes["damping_ratios"],
+                                                      f"{source} modes.damping_ratios"),
+                                      _numbers(modes["shapes"], f"{source} modes.shapes"))
+        except ValueError as exc:
+            raise ValueError(f"{source} modes: {exc}") from None
+        return m, c, k, 0, name, None
+    for key in ("mass", "stiffness"):
+        if key not in table:
+            raise ValueError(f"{source}: {key} is missing (a .mtx/.npy/.csv path or inline rows)")
+    given = [key for key in ("damping", "rayleigh", "modal_damping") if key in table]
+    if len(given) > 1:
+        raise ValueError(f"{source}: {' and '.join(given)} both give the damping; give one")
+    if "contact_dof" not in table:
+        raise ValueError(f"{source}: contact_dof is missing (the 0-based DOF the belt rubs)")
+    contact = _whole(table["contact_dof"], f"{source} contact_dof")
+    mats = {key: read_matrix(table[key], quantity=key, unit=table.get(f"{key}_unit"),
+                             base_dir=base_dir, source=f"{source} {key}")
+            for key in ("mass", "stiffness", "damping") if key in table}
+    if "damping_unit" in table and "damping" not in table:
+        raise ValueError(f"{source}: damping_unit is given but no damping matrix")
+    n = mats["mass"].shape[0]
+    for key, mat in mats.items():
+        if mat.shape[0] != n:
+            raise ValueError(f"{source} {key} = {table[key]!r} is {mat.shape[0]}x{mat.shape[0]}, "
+                             f"but mass is {n}x{n}")
+    if contact >= n:
+        raise ValueError(f"{source} contact_dof = {contact} is beyond the {n} DOF of the matrices "
+                         f"(0 to {n - 1})")
+    if absorber is not None and absorber.attach_dof is not None and absorber.attach_dof >= n:
+        raise ValueError(f"{source.replace('[structure]', '[absorber]')} attach_dof = "
+                         f"{absorber.attach_dof} is beyond the {n} DOF of the structure")
+    reduction = None
+    if n > MAX_DIRECT_DOF:
+        from stickslip.analysis.reduction import default_cutoff_hz, reduce_structure
+
+        kept = [contact] + ([absorber.attach_dof] if absorber is not None
+                            and absorber.attach_dof is not None else [])
+        if "cutoff" in table:
+            cutoff = to_si("frequency", table["cutoff"], source=f"{source} cutoff =")
+        elif operating_point is None:
+            raise ValueError(f"{source}: a {n}-DOF model needs cutoff (or the operating point)")
+        else:
+            speed, load, mu_s, mu_k = operating_point
+            cutoff = default_cutoff_hz(mats["mass"], mats["stiffness"], contact, speed=speed,
+                                       load=load, mu_s=mu_s, mu_k=mu_k)
+        reduction = reduce_structure(mats["mass"], mats["stiffness"], kept, cutoff_hz=cutoff)
+        m, k = reduction.mass, reduction.stiffness
+        c = reduction.project(mats["damping"]) if "damping" in mats else None
+        contact = 0
+    else:
+        dense = {key: mat.toarray() if scipy.sparse.issparse(mat) else mat for key, mat in mats.items()}
+        m, k = dense["mass"], dense["stiffness"]
+        c = dense.get("damping")
+    label = {key: f"{source} {key} = {table[key]!r}" if key in table else f"{source} {key}"
+             for key in ("mass", "damping", "stiffness")}
+    names = (label["mass"], label["damping"], label["stiffness"])
+    if "rayleigh" in table:
+        alpha_beta = _numbers(table["rayleigh"], f"{source} rayleigh")
+        if len(alpha_beta) != 2:
+            raise ValueError(f"{source} rayleigh = {table['rayleigh']!r} must be [alpha, beta] "
+                             "(C = alpha M + beta K; 1/s and s)")
+        try:
+            c = rayleigh_damping(m, k, *alpha_beta)
+        except ValueError as exc:
+            raise ValueError(f"{source} rayleigh: {exc}") from None
+    elif "modal_damping" in table:
+        try:
+            checked_matrices(m, np.zeros_like(m), k, names=names, limit=None)
+            c = modal_damping(m, k, _numbers(table["modal_damping"], f"{source} modal_damping")
+                              if isinstance(table["modal_damping"], list)
+                              else _numbers(table["modal_damping"], f"{source} modal_damping")[0])
+        except ValueError as exc:
+            raise ValueError(f"{source} modal_damping: {exc}") from None
+    elif c is None:
+        c = np.zeros_like(m)
+    try:
+        m, c, k = checked_matrices(m, c, k, names=names, limit=None)
+    except ValueError as exc:
+        message = str(exc)
+        raise ValueError(message if message.startswith(source) else f"{source}: {message}") from None
+    if reduction is not None and absorber is not None and absorber.attach_dof is not None:
+        absorber_index = reduction.kept_dofs.index(absorber.attach_dof)
+        name = f"{name} (absorber DOF {absorber.attach_dof} is reduced DOF {absorber_index})"
+    return m, c, k, contact, name, reduction
+
+
+def machine_from_file(machine_file: MachineFile, values: dict[str, float]) -> Any:
+    """The :class:`~stickslip.model.machine.Machine` of a file with a ``[structure]``.
+
+    ``values`` are the flat quantities in SI (``mu_s``, ``mu_k``, ``load``, ``speed``),
+    after flags and file are merged. Returns ``(machine, reduction)``.
+    """
+    from stickslip.model.machine import Machine
+
+    op = (values["speed"], values["load"], values["mu_s"], values["mu_k"])
+    m, c, k, contact, name, reduction = machine_file.structure_matrices(
+        speed=op[0], load=op[1], mu_s=op[2], mu_k=op[3])
+    try:
+        machine = Machine(m, c, k, contact, values["mu_s"], values["mu_k"], values["load"],
+                          values["speed"], machine_file.friction(), name=name)
+    except ValueError as exc:
+        raise ValueError(f"{machine_file.label}: {exc}") from None
+    return machine, reduction

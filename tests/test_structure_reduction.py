@@ -1,0 +1,98 @@
+"""Reduction of a few-hundred-DOF structure (issue 18 point 5): the error stated.
+
+Test structure: a 300-node frame chain (5 kg nodes, 1e8 N/m between them, 2e7 N/m each to the
+floor) carrying a 1 kg slider on a 1e6 N/m spring at node 150; the slider is the contact
+(DOF 300). References, each computed on the full 301-DOF model:
+
+* the static receptance at the contact, ``[K^-1]_cc``: Craig-Bampton keeps it exactly;
+* the receptance ``H_cc(w)`` below the cut-off, solved on the full dynamic stiffness;
+* the critical friction-weakening slope: steady sliding of a velocity-weakening law turns
+  unstable when the negative damping ``-dF/dv`` at the contact exceeds ``c_crit`` (for an
+  exponential Stribeck law ``mu = mu_k + dmu exp(-v / v_s)`` the critical belt speed is then
+  ``V_c = v_s ln(dmu W / (v_s c_crit))``, so the relative error of ``c_crit`` is the error of
+  that critical speed's argument). The full model's growth rate must change sign within 1 %
+  of the reduced model's ``c_crit``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from stickslip.analysis.reduction import default_cutoff_hz, reduce_structure
+from stickslip.analysis.stability import critical_weakening, growth_rate
+from stickslip.model.machine import Machine
+
+N_FRAME, ATTACH = 300, 150
+
+
+def frame_with_slider() -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix, int]:
+    """Mass, damping, stiffness (SI, sparse) and the contact DOF of the test structure."""
+    n = N_FRAME + 1
+    k = sp.lil_matrix((n, n))
+    c = sp.lil_matrix((n, n))
+
+    def stamp(mat: sp.lil_matrix, a: int, b: int | None, value: float) -> None:
+        mat[a, a] += value
+        if b is not None:
+            mat[b, b] += value
+            mat[a, b] -= value
+            mat[b, a] -= value
+
+    for i in range(N_FRAME - 1):
+        stamp(k, i, i + 1, 1e8)
+    for i in range(N_FRAME):
+        stamp(k, i, None, 2e7)
+    stamp(k, N_FRAME, ATTACH, 1e6)
+    stamp(c, N_FRAME, ATTACH, 40.0)
+    k_csr = k.tocsr()
+    mass = sp.diags(np.r_[np.full(N_FRAME, 5.0), 1.0]).tocsr()
+    damping = (c.tocsr() + 1e-6 * k_csr).tocsr()
+    return mass, damping, k_csr, N_FRAME
+
+
+@pytest.fixture(scope="module")
+def models() -> tuple[Machine, Machine, object]:
+    mass, damping, stiffness, contact = frame_with_slider()
+    cutoff = default_cutoff_hz(mass, stiffness, contact, speed=0.01, load=1000.0, mu_s=0.5, mu_k=0.3)
+    red = reduce_structure(mass, stiffness, [contact], cutoff_hz=cutoff)
+    full = Machine(mass.toarray(), damping.toarray(), stiffness.toarray(), contact, 0.5, 0.3, 1000.0, 0.01)
+    reduced = Machine(red.mass, red.project(damping), red.stiffness, 0, 0.5, 0.3, 1000.0, 0.01)
+    return full, reduced, red
+
+
+def test_cutoff_and_size(models: tuple[Machine, Machine, object]) -> None:
+    # reference: module docstring of analysis/reduction.py, 3 f_c with f_c = sqrt(1e6/1)/(2 pi)
+    _, reduced, red = models
+    assert red.cutoff_hz == pytest.approx(3.0 * 1000.0 / (2 * math.pi), rel=1e-12)  # type: ignore[attr-defined]
+    assert 1 < reduced.n_dof <= 60 and not red.truncated  # type: ignore[attr-defined]
+
+
+def test_static_receptance_at_the_contact_is_exact(models: tuple[Machine, Machine, object]) -> None:
+    full, reduced, _ = models
+    e = np.eye(full.n_dof)[full.contact_dof]
+    exact = np.linalg.solve(full.stiffness, e)[full.contact_dof]
+    assert np.linalg.solve(reduced.stiffness, np.eye(reduced.n_dof)[0])[0] == pytest.approx(exact, rel=1e-10)
+
+
+def test_receptance_below_the_cutoff(models: tuple[Machine, Machine, object]) -> None:
+    full, reduced, red = models
+    for f_hz in np.linspace(20.0, red.cutoff_hz / 3.0, 12):  # type: ignore[attr-defined]
+        w = 2 * math.pi * f_hz
+        h = [np.linalg.solve(m.stiffness - w**2 * m.mass + 1j * w * m.damping,
+                             np.eye(m.n_dof)[m.contact_dof])[m.contact_dof] for m in (full, reduced)]
+        assert abs(h[1] / h[0] - 1.0) < 1e-3, f_hz
+
+
+@pytest.mark.slow  # two eigen-solutions of the 602-state full model: ~50 s on a shared core
+def test_critical_weakening_of_reduced_and_full_agree_within_one_percent(
+        models: tuple[Machine, Machine, object]) -> None:
+    full, reduced, _ = models
+    to_si = 2.0 * math.sqrt(reduced.reference_mass * reduced.reference_stiffness)
+    c_crit = critical_weakening(reduced.structure()) * to_si  # N s/m of negative damping
+    full_scale = 2.0 * math.sqrt(full.reference_mass * full.reference_stiffness)
+    st = full.structure()
+    assert growth_rate(st, 0.99 * c_crit / full_scale) < 0.0 < growth_rate(st, 1.01 * c_crit / full_scale)
