@@ -174,6 +174,9 @@ def _check_existing_output(out: Path, fingerprint: str, overwrite: bool) -> bool
     raise BadInput(f"output file {str(out)!r} exists and holds {what}; pass --overwrite to replace it")
 
 
+# Over 120 lines: its signature declares the command's options (about half of it) and the
+# docstring is the help text; the body checks every input before anything is written, then
+# hands over to occurrence_map or, with --config, to the machine's speed/load map.
 def map_command(
     ctx: typer.Context,
     out: Annotated[Path, typer.Option("--out", help="netCDF file to write (.nc)")],

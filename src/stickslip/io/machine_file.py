@@ -207,6 +207,62 @@ def read_machine_file(path: Path, *, label: str | None = None) -> MachineFile:
                        tables["absorber"], shown_as=label)
 
 
+def _modal_table(table: dict[str, Any], source: str) -> tuple[Any, Any, Any]:
+    """``(mass, damping, stiffness)`` of a ``[structure]`` table given as ``modes`` (contact first)."""
+    from stickslip.model.machine import modal_structure
+
+    extra = sorted(set(table) - {"modes", "name"})
+    if extra:
+        raise ValueError(f"{source}: modes describe the structure as seen from the contact; "
+                         f"{', '.join(extra)} cannot be given with them")
+    modes = table["modes"]
+    if not isinstance(modes, dict) or set(modes) != MODE_KEYS:
+        raise ValueError(f"{source}: modes = {modes!r} must be a table with exactly "
+                         f"{', '.join(sorted(MODE_KEYS))}")
+    freqs = [to_si("frequency", f, source=f"{source} modes.frequencies =")
+             for f in (modes["frequencies"] if isinstance(modes["frequencies"], list)
+                       else [modes["frequencies"]])]
+    m: Any
+    c: Any
+    k: Any
+    try:
+        m, c, k = modal_structure(freqs, _numbers(modes["damping_ratios"],
+                                                  f"{source} modes.damping_ratios"),
+                                  _numbers(modes["shapes"], f"{source} modes.shapes"))
+    except ValueError as exc:
+        raise ValueError(f"{source} modes: {exc}") from None
+    return m, c, k
+
+
+def _table_damping(table: dict[str, Any], m: Any, k: Any, c: Any, names: tuple[str, str, str],
+                   source: str) -> Any:
+    """The damping matrix a ``[structure]`` table asks for: ``rayleigh``, ``modal_damping``, the
+    matrix read (``c``) or none (zeros)."""
+    from stickslip.model.machine import modal_damping, rayleigh_damping
+    from stickslip.model.structure import checked_matrices
+
+    if "rayleigh" in table:
+        alpha_beta = _numbers(table["rayleigh"], f"{source} rayleigh")
+        if len(alpha_beta) != 2:
+            raise ValueError(f"{source} rayleigh = {table['rayleigh']!r} must be [alpha, beta] "
+                             "(C = alpha M + beta K; 1/s and s)")
+        try:
+            c = rayleigh_damping(m, k, *alpha_beta)
+        except ValueError as exc:
+            raise ValueError(f"{source} rayleigh: {exc}") from None
+    elif "modal_damping" in table:
+        try:
+            checked_matrices(m, np.zeros_like(m), k, names=names, limit=None)
+            c = modal_damping(m, k, _numbers(table["modal_damping"], f"{source} modal_damping")
+                              if isinstance(table["modal_damping"], list)
+                              else _numbers(table["modal_damping"], f"{source} modal_damping")[0])
+        except ValueError as exc:
+            raise ValueError(f"{source} modal_damping: {exc}") from None
+    elif c is None:
+        c = np.zeros_like(m)
+    return c
+
+
 def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str,
                     absorber: AbsorberSpec | None = None,
                     operating_point: tuple[float, float, float, float] | None = None,
@@ -220,7 +276,7 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
     import scipy.sparse
 
     from stickslip.io.structure_files import read_matrix
-    from stickslip.model.machine import MAX_DIRECT_DOF, modal_damping, modal_structure, rayleigh_damping
+    from stickslip.model.machine import MAX_DIRECT_DOF
     from stickslip.model.structure import checked_matrices
 
     unknown = sorted(set(table) - STRUCTURE_KEYS)
@@ -229,26 +285,7 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
                          f"{', '.join(sorted(STRUCTURE_KEYS))})")
     name = str(table.get("name", "machine"))
     if "modes" in table:
-        extra = sorted(set(table) - {"modes", "name"})
-        if extra:
-            raise ValueError(f"{source}: modes describe the structure as seen from the contact; "
-                             f"{', '.join(extra)} cannot be given with them")
-        modes = table["modes"]
-        if not isinstance(modes, dict) or set(modes) != MODE_KEYS:
-            raise ValueError(f"{source}: modes = {modes!r} must be a table with exactly "
-                             f"{', '.join(sorted(MODE_KEYS))}")
-        freqs = [to_si("frequency", f, source=f"{source} modes.frequencies =")
-                 for f in (modes["frequencies"] if isinstance(modes["frequencies"], list)
-                           else [modes["frequencies"]])]
-        m: Any
-        c: Any
-        k: Any
-        try:
-            m, c, k = modal_structure(freqs, _numbers(modes["damping_ratios"],
-                                                      f"{source} modes.damping_ratios"),
-                                      _numbers(modes["shapes"], f"{source} modes.shapes"))
-        except ValueError as exc:
-            raise ValueError(f"{source} modes: {exc}") from None
+        m, c, k = _modal_table(table, source)
         return m, c, k, 0, name, None
     for key in ("mass", "stiffness"):
         if key not in table:
@@ -300,25 +337,7 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
     label = {key: f"{source} {key} = {table[key]!r}" if key in table else f"{source} {key}"
              for key in ("mass", "damping", "stiffness")}
     names = (label["mass"], label["damping"], label["stiffness"])
-    if "rayleigh" in table:
-        alpha_beta = _numbers(table["rayleigh"], f"{source} rayleigh")
-        if len(alpha_beta) != 2:
-            raise ValueError(f"{source} rayleigh = {table['rayleigh']!r} must be [alpha, beta] "
-                             "(C = alpha M + beta K; 1/s and s)")
-        try:
-            c = rayleigh_damping(m, k, *alpha_beta)
-        except ValueError as exc:
-            raise ValueError(f"{source} rayleigh: {exc}") from None
-    elif "modal_damping" in table:
-        try:
-            checked_matrices(m, np.zeros_like(m), k, names=names, limit=None)
-            c = modal_damping(m, k, _numbers(table["modal_damping"], f"{source} modal_damping")
-                              if isinstance(table["modal_damping"], list)
-                              else _numbers(table["modal_damping"], f"{source} modal_damping")[0])
-        except ValueError as exc:
-            raise ValueError(f"{source} modal_damping: {exc}") from None
-    elif c is None:
-        c = np.zeros_like(m)
+    c = _table_damping(table, m, k, c, names, source)
     try:
         m, c, k = checked_matrices(m, c, k, names=names, limit=None)
     except ValueError as exc:
