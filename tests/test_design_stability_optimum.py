@@ -66,3 +66,24 @@ def test_coulomb_design_reports_no_stability_optimum_unless_asked() -> None:
 def test_a_non_positive_bound_is_refused() -> None:
     with pytest.raises(ValueError, match="max_foundation_deflection"):
         design_foundation(PhysicalSystem(**MACHINE), max_foundation_deflection=-1.0)
+
+
+def test_design_command_takes_the_deflection_bound_in_si(tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
+    import json
+
+    from tests.cli_helpers import run_cli
+
+    config = tmp_path / "machine.toml"
+    config.write_text('m = "2 kg"\nk = "50 kN/m"\nc = "20 N*s/m"\nmu_s = 0.5\nmu_k = 0.3\n'
+                      'load = "150 N"\nspeed = "5 cm/s"\n[friction]\nlaw = "linear"\nslope = "0.5 s/m"\n')
+    code, out, _ = run_cli(["design", "--config", str(config), "--max-foundation-deflection", "10 mm",
+                            "--no-stick-slip-optimum", "--json"], capsys)
+    assert code == 0
+    best = json.loads(out)["stability_optimal_foundation"]
+    assert best["max_foundation_deflection"] == pytest.approx(0.01, rel=1e-12)
+    assert best["foundation_deflection"] <= 0.01 * (1.0 + 1e-9)
+    for bad in ("-1 mm", "2 kg", "abc"):
+        code, out, err = run_cli(["design", "--config", str(config), "--max-foundation-deflection", bad],
+                                 capsys)
+        assert code == 2 and out == "" and len(err.strip().splitlines()) == 1
+        assert "--max-foundation-deflection" in err

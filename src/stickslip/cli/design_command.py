@@ -7,9 +7,9 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from stickslip.cli.console import print_json
+from stickslip.cli.console import BadInput, print_json
 from stickslip.cli.machine_config import collect_inputs, load_machine_file
-from stickslip.model.units import QUANTITIES
+from stickslip.model.units import QUANTITIES, to_si
 
 if TYPE_CHECKING:
     from stickslip.model.physical import PhysicalFriction
@@ -92,6 +92,13 @@ def design(
         typer.Option("--stick-slip-optimum/--no-stick-slip-optimum",
                      help="also find the foundation best against stick-slip (a few seconds)"),
     ] = True,
+    max_foundation_deflection: Annotated[
+        str | None,
+        typer.Option("--max-foundation-deflection",
+                     help="largest static deflection of the foundation under the kinetic friction "
+                          "force mu_k W [m], e.g. '2 mm': bounds the stability-optimal foundation, "
+                          "reported for a speed-dependent friction law (default 4 mu_k W / k)"),
+    ] = None,
     json: Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")] = False,
 ) -> None:
     """Will it stick-slip, at which speed or load, and which foundation stops it (Fig. 16).
@@ -127,7 +134,16 @@ def design(
     system = PhysicalSystem(mass=v["m"], stiffness=v["k"], damping=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"],
                             load=v["load"], speed=v["speed"], foundation=foundation,
                             friction=read_friction_config(config))
-    report = design_foundation(system, stick_slip_optimum=stick_slip_optimum)
+    deflection = None
+    if max_foundation_deflection is not None:
+        try:
+            deflection = to_si("max_foundation_deflection", max_foundation_deflection)
+        except ValueError as exc:
+            raise BadInput(str(exc)) from None
+        if not deflection > 0.0:
+            raise BadInput(f"--max-foundation-deflection {max_foundation_deflection!r} must be positive")
+    report = design_foundation(system, stick_slip_optimum=stick_slip_optimum,
+                               max_foundation_deflection=deflection)
     payload = report.to_dict()
     if json:
         print_json(payload)
@@ -179,6 +195,16 @@ def format_report(p: dict[str, Any]) -> str:
         lines.append(
             f"stick-slip-optimal foundation: m_a={g(best['m_a'], 'kg')}, k_a={g(best['k_a'], 'N/m')}, "
             f"c_a={g(best['c_a'], 'N s/m')}; stick-slip onset lambda_c {onset}"
+        )
+    stable_best = p.get("stability_optimal_foundation")
+    if stable_best:
+        lines.append(
+            f"stability-optimal foundation: m_a={g(stable_best['m_a'], 'kg')}, "
+            f"k_a={g(stable_best['k_a'], 'N/m')}, c_a={g(stable_best['c_a'], 'N s/m')}; tolerates a "
+            f"friction slope down to -{g(stable_best['sigma_crit'], 's/m')} "
+            f"(delta_crit={g(stable_best['delta_crit'])}); static deflection under mu_k W "
+            f"{g(stable_best['foundation_deflection'], 'm')} "
+            f"(bound {g(stable_best['max_foundation_deflection'], 'm')})"
         )
     stab = p.get("stability")
     if stab:

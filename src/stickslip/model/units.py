@@ -46,6 +46,8 @@ STRUCTURE_QUANTITIES: dict[str, tuple[str, str, str]] = {
     "rayleigh_alpha": ("1 / [time]", "1/s", "Rayleigh damping alpha of C = alpha M + beta K"),
     "rayleigh_beta": ("[time]", "s", "Rayleigh damping beta of C = alpha M + beta K"),
     "absorber_mass": ("[mass]", "kg", "absorber mass"),
+    "max_foundation_deflection": ("[length]", "m",
+                                  "largest static deflection of the foundation under mu_k W"),
 }
 
 
