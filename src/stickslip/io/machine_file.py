@@ -35,13 +35,13 @@ built in :mod:`stickslip.model.machine`. :mod:`stickslip.io.config` is its flat 
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from stickslip.io.toml_file import read_toml_file
 from stickslip.model.units import QUANTITIES, to_si
 
 #: The paper's slider and foundation keys, replaced by ``[structure]``.
@@ -175,16 +175,7 @@ def read_machine_file(path: Path, *, label: str | None = None) -> MachineFile:
     """
     path = Path(path)
     label = label or f"--config {str(path)!r}"
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8-sig"))
-    except FileNotFoundError:
-        raise ValueError(f"{label} does not exist") from None
-    except IsADirectoryError:
-        raise ValueError(f"{label} is a directory, not a TOML file") from None
-    except UnicodeDecodeError:
-        raise ValueError(f"{label} is not a UTF-8 text file") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{label} is not valid TOML: {exc}") from None
+    data = read_toml_file(path, label)
     tables = {name: data.get(name) for name in ("friction", "structure", "absorber")}
     for name, table in tables.items():
         if table is not None and not isinstance(table, dict):

@@ -29,7 +29,6 @@ from __future__ import annotations
 
 import csv
 import re
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -37,6 +36,7 @@ from typing import Any
 import numpy as np
 
 from stickslip.analysis.identification_estimates import MeasuredRecord, RecordError
+from stickslip.io.toml_file import read_toml_file
 
 ROLES: dict[str, tuple[str, str]] = {
     "t": ("[time]", "s"),
@@ -108,11 +108,9 @@ def read_columns_toml(path: str | Path) -> list[ColumnSpec]:
     """A column specification from a TOML file with ``[columns.ROLE]`` tables (name, unit, sign)."""
     p = Path(path)
     try:
-        data = tomllib.loads(p.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise RecordError(f"--columns {str(p)!r} does not exist") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise RecordError(f"--columns {str(p)!r} is not valid TOML: {exc}") from None
+        data = read_toml_file(p, f"--columns {str(p)!r}")
+    except ValueError as exc:
+        raise RecordError(str(exc)) from None
     table = data.get("columns")
     if not isinstance(table, dict) or not table:
         raise RecordError(f"--columns {str(p)!r} needs [columns.t], [columns.F], ... tables")

@@ -1,0 +1,34 @@
+"""Reading a user's TOML file with one-line errors (machine files, record column specifications)."""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+from typing import Any
+
+
+def read_toml_file(path: str | Path, label: str) -> dict[str, Any]:
+    """The tables of the TOML file ``path``, or one ``ValueError`` line naming ``label`` and why.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file (UTF-8, with or without a byte-order mark).
+    label : str
+        How messages name the file, e.g. ``--config 'machine.toml'``.
+
+    Returns
+    -------
+    dict
+        The parsed document.
+    """
+    try:
+        return tomllib.loads(Path(path).read_text(encoding="utf-8-sig"))
+    except FileNotFoundError:
+        raise ValueError(f"{label} does not exist") from None
+    except IsADirectoryError:
+        raise ValueError(f"{label} is a directory, not a TOML file") from None
+    except UnicodeDecodeError:
+        raise ValueError(f"{label} is not a UTF-8 text file") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"{label} is not valid TOML: {exc}") from None
