@@ -56,7 +56,12 @@ def _command_lines(cmd: Any, ctx: Any, path: str, level: str) -> list[str]:
     if args:
         lines += ["**Arguments**", ""]
         for p in args:
-            lines += [f"``{p.human_readable_name}``", ""]
+            # click's Argument has human_readable_name; typer's own copy of click may not
+            name = getattr(p, "human_readable_name", None) or (p.metavar or p.name or "").upper()
+            lines += [f"``{name}``", ""]
+            arg_help = (getattr(p, "help", None) or "").strip()
+            if arg_help:
+                lines += [f"   {line}" if line else "" for line in arg_help.splitlines()] + [""]
     if params:
         lines += ["**Options**", ""]
         for p in params:
