@@ -33,7 +33,9 @@ machine, _ = machine_from_file(machine_file, {"mu_s": 0.15, "mu_k": 0.10, "load"
                                               "speed": 0.5e-3})
 print(machine.summary())
 print("natural frequencies [Hz]:", ", ".join(f"{f:.1f}" for f in machine.natural_frequencies_hz()))
-machine_modes_plot(machine)
+# the library draws on matplotlib Figures of its own; give it pyplot axes to show them here
+_, mode_axes = plt.subplots(2, 3, figsize=(9.6, 5.2), layout="constrained")
+machine_modes_plot(machine, ax=mode_axes)
 plt.show()
 
 # %%
@@ -76,5 +78,6 @@ print(f"at the feed speed with the absorber: {simulate(*tuned.to_dimensionless()
 vw = operating_map(machine, Axis.parse("log:2e-4:5e-3:10", "speed"),
                    Axis.parse("log:500:5000:8", "load"))
 print(vw.summary())
-vw.plot(critical_lambda=bare.lam)
+_, map_ax = plt.subplots(figsize=(6.4, 4.6), layout="constrained")
+vw.plot(critical_lambda=bare.lam, ax=map_ax)
 plt.show()
