@@ -53,6 +53,9 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_friction.py
 	$(BIN)/python benchmarks/bench_basin.py
 	$(BIN)/python benchmarks/bench_startup.py
+	$(BIN)/python benchmarks/bench_dask.py
+	$(BIN)/python benchmarks/bench_structure.py --quick
+	$(BIN)/python benchmarks/bench_identify.py
 
 clean-cache:
 	find src -name '*.nbi' -delete -o -name '*.nbc' -delete
