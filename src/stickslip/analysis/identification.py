@@ -87,6 +87,9 @@ TABLE_QUANTILES = (0.2, 0.4, 0.6, 0.8, 1.0)
 #: Parameters whose bounds are limits of the search, not of the physics: an optimum on such
 #: a bound is undetermined (the record does not bracket it; see UNDETERMINED_RULE).
 SEARCH_LIMITED = ("stribeck_velocity", "exponent")
+#: How close to such a limit (relative, in the fit's scaled coordinates) counts as on it: the
+#: trust-region method approaches a bound without reaching it.
+LIMIT_TOLERANCE = 1e-3
 #: Most knots of a ``table`` law (the engine's band limit leaves room for 15).
 MAX_TABLE_KNOTS = 12
 #: A sample is in slip when its sliding speed exceeds this fraction of the drive speed.
@@ -750,7 +753,7 @@ def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tup
     visited = visited_knots(problem.table_v, float(np.max(speed - model["v"]))) if knot_names else []
     outside = {n for n, seen in zip(knot_names, visited, strict=True) if not seen}
     at_limit = {n for n, z, lo, hi in zip(problem.names, res.x, problem.lower, problem.upper, strict=False)
-                if n in SEARCH_LIMITED and min(z - lo, hi - z) <= 1e-6 * max(abs(z), 1.0)}
+                if n in SEARCH_LIMITED and min(z - lo, hi - z) <= LIMIT_TOLERANCE * max(abs(z), 1.0)}
     params: dict[str, FitParameter] = {}
     order = ["k", "c", "mu_s", "mu_k", *LAW_PARAMETERS[chosen], "force_offset", "force_drift", *knot_names]
     for name in order:
