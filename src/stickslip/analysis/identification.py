@@ -313,11 +313,11 @@ def _problem(record: MeasuredRecord, est: RecordEstimates, *, mass: float, load:
     }
     if start:
         guess.update({k: v for k, v in start.items() if k in guess})
+        if "force_offset" in guess and not fit_offset:
+            guess["force_offset"] = 0.0
     if law == "table":  # a flat curve at the (Coulomb) kinetic level
         for i in range(len(table_v)):
             guess[f"table_mu_{i}"] = guess["mu_k"]
-        if "force_offset" in guess and not fit_offset:
-            guess["force_offset"] = 0.0
     natural = {
         "k": est.k, "c": 0.1 * c_crit, "mu_s": est.mu_s, "mu_k": est.mu_s, "delta_mu": gap,
         "force_offset": 0.01 * f_range, "force_drift": 0.01 * f_range / duration,
