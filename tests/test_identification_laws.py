@@ -128,6 +128,24 @@ def test_table_speeds_are_checked():
         identify(rec, KNOWN, law="linear", table_speeds=(0.0, 0.1))
 
 
+# ----------------------------------------------------------------------------- the rule
+def test_undetermined_rule_for_shape_and_table_parameters():
+    """UNDETERMINED_RULE's standard-error part, at its thresholds: a Stribeck shape parameter
+    is undetermined above half its value; a table value and mu_k above mu_s (not above their
+    own value, which may be near zero); k above its value."""
+    from stickslip.analysis.identification_result import undetermined
+
+    values = {"k": K, "mu_s": MU_S, "mu_k": MU_K, "c": C}
+    for name in ("exponent", "stribeck_velocity"):
+        assert undetermined(name, 2.0, 0.99, values, mass=M, speed=V) is False
+        assert undetermined(name, 2.0, 1.01, values, mass=M, speed=V) is True
+    assert undetermined("table_mu_3", 0.01, 0.05, values, mass=M, speed=V) is False
+    assert undetermined("table_mu_3", 0.01, 0.61, values, mass=M, speed=V) is True
+    assert undetermined("k", K, 0.9 * K, values, mass=M, speed=V) is False
+    assert undetermined("k", K, 1.1 * K, values, mass=M, speed=V) is True
+    assert undetermined("force_offset", 0.0, 1e9, values, mass=M, speed=V) is False
+
+
 # ----------------------------------------------------------------------------- strengthening
 @pytest.mark.parametrize("noise, rel", [(0.005, 0.01), (0.02, 0.05)])
 def test_linear_strengthening_law(noise, rel):
