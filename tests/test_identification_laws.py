@@ -115,6 +115,7 @@ def test_table_knots_beyond_the_record_are_undetermined():
     assert result.parameters["table_mu_3"].value is None and result.parameters["table_mu_4"].value is None
     assert {"table_mu_3", "table_mu_4"} <= set(result.undetermined)
     _within(result, {f"table_mu_{i}": MU_K + STRENGTHENING * speeds[i] for i in range(3)})
+    assert "2 (not reached) m/s" in result.summary()
     rows = result.table_csv().strip().splitlines()
     assert rows[0] == "v,mu" and len(rows) == 4
     assert "table =" in result.to_config()

@@ -345,6 +345,11 @@ class IdentificationResult:
                 ci = (f"  95% bootstrap [{p.interval[0]:.6g}, {p.interval[1]:.6g}]"
                       if p.interval is not None else "")
                 lines.append(f"    {n + ':':<19} {p.value:.8g} +/- {p.stderr:.3g}{unit}{rel}{ci}")
+        if self.table_v:
+            flags = self.table_visited or (True,) * len(self.table_v)
+            knots = [f"{v:.4g}{'' if seen else ' (not reached)'}"
+                     for v, seen in zip(self.table_v, flags, strict=True)]
+            lines.append(f"[[Table knots]] table_mu_i is mu at v_r = {', '.join(knots)} m/s")
         strong = sorted(((abs(v), a, b, v) for (a, b), v in self.correlations.items()
                          if math.isfinite(v) and abs(v) > 0.1), reverse=True)
         if strong:
