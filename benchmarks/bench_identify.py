@@ -16,31 +16,31 @@ time, and the baseline measured in the same run: one forward evaluation of the w
 solve_ivp (the event-driven rig simulator, DOP853, rtol 1e-10), and what the fit would cost
 with solve_ivp as its forward model (its evaluations times the solve_ivp evaluation).
 
-BLAS is limited to one thread (set below, before numpy loads): the fit's linear algebra is a
-few small dense products per iteration, and a threaded BLAS on a small shared machine spends
-its time waiting for cores (a 12,000 x 18 SVD took 0.5 s threaded and 0.02 s on one thread
-here while other jobs ran).
+BLAS threads: ``identify`` holds BLAS at one thread while it fits (``blas_threads=1``, through
+threadpoolctl). The script measures that against the process's own BLAS setting
+(``blas_threads=None``: OpenBLAS starts one thread per core) in the same run, once for a
+single fit and once for two fits running at once in a thread pool (as a sweep or a service
+would run them; there the limit is set around the pool in the main thread, because the
+OpenBLAS numpy and scipy ship ignores a limit set from a worker thread), and prints the
+ratios. Nothing is set in the environment here, so the baseline is what a user's process gets.
 """
 
 from __future__ import annotations
 
-import os
+import argparse
+import sys
+import time
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
 
-for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
-
-import argparse  # noqa: E402
-import sys  # noqa: E402
-import time  # noqa: E402
-from pathlib import Path  # noqa: E402
-
-import numpy as np  # noqa: E402
+import numpy as np
+from threadpoolctl import threadpool_info, threadpool_limits
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from tests.record_oracle import coulomb, noisy, simulate_rig  # noqa: E402
+from tests.record_oracle import coulomb, noisy, simulate_rig
 
-from stickslip.analysis.identification import MeasuredRecord, identify  # noqa: E402
+from stickslip.analysis.identification import MeasuredRecord, identify
 
 TRUTH = {"m": 1.0, "k": 1.0e4, "c": 5.0, "mu_s": 0.6, "mu_k": 0.4, "load": 100.0, "speed": 0.05}
 PERIOD = 0.1124  # s, of this rig's stick-slip cycle (from the simulator's breakaway times)
@@ -77,18 +77,29 @@ def main() -> None:
     identify(record, known)  # compile and warm the engine (numba cache)
     best = None
     wall = float("inf")
+    unlimited = float("inf")
     for _ in range(args.repeats):
         tic = time.perf_counter()
         result = identify(record, known)
         elapsed = time.perf_counter() - tic
         if elapsed < wall:
             wall, best = elapsed, result
+        tic = time.perf_counter()
+        identify(record, known, blas_threads=None)
+        unlimited = min(unlimited, time.perf_counter() - tic)
     assert best is not None
+    pair = {threads: min(_two_at_once(record, known, threads) for _ in range(args.repeats))
+            for threads in (1, None)}
+    default_threads = max(info["num_threads"] for info in threadpool_info() if info["user_api"] == "blas")
     print(f"record: {record.t.size} samples at {FS:g} Hz, {best.cycles_used} stick phases, 1 % noise")
     print(f"fit wall time (best of {args.repeats}): {wall:.2f} s  (target < 10 s: "
           f"{'met' if wall < 10 else 'MISSED'})")
     print(f"engine calls: {best.engine_calls} in {best.engine_seconds:.2f} s = "
           f"{100 * best.engine_seconds / wall:.0f} % of the fit; {best.n_evaluations} iterations")
+    print(f"BLAS threads: one fit {wall:.2f} s at 1 thread against {unlimited:.2f} s at the process's "
+          f"{default_threads} (ratio {unlimited / wall:.2f}); two fits at once in a thread pool, limited "
+          f"around the pool {pair[1]:.2f} s against {pair[None]:.2f} s unlimited "
+          f"(ratio {pair[None] / pair[1]:.2f})")
     for name in ("k", "mu_s", "mu_k", "c"):
         p = best.parameters[name]
         err = 100 * (p.estimate - TRUTH[name]) / TRUTH[name]
@@ -103,6 +114,20 @@ def main() -> None:
           f"{1e3 * per_ivp:.1f} ms  -> engine is {per_ivp / per_engine:.1f}x faster")
     print(f"the same fit with solve_ivp as forward model: ~{evaluations * per_ivp:.0f} s "
           f"({evaluations} evaluations) -> {evaluations * per_ivp / wall:.1f}x the engine fit")
+
+
+def _two_at_once(record: MeasuredRecord, known: dict[str, float], threads: int | None) -> float:
+    """Wall time of two fits of the record running at once in a pool of two threads, s.
+
+    ``threads``: the BLAS limit set around the pool in the main thread (OpenBLAS ignores one
+    set from a worker thread, so ``identify``'s own limit does not reach into a pool), or
+    ``None`` for the process's setting.
+    """
+    tic = time.perf_counter()
+    with threadpool_limits(limits=threads, user_api="blas"), ThreadPoolExecutor(2) as pool:
+        for future in [pool.submit(identify, record, known, blas_threads=None) for _ in range(2)]:
+            future.result()
+    return time.perf_counter() - tic
 
 
 def _phases(record: MeasuredRecord, known: dict[str, float]):  # type: ignore[no-untyped-def]

@@ -38,7 +38,9 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Mapping
+import threading
+from collections.abc import Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -46,6 +48,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import least_squares
 from scipy.signal import savgol_filter
+from threadpoolctl import threadpool_limits
 
 from stickslip.analysis.identification_estimates import (
     MeasuredRecord,
@@ -61,6 +64,7 @@ from stickslip.analysis.identification_result import (
     undetermined,
 )
 from stickslip.analysis.simulation import EngineOptions, simulate
+from stickslip.model.friction import STRIBECK_RANGES
 from stickslip.model.initial import InitialState
 from stickslip.model.physical import PhysicalFriction, PhysicalSystem
 
@@ -74,8 +78,26 @@ LAW_PARAMETERS: dict[str, tuple[str, ...]] = {
     "stribeck": ("stribeck_velocity", "exponent", "viscous"),
     "table": (),
 }
-#: Nodes of a fitted ``table`` law, as fractions of the largest sliding speed of the record.
-TABLE_FRACTIONS = (0.0, 0.05, 0.15, 0.4, 1.0)
+#: Knots of a fitted ``table`` law beyond ``v_r = 0``: these quantiles of the sliding speeds
+#: ``v_r = V - x'`` that the slip phases of the record visit (time-weighted: the samples are
+#: uniform in time), read from the model of a preliminary Coulomb fit (noise-free). Knots sit
+#: where the record spends its slip time, so each one has data; the last is the largest
+#: sliding speed of the record.
+TABLE_QUANTILES = (0.2, 0.4, 0.6, 0.8, 1.0)
+#: Parameters whose bounds are limits of the search, not of the physics: an optimum on such
+#: a bound is undetermined (the record does not bracket it; see UNDETERMINED_RULE).
+SEARCH_LIMITED = ("stribeck_velocity", "exponent")
+#: How close to such a limit (relative, in the fit's scaled coordinates) counts as on it: the
+#: trust-region method approaches a bound without reaching it.
+LIMIT_TOLERANCE = 1e-3
+#: Most knots of a ``table`` law (the engine's band limit leaves room for 15).
+MAX_TABLE_KNOTS = 12
+#: A sample is in slip when its sliding speed exceeds this fraction of the drive speed.
+SLIP_FRACTION = 1e-3
+#: BLAS threads during a fit (``identify(blas_threads=...)``): the fit's linear algebra is a few
+#: products and an SVD of an ``N x p`` matrix with ``p`` about 20, where a threaded BLAS on a
+#: small shared machine waits for cores (``benchmarks/bench_identify.py`` measures both).
+BLAS_THREADS = 1
 #: Law approximation tolerance of the Stribeck interpolant during a fit (units of lambda).
 STRIBECK_TOLERANCE = 1e-4
 #: Iteration budget of one least-squares fit (function evaluations).
@@ -276,8 +298,8 @@ def _segments(record: MeasuredRecord, est: RecordEstimates, start: dict[str, flo
 
 
 def _problem(record: MeasuredRecord, est: RecordEstimates, *, mass: float, load: float, speed: float,
-             law: str, known: Mapping[str, float], fit_offset: bool, start: Mapping[str, float] | None
-             ) -> _Problem:
+             law: str, known: Mapping[str, float], fit_offset: bool, start: Mapping[str, float] | None,
+             table_v: tuple[float, ...] = ()) -> _Problem:
     """Free parameters, their scales, bounds and starting values for one law."""
     duration = float(record.t[-1])
     main = record.F if record.F is not None else est.k * record.x  # type: ignore[operator]
@@ -289,15 +311,13 @@ def _problem(record: MeasuredRecord, est: RecordEstimates, *, mass: float, load:
         "force_offset": est.force_offset if fit_offset else 0.0, "force_drift": 0.0,
         "slope": 0.0, "stribeck_velocity": 0.3 * est.max_sliding_speed, "exponent": 1.0, "viscous": 0.0,
     }
-    table_v: tuple[float, ...] = ()
-    if law == "table":
-        table_v = tuple(f * est.max_sliding_speed for f in TABLE_FRACTIONS)
-        for i in range(len(table_v)):
-            guess[f"table_mu_{i}"] = est.mu_k
     if start:
         guess.update({k: v for k, v in start.items() if k in guess})
         if "force_offset" in guess and not fit_offset:
             guess["force_offset"] = 0.0
+    if law == "table":  # a flat curve at the (Coulomb) kinetic level
+        for i in range(len(table_v)):
+            guess[f"table_mu_{i}"] = guess["mu_k"]
     natural = {
         "k": est.k, "c": 0.1 * c_crit, "mu_s": est.mu_s, "mu_k": est.mu_s, "delta_mu": gap,
         "force_offset": 0.01 * f_range, "force_drift": 0.01 * f_range / duration,
@@ -308,7 +328,7 @@ def _problem(record: MeasuredRecord, est: RecordEstimates, *, mass: float, load:
         "k": (1e-6 * est.k, np.inf), "c": (0.0, np.inf), "mu_k": (0.0, np.inf), "delta_mu": (1e-9, np.inf),
         "mu_s": (0.0, np.inf), "force_offset": (-np.inf, np.inf), "force_drift": (-np.inf, np.inf),
         "slope": (-np.inf, np.inf), "stribeck_velocity": (1e-4 * speed, 1e3 * est.max_sliding_speed),
-        "exponent": (0.2, 5.0), "viscous": (-np.inf, np.inf),
+        "exponent": (STRIBECK_RANGES["exponent"][0], 5.0), "viscous": (-np.inf, np.inf),
     }
     candidates = ["k", "c", "mu_s", "mu_k", *LAW_PARAMETERS[law], "force_offset", "force_drift"]
     if law == "table":
@@ -366,6 +386,31 @@ def _solve(problem: _Problem, z0: FloatArray, weights: FloatArray | None = None,
                          gtol=TOLERANCE, max_nfev=max_nfev, kwargs={"weights": weights})
 
 
+def _two_sided_jacobian(problem: _Problem, res: Any) -> FloatArray:
+    """The optimiser's Jacobian at the optimum with each global parameter's column checked
+    against the backward difference; the one with the smaller norm is kept.
+
+    The exact engine's signals are smooth in the parameters except where an event appears
+    or vanishes (a grazing stick onset, a band of a tabulated law): a forward step that
+    crosses such a point overstates the sensitivity by orders of magnitude and so understates
+    the standard error. Where the two one-sided differences disagree the smaller one gives the
+    larger (conservative) standard error; where the model is smooth they agree to ``O(h)``.
+    """
+    jac = np.array(res.jac.toarray() if hasattr(res.jac, "toarray") else res.jac, dtype=np.float64)
+    z = res.x
+    r0 = problem.residuals(z)
+    for i in range(problem.n_global):
+        h = FD_STEP * max(1.0, abs(z[i]))
+        if z[i] - h < problem.lower[i]:
+            continue
+        zm = z.copy()
+        zm[i] -= h
+        backward = (r0 - problem.residuals(zm)) / h
+        if np.linalg.norm(backward) < np.linalg.norm(jac[:, i]):
+            jac[:, i] = backward
+    return jac
+
+
 def _covariance(problem: _Problem, jac: FloatArray, chi2: float, n_obs: int
                 ) -> tuple[list[str], FloatArray, FloatArray, list[bool]]:
     """Covariance of the reported global parameters and which ones are near-singular.
@@ -398,9 +443,10 @@ def _covariance(problem: _Problem, jac: FloatArray, chi2: float, n_obs: int
 
 def _fit_law(record: MeasuredRecord, est: RecordEstimates, *, mass: float, load: float, speed: float,
              law: str, known: Mapping[str, float], fit_offset: bool,
-             start: Mapping[str, float] | None = None) -> tuple[_Problem, Any]:
+             start: Mapping[str, float] | None = None, table_v: tuple[float, ...] = ()
+             ) -> tuple[_Problem, Any]:
     problem = _problem(record, est, mass=mass, load=load, speed=speed, law=law, known=known,
-                       fit_offset=fit_offset, start=start)
+                       fit_offset=fit_offset, start=start, table_v=table_v)
     z0 = problem.start
     # Stribeck: the optimiser can stall with the Stribeck velocity far off; two more starts
     if law != "stribeck" or "stribeck_velocity" in known:
@@ -419,8 +465,84 @@ def _fit_law(record: MeasuredRecord, est: RecordEstimates, *, mass: float, load:
     return problem, _solve(problem, best.x)
 
 
+def table_knots(sliding_speed: FloatArray, speed: float,
+                quantiles: Sequence[float] = TABLE_QUANTILES) -> tuple[float, ...]:
+    """Knot speeds of a fitted ``table`` law from the sliding speeds a record visits.
+
+    Parameters
+    ----------
+    sliding_speed : ndarray
+        Sliding speed ``v_r = V - x'`` at every sample, m/s (from a model of the record: the
+        measured velocity is too noisy near ``v_r = 0``).
+    speed : float
+        Drive speed ``V``, m/s; samples with ``v_r <= SLIP_FRACTION V`` are stick.
+    quantiles : sequence of float
+        Quantiles in ``(0, 1]`` of the slip samples' sliding speeds (time-weighted, the
+        samples being uniform in time).
+
+    Returns
+    -------
+    tuple of float
+        ``0`` and the quantiles, m/s, strictly increasing (coinciding quantiles merged).
+
+    Raises
+    ------
+    RecordError
+        When the record has no slip samples.
+    """
+    slip = np.asarray(sliding_speed, dtype=np.float64)
+    slip = slip[slip > SLIP_FRACTION * speed]
+    if slip.size == 0:
+        raise RecordError("the record shows no slip phase: no sliding speeds to place the table's knots")
+    knots = [0.0]
+    for value in np.quantile(slip, quantiles):
+        if value > knots[-1] * (1.0 + 1e-6) + 1e-12:
+            knots.append(float(value))
+    return tuple(knots)
+
+
+def visited_knots(table_v: Sequence[float], max_sliding_speed: float) -> list[bool]:
+    """Which knots of a ``table`` law the record's slip phases reach.
+
+    The friction between two knots is interpolated linearly, so knot ``i`` acts on the
+    samples with ``v_{i-1} < v_r < v_{i+1}``, with a weight above one half only for
+    ``v_r > (v_{i-1} + v_i) / 2``. A knot counts as visited when the largest sliding speed
+    of the record reaches that midpoint (the first knot always: every slip starts at
+    ``v_r = 0``); the others are undetermined whatever their standard error.
+
+    Parameters
+    ----------
+    table_v : sequence of float
+        Knot speeds, m/s, increasing.
+    max_sliding_speed : float
+        Largest sliding speed of the fitted model over the record, m/s.
+
+    Returns
+    -------
+    list of bool
+        One flag per knot.
+    """
+    flags = [True]
+    for lo, hi in itertools.pairwise(table_v):
+        flags.append(max_sliding_speed >= 0.5 * (lo + hi))
+    return flags[: len(table_v)]
+
+
+def _check_table_speeds(table_speeds: Sequence[float]) -> tuple[float, ...]:
+    knots = tuple(float(v) for v in table_speeds)
+    if not 2 <= len(knots) <= MAX_TABLE_KNOTS:
+        raise ValueError(f"table_speeds has {len(knots)} speeds; a table law needs 2 to {MAX_TABLE_KNOTS}")
+    if not all(math.isfinite(v) and v >= 0.0 for v in knots):
+        raise ValueError(f"table_speeds {list(knots)} must be finite and non-negative (m/s)")
+    if any(b <= a for a, b in itertools.pairwise(knots)):
+        raise ValueError(f"table_speeds {list(knots)} must increase strictly")
+    return knots
+
+
 def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulomb", *,
-             bootstrap: int = 0, seed: int = 0, fit_offset: bool | None = None) -> IdentificationResult:
+             bootstrap: int = 0, seed: int = 0, fit_offset: bool | None = None,
+             table_speeds: Sequence[float] | None = None,
+             blas_threads: int | None = BLAS_THREADS) -> IdentificationResult:
     """Fit stiffness, damping and a friction law to a measured stick-slip record.
 
     Parameters
@@ -436,7 +558,7 @@ def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulo
     law : {"coulomb", "linear", "stribeck", "table", "auto"}
         Friction law to fit; ``auto`` fits coulomb, linear and stribeck (its exponent held at
         1 unless known) and keeps the one with the lowest Bayesian information criterion (each
-        one's AIC and BIC are reported).
+        one's AIC, BIC, chi-square and parameter count are reported).
     bootstrap : int
         Number of bootstrap refits over resampled cycles (0: none); gives 95 % percentile
         intervals.
@@ -444,6 +566,15 @@ def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulo
         Seed of the bootstrap's random generator.
     fit_offset : bool, optional
         Fit a force offset (default: when the record has a displacement channel).
+    table_speeds : sequence of float, optional
+        ``table`` law: the knot speeds, m/s (2 to :data:`MAX_TABLE_KNOTS`, increasing). By
+        default ``0`` and the :data:`TABLE_QUANTILES` of the sliding speeds the record
+        visits (:func:`table_knots`). Knots the record does not reach
+        (:func:`visited_knots`) come back undetermined.
+    blas_threads : int or None
+        BLAS threads while fitting (``threadpoolctl``); ``None`` leaves the process's setting.
+        One by default (:data:`BLAS_THREADS`): the fit runs inside thread and process pools
+        on small machines, where more BLAS threads oversubscribe the cores.
 
     Returns
     -------
@@ -470,12 +601,61 @@ def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulo
     law = law.strip().lower()
     if law not in (*LAWS, "auto"):
         raise ValueError(f"law {law!r} is not one of {', '.join(LAWS)}, auto")
+    knots = _check_table_speeds(table_speeds) if table_speeds is not None else None
+    if knots is not None and law != "table":
+        raise ValueError(f"table_speeds are the knots of the table law, not of {law!r}")
+    if blas_threads is not None and blas_threads < 1:
+        raise ValueError(f"blas_threads={blas_threads!r} must be at least 1 (or None)")
     if fit_offset is None:
         fit_offset = record.x is not None and record.F is not None
+    with _blas_limited(blas_threads):
+        return _identify(record, known, law, mass=mass, load=load, speed=speed, bootstrap=bootstrap,
+                         seed=seed, fit_offset=fit_offset, knots=knots)
+
+
+_BLAS_LOCK = threading.Lock()
+_blas_state: dict[str, Any] = {"users": 0, "limiter": None}
+
+
+@contextmanager
+def _blas_limited(threads: int | None) -> Iterator[None]:
+    """Hold the BLAS libraries at ``threads`` threads while any fit runs (``None``: as they are).
+
+    ``threadpoolctl`` sets a process-wide number, so fits running at once share one limit:
+    the first fit to start sets it, the last to finish restores the process's own setting (a
+    plain ``with threadpool_limits`` per fit would let the first fit to finish lift the limit
+    under the others). The OpenBLAS that numpy and scipy ship ignores a limit set from a
+    worker thread (measured: ``threadpool_info`` still reports the cores there), so a program
+    that runs fits in a thread pool sets the limit around the pool, in its main thread:
+    ``with threadpoolctl.threadpool_limits(1, user_api="blas"): ...``.
+    """
+    if threads is None:
+        yield
+        return
+    with _BLAS_LOCK:
+        if _blas_state["users"] == 0:
+            _blas_state["limiter"] = threadpool_limits(limits=threads, user_api="blas")
+        _blas_state["users"] += 1
+    try:
+        yield
+    finally:
+        with _BLAS_LOCK:
+            _blas_state["users"] -= 1
+            if _blas_state["users"] == 0:
+                _blas_state["limiter"].restore_original_limits()
+                _blas_state["limiter"] = None
+
+
+def _identify(record: MeasuredRecord, known: Mapping[str, float], law: str, *, mass: float, load: float,
+              speed: float, bootstrap: int, seed: int, fit_offset: bool,
+              knots: tuple[float, ...] | None) -> IdentificationResult:
+    """:func:`identify` after its arguments are checked: the Coulomb fit that starts the others,
+    the law(s) asked for, the result."""
     est = estimate(record, mass=mass, load=load, speed=speed)
     laws = ("coulomb", "linear", "stribeck") if law == "auto" else (law,)
     fits: dict[str, tuple[_Problem, Any]] = {}
     coulomb_values: dict[str, float] | None = None
+    table_v: tuple[float, ...] = ()
     for name in laws:
         start = None
         if name != "coulomb" and coulomb_values is None:
@@ -484,6 +664,9 @@ def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulo
                                            if k not in LAW_PARAMETERS["stribeck"] + ("slope",)},
                                     fit_offset=fit_offset)
             coulomb_values = problem.values(res.x)
+            if name == "table":
+                sliding = speed - problem.simulate_record(res.x)["v"]
+                table_v = knots if knots is not None else table_knots(sliding, speed)
             if law == "auto":
                 fits["coulomb"] = (problem, res)
         if name == "coulomb" and name in fits:
@@ -497,7 +680,7 @@ def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulo
         if law == "auto" and name == "stribeck":
             law_known.setdefault("exponent", 1.0)  # the comparison: exponential Stribeck decay
         problem, res = _fit_law(record, est, mass=mass, load=load, speed=speed, law=name, known=law_known,
-                                fit_offset=fit_offset, start=start)
+                                fit_offset=fit_offset, start=start, table_v=table_v)
         if name == "coulomb":
             coulomb_values = problem.values(res.x)
         fits[name] = (problem, res)
@@ -516,6 +699,12 @@ def _criteria(problem: _Problem, res: Any) -> tuple[float, float]:
     p = _n_params(problem)
     base = n * math.log(chi2 / n)
     return base + 2.0 * p, base + p * math.log(n)
+
+
+def _criteria_report(problem: _Problem, res: Any) -> dict[str, float]:
+    """``aic``, ``bic``, the weighted ``chi2`` and the parameter count ``n_params`` of one fit."""
+    aic, bic = _criteria(problem, res)
+    return {"aic": aic, "bic": bic, "chi2": 2.0 * float(res.cost), "n_params": _n_params(problem)}
 
 
 def _bic(problem: _Problem, res: Any) -> float:
@@ -552,33 +741,44 @@ def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tup
             load: float, speed: float, fit_offset: bool) -> IdentificationResult:
     problem, res = fits[chosen]
     values = problem.values(res.x)
-    jac = res.jac.toarray() if hasattr(res.jac, "toarray") else np.asarray(res.jac)
+    jac = _two_sided_jacobian(problem, res)
     chi2 = 2.0 * res.cost
     reported, cov, singular, weak = _covariance(problem, jac, chi2, res.fun.size)
     stderr = np.sqrt(np.clip(np.diag(cov), 0.0, None))
     with np.errstate(divide="ignore", invalid="ignore"):
         corr = cov / np.outer(stderr, stderr)
     intervals = _bootstrap(problem, res, bootstrap, seed) if bootstrap > 0 else {}
-    if chosen == "table":
-        values["mu_k"] = min(values[f"table_mu_{i}"] for i in range(len(problem.table_v)))
+    model = problem.simulate_record(res.x)
+    knot_names = [f"table_mu_{i}" for i in range(len(problem.table_v))]
+    visited = visited_knots(problem.table_v, float(np.max(speed - model["v"]))) if knot_names else []
+    outside = {n for n, seen in zip(knot_names, visited, strict=True) if not seen}
+    at_limit = {n for n, z, lo, hi in zip(problem.names, res.x, problem.lower, problem.upper, strict=False)
+                if n in SEARCH_LIMITED and min(z - lo, hi - z) <= LIMIT_TOLERANCE * max(abs(z), 1.0)}
     params: dict[str, FitParameter] = {}
-    order = ["k", "c", "mu_s", "mu_k", *LAW_PARAMETERS[chosen], "force_offset", "force_drift"]
-    if chosen == "table":
-        order += [f"table_mu_{i}" for i in range(len(problem.table_v))]
+    order = ["k", "c", "mu_s", "mu_k", *LAW_PARAMETERS[chosen], "force_offset", "force_drift", *knot_names]
     for name in order:
-        if name in reported:
+        if chosen == "table" and name == "mu_k":
+            params[name] = FitParameter(name, None, None, "", free=True)  # filled in below
+        elif name in reported:
             i = reported.index(name)
             se = float(stderr[i])
-            bad = weak[i] or undetermined(name, values[name], se, values, mass=mass, speed=speed)
+            bad = (weak[i] or name in outside or name in at_limit
+                   or undetermined(name, values[name], se, values, mass=mass, speed=speed))
             params[name] = FitParameter(name, None if bad else values[name], None if bad else se,
                                         PARAMETER_UNITS[name], free=True, estimate=values[name],
                                         interval=intervals.get(name))
         else:
             params[name] = FitParameter(name, values[name], None, PARAMETER_UNITS[name], free=False,
                                         estimate=values[name])
-    model = problem.simulate_record(res.x)
-    criteria = {name: dict(zip(("aic", "bic"), _criteria(p, r), strict=True))
-                for name, (p, r) in fits.items()}
+    if chosen == "table":  # mu_k: the lowest knot the record determines (kinetic reference)
+        lowest = min(knot_names, key=lambda n: values[n])
+        determined = [n for n in knot_names if params[n].value is not None]
+        if determined:
+            lowest = min(determined, key=lambda n: values[n])
+        knot = params[lowest]
+        params["mu_k"] = FitParameter("mu_k", knot.value, knot.stderr, "", free=knot.free,
+                                      estimate=values[lowest], interval=knot.interval)
+    criteria = {name: _criteria_report(p, r) for name, (p, r) in fits.items()}
     rms = {n: float(np.sqrt(np.mean((model[n] - getattr(record, n)) ** 2))) for n in record.channels}
     stick_cycles = sum(1 for seg in problem.segments if seg.in_stick and seg.stop - seg.start > 1)
     return IdentificationResult(
@@ -593,5 +793,5 @@ def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tup
         engine_seconds=sum(p.engine_seconds for p, _ in fits.values()), n_evaluations=int(res.nfev),
         success=bool(res.success), message=str(res.message), source=record.source,
         fit_offset=fit_offset, condition=float(singular[0] / singular[-1]) if singular[-1] > 0 else math.inf,
-        covariance=cov, covariance_names=tuple(reported), bootstrap=bootstrap,
+        covariance=cov, covariance_names=tuple(reported), bootstrap=bootstrap, table_visited=tuple(visited),
     )

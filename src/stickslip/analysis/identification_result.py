@@ -28,15 +28,24 @@ PARAMETER_UNITS: dict[str, str] = {
     **{f"table_mu_{i}": "" for i in range(16)},
 }
 
+#: Relative standard error above which a Stribeck shape parameter (``stribeck_velocity``,
+#: ``exponent``) is undetermined: its two-standard-error band then spans a factor of three
+#: (``0.5 |value|`` either side: ``v_s`` and ``0.5 v_s`` or ``n = 2`` and ``n = 1`` are one
+#: record), so the record does not say which curve it saw.
+SHAPE_RELATIVE_STDERR = 0.5
+
 UNDETERMINED_RULE = (
     "a fitted parameter is undetermined (value null) when it lies along a numerically null "
     "direction of the column-scaled Jacobian at the optimum (singular value below 1e-8 of the "
     "largest, the parameter's weight in that direction above 0.1), or when its standard error "
-    "exceeds its scale: |value| for k, mu_s, stribeck_velocity, exponent and the table values; "
-    "mu_s for mu_k; 10 % of critical damping 2 sqrt(m k) for c; 10 % of (mu_s - mu_k) / V for "
-    "slope and viscous (a slope that would change friction by a tenth of the static-kinetic gap "
-    "across the drive speed); the force offset and drift are nuisance parameters and are always "
-    "reported with their standard errors"
+    "exceeds its scale: |value| for k and mu_s; mu_s for mu_k and the table values; 10 % of "
+    "critical damping 2 sqrt(m k) for c; 10 % of (mu_s - mu_k) / V for slope and viscous (a "
+    "slope that would change friction by a tenth of the static-kinetic gap across the drive "
+    "speed); half of |value| for the Stribeck shape parameters stribeck_velocity and exponent, "
+    "which are also undetermined when the optimum rests on a limit of their search range "
+    "(the record then does not bracket them); a table value is undetermined when the record's "
+    "sliding speeds do not reach the midpoint between its knot and the one below; the force "
+    "offset and drift are nuisance parameters and are always reported with their standard errors"
 )
 
 
@@ -66,8 +75,10 @@ def undetermined(name: str, value: float, stderr: float, values: Mapping[str, fl
         return True
     if name in ("force_offset", "force_drift"):
         return False
-    if name == "mu_k":
+    if name == "mu_k" or name.startswith("table_mu_"):
         scale = abs(values["mu_s"])
+    elif name in ("stribeck_velocity", "exponent"):
+        scale = SHAPE_RELATIVE_STDERR * abs(value)
     elif name == "c":
         scale = 0.1 * 2.0 * math.sqrt(mass * values["k"])
     elif name in ("slope", "viscous"):
@@ -160,6 +171,7 @@ class IdentificationResult:
     covariance: FloatArray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)
     covariance_names: tuple[str, ...] = ()
     bootstrap: int = 0
+    table_visited: tuple[bool, ...] = ()
 
     # ------------------------------------------------------------------ values
     def values(self) -> dict[str, float]:
@@ -212,6 +224,7 @@ class IdentificationResult:
             "information_criteria": self.criteria,
             "known": {"m": self.mass, "load": self.load, "speed": self.speed},
             "table_v": list(self.table_v) if self.table_v else None,
+            "table_visited": list(self.table_visited) if self.table_visited else None,
             "engine_calls": self.engine_calls,
             "engine_seconds": self.engine_seconds,
             "evaluations": self.n_evaluations,
@@ -229,7 +242,7 @@ class IdentificationResult:
         undetermined (the file would carry a number the record does not support).
         """
         needed = ["k", "c", "mu_s", "mu_k", *_FRICTION_KEYS[self.law],
-                  *[n for n in self.parameters if n.startswith("table_mu_")]]
+                  *[f"table_mu_{i}" for i in self._table_rows()]]
         missing = [n for n in needed if n in self.parameters and self.parameters[n].value is None
                    and self.parameters[n].free]
         if missing:
@@ -261,11 +274,20 @@ class IdentificationResult:
             lines.append(f'table = "{table_file}"')
         return "\n".join(lines) + "\n"
 
+    def _table_rows(self) -> list[int]:
+        """Indices of the table's knots that the record reaches (all when not recorded)."""
+        flags = self.table_visited or (True,) * len(self.table_v)
+        return [i for i, seen in enumerate(flags) if seen]
+
     def table_csv(self) -> str:
-        """The fitted ``table`` law as the CSV the machine file points to (columns v, mu)."""
+        """The fitted ``table`` law as the CSV the machine file points to (columns v, mu).
+
+        Knots beyond the sliding speeds the record reaches are left out (undetermined): the
+        engine's table law holds its last value beyond the last knot.
+        """
         v = self.values()
-        rows = ["v,mu"] + [f"{speed!r},{min(v[f'table_mu_{i}'], v['mu_s'])!r}"
-                           for i, speed in enumerate(self.table_v)]
+        rows = ["v,mu"] + [f"{self.table_v[i]!r},{min(v[f'table_mu_{i}'], v['mu_s'])!r}"
+                           for i in self._table_rows()]
         return "\n".join(rows) + "\n"
 
     def to_xarray(self) -> xr.Dataset:
@@ -323,6 +345,11 @@ class IdentificationResult:
                 ci = (f"  95% bootstrap [{p.interval[0]:.6g}, {p.interval[1]:.6g}]"
                       if p.interval is not None else "")
                 lines.append(f"    {n + ':':<19} {p.value:.8g} +/- {p.stderr:.3g}{unit}{rel}{ci}")
+        if self.table_v:
+            flags = self.table_visited or (True,) * len(self.table_v)
+            knots = [f"{v:.4g}{'' if seen else ' (not reached)'}"
+                     for v, seen in zip(self.table_v, flags, strict=True)]
+            lines.append(f"[[Table knots]] table_mu_i is mu at v_r = {', '.join(knots)} m/s")
         strong = sorted(((abs(v), a, b, v) for (a, b), v in self.correlations.items()
                          if math.isfinite(v) and abs(v) > 0.1), reverse=True)
         if strong:

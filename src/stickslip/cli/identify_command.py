@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 from pathlib import Path
 from typing import Annotated
 
@@ -33,6 +34,20 @@ def _parse_fixed(items: list[str]) -> dict[str, float]:
     return out
 
 
+def _parse_table_speeds(text: str) -> list[float]:
+    """``--table-speeds "0, 1 cm/s, 3 cm/s"``: knot speeds [m/s], units allowed on each."""
+    from stickslip.analysis.identification import MAX_TABLE_KNOTS
+    from stickslip.model.units import to_si
+
+    items = [item.strip() for item in text.split(",")]
+    if not 2 <= len(items) <= MAX_TABLE_KNOTS or not all(items):
+        raise BadInput(f"--table-speeds {text!r} must list 2 to {MAX_TABLE_KNOTS} speeds separated by commas")
+    speeds = [to_si("speed", item, source="--table-speeds") for item in items]
+    if any(v < 0.0 for v in speeds) or any(b <= a for a, b in itertools.pairwise(speeds)):
+        raise BadInput(f"--table-speeds {text!r} must be non-negative and increase strictly")
+    return speeds
+
+
 def identify(
     record: Annotated[Path, typer.Argument(help="CSV record: t and F and/or x (and v); see --columns")],
     mass: Annotated[str, typer.Option("--mass", help="slider mass [kg]; units allowed, e.g. '2 kg'")],
@@ -46,6 +61,11 @@ def identify(
     ] = None,
     fix: Annotated[
         list[str] | None, typer.Option("--fix", help="hold a parameter fixed, e.g. --fix 'c=0.5 N*s/m'")
+    ] = None,
+    table_speeds: Annotated[
+        str | None,
+        typer.Option("--table-speeds", help="table law: knot speeds, e.g. '0, 1 cm/s, 3 cm/s' "
+                     "(default: 0 and quantiles of the record's sliding speeds)"),
     ] = None,
     offset: Annotated[
         str, typer.Option("--offset", help="force offset and drift: auto (fit with x) | fit | zero")
@@ -83,6 +103,11 @@ def identify(
     if bootstrap < 0 or bootstrap > 10_000:
         raise BadInput(f"--bootstrap {bootstrap} must lie between 0 and 10000")
     known.update(_parse_fixed(fix or []))
+    knots = None
+    if table_speeds is not None:
+        if law != "table":
+            raise BadInput(f"--table-speeds is for --law table, not --law {law}")
+        knots = _parse_table_speeds(table_speeds)
     if write_config is not None:
         check_output_path(write_config, overwrite=overwrite, option="--write-config")
         if write_config.suffix.lower() != ".toml":
@@ -95,7 +120,8 @@ def identify(
         spec = read_columns_toml(columns) if is_file else parse_columns(columns)
     data = read_record(record, spec)
     fit_offset = None if offset == "auto" else offset == "fit"
-    result = run_identify(data, known, law=law, bootstrap=bootstrap, fit_offset=fit_offset)
+    result = run_identify(data, known, law=law, bootstrap=bootstrap, fit_offset=fit_offset,
+                          table_speeds=knots)
     payload = result.to_dict()
     if write_config is not None:
         table_name = write_config.with_suffix(".friction.csv").name
