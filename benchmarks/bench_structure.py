@@ -12,10 +12,18 @@ certified at tau = 1156) and 0.3 (steady sliding), gamma = 2, start-up state. Th
 ``simulate`` to its certified verdict (``t_end``); the oracle (``tests/oracle.py``, DOP853 with
 terminal events, contact DOF native) is timed on exactly ``[0, t_end]``, like for like. The
 engine's compile is paid before timing (one warm-up run). The ratio is oracle time / engine
-time, best of ``--repeats``. Measured (2 cores shared with other jobs, --quick): 29x on the
-stick-slip case (target 100x, not met), and the engine is *slower* than the oracle on the
-steady case, whose horizon is only tau = 1.9 (the engine's fixed cost per run at 20 DOF is
-~0.1 s).
+time, best of ``--repeats``. Under each case a line gives the stages of one ``simulate``
+(structure checks, per-mode matrices, their step exponentials, the slip-I Lyapunov solve, the
+whole preparation, the event loop, the rest), best of ``--repeats`` each.
+
+Measured (2 cores shared with four other jobs, --quick), after the O(n^3) Lyapunov solve and
+the balanced step norm of :mod:`stickslip.kernel.system` for structures beyond 3 DOF: 124x on
+the stick-slip case (61 ms; before: 29x, ~0.33 s, of which the O(n^6) Kronecker Lyapunov
+solve took 0.1-0.18 s and the event loop 0.22 s for 39103 steps, now 10323), and 2x on the
+steady case, whose horizon is only tau = 1.97: the oracle needs 16 ms there, the engine's
+fixed cost (three 41 x 41 step exponentials, ~2.5 ms, and a Lyapunov solve, ~1 ms) is most of
+its 5-8 ms. 100x on that case would need a preparation below 0.2 ms, less than one
+exponential: not met.
 
 Case 2: a 20,000-DOF sparse chain frame (5 kg nodes, 1e8 N/m links, 2e7 N/m to the floor at
 both ends) with a 1 kg slider on 1e6 N/m at its middle:
@@ -40,8 +48,12 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from tests.oracle import oracle_simulate
 
 from stickslip.analysis.reduction import default_cutoff_hz, reduce_structure
-from stickslip.analysis.simulation import simulate
+from stickslip.analysis.simulation import EngineOptions, simulate
+from stickslip.kernel import engine
+from stickslip.kernel.linalg import expm
+from stickslip.kernel.system import lyapunov_solve, mode_matrices, prepare_bands
 from stickslip.model import Slider
+from stickslip.model.initial import startup_state
 from stickslip.model.structure import Structure
 
 GAMMA = 2.0
@@ -77,6 +89,46 @@ def best_time(fn, repeats: int) -> float:  # type: ignore[no-untyped-def]
     return best
 
 
+def stage_breakdown(st: Structure, slider: Slider, repeats: int) -> str:
+    """Where a ``simulate`` of ``st`` spends its time, best of ``repeats`` per stage (ms).
+
+    Stages: the contact-first twin and the start-up state (structure checks), the per-mode
+    matrices, their step exponentials, the Lyapunov solve of slip-I, the whole preparation
+    (``prepare_bands``, which holds the three before and the event tables), the event loop
+    (``run_prepared``) and the rest of ``simulate`` (stability of steady sliding, the result).
+    """
+    inner, _ = st.contact_first()
+    lam, gamma = float(slider.lam), float(slider.gamma)
+    bands = slider.friction.bands(lam, gamma)
+    z0 = startup_state(inner, slider).as_vector(inner.n_dof)
+    ahat, _ = mode_matrices(inner.mass, inner.damping, inner.stiffness, lam, gamma, *bands[1:])
+    m = ahat.shape[1]
+    slip_i = np.ascontiguousarray(ahat[0, : m - 1, : m - 1])
+    prepared = prepare_bands(inner.mass, inner.damping, inner.stiffness, lam, gamma, *bands)
+    hstep = prepared[2]
+    opts = EngineOptions()
+
+    def loop() -> None:
+        engine.run_prepared(inner.mass, lam, gamma, bands[0], prepared, z0, opts.t_max,
+                            opts.max_events, opts.cycle_tol, opts.max_period, False, False, False)
+
+    stages = {
+        "structure": best_time(lambda: (st.contact_first(), startup_state(inner, slider)), repeats),
+        "mode matrices": best_time(lambda: mode_matrices(inner.mass, inner.damping, inner.stiffness,
+                                                         lam, gamma, *bands[1:]), repeats),
+        "expm x3": best_time(lambda: [expm(ahat[k] * hstep[k]) for k in range(ahat.shape[0])],
+                             repeats),
+        "Lyapunov": best_time(lambda: lyapunov_solve(slip_i, np.eye(m - 1)), repeats),
+        "prepare (all)": best_time(lambda: prepare_bands(inner.mass, inner.damping, inner.stiffness,
+                                                         lam, gamma, *bands), repeats),
+        "event loop": best_time(loop, repeats),
+    }
+    total = best_time(lambda: simulate(st, slider, record=False), repeats)
+    stages["rest of simulate"] = max(0.0, total - stages["structure"] - stages["prepare (all)"]
+                                     - stages["event loop"])
+    return "  stages (ms): " + ", ".join(f"{k} {v * 1e3:.2f}" for k, v in stages.items())
+
+
 def bench_simulate(repeats: int) -> None:
     st = chain_structure_20()
     for lam in (10.0, 0.3):
@@ -96,9 +148,10 @@ def bench_simulate(repeats: int) -> None:
         m = min(o.event_times.size, run.event_times.size)
         diff = float(np.abs(o.event_times[:m] - run.event_times[:m]).max()) if m else 0.0
         print(f"20-DOF, contact on DOF 10, lambda={lam:g}: {run.verdict.value} at t_end={run.t_end:.4g} "
-              f"({run.event_times.size} events); engine {t_engine * 1e3:.2f} ms, oracle "
-              f"{t_oracle * 1e3:.1f} ms -> ratio {t_oracle / t_engine:.0f}x; max event-time "
+              f"({run.event_times.size} events, {run.n_steps} steps); engine {t_engine * 1e3:.2f} ms, "
+              f"oracle {t_oracle * 1e3:.1f} ms -> ratio {t_oracle / t_engine:.0f}x; max event-time "
               f"difference over {m} events {diff:.1e}")
+        print(stage_breakdown(st, slider, repeats))
 
 
 def bench_reduction(n_frame: int) -> None:
