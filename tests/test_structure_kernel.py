@@ -17,7 +17,7 @@ from scipy.linalg import solve_continuous_lyapunov
 
 from stickslip.kernel.linalg import inf_norm, inverse_lu, solve_lyapunov_sign
 from stickslip.kernel.polynomial import TAYLOR_DEGREE, taylor_state, taylor_vectors
-from stickslip.kernel.system import STEP_THETA, mode_matrices, prepare, step_norm
+from stickslip.kernel.system import STEP_THETA, mode_matrices, prepare, prepare_bands, step_norm
 from stickslip.model import Foundation, elastic_foundation
 
 
@@ -108,3 +108,38 @@ def test_two_dof_structures_keep_the_plain_norm_step() -> None:
         a = np.ascontiguousarray(ahat[mode, :4, :4])
         assert step_norm(a, 2) == inf_norm(a)
         assert hstep[mode] == STEP_THETA / inf_norm(a)
+
+
+@pytest.mark.parametrize("law", ["coulomb", "bands"])
+def test_slip_ii_step_from_the_shared_block_is_the_exponential(law: str) -> None:
+    # beyond 3 DOF slip-II's step reuses slip-I's block (forced_step); reference: scipy expm
+    mass, damping, k = chain(6, seed=3)
+    if law == "coulomb":
+        prepared = prepare(mass, damping, k, 5.0, 2.0)
+    else:  # two affine bands (a velocity-weakening kink at u = 0.5): slip-I is forced too
+        prepared = prepare_bands(mass, damping, k, 5.0, 2.0, np.array([0.0, 0.5, np.inf]),
+                                 np.array([11.0, 10.6]), np.array([-1.0, -0.2]))
+    ahat, phi, hstep = prepared[:3]
+    for mode in range(ahat.shape[0]):
+        ref = scipy_expm(ahat[mode] * hstep[mode])
+        assert np.abs(phi[mode] - ref).max() <= 1e-13 * np.abs(ref).max(), mode
+
+
+def test_phase_record_grows_past_its_first_size() -> None:
+    # the record starts at RECORD_START phases and doubles; a long run keeps every phase.
+    # Reference: the certified cycle (stick then slip-I, period T), so after the cycle is
+    # reached phase k + 2 starts T after phase k; and the run without record has the same ends.
+    from stickslip import EngineOptions, Slider, rigid_base, simulate
+    from stickslip.kernel.engine import RECORD_START
+
+    st, slider = rigid_base(0.05), Slider(2.0)
+    opts = EngineOptions(t_max=4000.0)
+    res = simulate(st, slider, options=opts, run_to_t_max=True)
+    bare = simulate(st, slider, options=opts, run_to_t_max=True, record=False)
+    seg = res.segment_times
+    assert seg.size > 2 * RECORD_START
+    assert np.all(np.diff(seg) > 0.0)
+    tail = seg[-2 * RECORD_START:]
+    assert np.allclose(tail[2:] - tail[:-2], res.period, rtol=1e-9)
+    assert res.breakaway_times.size == res.n_breakaway > RECORD_START
+    assert np.array_equal(res.final_state, bare.final_state) and res.t_end == bare.t_end

@@ -60,6 +60,32 @@ def matmul(a: np.ndarray, b: np.ndarray, out: np.ndarray) -> None:
             out[i, j] = acc
 
 
+#: Matrices larger than this (the augmented system of a 3-DOF structure is 7 x 7) are multiplied
+#: row-wise in :func:`expm` (:func:`matmul_rowwise`); up to it, as always (the 1-3 DOF
+#: structures of tests/test_coulomb_bit_identity.py keep every bit).
+ROWWISE_MIN_SIZE = 8
+
+
+@njit(cache=True)
+def matmul_rowwise(a: np.ndarray, b: np.ndarray, out: np.ndarray) -> None:
+    """``out = a @ b`` in the (i, k, j) loop order: contiguous rows, zero entries of ``a`` skipped.
+
+    The sums run over ``k`` in the same order as :func:`matmul`; the inner loop walks rows of
+    ``b`` and ``out`` (vectorisable) where :func:`matmul` strides down a column of ``b``, which
+    is several times slower once a matrix outgrows the cache (a 300-DOF structure's 601 x 601).
+    """
+    n = a.shape[0]
+    q = b.shape[1]
+    for i in range(n):
+        for j in range(q):
+            out[i, j] = 0.0
+        for k in range(a.shape[1]):
+            f = a[i, k]
+            if f != 0.0:
+                for j in range(q):
+                    out[i, j] += f * b[k, j]
+
+
 @njit(cache=True)
 def expm(a: np.ndarray) -> np.ndarray:
     """Matrix exponential by scaling and squaring of a degree-18 Taylor polynomial.
@@ -84,14 +110,21 @@ def expm(a: np.ndarray) -> np.ndarray:
     result = np.eye(n)
     term = np.eye(n)
     tmp = np.empty((n, n))
+    rowwise = n >= ROWWISE_MIN_SIZE
     for k in range(1, TAYLOR_DEGREE_EXPM + 1):
-        matmul(term, b, tmp)
+        if rowwise:
+            matmul_rowwise(term, b, tmp)
+        else:
+            matmul(term, b, tmp)
         for i in range(n):
             for j in range(n):
                 term[i, j] = tmp[i, j] / k
                 result[i, j] += term[i, j]
     for _ in range(squarings):
-        matmul(result, result, tmp)
+        if rowwise:
+            matmul_rowwise(result, result, tmp)
+        else:
+            matmul(result, result, tmp)
         result[:, :] = tmp
     return result
 
@@ -250,21 +283,6 @@ def inverse_lu(a: np.ndarray) -> tuple[np.ndarray, bool]:
 
 
 @njit(cache=True)
-def _matmul_rows(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """``a @ b`` with the row-wise (i, k, j) loop order: contiguous access for large matrices."""
-    n, p = a.shape
-    q = b.shape[1]
-    out = np.zeros((n, q))
-    for i in range(n):
-        for k in range(p):
-            f = a[i, k]
-            if f != 0.0:
-                for j in range(q):
-                    out[i, j] += f * b[k, j]
-    return out
-
-
-@njit(cache=True)
 def solve_lyapunov_sign(a: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, bool]:
     """Solve ``a.T @ p + p @ a = -q`` by the matrix sign function (Roberts 1971), ``O(n^3)``.
 
@@ -296,7 +314,10 @@ def solve_lyapunov_sign(a: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, bool]
                 nx += x[i, j] * x[i, j]
                 ni += xinv[i, j] * xinv[i, j]
         c = np.sqrt(np.sqrt(ni) / np.sqrt(nx))
-        y_new = _matmul_rows(np.ascontiguousarray(xinv.T), _matmul_rows(y, xinv))
+        tmp = np.empty((n, n))
+        y_new = np.empty((n, n))
+        matmul_rowwise(y, xinv, tmp)
+        matmul_rowwise(np.ascontiguousarray(xinv.T), tmp, y_new)
         change = 0.0
         for i in range(n):
             for j in range(n):
