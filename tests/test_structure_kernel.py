@@ -15,9 +15,9 @@ import pytest
 from scipy.linalg import expm as scipy_expm
 from scipy.linalg import solve_continuous_lyapunov
 
-from stickslip.kernel.linalg import inf_norm, inverse_lu, solve_lyapunov_sign
+from stickslip.kernel.linalg import inf_norm, inverse_lu, solve_lyapunov_sign, step_norm
 from stickslip.kernel.polynomial import TAYLOR_DEGREE, taylor_state, taylor_vectors
-from stickslip.kernel.system import STEP_THETA, mode_matrices, prepare, prepare_bands, step_norm
+from stickslip.kernel.system import STEP_THETA, mode_matrices, prepare, prepare_bands
 from stickslip.model import Foundation, elastic_foundation
 
 
