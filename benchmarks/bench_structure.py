@@ -3,8 +3,8 @@ and the reduction of a 20,000-DOF sparse model, in one run.
 
 Usage::
 
-    .venv/bin/python benchmarks/bench_structure.py             # ~1-2 minutes
-    .venv/bin/python benchmarks/bench_structure.py --quick     # fewer repeats
+    .venv/bin/python benchmarks/bench_structure.py             # ~6-10 minutes
+    .venv/bin/python benchmarks/bench_structure.py --quick     # fewer repeats, ~3-5 minutes
 
 Case 1: a grounded 20-DOF chain (masses 0.8-1.6, springs 1-6.7 and a cross spring, Rayleigh
 damping 0.05 M + 0.05 K, dimensionless) with the contact on DOF 10, lambda = 10 (stick-slip,
@@ -25,11 +25,26 @@ fixed cost (three 41 x 41 step exponentials, ~2.5 ms, and a Lyapunov solve, ~1 m
 its 5-8 ms. 100x on that case would need a preparation below 0.2 ms, less than one
 exponential: not met.
 
-Case 2: a 20,000-DOF sparse chain frame (5 kg nodes, 1e8 N/m links, 2e7 N/m to the floor at
+Case 2: ``map --config``'s sweep over a 12 x 12 (--quick; 30 x 30 otherwise) speed/load grid of
+the 3-DOF slideway of ``tests/test_operating_map.py``, serially and on every numba thread,
+against the former implementation (one ``simulate`` per cell in a Python loop) in the same run;
+it also checks serial == threads bit for bit and the verdicts against the loop's. Measured
+(--quick, 2 cores shared with four other jobs): loop 0.78 s, serial 0.35 s (2.2x), threads
+0.41 s (1.9x): on this loaded machine the second thread brought nothing; building each cell's
+dimensionless law (a ``Machine`` per cell, ~0.35 ms) is serial Python.
+
+Case 3: a 20,000-DOF sparse chain frame (5 kg nodes, 1e8 N/m links, 2e7 N/m to the floor at
 both ends) with a 1 kg slider on 1e6 N/m at its middle:
 :func:`stickslip.analysis.reduction.reduce_structure` at the default cut-off (sparse LU and
 ``eigsh`` in shift-invert), time and size of the reduced model. The baseline measured in the
 same run is one sparse LU factorisation of the same stiffness (the least any reduction must do).
+
+Case 4: the reduction's error (issue 18 point 5): the Coulomb critical belt speed of the
+301-DOF frame of ``tests/test_structure_reduction.py`` (damping 2e-5 K), reduced at the default
+cut-off (:class:`stickslip.analysis.machine_absorber.CriticalPoint` of the reduced machine)
+against the full model's, bisected between 0.98 and 1.02 of it to 5e-3 (--quick) or 1e-3.
+Measured at 1e-3: reduced 0.303267 m/s (50 DOF) vs full 0.303422 m/s, relative error -5.1e-4
+(the full model's bisection took 206 s: each 301-DOF run is 15-30 s).
 """
 
 from __future__ import annotations
@@ -55,6 +70,7 @@ from stickslip.kernel.system import lyapunov_solve, mode_matrices, prepare_bands
 from stickslip.model import Slider
 from stickslip.model.initial import startup_state
 from stickslip.model.structure import Structure
+from stickslip.sweep.executors import max_threads
 
 GAMMA = 2.0
 #: Stiffness-proportional damping of the 301-DOF frame in the reduction-error case, s (frame
@@ -229,6 +245,44 @@ def bench_reduction_error(rtol: float) -> None:
           f"(bisected to {rtol:g}, {t_full:.0f} s) -> relative error {v_red / v_full - 1.0:+.2e}")
 
 
+def bench_operating_map(n_side: int) -> None:
+    """``map --config``'s sweep (:func:`stickslip.sweep.operating_map.operating_map`) over an
+    ``n_side x n_side`` speed/load grid of the 3-DOF slideway of tests/test_operating_map.py:
+    serial and on every numba thread, against the former implementation measured in the same
+    run (one ``simulate`` per cell in a Python loop)."""
+    from tests.test_operating_map import three_dof_machine
+
+    from stickslip.sweep.execution import ExecutionOptions
+    from stickslip.sweep.grid import Axis
+    from stickslip.sweep.operating_map import operating_map
+
+    machine = three_dof_machine()
+    speeds = Axis.parse(f"log:0.005:0.5:{n_side}", "speed")
+    loads = Axis.parse(f"log:20:200:{n_side}", "load")
+    operating_map(machine, speeds, loads, execution=ExecutionOptions(backend="serial"))  # compile
+    t0 = time.perf_counter()
+    before = [simulate(p.structure(), p.slider(), record=False).verdict.value
+              for v in speeds.values for w in loads.values
+              for p in [machine.with_operating_point(speed=v, load=w)]]
+    t_before = time.perf_counter() - t0
+    times = {}
+    maps = {}
+    for backend in ("serial", "threads"):
+        t0 = time.perf_counter()
+        maps[backend] = operating_map(machine, speeds, loads,
+                                      execution=ExecutionOptions(backend=backend))  # type: ignore[arg-type]
+        times[backend] = time.perf_counter() - t0
+    same = all(np.array_equal(getattr(maps["serial"], k), getattr(maps["threads"], k), equal_nan=True)
+               for k in ("period_s", "amplitude_m", "stick_ratio")) and np.array_equal(
+        maps["serial"].verdict, maps["threads"].verdict)
+    agree = list(maps["serial"].verdict.reshape(-1)) == before
+    print(f"map --config, 3-DOF slideway, {n_side}x{n_side} speed/load cells: per-cell simulate loop "
+          f"(before) {t_before:.2f} s; serial {times['serial']:.2f} s ({t_before / times['serial']:.1f}x); "
+          f"threads ({max_threads()} numba threads) {times['threads']:.2f} s "
+          f"({t_before / times['threads']:.1f}x); serial == threads bit for bit: {same}; verdicts "
+          f"= simulate's: {agree}")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer repeats")
@@ -238,6 +292,7 @@ def main() -> None:
     if repeats < 1:
         parser.error(f"--repeats {repeats} must be at least 1")
     bench_simulate(repeats)
+    bench_operating_map(12 if args.quick else 30)
     bench_reduction(20_000)
     bench_reduction_error(5e-3 if args.quick else 1e-3)
 
