@@ -95,3 +95,27 @@ def test_map_config_backends_give_the_same_file(tmp_path, capsys) -> None:  # ty
         with xr.open_dataset(out) as ds:
             outs.append({name: ds[name].values.tobytes() for name in ds.data_vars})
     assert outs[0] == outs[1]
+
+
+@pytest.mark.parametrize("flags,word", [(["--workers", "0"], "workers"),
+                                        (["--backend", "gpu"], "gpu"),
+                                        (["--chunk-size", "0"], "--chunk-size"),
+                                        (["--backend", "serial", "--workers", "2"], "serial")])
+def test_map_config_bad_execution_flags_one_line(flags, word, tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
+    from tests.cli_helpers import run_cli
+    from tests.test_cli_machine import write_structure_file
+
+    path = write_structure_file(tmp_path / "m.toml")
+    code, out, err = run_cli(["map", "--config", str(path), "--speed", "0.1", "--load", "10",
+                              "--out", str(tmp_path / "o.nc"), *flags], capsys)
+    assert code == 2 and out == "" and len(err.strip().splitlines()) == 1 and word in err
+    assert "Traceback" not in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["m.toml"]
+
+
+def test_old_progress_keyword_still_reports_cells_done_with_a_warning() -> None:
+    seen: list[int] = []
+    with pytest.warns(DeprecationWarning, match="ExecutionOptions"):
+        operating_map(three_dof_machine(), Axis.parse("0.05,0.1", "speed"), Axis.parse("50", "load"),
+                      options=OPTIONS, progress=seen.append)
+    assert seen[0] == 0 and seen[-1] == 2
