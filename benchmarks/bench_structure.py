@@ -16,14 +16,14 @@ time, best of ``--repeats``. Under each case a line gives the stages of one ``si
 (structure checks, per-mode matrices, their step exponentials, the slip-I Lyapunov solve, the
 whole preparation, the event loop, the rest), best of ``--repeats`` each.
 
-Measured (2 cores shared with four other jobs, --quick), after the O(n^3) Lyapunov solve and
-the balanced step norm of :mod:`stickslip.kernel.system` for structures beyond 3 DOF: 124x on
-the stick-slip case (61 ms; before: 29x, ~0.33 s, of which the O(n^6) Kronecker Lyapunov
-solve took 0.1-0.18 s and the event loop 0.22 s for 39103 steps, now 10323), and 2x on the
-steady case, whose horizon is only tau = 1.97: the oracle needs 16 ms there, the engine's
-fixed cost (three 41 x 41 step exponentials, ~2.5 ms, and a Lyapunov solve, ~1 ms) is most of
-its 5-8 ms. 100x on that case would need a preparation below 0.2 ms, less than one
-exponential: not met.
+Measured (2 cores shared with four other jobs, --quick, three runs: times vary 2x between
+runs), after the O(n^3) Lyapunov solve, the balanced step norm and slip-II's step from
+slip-I's block of :mod:`stickslip.kernel.linalg` for structures beyond 3 DOF: 116-232x on the
+stick-slip case (61-108 ms; before: 29x, ~0.33 s, of which the O(n^6) Kronecker Lyapunov
+solve took 0.1-0.18 s and the event loop 0.22 s for 39103 steps, now 10323), and 2-19x on the
+steady case, whose horizon is only tau = 1.97: the oracle needs 8-57 ms there, the engine's
+fixed cost (the preparation, ~1.3 ms: step exponentials and a Lyapunov solve) is most of its
+2-8 ms. 100x on that case would need a whole run below 0.1-0.5 ms: not met.
 
 Case 2: ``map --config``'s sweep over a 12 x 12 (--quick; 30 x 30 otherwise) speed/load grid of
 the 3-DOF slideway of ``tests/test_operating_map.py``, serially and on every numba thread,
