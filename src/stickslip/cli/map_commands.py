@@ -238,11 +238,11 @@ def map_command(
     from stickslip.cli.machine_config import refuse_mix, require_dimensionless
 
     refuse_mix(ctx, machine_file, ("lam", "zeta", "lam_spacing", "zeta_spacing", "dva", "k_scale",
-                             "gamma", "friction", "delta", "backend", "workers", "scheduler",
-                             "chunk_size"))
+                             "gamma", "friction", "delta"))
     if machine_file is not None:
         operating_map_command(machine_file, speed, load, out=out, t_max=t_max, csv=csv, plot=plot,
-                              overwrite=overwrite, json=json)
+                              overwrite=overwrite, json=json,
+                              execution=(backend, workers, scheduler, chunk_size, scheduler_timeout))
         return
     if speed is not None or load is not None:
         raise BadInput("--speed and --load map a machine file: give them with --config machine.toml")
@@ -454,18 +454,32 @@ def _print_boundary_table(p: dict[str, Any]) -> None:
 
 def operating_map_command(config: Path, speed: str | None, load: str | None, *, out: Path,
                           t_max: float | None, csv: Path | None, plot: Path | None,
-                          overwrite: bool, json: bool) -> None:
+                          overwrite: bool, json: bool,
+                          execution: tuple[str | None, int | None, str | None, int | None, float]
+                          ) -> None:
     """``map --config``: a machine's verdicts over belt speed and normal load, written to ``out``.
 
-    Every input is checked before the first run and before any file is made; the map is
-    computed in this process (one core; :data:`stickslip.sweep.operating_map.MAX_CELLS` bounds
-    it) and written once at the end.
+    Every input is checked before the first run and before any file is made; the cells run
+    like the dimensionless map's (``execution`` = ``--backend``, ``--workers``,
+    ``--scheduler``, ``--chunk-size``, ``--scheduler-timeout``: numba threads by default, or
+    serially, or on Dask, bit-identical), finished chunks go to the resume store ``OUT.parts``
+    (a killed run resumes from it; ``--overwrite`` discards a store of another configuration),
+    and the map is written once at the end (:data:`stickslip.sweep.operating_map.MAX_CELLS`
+    bounds it).
     """
     from stickslip.analysis.simulation import EngineOptions
     from stickslip.cli.machine_config import config_machine
     from stickslip.io.lock import output_lock
+    from stickslip.sweep.execution import ExecutionOptions
+    from stickslip.sweep.executors import check_backend
     from stickslip.sweep.grid import Axis
     from stickslip.sweep.operating_map import MAX_CELLS, operating_map
+    from stickslip.sweep.store import StoreMismatch, discard_store
+
+    backend, workers, scheduler, chunk_size, scheduler_timeout = execution
+    chosen = check_backend(backend or ("dask" if scheduler else "threads"), workers, scheduler)
+    if chunk_size is not None and chunk_size < 1:
+        raise BadInput(f"--chunk-size {chunk_size} must be at least 1")
 
     if speed is None or load is None:
         raise BadInput("map --config needs --speed (m/s) and --load (N) grids, e.g. "
@@ -496,11 +510,19 @@ def operating_map_command(config: Path, speed: str | None, load: str | None, *, 
         check_output_path(csv, overwrite=overwrite, option="--csv")
     if plot is not None:
         check_figure_path(plot, overwrite=overwrite)
+    reach = _scheduler_context(scheduler, scheduler_timeout)  # before any file is made
+    store = store_path(out)
     enabled = not json and sys.stderr.isatty()
-    with _ProgressBar(enabled, f"map {len(axes[0])}x{len(axes[1])} (V, W)") as bar:
-        result = operating_map(machine, axes[0], axes[1], options=options,
-                               progress=lambda done: bar(done, n_cells))
     out.parent.mkdir(parents=True, exist_ok=True)  # every check passed: writing starts
+    with reach, _ProgressBar(enabled, f"map {len(axes[0])}x{len(axes[1])} (V, W)") as bar:
+        try:
+            result = operating_map(machine, axes[0], axes[1], options=options,
+                                   execution=ExecutionOptions(
+                                       backend=chosen, workers=workers, scheduler=scheduler,
+                                       chunk_size=chunk_size, progress=bar, store=store,
+                                       overwrite=overwrite))
+        except StoreMismatch as exc:
+            raise BadInput(str(exc)) from None
     from stickslip.io.netcdf import write_dataset
 
     with output_lock(out):
@@ -508,6 +530,7 @@ def operating_map_command(config: Path, speed: str | None, load: str | None, *, 
         write_dataset(dataset, out, overwrite=True)
         if csv is not None:
             dataset.to_dataframe().reset_index().to_csv(csv, index=False)
+    discard_store(store)
     payload = result.to_dict()
     payload.update({"config": str(config), "dataset": str(out),
                     "csv": None if csv is None else str(csv), "plot": None})

@@ -60,6 +60,9 @@ STATUS_STUCK = 7
 #: (h ||A|| <= 1/2); this keeps such a run to seconds, ending with a reported status.
 MAX_STEPS = 1_000_000
 
+#: Phases the record holds before it first grows (it doubles up to ``max_events + 1``).
+RECORD_START = 256
+
 # layout of the float summary
 F_LYAPUNOV_BOUND = 0
 F_PERIOD = 1
@@ -141,6 +144,22 @@ def initial_mode(w, n, stick_row, lam, gamma, edges):
     if w[n] > 1.0:
         return mode_code(SLIP_II, find_band(edges, w[n] - 1.0))
     return mode_at_belt_speed(w, stick_row, lam, gamma)
+
+
+@njit(cache=True)
+def _grown(a, size):
+    """A copy of the vector ``a`` with room for ``size`` entries (the new ones unset)."""
+    out = np.empty(size, dtype=a.dtype)
+    out[: a.shape[0]] = a
+    return out
+
+
+@njit(cache=True)
+def _grown_rows(a, size):
+    """A copy of the matrix ``a`` with room for ``size`` rows (the new ones unset)."""
+    out = np.empty((size, a.shape[1]), dtype=a.dtype)
+    out[: a.shape[0]] = a
+    return out
 
 
 @njit(cache=True)
@@ -317,7 +336,10 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
     (ahat, phi, hstep, sig_rows, f_start, f_sign, f_offset, stick_row, lyap, kappa, n_lyap,
      ev_count, ev_next, ev_vel, _eq_mode, z_eq, lyap_lo, lyap_hi, margin, sec_mode,
      sec_event, trap_radius, trap_data) = prepared
-    cap = max_events + 1 if record else 1
+    # the phase record grows by doubling up to its bound (one phase per event, plus the first):
+    # sized for the bound at once it took max_events x 2n doubles, 0.5 GB for 300 DOF
+    cap_max = max_events + 1 if record else 1
+    cap = min(cap_max, RECORD_START)
     seg_t = np.empty(cap)
     seg_mode = np.empty(cap, dtype=np.int64)
     seg_state = np.empty((cap, nz))
@@ -462,7 +484,9 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             new_mode = SLIP_I if e_ev == 0 else SLIP_II
             just_broke_away = True
             cur_stick += t - stick_start
-            if record and n_rec[0] < cap:
+            if record and n_rec[0] >= all_bk_t.shape[0] and all_bk_t.shape[0] < cap_max:
+                all_bk_t = _grown(all_bk_t, min(cap_max, 2 * all_bk_t.shape[0]))
+            if record and n_rec[0] < all_bk_t.shape[0]:
                 all_bk_t[n_rec[0]] = t
             status = record_state(0, t, w, e_ev, cur_xmin, cur_xmax, cur_vmax, cur_stick, rec_t,
                                   rec_z, rec_key, rec_span, n_rec, max_period, cycle_tol, False,
@@ -497,6 +521,11 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             if t == seg_t_last:
                 # the phase just left lasted no time: overwrite it, keep times increasing
                 n_seg -= 1
+            if record and n_seg >= cap and cap < cap_max:
+                cap = min(cap_max, 2 * cap)
+                seg_t = _grown(seg_t, cap)
+                seg_mode = _grown(seg_mode, cap)
+                seg_state = _grown_rows(seg_state, cap)
             if record and n_seg < cap:
                 seg_t[n_seg] = t
                 seg_mode[n_seg] = mode
@@ -517,7 +546,7 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
         seg_t[:n_keep].copy(),
         seg_mode[:n_keep].copy(),
         seg_state[:n_keep].copy(),
-        all_bk_t[: min(n_rec[0], cap) if record else 0].copy(),
+        all_bk_t[: min(n_rec[0], all_bk_t.shape[0]) if record else 0].copy(),
         fsum,
         isum,
         w[:nz].copy(),

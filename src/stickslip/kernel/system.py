@@ -25,12 +25,14 @@ import numpy as np
 from numba import njit
 
 from stickslip.kernel.linalg import (
+    ORIGINAL_ARITHMETIC_DOF,
     expm,
+    forced_step,
     gauss_solve,
-    inf_norm,
     inverse,
     is_positive_definite,
-    solve_lyapunov,
+    lyapunov_solve,
+    step_norm,
 )
 
 SLIP_I = 0
@@ -256,9 +258,13 @@ def prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slope
     hstep = np.empty(n_modes)
     phi = np.empty((n_modes, m, m))
     for mode in range(n_modes):
-        norm = inf_norm(ahat[mode, : m - 1, : m - 1])
+        norm = step_norm(ahat[mode, : m - 1, : m - 1], n)
         hstep[mode] = STEP_THETA / max(norm, 1e-12)
-        phi[mode] = expm(ahat[mode] * hstep[mode])
+        if n > ORIGINAL_ARITHMETIC_DOF and mode != STICK and mode_kind(mode) == SLIP_II:
+            # slip-I and slip-II of a band share their 2n x 2n block (mode_matrices)
+            forced_step(phi[mode_code(SLIP_I, mode_band(mode))], ahat[mode], hstep[mode], phi[mode])
+        else:
+            phi[mode] = expm(ahat[mode] * hstep[mode])
     sig_rows = np.zeros((n_modes, N_SIGNATURE, m))
     row = np.zeros(m)
     deriv = np.zeros((N_ROWS, m))
@@ -437,7 +443,7 @@ def _common_lyapunov(a0, a1):
     mean = 0.5 * (a0 + a1)
     for c in range(3):
         cand = a0 if c == 0 else (a1 if c == 1 else mean)
-        p, ok = solve_lyapunov(cand, np.eye(nz))
+        p, ok = lyapunov_solve(cand, np.eye(nz))
         if not ok or not is_positive_definite(p):
             continue
         good = True
@@ -493,7 +499,7 @@ def lyapunov_data(mass, damping, stiffness, a, use_energy):
         kappa[0] = x[n]
         n_lyap = 1
     # Lyapunov's theorem: a is Hurwitz iff a' P + P a = -I has a positive definite solution
-    p, ok = solve_lyapunov(a, np.eye(nz))
+    p, ok = lyapunov_solve(a, np.eye(nz))
     if ok and is_positive_definite(p):
         x, ok = gauss_solve(p, e_v)
         if ok and x[n] > 0.0:

@@ -14,12 +14,22 @@ term ``sigma_v W / (2 sqrt(m k))``. Each cell therefore gets its own dimensionle
 :meth:`Machine.with_operating_point(speed=V, load=W).slider() <stickslip.model.machine.Machine>`
 from the SI law: the map is correct for every law, not only for Coulomb.
 
-Every cell is one certified run of the exact engine (:func:`stickslip.analysis.simulation.simulate`)
-from the start-up state, with the verdict, period [s] and amplitude [m] of its cycle.
+Every cell is one certified run of the exact engine from the start-up state, with the verdict,
+period [s] and amplitude [m] of its cycle. The cells run like those of the dimensionless map
+(:func:`stickslip.sweep.occurrence.occurrence_map`): through
+:func:`stickslip.sweep.executors.execute` with an
+:class:`~stickslip.sweep.execution.ExecutionOptions` (serially, on numba threads or on a Dask
+cluster, bit-identical), in chunks that a resume store keeps as they finish. Each cell is the
+kernel's ``run_cells`` on the contact-first twin of the structure (what
+:func:`stickslip.analysis.simulation.simulate` runs), with the cell's ``lambda`` and band table.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import hashlib
+import json
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -27,9 +37,24 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.simulation import EngineOptions, simulate
-from stickslip.analysis.verdict import VERDICTS
+from stickslip.analysis.simulation import EngineOptions
+from stickslip.analysis.verdict import VERDICTS, RunStatus
+from stickslip.io.provenance import package_version
+from stickslip.kernel import engine
+from stickslip.model.friction import CoulombFriction, FrictionLaw
+from stickslip.model.initial import STARTUP_DESCRIPTION
+from stickslip.sweep.execution import ExecutionOptions
+from stickslip.sweep.executors import (
+    CellBatch,
+    Chunk,
+    StructureSet,
+    default_chunk_size,
+    execute,
+    load_stored,
+    make_chunks,
+)
 from stickslip.sweep.grid import Axis
+from stickslip.sweep.store import ChunkStore
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -130,8 +155,87 @@ class OperatingMap:
         return operating_map_plot(self, **kwargs)
 
 
+@dataclass(frozen=True)
+class OperatingCells:
+    """The cells of an operating map, flat (``c = i_speed * n_load + j_load``), ready to run.
+
+    ``lam``, ``laws`` (the dimensionless law of each cell, built from the SI law at its
+    ``(V, W)``), ``time_scale`` and ``length_scale`` (s and m per unit of ``tau`` and of the
+    dimensionless displacement) per cell; ``structures`` the machine's contact-first
+    dimensionless structure (one, whatever ``V`` and ``W``); ``gamma``, ``zeta``.
+    """
+
+    structures: StructureSet
+    lam: FloatArray
+    laws: tuple[FrictionLaw, ...]
+    coulomb: bool
+    time_scale: FloatArray
+    length_scale: FloatArray
+    gamma: float
+    zeta: float
+
+    @classmethod
+    def of(cls, machine: Machine, speeds: FloatArray, loads: FloatArray) -> OperatingCells:
+        """Each cell's groups from :meth:`Machine.with_operating_point` (as one run of it would)."""
+        structure, _ = machine.to_dimensionless()  # independent of V and W
+        inner, _ = structure.contact_first()
+        n = speeds.size * loads.size
+        lam = np.empty(n)
+        time_scale = np.empty(n)
+        length_scale = np.empty(n)
+        laws: list[FrictionLaw] = []
+        gamma = float("nan")
+        for i, speed in enumerate(speeds.tolist()):
+            for j, load in enumerate(loads.tolist()):
+                point = machine.with_operating_point(speed=speed, load=load)
+                slider = point.slider()  # lambda and the law's own shape at (V, W)
+                reference = point.reference_system()
+                c = i * loads.size + j
+                lam[c] = slider.lam
+                laws.append(slider.friction)
+                time_scale[c] = reference.time_scale
+                length_scale[c] = reference.length_scale
+                gamma = slider.gamma
+        structures = StructureSet(zetas=np.array([inner.zeta]), foundations=(None,),
+                                  masses=inner.mass[None], dampings=inner.damping[None],
+                                  stiffnesses=inner.stiffness[None])
+        coulomb = all(isinstance(law, CoulombFriction) for law in laws)
+        return cls(structures, lam, tuple(laws), coulomb, time_scale, length_scale, float(gamma),
+                   float(structure.zeta))
+
+    def batch(self, chunk: Chunk) -> CellBatch:
+        """The cells of ``chunk`` for the kernel's ``run_cells``."""
+        lams = self.lam[chunk.start:chunk.stop]
+        index = np.zeros(chunk.size, dtype=np.int64)
+        if self.coulomb:
+            return CellBatch(index, lams, self.gamma)
+        return CellBatch(index, lams, self.gamma, laws=self.laws[chunk.start:chunk.stop])
+
+
+def operating_configuration(machine: Machine, speeds: FloatArray, loads: FloatArray,
+                            options: EngineOptions) -> dict[str, Any]:
+    """What determines an operating map's answers (its resume store's fingerprint is its hash).
+
+    The structure enters through a SHA-256 of its SI matrices (full precision), the law through
+    every field of the SI ``[friction]`` table.
+    """
+    digest = hashlib.sha256()
+    for matrix in (machine.mass, machine.damping, machine.stiffness):
+        digest.update(np.ascontiguousarray(matrix, dtype=np.float64).tobytes())
+    return {"kind": "operating-map", "machine": str(machine.name), "n_dof": machine.n_dof,
+            "contact_dof": machine.contact_dof, "matrices_sha256": digest.hexdigest(),
+            "mu_s": machine.mu_s, "mu_k": machine.mu_k,
+            "friction": dataclasses.asdict(machine.friction),
+            "speed_m_per_s": speeds.tolist(), "load_N": loads.tolist(),
+            "engine": options.to_dict(), "initial_condition": STARTUP_DESCRIPTION,
+            "package_version": package_version()}
+
+
+# Over 60 lines: the docstring states every parameter; the body is the occurrence map's chunk
+# loop (load the stored chunks, run the missing ones, save each as it finishes).
 def operating_map(machine: Machine, speeds: Axis, loads: Axis, *,
                   options: EngineOptions | None = None,
+                  execution: ExecutionOptions | None = None,
                   progress: Callable[[int], None] | None = None) -> OperatingMap:
     """Certified verdict of ``machine`` at every belt speed and normal load of the grid.
 
@@ -145,8 +249,14 @@ def operating_map(machine: Machine, speeds: Axis, loads: Axis, *,
         Normal loads ``W``, N (> 0).
     options : EngineOptions, optional
         Horizon and budgets of each run (dimensionless time).
+    execution : ExecutionOptions, optional
+        How the cells run (backend ``threads``, ``serial`` or ``dask``: bit-identical results;
+        workers, scheduler, chunk size, ``progress(done, total)``, resume store, overwrite), as
+        for :func:`stickslip.sweep.occurrence.occurrence_map`. Default: numba threads on every
+        core.
     progress : callable, optional
-        Called with the number of cells done after each row of speeds.
+        Deprecated (one release): ``progress(done)``; pass ``execution=ExecutionOptions(
+        progress=...)``, called as ``progress(done, total)``.
 
     Returns
     -------
@@ -157,6 +267,8 @@ def operating_map(machine: Machine, speeds: Axis, loads: Axis, *,
     ------
     ValueError
         A speed or load that is not positive and finite, or more than :data:`MAX_CELLS` cells.
+    stickslip.sweep.store.StoreMismatch
+        The resume store holds another configuration (and ``execution.overwrite`` is false).
     """
     v = np.asarray(speeds.values, dtype=np.float64)
     w = np.asarray(loads.values, dtype=np.float64)
@@ -166,24 +278,49 @@ def operating_map(machine: Machine, speeds: Axis, loads: Axis, *,
     if v.size * w.size > MAX_CELLS:
         raise ValueError(f"{v.size} x {w.size} = {v.size * w.size:,} operating points exceed "
                          f"{MAX_CELLS:,} (each is a full certified run); use fewer points")
-    structure, _ = machine.to_dimensionless()  # independent of V and W
+    run = execution if execution is not None else ExecutionOptions()
+    if progress is not None:
+        warnings.warn("operating_map(progress=f) is deprecated: pass "
+                      "execution=ExecutionOptions(progress=...), called as progress(done, total)",
+                      DeprecationWarning, stacklevel=2)
+        old = progress
+        run = run.replace(progress=lambda done, _total: old(done))
+    opts = options or EngineOptions()
+    cells = OperatingCells.of(machine, v, w)
+    n_cells = v.size * w.size
+    size = int(run.chunk_size) if run.chunk_size is not None else default_chunk_size(n_cells, run.backend)
+    chunk_store = None
+    if run.store is not None:
+        configuration = operating_configuration(machine, v, w, opts)
+        fingerprint = hashlib.sha256(json.dumps(configuration, sort_keys=True).encode()).hexdigest()
+        chunk_store = ChunkStore(run.store, fingerprint, configuration, n_cells, size,
+                                 overwrite=run.overwrite)
+        size = chunk_store.chunk_size
+    chunks = make_chunks(n_cells, size)
+    fsum = np.full((n_cells, engine.N_FLOAT), np.nan)
+    isum = np.zeros((n_cells, engine.N_INT), dtype=np.int64)
+    missing = load_stored(chunk_store, chunks, fsum, isum)
+    done = n_cells - sum(c.size for c in missing)
+    if run.progress is not None:
+        run.progress(done, n_cells)
+    batches = [(c, cells.batch(c)) for c in missing]
+    for chunk, f_chunk, i_chunk in execute(cells.structures, batches, opts, backend=run.backend,
+                                           workers=run.workers, scheduler=run.scheduler):
+        fsum[chunk.start:chunk.stop] = f_chunk
+        isum[chunk.start:chunk.stop] = i_chunk
+        if chunk_store is not None:
+            chunk_store.save(chunk.index, f_chunk, i_chunk)
+        done += chunk.size
+        if run.progress is not None:
+            run.progress(done, n_cells)
+    if chunk_store is not None:
+        chunk_store.record_run(len(chunks) - len(missing), len(missing), run.backend)
+    verdicts = {code: RunStatus.from_code(int(code)).verdict.value
+                for code in np.unique(isum[:, engine.I_STATUS])}
     shape = (v.size, w.size)
-    lam = np.empty(shape)
-    verdict = np.empty(shape, dtype=object)
-    period, amplitude, stick = (np.full(shape, np.nan) for _ in range(3))
-    zeta = gamma = float("nan")
-    for i, speed in enumerate(v.tolist()):
-        for j, load in enumerate(w.tolist()):
-            point = machine.with_operating_point(speed=speed, load=load)
-            slider = point.slider()  # lambda and the law's own shape at (V, W)
-            result = simulate(structure, slider, options=options, record=False)
-            reference = point.reference_system()
-            lam[i, j], verdict[i, j] = slider.lam, result.verdict.value
-            period[i, j] = result.period * reference.time_scale
-            amplitude[i, j] = result.amplitude * reference.length_scale
-            stick[i, j] = result.stick_ratio
-            zeta, gamma = structure.zeta, slider.gamma
-        if progress is not None:
-            progress((i + 1) * w.size)
-    return OperatingMap(v, w, lam, verdict.astype(str), period, amplitude, stick, machine.to_dict(),
-                        float(zeta), float(gamma), machine.friction.law)
+    verdict = np.array([verdicts[code] for code in isum[:, engine.I_STATUS]], dtype=str)
+    return OperatingMap(v, w, cells.lam.reshape(shape), verdict.reshape(shape),
+                        (fsum[:, engine.F_PERIOD] * cells.time_scale).reshape(shape),
+                        (fsum[:, engine.F_AMPLITUDE] * cells.length_scale).reshape(shape),
+                        fsum[:, engine.F_STICK_RATIO].reshape(shape), machine.to_dict(),
+                        cells.zeta, cells.gamma, machine.friction.law)
