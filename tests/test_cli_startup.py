@@ -66,12 +66,20 @@ def test_simulate_loads_no_other_command_no_sweep_and_no_dataset_or_plot_library
     assert not unneeded & loaded
 
 
-@pytest.mark.parametrize("argv", [["--help"], ["simulate", "--help"], ["--version"]])
-def test_help_and_version_load_no_numba(argv: list[str]) -> None:
+@pytest.mark.parametrize("argv", [["--help"], ["simulate", "--help"], ["--version"],
+                                  ["simulate", "--lam", "x", "--zeta", "0.1", "--json"]])
+def test_help_version_and_refused_input_load_no_numba(argv: list[str]) -> None:
     loaded = _loaded(argv)
-    assert "numba" not in loaded
+    assert "numba" not in loaded  # numba is imported (and compiles are watched) after parsing
     # a command's help needs that command alone; the main help lists them all
     assert ("stickslip.cli.map_commands" in loaded) == (argv[0] != "simulate")
+
+
+def test_every_command_but_the_numba_free_ones_runs_under_a_compile_watch() -> None:
+    watching = main.watching_compiles(print, announced=False).__code__
+    for info in main.build_app().registered_commands:
+        watched = getattr(info.callback, "__code__", None) is watching
+        assert watched == (info.name not in main.NUMBA_FREE_COMMANDS), info.name
 
 
 def _probe(module: str) -> object:

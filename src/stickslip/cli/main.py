@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import functools
 import os
 import sys
 import time
 import warnings
+from collections.abc import Callable
 from importlib import import_module
 from typing import Annotated, Any, NoReturn
 
@@ -44,6 +46,10 @@ COMMAND_MODULES: dict[str, str] = {
 }
 
 
+#: Commands that run no compiled kernel (so their start-up never imports numba).
+NUMBA_FREE_COMMANDS = frozenset({"frf", "app"})
+
+
 def _version(value: bool) -> None:
     if value:
         from stickslip import __version__
@@ -60,13 +66,15 @@ def main(
     """Predict and suppress stick-slip in sliding systems on elastic foundations."""
 
 
-def build_app(command: str | None = None) -> typer.Typer:
+def build_app(command: str | None = None, *, announced: bool = False) -> typer.Typer:
     """The ``stickslip`` Typer application, with every command or with ``command`` alone.
 
     A run of one command needs only that command's module: ``stickslip simulate`` then
     imports neither the map, basin nor design commands (nor what they import), which keeps
     its start-up short (issue 21, point 4). ``command=None``, or a name that is no command
-    (typing errors, ``--help``, shell completion), registers them all.
+    (typing errors, ``--help``, shell completion), registers them all. Every command that may
+    compile numba kernels runs :func:`watching_compiles`; ``announced`` says that the
+    first-run notice is printed already.
     """
     app = typer.Typer(
         name="stickslip",
@@ -86,6 +94,9 @@ def build_app(command: str | None = None) -> typer.Typer:
         modules = list(dict.fromkeys(COMMAND_MODULES.values()))
     for module in modules:
         import_module(f"stickslip.cli.{module}").register(app)
+    for info in app.registered_commands:
+        if info.name not in NUMBA_FREE_COMMANDS and info.callback is not None:
+            info.callback = watching_compiles(info.callback, announced)
     return app
 
 
@@ -152,10 +163,6 @@ def engine_cache_is_cold() -> bool:
 #: The first-run notice on stderr (never on stdout: ``--json`` prints one object there).
 FIRST_RUN_NOTICE = ("stickslip: first run: compiling the simulation engine with numba, about a minute "
                     "(once; later runs load it from the cache)")
-
-#: Commands that run no compiled kernel (so their start-up never imports numba).
-NUMBA_FREE_COMMANDS = frozenset({"frf", "app"})
-
 
 def _announce_compilation(argv: list[str]) -> bool:
     """On the first engine command after an install, say on stderr that numba compiles now.
@@ -227,25 +234,31 @@ class CompileWatch:
                   "they are cached for later runs", file=sys.stderr, flush=True)
 
 
-def _watch_compilation(argv: list[str], announced: bool) -> CompileWatch | None:
-    """A :class:`CompileWatch` for a command that may compile kernels (not for ``--help``)."""
-    command = invoked_command(argv)
-    if command not in COMMAND_MODULES or command in NUMBA_FREE_COMMANDS or "--help" in argv:
-        return None
-    return CompileWatch(announced)
+def watching_compiles(command: Callable[..., Any], announced: bool) -> Callable[..., Any]:
+    """``command`` run under a :class:`CompileWatch` (started once its options are parsed).
+
+    After parsing, so that ``--help`` and refused input never import numba. The signature
+    and docstring stay those of ``command`` (typer reads them through ``__wrapped__``).
+    """
+
+    @functools.wraps(command)
+    def watched(*args: Any, **kwargs: Any) -> Any:
+        watch = CompileWatch(announced)
+        try:
+            return command(*args, **kwargs)
+        finally:
+            watch.close()
+
+    return watched
 
 
 def run(argv: list[str] | None = None) -> None:
     """Console entry point: one line on stderr and exit code 2 for any bad input."""
     args = sys.argv[1:] if argv is None else list(argv)
-    watch = _watch_compilation(args, _announce_compilation(args))
-    try:
-        with warnings.catch_warnings():
-            warnings.showwarning = _show_warning
-            _run(argv, build_app(invoked_command(args)))
-    finally:
-        if watch is not None:
-            watch.close()
+    announced = _announce_compilation(args)
+    with warnings.catch_warnings():
+        warnings.showwarning = _show_warning
+        _run(argv, build_app(invoked_command(args), announced=announced))
 
 
 def _run(argv: list[str] | None, app: typer.Typer) -> None:
