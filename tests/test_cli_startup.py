@@ -100,8 +100,8 @@ def test_a_compile_is_announced_once_and_summed_up_on_stderr(capsys: pytest.Capt
     assert out == ""
     lines = err.splitlines()
     assert lines[0] == main.FIRST_RUN_NOTICE and len(lines) == 2
-    assert re.fullmatch(r"stickslip: compiled 2 numba kernels in \d+ s; they are cached for later runs",
-                        lines[1])
+    assert re.fullmatch(r"stickslip: compiled 1 numba kernels \(2 signatures\) in \d+ s; "
+                        r"they are cached for later runs", lines[1])
     _probe("stickslip._compile_probe")(1)  # type: ignore[operator]  # closed: no longer listening
     assert capsys.readouterr() == ("", "")
 
@@ -113,7 +113,7 @@ def test_no_second_notice_and_nothing_for_code_outside_the_package(
         _probe("stickslip._compile_probe")(1)  # type: ignore[operator]
     finally:
         watch.close()
-    assert capsys.readouterr()[1].startswith("stickslip: compiled 1 numba kernels")
+    assert capsys.readouterr()[1].startswith("stickslip: compiled 1 numba kernels (1 signatures)")
     watch = main.CompileWatch(announced=False)
     try:
         _probe("someone_else")(1)  # type: ignore[operator]
@@ -144,8 +144,8 @@ def test_the_first_simulate_compiles_only_the_engine_and_says_so(tmp_path: Path)
     assert (payload["verdict"], payload["period"]) == (expected["verdict"], expected["period"])
     lines = done.stderr.splitlines()
     assert lines[0] == main.FIRST_RUN_NOTICE and len(lines) == 2
-    assert re.fullmatch(r"stickslip: compiled \d+ numba kernels in \d+ s; they are cached for later runs",
-                        lines[1])
+    assert re.fullmatch(r"stickslip: compiled \d+ numba kernels \(\d+ signatures\) in \d+ s; "
+                        r"they are cached for later runs", lines[1])
     compiled = {index.name.split(".")[0] for index in tmp_path.rglob("*.nbi")}
     assert "engine" in compiled
     assert not compiled & {"batch", "certificate"}  # the map's and the basin's kernels

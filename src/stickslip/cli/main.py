@@ -184,8 +184,8 @@ class CompileWatch:
     (:mod:`numba.core.event`; loads from the cache report none). The first compile of a
     stickslip kernel prints :data:`FIRST_RUN_NOTICE` (unless the cache check of
     :func:`_announce_compilation` has printed it), :meth:`close` then prints how many kernels
-    (compiled functions of this package, one per signature) took how long. A run served by
-    the cache prints nothing.
+    (compiled functions of this package) and signatures took how long. A run served by the
+    cache prints nothing.
     """
 
     def __init__(self, announced: bool) -> None:
@@ -193,6 +193,7 @@ class CompileWatch:
 
         self.announced = announced
         self.kernels = 0
+        self.functions: set[str] = set()
         self.seconds = 0.0
         self._depth = 0
         self._started = 0.0
@@ -201,7 +202,8 @@ class CompileWatch:
 
         class Listener(event.Listener):
             def on_start(self, ev: Any) -> None:
-                watch.started(ev.data["dispatcher"].py_func.__module__)
+                function = ev.data["dispatcher"].py_func
+                watch.started(function.__module__, function.__qualname__)
 
             def on_end(self, ev: Any) -> None:
                 watch.ended()
@@ -209,13 +211,14 @@ class CompileWatch:
         self._listener = Listener()
         event.register("numba:compile", self._listener)
 
-    def started(self, module: str) -> None:
+    def started(self, module: str, name: str) -> None:
         """A compile begins (nested ones: the callees of a kernel, numba's own overloads)."""
         if self._depth == 0:
             self._started = time.perf_counter()
         self._depth += 1
         if module.startswith("stickslip."):
             self.kernels += 1
+            self.functions.add(f"{module}.{name}")
             if not self.announced:
                 print(FIRST_RUN_NOTICE, file=sys.stderr, flush=True)
                 self.announced = True
@@ -230,8 +233,9 @@ class CompileWatch:
         """Stop listening; say on stderr how many kernels were compiled, if any."""
         self._event.unregister("numba:compile", self._listener)
         if self.kernels:
-            print(f"stickslip: compiled {self.kernels} numba kernels in {self.seconds:.0f} s; "
-                  "they are cached for later runs", file=sys.stderr, flush=True)
+            print(f"stickslip: compiled {len(self.functions)} numba kernels ({self.kernels} "
+                  f"signatures) in {self.seconds:.0f} s; they are cached for later runs",
+                  file=sys.stderr, flush=True)
 
 
 def watching_compiles(command: Callable[..., Any], announced: bool) -> Callable[..., Any]:
