@@ -2,9 +2,14 @@
 
 from __future__ import annotations
 
+import functools
+import os
 import sys
+import time
 import warnings
-from typing import Annotated, NoReturn
+from collections.abc import Callable
+from importlib import import_module
+from typing import Annotated, Any, NoReturn
 
 import typer
 
@@ -23,17 +28,26 @@ Example: stickslip simulate --lam 3 --zeta 0.1 --json
 Shell completion: stickslip --install-completion (or --show-completion to print the script).
 """
 
-app = typer.Typer(
-    name="stickslip",
-    help=HELP,
-    no_args_is_help=True,
-    add_completion=True,  # Typer's --install-completion and --show-completion
-    pretty_exceptions_enable=False,
-    # help texts are plain text: units and TOML tables are written in brackets ("[kg]",
-    # "[system]"), which Rich markup would swallow as style tags
-    rich_markup_mode=None,
-    context_settings={"max_content_width": 120},  # up to 120 columns when the terminal has them
-)
+#: Command -> module of :mod:`stickslip.cli` whose ``register`` adds it, in ``--help`` order.
+COMMAND_MODULES: dict[str, str] = {
+    "simulate": "simulate_command",
+    "frf": "absorber_commands",
+    "tune": "absorber_commands",
+    "map": "map_commands",
+    "boundary": "map_commands",
+    "design": "design_command",
+    "basin": "basin_command",
+    "basin-map": "basin_map_command",
+    "cycles": "cycles_command",
+    "continue": "continue_command",
+    "identify": "identify_command",
+    "reproduce": "reproduce_command",
+    "app": "app_command",
+}
+
+
+#: Commands that run no compiled kernel (so their start-up never imports numba).
+NUMBA_FREE_COMMANDS = frozenset({"frf", "app"})
 
 
 def _version(value: bool) -> None:
@@ -44,7 +58,6 @@ def _version(value: bool) -> None:
         raise typer.Exit()
 
 
-@app.callback()
 def main(
     version: Annotated[
         bool, typer.Option("--version", callback=_version, is_eager=True, help="print the version")
@@ -53,28 +66,53 @@ def main(
     """Predict and suppress stick-slip in sliding systems on elastic foundations."""
 
 
-def _register() -> None:
-    from stickslip.cli import (
-        absorber_commands,
-        app_command,
-        basin_command,
-        basin_map_command,
-        continue_command,
-        cycles_command,
-        design_command,
-        identify_command,
-        map_commands,
-        reproduce_command,
-        simulate_command,
+def build_app(command: str | None = None, *, announced: bool = False) -> typer.Typer:
+    """The ``stickslip`` Typer application, with every command or with ``command`` alone.
+
+    A run of one command needs only that command's module: ``stickslip simulate`` then
+    imports neither the map, basin nor design commands (nor what they import), which keeps
+    its start-up short (issue 21, point 4). ``command=None``, or a name that is no command
+    (typing errors, ``--help``, shell completion), registers them all. Every command that may
+    compile numba kernels runs :func:`watching_compiles`; ``announced`` says that the
+    first-run notice is printed already.
+    """
+    app = typer.Typer(
+        name="stickslip",
+        help=HELP,
+        no_args_is_help=True,
+        add_completion=True,  # Typer's --install-completion and --show-completion
+        pretty_exceptions_enable=False,
+        # help texts are plain text: units and TOML tables are written in brackets ("[kg]",
+        # "[system]"), which Rich markup would swallow as style tags
+        rich_markup_mode=None,
+        context_settings={"max_content_width": 120},  # up to 120 columns when the terminal has them
     )
+    app.callback()(main)
+    if command in COMMAND_MODULES:
+        modules = [COMMAND_MODULES[command]]
+    else:
+        modules = list(dict.fromkeys(COMMAND_MODULES.values()))
+    for module in modules:
+        import_module(f"stickslip.cli.{module}").register(app)
+    for info in app.registered_commands:
+        if info.name not in NUMBA_FREE_COMMANDS and info.callback is not None:
+            info.callback = watching_compiles(info.callback, announced)
+    return app
 
-    for module in (simulate_command, absorber_commands, map_commands, design_command,
-                   basin_command, basin_map_command, cycles_command, continue_command, identify_command,
-                   reproduce_command, app_command):
-        module.register(app)
+
+def __getattr__(name: str) -> typer.Typer:
+    """``app``, the application with every command (docs, tests), built on first use (PEP 562)."""
+    if name == "app":
+        app = globals()["app"] = build_app()
+        return app
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-_register()
+def invoked_command(argv: list[str]) -> str | None:
+    """The command ``argv`` runs (its first word that is no option), or None."""
+    if os.environ.get("_STICKSLIP_COMPLETE"):  # shell completion needs every command
+        return None
+    return next((a for a in argv if not a.startswith("-")), None)
 
 
 def _show_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,
@@ -103,10 +141,11 @@ def engine_cache_is_cold() -> bool:
     """True when numba has no compiled engine cached for the installed sources.
 
     numba keeps an index (``*.nbi``) per compiled function next to the source (in
-    ``__pycache__``, or under ``NUMBA_CACHE_DIR``) and discards it when the source is newer;
-    the run loop's index stands for the engine. Found without importing numba.
+    ``__pycache__``), or under ``NUMBA_CACHE_DIR`` when that is set (then only there), and
+    discards it when the source changed; the run loop's index stands for the engine. Found
+    without importing numba. A kernel compiled although this says warm (another command's
+    kernels, a new signature) is still announced, by :class:`CompileWatch`.
     """
-    import os
     from importlib.util import find_spec
     from pathlib import Path
 
@@ -114,34 +153,119 @@ def engine_cache_is_cold() -> bool:
     if spec is None or spec.origin is None:
         return False
     source = Path(spec.origin)
-    folders = [source.parent / "__pycache__"]
-    if os.environ.get("NUMBA_CACHE_DIR"):
-        folders.append(Path(os.environ["NUMBA_CACHE_DIR"]))
+    user_dir = os.environ.get("NUMBA_CACHE_DIR")
+    folders = [Path(user_dir)] if user_dir else [source.parent / "__pycache__"]
     stamp = source.stat().st_mtime
     return not any(index.stat().st_mtime >= stamp for folder in folders if folder.is_dir()
                    for index in folder.rglob("engine.run_prepared-*.nbi"))
 
 
-def _announce_compilation(argv: list[str]) -> None:
+#: The first-run notice on stderr (never on stdout: ``--json`` prints one object there).
+FIRST_RUN_NOTICE = ("stickslip: first run: compiling the simulation engine with numba, about a minute "
+                    "(once; later runs load it from the cache)")
+
+def _announce_compilation(argv: list[str]) -> bool:
     """On the first engine command after an install, say on stderr that numba compiles now.
 
-    Never on stdout (``--json`` prints one object there), never for ``--help``.
+    Never on stdout (``--json`` prints one object there), never for ``--help``. Returns
+    whether it printed the notice.
     """
-    command = next((a for a in argv if not a.startswith("-")), None)
+    command = invoked_command(argv)
     if command in ENGINE_COMMANDS and "--help" not in argv and engine_cache_is_cold():
-        print("stickslip: first run: compiling the simulation engine with numba, about a minute "
-              "(once; later runs load it from the cache)", file=sys.stderr, flush=True)
+        print(FIRST_RUN_NOTICE, file=sys.stderr, flush=True)
+        return True
+    return False
+
+
+class CompileWatch:
+    """What numba compiles during one command, told on stderr as it happens.
+
+    numba reports every compile its cache could not serve as a ``numba:compile`` event
+    (:mod:`numba.core.event`; loads from the cache report none). The first compile of a
+    stickslip kernel prints :data:`FIRST_RUN_NOTICE` (unless the cache check of
+    :func:`_announce_compilation` has printed it), :meth:`close` then prints how many kernels
+    (compiled functions of this package) and signatures took how long. A run served by the
+    cache prints nothing.
+    """
+
+    def __init__(self, announced: bool) -> None:
+        from numba.core import event
+
+        self.announced = announced
+        self.kernels = 0
+        self.functions: set[str] = set()
+        self.seconds = 0.0
+        self._depth = 0
+        self._started = 0.0
+        self._event = event
+        watch = self
+
+        class Listener(event.Listener):
+            def on_start(self, ev: Any) -> None:
+                function = ev.data["dispatcher"].py_func
+                watch.started(function.__module__, function.__qualname__)
+
+            def on_end(self, ev: Any) -> None:
+                watch.ended()
+
+        self._listener = Listener()
+        event.register("numba:compile", self._listener)
+
+    def started(self, module: str, name: str) -> None:
+        """A compile begins (nested ones: the callees of a kernel, numba's own overloads)."""
+        if self._depth == 0:
+            self._started = time.perf_counter()
+        self._depth += 1
+        if module.startswith("stickslip."):
+            self.kernels += 1
+            self.functions.add(f"{module}.{name}")
+            if not self.announced:
+                print(FIRST_RUN_NOTICE, file=sys.stderr, flush=True)
+                self.announced = True
+
+    def ended(self) -> None:
+        """A compile ends; the outermost one adds its wall time."""
+        self._depth -= 1
+        if self._depth == 0:
+            self.seconds += time.perf_counter() - self._started
+
+    def close(self) -> None:
+        """Stop listening; say on stderr how many kernels were compiled, if any."""
+        self._event.unregister("numba:compile", self._listener)
+        if self.kernels:
+            print(f"stickslip: compiled {len(self.functions)} numba kernels ({self.kernels} "
+                  f"signatures) in {self.seconds:.0f} s; they are cached for later runs",
+                  file=sys.stderr, flush=True)
+
+
+def watching_compiles(command: Callable[..., Any], announced: bool) -> Callable[..., Any]:
+    """``command`` run under a :class:`CompileWatch` (started once its options are parsed).
+
+    After parsing, so that ``--help`` and refused input never import numba. The signature
+    and docstring stay those of ``command`` (typer reads them through ``__wrapped__``).
+    """
+
+    @functools.wraps(command)
+    def watched(*args: Any, **kwargs: Any) -> Any:
+        watch = CompileWatch(announced)
+        try:
+            return command(*args, **kwargs)
+        finally:
+            watch.close()
+
+    return watched
 
 
 def run(argv: list[str] | None = None) -> None:
     """Console entry point: one line on stderr and exit code 2 for any bad input."""
-    _announce_compilation(sys.argv[1:] if argv is None else list(argv))
+    args = sys.argv[1:] if argv is None else list(argv)
+    announced = _announce_compilation(args)
     with warnings.catch_warnings():
         warnings.showwarning = _show_warning
-        _run(argv)
+        _run(argv, build_app(invoked_command(args), announced=announced))
 
 
-def _run(argv: list[str] | None) -> None:
+def _run(argv: list[str] | None, app: typer.Typer) -> None:
     try:
         # the program name is fixed, so completion uses _STICKSLIP_COMPLETE however it is started
         result = app(args=argv, prog_name="stickslip", standalone_mode=False)
