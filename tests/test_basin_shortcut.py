@@ -32,11 +32,16 @@ T_MAX, MAX_EVENTS, CYCLE_TOL, MAX_PERIOD = 1e4, 100_000, 1e-9, 8
 
 
 def _both(structure, slider, states):  # type: ignore[no-untyped-def]
+    """Joined and full runs, both without the early certificates (whose states are certified
+    at time 0 without a run: tests/test_escape_certificate.py), and the statuses with them."""
     edges, intercepts, slopes = slider.friction.bands(slider.lam, slider.gamma)
     args = (structure.mass, structure.damping, structure.stiffness, float(slider.lam),
             float(slider.gamma), edges, intercepts, slopes, np.ascontiguousarray(states), T_MAX,
             MAX_EVENTS, CYCLE_TOL, MAX_PERIOD)
-    return run_states(*args, True), run_states(*args, False)
+    joined, full = run_states(*args, True, False), run_states(*args, False, False)
+    early = run_states(*args, True, True)
+    np.testing.assert_array_equal(early[1][:, engine.I_STATUS], full[1][:, engine.I_STATUS])
+    return joined, full
 
 
 def _states(structure, slider, n=300):  # type: ignore[no-untyped-def]

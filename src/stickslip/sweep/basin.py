@@ -274,7 +274,10 @@ class BasinSystem:
 
     ``mass``, ``damping``, ``stiffness`` are the dimensionless matrices of the structure,
     ``lam`` and ``gamma`` the paper's ratios, ``edges``, ``intercepts``, ``slopes`` the band
-    table of the friction law at them (:meth:`FrictionLaw.bands`), tabulated once.
+    table of the friction law at them (:meth:`FrictionLaw.bands`), tabulated once, and
+    ``kernel`` the per-system data of :func:`stickslip.kernel.batch.prepare_states` (matrix
+    exponentials, certificates, the slip trap and escape regions), computed once for every
+    chunk of a basin (empty: each chunk prepares its own).
     """
 
     mass: FloatArray
@@ -285,17 +288,24 @@ class BasinSystem:
     edges: FloatArray
     intercepts: FloatArray
     slopes: FloatArray
+    kernel: tuple[Any, ...] = field(default=(), repr=False, compare=False)
 
     @classmethod
     def prepare(cls, structure: Structure, slider: Slider) -> BasinSystem:
-        """The arrays of ``structure`` and the band table of ``slider.friction``."""
+        """The arrays of ``structure``, the band table of ``slider.friction`` and the kernel's
+        per-system data."""
+        from stickslip.kernel.batch import prepare_states
+
         if structure.contact_dof != 0:  # states and box columns are in the contact-first order
             raise ValueError(f"basin sampling needs the contact on DOF 0 (this structure has it on "
                              f"DOF {structure.contact_dof}): pass structure.contact_first()[0] and "
                              "states in that order")
         edges, intercepts, slopes = slider.friction.bands(slider.lam, slider.gamma)
-        return cls(structure.mass, structure.damping, structure.stiffness, float(slider.lam),
-                   float(slider.gamma), edges, intercepts, slopes)
+        lam, gamma = float(slider.lam), float(slider.gamma)
+        kernel = prepare_states(structure.mass, structure.damping, structure.stiffness, lam, gamma,
+                                edges, intercepts, slopes, True)
+        return cls(structure.mass, structure.damping, structure.stiffness, lam, gamma, edges,
+                   intercepts, slopes, kernel)
 
 
 def run_state_batch(system: BasinSystem, states: FloatArray, options: EngineOptions,
@@ -303,17 +313,25 @@ def run_state_batch(system: BasinSystem, states: FloatArray, options: EngineOpti
     """Run ``system`` from every row of ``states`` on ``n_threads`` numba threads (all when None).
 
     The per-chunk task of :func:`basin_stability` (for
-    :func:`stickslip.sweep.executors.execute`, on every backend): ``run_states`` of
-    :mod:`stickslip.kernel.batch`. Returns the float and integer summaries, shapes
+    :func:`stickslip.sweep.executors.execute`, on every backend): ``run_prepared_states`` of
+    :mod:`stickslip.kernel.batch` on the system's data prepared once (``run_states`` when
+    there is none). Returns the float and integer summaries, shapes
     ``(n, N_FLOAT)`` and ``(n, N_INT)``.
     """
-    from stickslip.kernel.batch import run_states
+    from stickslip.kernel.batch import run_prepared_states, run_states
 
+    limits = (float(options.t_max), int(options.max_events), float(options.cycle_tol),
+              int(options.max_period))
     with numba_threads(n_threads):
-        float_summary, int_summary = run_states(
-            system.mass, system.damping, system.stiffness, system.lam, system.gamma, system.edges,
-            system.intercepts, system.slopes, states, float(options.t_max), int(options.max_events),
-            float(options.cycle_tol), int(options.max_period))
+        if system.kernel:
+            prepared, r_in, r_hi, escape_data = system.kernel
+            float_summary, int_summary = run_prepared_states(
+                system.mass, system.stiffness, system.lam, system.gamma, system.edges, prepared,
+                r_in, r_hi, escape_data, states, *limits)
+        else:
+            float_summary, int_summary = run_states(
+                system.mass, system.damping, system.stiffness, system.lam, system.gamma,
+                system.edges, system.intercepts, system.slopes, states, *limits)
     return float_summary, int_summary
 
 
