@@ -13,6 +13,8 @@ verdict without running it. References here, none of them the region itself:
 * the independent solve_ivp oracle of tests/friction_oracle.py (the exact Stribeck law, not
   the band table) for states just outside the region's inner boundary and far out;
 * dense sampling of the band table for the global secant range and the power bound;
+* for states above the belt speed (decelerated to it and stuck, ``slip_ii_stick_time``): the
+  direct run to its first stick phase, which must come by the time bound and in the range;
 * systems where a check fails (no unstable cycle, slopes that stop the rotation, Coulomb,
   two degrees of freedom) build no region, and then every summary is the one without it.
 
@@ -36,8 +38,10 @@ from stickslip.kernel.outer_certificate import (
     ESCAPE_TURNS,
     ESCAPE_XI_LO,
     escape_certifies,
+    friction_floor,
     global_secant_range,
     power_bound,
+    slip_ii_stick_time,
 )
 from stickslip.kernel.system import TRAP_RHO0
 from stickslip.model.friction import CoulombFriction, StribeckFriction, TableFriction, evaluate_bands
@@ -240,3 +244,32 @@ def test_global_secant_range_and_power_bound_bracket_the_law(law, lam) -> None: 
     bound = power_bound(damping, edges, intercepts, slopes)
     assert power.max() <= bound + 1e-12
     assert bound - power.max() < 1e-3 * max(1.0, bound)  # attained up to the sampling
+
+
+def test_states_above_the_belt_speed_stick_within_their_time_bound(weak: dict) -> None:  # type: ignore[type-arg]
+    # slip_ii_stick_time: a state above the belt speed decelerated at a bounded rate; the
+    # direct run (no early certificates) must stick by the bound, between xi_0 and the bound
+    structure, slider = weak["structure"], weak["slider"]
+    edges, intercepts, slopes = slider.friction.bands(slider.lam, slider.gamma)
+    f_lo = friction_floor(edges, intercepts, slopes)
+    # the law's floor: lambda gamma (the Stribeck term decays to 0), up to the table's error
+    assert f_lo == pytest.approx(slider.lam * slider.gamma, rel=1e-3)
+    rng = np.random.default_rng(3)
+    states = np.column_stack([rng.uniform(-0.7, 0.7, 80), rng.uniform(1.0 + 1e-9, 1.3, 80)])
+    args = (structure.mass[0, 0], structure.damping[0, 0], structure.stiffness[0, 0], slider.lam,
+            slider.gamma, f_lo)
+    bounds = np.array([slip_ii_stick_time(np.array([z[0], z[1], 1.0]), *args) for z in states])
+    assert np.isfinite(bounds).all()  # this box is far from the static limits
+    for z, t_a in zip(states, bounds, strict=True):
+        _, _, _, _, fsum, isum, z_end = _direct(structure, slider, z, OPTS.t_max, True)
+        assert isum[engine.I_STATUS] == engine.STATUS_STUCK
+        assert 0.0 < fsum[engine.F_T_END] <= t_a
+        assert z[0] <= z_end[0] <= z[0] + z[1] * t_a
+    # labels: the runs with these states certified equal those without
+    (_, i_on), (_, i_off) = (_run_states(structure, slider, states, early) for early in (True, False))
+    np.testing.assert_array_equal(i_on[:, engine.I_STATUS], i_off[:, engine.I_STATUS])
+    # refused where the stick force could pass lambda at the arrival (a state pushed hard
+    # forwards from far ahead) or the deceleration is not proven (far behind)
+    assert slip_ii_stick_time(np.array([slider.lam, 3.0, 1.0]), *args) == np.inf
+    assert slip_ii_stick_time(np.array([-20.0, 1.2, 1.0]), *args) == np.inf
+    assert slip_ii_stick_time(np.array([0.0, 0.9, 1.0]), *args) == np.inf  # not above it

@@ -2,8 +2,10 @@
 
 The compiled kernels here contain the engine's run loop (numba compiles callees into the
 caller). numba's cache checks only this file's time stamp, not the engine's: after editing
-:mod:`stickslip.kernel.engine` or :mod:`stickslip.kernel.events` alone, ``make clean-cache``
-(or a change here), or these kernels keep running the engine they were cached with.
+:mod:`stickslip.kernel.engine`, :mod:`stickslip.kernel.events`,
+:mod:`stickslip.kernel.certificate` or :mod:`stickslip.kernel.outer_certificate` alone,
+``make clean-cache`` (or a change here), or these kernels keep running the code they were
+cached with.
 """
 
 from __future__ import annotations
@@ -43,11 +45,14 @@ from stickslip.kernel.engine import (
 )
 from stickslip.kernel.linalg import gauss_solve
 from stickslip.kernel.outer_certificate import (
+    ESCAPE_F_LO,
     ESCAPE_TIME,
     ESCAPE_XI_LO,
     N_ESCAPE,
     escape_certifies,
+    friction_floor,
     slip_escape_region,
+    slip_ii_stick_time,
 )
 from stickslip.kernel.system import STICK, prepare_bands
 
@@ -129,11 +134,15 @@ def prepare_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slop
         prepared = prepare_certified(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
         r_in, r_hi, escape_data = slip_escape_region(mass, damping, stiffness, lam, gamma, edges,
                                                      intercepts, slopes, prepared)
+        escape_data[ESCAPE_F_LO] = np.nan
+        if mass.shape[0] == 1 and intercepts.shape[0] >= 2:  # as the regions: not Coulomb
+            escape_data[ESCAPE_F_LO] = friction_floor(edges, intercepts, slopes)
     else:
         prepared = prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
         r_in = np.zeros(0)
         r_hi = np.zeros(0)
         escape_data = np.zeros(N_ESCAPE)
+        escape_data[ESCAPE_F_LO] = np.nan
     return prepared, r_in, r_hi, escape_data
 
 
@@ -175,8 +184,11 @@ def run_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, 
     in it provably reaches the belt speed by ``T`` and sticks in ``xi_s >= xi_lo``, so its
     verdict is the start-up run's without running it; it is used only when the start-up run
     is certified and ``T + t_cert(start-up) + xi_startup - xi_lo <= t_max`` (the joined clock
-    of a direct run then certifies within the horizon: the same label). Its summaries are
-    those of :func:`escape_summary` (certified at time 0, like the trap region's states).
+    of a direct run then certifies within the horizon: the same label). Likewise a state above
+    the belt speed that provably decelerates to it and sticks
+    (:func:`~stickslip.kernel.outer_certificate.slip_ii_stick_time`, with its own time bound).
+    Their summaries are those of :func:`escape_summary` (certified at time 0, like the trap
+    region's states).
     """
     prepared, r_in, r_hi, escape_data = prepare_states(mass, damping, stiffness, lam, gamma, edges,
                                                        intercepts, slopes, early_certificate)
@@ -202,6 +214,8 @@ def run_prepared_states(mass, stiffness, lam, gamma, edges, prepared, r_in, r_hi
     startup_f = np.empty(N_FLOAT)
     startup_i = np.empty(N_INT, dtype=np.int64)
     escape = False
+    slip_ii = False
+    damping00 = stick_row[nz // 2] if nz == 2 else 0.0  # C: the stick force is K xi + C v
     if shortcut:
         # a joined clock runs behind the start-up run's by at most one stick phase, whose
         # length is at most the static range over the stick force's rate, lambda (2 + 2 gamma)
@@ -212,16 +226,22 @@ def run_prepared_states(mass, stiffness, lam, gamma, edges, prepared, r_in, r_hi
         startup_f[:] = canonical[4]
         startup_i[:] = canonical[5]
         status = startup_i[I_STATUS]
+        certified = (status == STATUS_STEADY or status == STATUS_CYCLE
+                     or status == STATUS_OSCILLATION)
         # the slip escape region: only where a direct run's joined clock certifies in time
-        escape = (r_in.shape[0] > 0
-                  and (status == STATUS_STEADY or status == STATUS_CYCLE
-                       or status == STATUS_OSCILLATION)
+        escape = (certified and r_in.shape[0] > 0
                   and escape_data[ESCAPE_TIME] + startup_f[F_T_CERTIFIED] + startup[0]
                   - escape_data[ESCAPE_XI_LO] <= t_max)
+        slip_ii = certified and not np.isnan(escape_data[ESCAPE_F_LO])
     z_eq = prepared[15]
     for c in prange(n_states):
-        if escape and escape_certifies(np.array([z0s[c, 0], z0s[c, 1], 1.0]), z_eq, r_in, r_hi,
-                                       escape_data):
+        w0 = np.array([z0s[c, 0], z0s[c, 1], 1.0])
+        if escape and escape_certifies(w0, z_eq, r_in, r_hi, escape_data):
+            escape_summary(float_summary[c], int_summary[c], startup_f, startup_i)
+            continue
+        if slip_ii and z0s[c, 1] > 1.0 and slip_ii_stick_time(
+                w0, mass[0, 0], damping00, stiffness[0, 0], lam, gamma, escape_data[ESCAPE_F_LO]
+        ) + startup_f[F_T_CERTIFIED] + startup[0] - z0s[c, 0] <= t_max:
             escape_summary(float_summary[c], int_summary[c], startup_f, startup_i)
             continue
         result = run_prepared(mass, lam, gamma, edges, prepared, z0s[c], t_max, max_events,

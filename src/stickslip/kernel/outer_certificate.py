@@ -74,19 +74,30 @@ horizon, so the label is the direct run's; like the trap region, the region does
 the events a direct run would spend on the way, see ``run_states``).
 
 Numerical rigour, as for the trap region: the bounding trajectory is the engine's exact
-piecewise-linear solution sampled at ``dt`` (:func:`stickslip.kernel.engine.evaluate`);
-between samples ``|rho'| <= G = k_abs max|v| / sqrt(M)`` and ``|v'| <= A = (sqrt(K) rho_max +
-k_abs max|v|) / M`` (bootstrap bounds 10 % beyond the sampled ranges, checked), so each bin's
-``r_in`` is the largest adjacent sample radius plus ``G dt``, each envelope bound the smallest
-minus ``G dt``, ``R`` the largest plus ``G dt``, and a return to ``S`` between samples ``i``
-and ``i + 1`` is within ``A dt^2 / 2`` (in ``z``) of sample ``i``; the ladder is checked with
-these margins, and the angle must advance at every sample step. A region that fails any check
+piecewise-linear solution sampled at ``dt`` (:data:`SAMPLES_PER_PERIOD`;
+:func:`stickslip.kernel.engine.evaluate`). Between samples ``|v'| <= A = (sqrt(K) rho_max +
+k_abs max|v|) / M`` and ``|rho'| <= G = k_abs max|v| / sqrt(M)`` (``|rho'| = |k| y^2 / (M rho)
+<= |k| |v| / sqrt(M)``), with bootstrap bounds 10 % beyond the sampled ranges, checked. So:
+each envelope bound is the smallest adjacent sample radius minus ``G dt`` and ``R`` the
+largest plus ``G dt``; ``r_in`` is the largest adjacent radius plus ``G_1 dt_1`` on a finer
+grid of the first turn (:data:`FIRST_TURN_SAMPLES`, ``G_1`` from that turn's own ``|v|``
+range), since it sets how close to the unstable cycle the region reaches; and each return to
+``S`` is located on a grid :data:`CROSSING_REFINE` times finer between the two samples around
+it, within ``A dt_c^2 / 2`` (in ``z``) of the last fine sample before it (``v`` vanishes at the
+return and changes at most at rate ``A``). The ladder is checked with these margins and the
+angle must advance (by less than ``pi``) at every sample step. A region that fails any check
 is not built (empty tables: no state is certified, every state runs).
 
-The start radius: an ascending ladder of fractions of the belt-speed radius ``sqrt(M)`` (a
-start inside the unstable cycle decays and fails), then :data:`BISECTIONS` bisections between
-the last failing and the first passing start, so that the ring left between this region and
-the unstable cycle (where states are simulated) is thin.
+The start radius: the first-return test :func:`first_return_outwards` (one turn, the return
+interpolated between samples) climbs a ladder of fractions of the belt-speed radius
+``sqrt(M)`` until a start's first return lies further out (a start inside the unstable cycle
+comes back inside), then bisects :data:`BISECTIONS` times between the last inward and the
+first outward start, locating the cycle. The proof (:func:`_trial`) is then tried from the
+outward end, backing off outwards by growing steps (:data:`BACK_OFF` tries) while a check
+fails (a start too close to the cycle has returns that the margins cannot tell apart). The
+ring left between the region and the cycle, where states are simulated, is then a few
+thousandths of the radius thick. The search only chooses the start; every kept region passed
+every check of the proof.
 """
 
 from __future__ import annotations
@@ -129,7 +140,8 @@ ESCAPE_RHO0 = 4  # start radius of the bounding trajectory on S
 ESCAPE_R_MIN = 5  # smallest r_in and largest r_hi (quick tests before the angle)
 ESCAPE_R_MAX = 6
 ESCAPE_TURNS = 7  # J, returns of the bounding trajectory before it reaches the belt speed
-N_ESCAPE = 8
+ESCAPE_F_LO = 8  # smallest friction magnitude of the law (slip-II test), NaN: no test
+N_ESCAPE = 9
 
 
 @njit(cache=True)
@@ -180,6 +192,52 @@ def power_bound(damping00, edges, intercepts, slopes):
             if w_lo <= w_star <= w_hi:
                 best = max(best, alpha * w_star - beta * w_star * w_star)
     return best
+
+
+@njit(cache=True)
+def friction_floor(edges, intercepts, slopes):
+    """``min F(u)`` over ``u >= 0`` of the band table: at a finite edge, or ``-inf`` when the
+    last band falls without end."""
+    nb = intercepts.shape[0]
+    if slopes[nb - 1] < 0.0:
+        return -np.inf
+    lo = np.inf
+    for k in range(nb):  # the lower edge of every band (the last band rises from its edge)
+        lo = min(lo, intercepts[k] + slopes[k] * edges[k])
+        if k + 1 < nb:
+            lo = min(lo, intercepts[k] + slopes[k] * edges[k + 1])
+    return lo
+
+
+@njit(cache=True)
+def slip_ii_stick_time(w, mass00, damping00, stiffness00, lam, gamma, f_lo):
+    """A bound on the time a 1-DOF state above the belt speed takes to stick, or ``inf``.
+
+    Slip-II (``v = xi' > 1``, ``u = v - 1``): ``M v' = -K xi - C v - F(u) - gamma lambda``
+    (shifted coordinates, Eqs. 25-27 with the law). While it lasts, ``xi`` grows (``xi' > 1``),
+    ``C v >= C`` and ``F >= f_lo`` (:func:`friction_floor`), so ``M v' <= -D`` with
+    ``D = K xi_0 + C + f_lo + gamma lambda``. If ``D > 0`` the slider is decelerated to the
+    belt speed by ``t_a = M (v_0 - 1) / D`` (a band edge only changes the band), having
+    moved to ``xi_a`` in ``[xi_0, xi_0 + v_0 t_a]``; there the stick force of Eq. (20),
+    ``S = K xi_a + C``, lies in ``[K xi_0 + C, K (xi_0 + v_0 t_a) + C]``. When that interval
+    is inside the static range ``[-lambda (1 + 2 gamma), lambda]`` (with a relative margin of
+    1e-9 for the engine's rounding) the motion sticks there, by ``t_a``, at ``xi_a >= xi_0``:
+    ``t_a`` is returned. ``inf`` otherwise (and for ``v_0 <= 1`` or ``f_lo`` NaN).
+    """
+    v0 = w[1]
+    if not (v0 > 1.0 and f_lo > -np.inf):
+        return np.inf
+    xi0 = w[0]
+    d = stiffness00 * xi0 + damping00 + f_lo + gamma * lam
+    if not d > 0.0:
+        return np.inf
+    t_a = mass00 * (v0 - 1.0) / d
+    margin = 1e-9 * max(1.0, lam * (1.0 + 2.0 * gamma))
+    s_lo = stiffness00 * xi0 + damping00
+    s_hi = stiffness00 * (xi0 + v0 * t_a) + damping00
+    if s_lo >= -lam * (1.0 + 2.0 * gamma) + margin and s_hi <= lam - margin:
+        return t_a
+    return np.inf
 
 
 @njit(cache=True)
