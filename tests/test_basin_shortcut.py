@@ -100,9 +100,15 @@ def test_horizon_applies_to_the_joined_clock() -> None:
                       edges, intercepts, slopes, states, T_MAX, MAX_EVENTS, CYCLE_TOL, MAX_PERIOD, False)
     t_cert = full[0][full[1][:, engine.I_STATUS] == engine.STATUS_CYCLE, engine.F_T_CERTIFIED]
     t_max = float(np.median(t_cert))
+    # the join alone (early certificates off: their states are certified at time 0, without
+    # a run), and with them (the trap region certifies whatever the horizon, as before the
+    # escape region: compared with full runs that have it too)
     short = [run_states(structure.mass, structure.damping, structure.stiffness, slider.lam, slider.gamma,
-                        edges, intercepts, slopes, states, t_max, MAX_EVENTS, CYCLE_TOL, MAX_PERIOD, join)
-             for join in (True, False)]
+                        edges, intercepts, slopes, states, t_max, MAX_EVENTS, CYCLE_TOL, MAX_PERIOD, join,
+                        early)
+             for join, early in ((True, False), (False, False), (True, True), (False, True))]
+    np.testing.assert_array_equal(short[2][1][:, engine.I_STATUS], short[3][1][:, engine.I_STATUS])
+    short = short[:2]
     status_join, status_full = short[0][1][:, engine.I_STATUS], short[1][1][:, engine.I_STATUS]
     assert (status_full == engine.STATUS_T_MAX).sum() > 10
     np.testing.assert_array_equal(status_join, status_full)

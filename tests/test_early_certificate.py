@@ -157,7 +157,7 @@ def test_verdicts_are_unchanged_and_certified_earlier(weak_runs: dict[str, np.nd
     # certified at once by the slip escape region (tests/test_escape_certificate.py)
     f_new, f_old = weak_runs["f_new"][~steady], weak_runs["f_old"][~steady]
     escaped = f_new[:, engine.F_T_END] == 0.0
-    assert escaped.any() and not escaped.all()
+    assert escaped.mean() > 0.5  # measured: all but the thin ring about the unstable cycle
     np.testing.assert_array_equal(f_new[~escaped, engine.F_T_CERTIFIED],
                                   f_old[~escaped, engine.F_T_CERTIFIED])
     np.testing.assert_array_equal(f_new[escaped, engine.F_T_CERTIFIED], 0.0)
