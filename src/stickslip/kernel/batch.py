@@ -121,19 +121,28 @@ def coulomb_tables(lams, gammas):
 
 @njit(cache=True)
 def prepare_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes,
-                   early_certificate=True):
+                   early_certificate=True, escape_region=True):
     """Per-system data of :func:`run_prepared_states`: ``(prepared, r_in, r_hi, escape_data)``.
 
     ``prepared``: :func:`stickslip.kernel.certificate.prepare_certified` (with the slip trap
     region) or, without ``early_certificate``, :func:`~stickslip.kernel.system.prepare_bands`;
     ``r_in, r_hi, escape_data``: the slip escape region
     (:func:`stickslip.kernel.outer_certificate.slip_escape_region`; empty without
-    ``early_certificate``).
+    ``early_certificate``, or without ``escape_region``: it costs tens of runs of the system,
+    worth it for thousands of states, not for a few hundred), and in
+    ``escape_data[ESCAPE_F_LO]`` the law's floor for the test of states above the belt speed
+    (NaN: no test; without ``early_certificate``, for more than one degree of freedom and for
+    a one-band law, as the regions).
     """
     if early_certificate:
         prepared = prepare_certified(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
-        r_in, r_hi, escape_data = slip_escape_region(mass, damping, stiffness, lam, gamma, edges,
-                                                     intercepts, slopes, prepared)
+        if escape_region:
+            r_in, r_hi, escape_data = slip_escape_region(mass, damping, stiffness, lam, gamma,
+                                                         edges, intercepts, slopes, prepared)
+        else:
+            r_in = np.zeros(0)
+            r_hi = np.zeros(0)
+            escape_data = np.zeros(N_ESCAPE)
         escape_data[ESCAPE_F_LO] = np.nan
         if mass.shape[0] == 1 and intercepts.shape[0] >= 2:  # as the regions: not Coulomb
             escape_data[ESCAPE_F_LO] = friction_floor(edges, intercepts, slopes)

@@ -60,6 +60,11 @@ MAX_SAMPLES = 50_000_000
 #: samples/s measured on two cores (bench_basin); a larger map is split into several.
 MAX_MAP_RUNS = 100_000_000
 
+#: Fewest states of a basin for which the slip escape region is built
+#: (:mod:`stickslip.kernel.outer_certificate`): measured on issue 21's weak-net-damping case,
+#: the region takes about 0.1 s to build, the time of about 400 runs it spares (bench_basin).
+ESCAPE_MIN_STATES = 1000
+
 #: States per chunk of the in-process backends when none is given (the unit of progress and
 #: of the resume store); the Dask backend cuts about 32 chunks (``default_chunk_size``).
 THREADS_CHUNK = 4096
@@ -291,9 +296,11 @@ class BasinSystem:
     kernel: tuple[Any, ...] = field(default=(), repr=False, compare=False)
 
     @classmethod
-    def prepare(cls, structure: Structure, slider: Slider) -> BasinSystem:
+    def prepare(cls, structure: Structure, slider: Slider, n_states: int | None = None) -> BasinSystem:
         """The arrays of ``structure``, the band table of ``slider.friction`` and the kernel's
-        per-system data."""
+        per-system data; the slip escape region only for ``n_states`` of at least
+        :data:`ESCAPE_MIN_STATES` (or None): it costs about as much as running a few hundred
+        states, and the labels are the same without it."""
         from stickslip.kernel.batch import prepare_states
 
         if structure.contact_dof != 0:  # states and box columns are in the contact-first order
@@ -302,8 +309,9 @@ class BasinSystem:
                              "states in that order")
         edges, intercepts, slopes = slider.friction.bands(slider.lam, slider.gamma)
         lam, gamma = float(slider.lam), float(slider.gamma)
+        escape = n_states is None or n_states >= ESCAPE_MIN_STATES
         kernel = prepare_states(structure.mass, structure.damping, structure.stiffness, lam, gamma,
-                                edges, intercepts, slopes, True)
+                                edges, intercepts, slopes, True, escape)
         return cls(structure.mass, structure.damping, structure.stiffness, lam, gamma, edges,
                    intercepts, slopes, kernel)
 
@@ -376,8 +384,8 @@ def basin_stability(
         raise ValueError(f"states need shape (n, {2 * n_dof}) for a {n_dof}-DOF structure, got {z0s.shape}")
     sample_count(z0s.shape[0])
     check_states(z0s, state_names(n_dof))
-    system = BasinSystem.prepare(structure, slider)
     started = time.perf_counter()
+    system = BasinSystem.prepare(structure, slider, z0s.shape[0])
     n = z0s.shape[0]
     if chunk_size is None:
         chunk_size = default_chunk_size(n, backend) if backend == "dask" else THREADS_CHUNK
