@@ -8,6 +8,8 @@ there. In one degree of freedom every stick phase ends at the same breakaway sta
 the start-up run's, and :func:`escape_certifies` gives it without simulating the way to the
 belt speed: for a weakly damped system that way is tens of turns and thousands of band
 crossings when the state starts near the unstable cycle, and a hundred crossings otherwise.
+States above the belt speed have their own, analytic test (:func:`slip_ii_stick_time`:
+friction decelerates them to the belt speed, where they stick).
 
 Derivation. Notation of :mod:`stickslip.kernel.certificate`: slip-I (``v = xi' < 1``),
 ``M v' = -K z - g(v)`` with ``z = xi - xi_eq``, ``g(v) = k(v) v``,
