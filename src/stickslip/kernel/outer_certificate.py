@@ -224,10 +224,11 @@ def slip_ii_stick_time(w, mass00, damping00, stiffness00, lam, gamma, f_lo):
     ``S = K xi_a + C``, lies in ``[K xi_0 + C, K (xi_0 + v_0 t_a) + C]``. When that interval
     is inside the static range ``[-lambda (1 + 2 gamma), lambda]`` (with a relative margin of
     1e-9 for the engine's rounding) the motion sticks there, by ``t_a``, at ``xi_a >= xi_0``:
-    ``t_a`` is returned. ``inf`` otherwise (and for ``v_0 <= 1`` or ``f_lo`` NaN).
+    ``t_a`` is returned. ``inf`` otherwise (and for ``v_0 <= 1``, ``f_lo`` NaN, ``C < 0`` or
+    ``K <= 0``, where the bound does not hold).
     """
     v0 = w[1]
-    if not (v0 > 1.0 and f_lo > -np.inf):
+    if not (v0 > 1.0 and f_lo > -np.inf and damping00 >= 0.0 and stiffness00 > 0.0):
         return np.inf
     xi0 = w[0]
     d = stiffness00 * xi0 + damping00 + f_lo + gamma * lam
