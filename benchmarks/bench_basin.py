@@ -20,8 +20,10 @@ Issue 21, point 3: the small-net-damping case, 1 DOF, zeta = 0.05, exponential S
 at the belt speed, F'(1) = -lambda exp(-1/u_s) / u_s = -0.05 = -zeta, removes half of the net
 damping 2 zeta (C + F'(1) = zeta); states uniform in xi in [-0.7, 0.7], xi' in [-0.7, 1.3]
 about steady sliding (both sides of the belt speed, xi' = 1). Its engine rate is printed
-beside the same run's with the early certificate (the slip trap region,
-stickslip.kernel.certificate) switched off, and with the oracle. Then a foundation (2 DOF)
+with the oracle's, and then the kernel's in one run with both early certificates (the slip
+trap region, stickslip.kernel.certificate, and the slip escape region,
+stickslip.kernel.outer_certificate), with the trap region alone and with neither, and how
+many statuses agree with the run without them (all must). Then a foundation (2 DOF)
 basin with the same law (foundation mass and stiffness ratios 1, damping ratio 0.1; at most
 FOUNDATION_SAMPLES states: every 2-DOF state runs to its own verdict): samples/s only (the trap
 region is 1-DOF; its baseline is the oracle).
@@ -43,7 +45,8 @@ from tests.oracle import oracle_simulate_structure
 
 from stickslip import Foundation, InitialState, Slider, Verdict, elastic_foundation, rigid_base
 from stickslip.analysis.simulation import EngineOptions
-from stickslip.kernel.batch import run_states
+from stickslip.kernel.batch import prepare_states, run_prepared_states
+from stickslip.kernel.outer_certificate import ESCAPE_F_LO
 from stickslip.model.friction import CoulombFriction, StribeckFriction
 from stickslip.sweep.basin import BasinSystem, basin_stability, sample_box
 
@@ -116,30 +119,45 @@ def main() -> None:
 
 
 def early_certificate_ab(structure, slider, states, repeats: int) -> str:  # type: ignore[no-untyped-def]
-    """Samples/s of the kernel's ``run_states`` with and without the early certificate, one run."""
+    """Samples/s of the kernel with the early certificates in three builds, one run each.
+
+    Each timing includes preparing the system (``prepare_states``: matrix exponentials and the
+    regions) and the threaded loop over all states (``run_prepared_states``): both
+    certificates (the slip trap region, and the escape certificates: the slip escape region and
+    the test of states above the belt speed), the trap alone (the code before the escape
+    certificates), and neither.
+    """
     system = BasinSystem.prepare(structure, slider)
     opts = EngineOptions()
+    limits = (float(opts.t_max), int(opts.max_events), float(opts.cycle_tol), int(opts.max_period))
+    empty = np.zeros(0)
 
-    def rate(early: bool) -> tuple[float, np.ndarray]:
+    def rate(trap: bool, escape: bool) -> tuple[float, np.ndarray]:
         best = np.inf
         for _ in range(repeats):
             start = time.perf_counter()
-            _, isum = run_states(system.mass, system.damping, system.stiffness, system.lam,
-                                 system.gamma, system.edges, system.intercepts, system.slopes,
-                                 states, float(opts.t_max), int(opts.max_events),
-                                 float(opts.cycle_tol), int(opts.max_period), True, early)
+            prepared, r_in, r_hi, data = prepare_states(
+                system.mass, system.damping, system.stiffness, system.lam, system.gamma,
+                system.edges, system.intercepts, system.slopes, trap)
+            if not escape:  # neither the escape region nor the test above the belt speed
+                r_in, r_hi = empty, empty
+                data = data.copy()
+                data[ESCAPE_F_LO] = np.nan
+            _, isum = run_prepared_states(system.mass, system.stiffness, system.lam, system.gamma,
+                                          system.edges, prepared, r_in, r_hi, data, states, *limits)
             best = min(best, time.perf_counter() - start)
         return len(states) / best, isum[:, 0]
 
-    run_states(system.mass, system.damping, system.stiffness, system.lam, system.gamma,
-               system.edges, system.intercepts, system.slopes, states[:64], float(opts.t_max),
-               int(opts.max_events), float(opts.cycle_tol), int(opts.max_period), True, False)
-    on, status_on = rate(True)
-    off, status_off = rate(False)
-    same = int(np.sum(status_on == status_off))
-    return (f"weak net damping, one run_states call over all {len(states)} states (best of {repeats}): "
-            f"early certificate on {on:,.0f} samples/s, off {off:,.0f} samples/s, ratio {on / off:.1f}; "
-            f"same status on {same}/{len(states)}")
+    rate(True, True)  # compile / load the cache
+    both, status_both = rate(True, True)
+    trap, status_trap = rate(True, False)
+    none, status_none = rate(False, False)
+    same_both = int(np.sum(status_both == status_none))
+    same_trap = int(np.sum(status_trap == status_none))
+    return (f"weak net damping, kernel over all {len(states)} states incl. preparation (best of {repeats}): "
+            f"trap + escape certificates {both:,.0f} samples/s, trap only {trap:,.0f}, none {none:,.0f}; "
+            f"escape on/off {both / trap:.1f}x, all on/none {both / none:.1f}x; same status as none: "
+            f"{same_both}/{len(states)} (both), {same_trap}/{len(states)} (trap only)")
 
 
 if __name__ == "__main__":

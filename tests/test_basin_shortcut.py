@@ -32,11 +32,16 @@ T_MAX, MAX_EVENTS, CYCLE_TOL, MAX_PERIOD = 1e4, 100_000, 1e-9, 8
 
 
 def _both(structure, slider, states):  # type: ignore[no-untyped-def]
+    """Joined and full runs, both without the early certificates (whose states are certified
+    at time 0 without a run: tests/test_escape_certificate.py), and the statuses with them."""
     edges, intercepts, slopes = slider.friction.bands(slider.lam, slider.gamma)
     args = (structure.mass, structure.damping, structure.stiffness, float(slider.lam),
             float(slider.gamma), edges, intercepts, slopes, np.ascontiguousarray(states), T_MAX,
             MAX_EVENTS, CYCLE_TOL, MAX_PERIOD)
-    return run_states(*args, True), run_states(*args, False)
+    joined, full = run_states(*args, True, False), run_states(*args, False, False)
+    early = run_states(*args, True, True)
+    np.testing.assert_array_equal(early[1][:, engine.I_STATUS], full[1][:, engine.I_STATUS])
+    return joined, full
 
 
 def _states(structure, slider, n=300):  # type: ignore[no-untyped-def]
@@ -95,9 +100,15 @@ def test_horizon_applies_to_the_joined_clock() -> None:
                       edges, intercepts, slopes, states, T_MAX, MAX_EVENTS, CYCLE_TOL, MAX_PERIOD, False)
     t_cert = full[0][full[1][:, engine.I_STATUS] == engine.STATUS_CYCLE, engine.F_T_CERTIFIED]
     t_max = float(np.median(t_cert))
+    # the join alone (early certificates off: their states are certified at time 0, without
+    # a run), and with them (the trap region certifies whatever the horizon, as before the
+    # escape region: compared with full runs that have it too)
     short = [run_states(structure.mass, structure.damping, structure.stiffness, slider.lam, slider.gamma,
-                        edges, intercepts, slopes, states, t_max, MAX_EVENTS, CYCLE_TOL, MAX_PERIOD, join)
-             for join in (True, False)]
+                        edges, intercepts, slopes, states, t_max, MAX_EVENTS, CYCLE_TOL, MAX_PERIOD, join,
+                        early)
+             for join, early in ((True, False), (False, False), (True, True), (False, True))]
+    np.testing.assert_array_equal(short[2][1][:, engine.I_STATUS], short[3][1][:, engine.I_STATUS])
+    short = short[:2]
     status_join, status_full = short[0][1][:, engine.I_STATUS], short[1][1][:, engine.I_STATUS]
     assert (status_full == engine.STATUS_T_MAX).sum() > 10
     np.testing.assert_array_equal(status_join, status_full)

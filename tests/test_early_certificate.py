@@ -153,9 +153,16 @@ def test_verdicts_are_unchanged_and_certified_earlier(weak_runs: dict[str, np.nd
     # measured: most sliding states start inside the region (t = 0); the old median is
     # tens of periods
     assert np.median(t_new) < 0.1 * np.median(t_old)
-    # the stick-slip states are untouched (same certificate time, same cycle)
-    np.testing.assert_array_equal(weak_runs["f_new"][~steady, engine.F_T_CERTIFIED],
-                                  weak_runs["f_old"][~steady, engine.F_T_CERTIFIED])
+    # the stick-slip states: the same cycle; either untouched (same certificate time) or
+    # certified at once by the slip escape region (tests/test_escape_certificate.py)
+    f_new, f_old = weak_runs["f_new"][~steady], weak_runs["f_old"][~steady]
+    escaped = f_new[:, engine.F_T_END] == 0.0
+    assert escaped.mean() > 0.5  # measured: all but the thin ring about the unstable cycle
+    np.testing.assert_array_equal(f_new[~escaped, engine.F_T_CERTIFIED],
+                                  f_old[~escaped, engine.F_T_CERTIFIED])
+    np.testing.assert_array_equal(f_new[escaped, engine.F_T_CERTIFIED], 0.0)
+    for column in (engine.F_PERIOD, engine.F_AMPLITUDE, engine.F_STICK_RATIO):
+        np.testing.assert_allclose(f_new[:, column], f_old[:, column], rtol=1e-9)
 
 
 def test_certified_states_slide_for_ever_in_long_direct_runs(weak_runs: dict[str, np.ndarray]) -> None:

@@ -2,8 +2,10 @@
 
 The compiled kernels here contain the engine's run loop (numba compiles callees into the
 caller). numba's cache checks only this file's time stamp, not the engine's: after editing
-:mod:`stickslip.kernel.engine` or :mod:`stickslip.kernel.events` alone, ``make clean-cache``
-(or a change here), or these kernels keep running the engine they were cached with.
+:mod:`stickslip.kernel.engine`, :mod:`stickslip.kernel.events`,
+:mod:`stickslip.kernel.certificate` or :mod:`stickslip.kernel.outer_certificate` alone,
+``make clean-cache`` (or a change here), or these kernels keep running the code they were
+cached with.
 """
 
 from __future__ import annotations
@@ -42,6 +44,16 @@ from stickslip.kernel.engine import (
     run_prepared,
 )
 from stickslip.kernel.linalg import gauss_solve
+from stickslip.kernel.outer_certificate import (
+    ESCAPE_F_LO,
+    ESCAPE_TIME,
+    ESCAPE_XI_LO,
+    N_ESCAPE,
+    escape_certifies,
+    friction_floor,
+    slip_escape_region,
+    slip_ii_stick_time,
+)
 from stickslip.kernel.system import STICK, prepare_bands
 
 
@@ -107,15 +119,53 @@ def coulomb_tables(lams, gammas):
     return edges, intercepts, slopes, n_bands
 
 
-@njit(parallel=True, cache=True)
+@njit(cache=True)
+def prepare_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes,
+                   early_certificate=True, escape_region=True):
+    """Per-system data of :func:`run_prepared_states`: ``(prepared, r_in, r_hi, escape_data)``.
+
+    ``prepared``: :func:`stickslip.kernel.certificate.prepare_certified` (with the slip trap
+    region) or, without ``early_certificate``, :func:`~stickslip.kernel.system.prepare_bands`;
+    ``r_in, r_hi, escape_data``: the slip escape region
+    (:func:`stickslip.kernel.outer_certificate.slip_escape_region`; empty without
+    ``early_certificate``, or without ``escape_region``: it costs tens of runs of the system,
+    worth it for thousands of states, not for a few hundred), and in
+    ``escape_data[ESCAPE_F_LO]`` the law's floor for the test of states above the belt speed
+    (NaN: no test; without ``early_certificate``, for more than one degree of freedom and for
+    a one-band law, as the regions).
+    """
+    if early_certificate:
+        prepared = prepare_certified(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
+        if escape_region:
+            r_in, r_hi, escape_data = slip_escape_region(mass, damping, stiffness, lam, gamma,
+                                                         edges, intercepts, slopes, prepared)
+        else:
+            r_in = np.zeros(0)
+            r_hi = np.zeros(0)
+            escape_data = np.zeros(N_ESCAPE)
+        escape_data[ESCAPE_F_LO] = np.nan
+        if mass.shape[0] == 1 and intercepts.shape[0] >= 2:  # as the regions: not Coulomb
+            escape_data[ESCAPE_F_LO] = friction_floor(edges, intercepts, slopes)
+    else:
+        prepared = prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
+        r_in = np.zeros(0)
+        r_hi = np.zeros(0)
+        escape_data = np.zeros(N_ESCAPE)
+        escape_data[ESCAPE_F_LO] = np.nan
+    return prepared, r_in, r_hi, escape_data
+
+
+@njit(cache=True)
 def run_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0s, t_max,
                max_events, cycle_tol, max_period, join_startup=True, early_certificate=True):
     """Run one system from many initial states ``z0s`` (shape ``(n_states, 2 n)``) in parallel.
 
-    The system is prepared once (:func:`stickslip.kernel.certificate.prepare_certified`: the
-    per-system data and, for one degree of freedom and a velocity-dependent law, the slip trap
-    region that certifies steady sliding early; ``early_certificate=False`` leaves it out, for
-    A/B comparisons) and shared by the threads. Returns the float and integer summaries, shapes
+    The system is prepared once (:func:`prepare_states`: the per-system data and, for one
+    degree of freedom and a velocity-dependent law, the early certificates: the slip trap
+    region of steady sliding and the slip escape region of states that reach the belt speed
+    and stick; ``early_certificate=False`` leaves them out, for A/B comparisons) and shared by
+    the threads; :func:`run_prepared_states` is the loop, for data prepared once for many
+    calls. Returns the float and integer summaries, shapes
     ``(n_states, N_FLOAT)`` and ``(n_states, N_INT)`` (layouts of :mod:`stickslip.kernel.engine`).
 
     With ``join_startup`` and a single degree of freedom, each state is run only until its
@@ -138,11 +188,28 @@ def run_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, 
     start-up run does from time ``xi_s - xi_startup``: same verdict, same cycle (period,
     amplitude, stick ratio), and every later time shifted by
     ``t_s + xi_startup - xi_s``.
+
+    Slip escape region (:mod:`stickslip.kernel.outer_certificate`, with the shortcut): a state
+    in it provably reaches the belt speed by ``T`` and sticks in ``xi_s >= xi_lo``, so its
+    verdict is the start-up run's without running it; it is used only when the start-up run
+    is certified and ``T + t_cert(start-up) + xi_startup - xi_lo <= t_max`` (the joined clock
+    of a direct run then certifies within the horizon: the same label). Likewise a state above
+    the belt speed that provably decelerates to it and sticks
+    (:func:`~stickslip.kernel.outer_certificate.slip_ii_stick_time`, with its own time bound).
+    Their summaries are those of :func:`escape_summary` (certified at time 0, like the trap
+    region's states).
     """
-    if early_certificate:
-        prepared = prepare_certified(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
-    else:
-        prepared = prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
+    prepared, r_in, r_hi, escape_data = prepare_states(mass, damping, stiffness, lam, gamma, edges,
+                                                       intercepts, slopes, early_certificate)
+    return run_prepared_states(mass, stiffness, lam, gamma, edges, prepared, r_in, r_hi,
+                               escape_data, z0s, t_max, max_events, cycle_tol, max_period,
+                               join_startup)
+
+
+@njit(parallel=True, cache=True)
+def run_prepared_states(mass, stiffness, lam, gamma, edges, prepared, r_in, r_hi, escape_data, z0s,
+                        t_max, max_events, cycle_tol, max_period, join_startup=True):
+    """:func:`run_states` with the data of :func:`prepare_states` computed once."""
     n_states = z0s.shape[0]
     float_summary = np.empty((n_states, N_FLOAT))
     int_summary = np.empty((n_states, N_INT), dtype=np.int64)
@@ -155,6 +222,9 @@ def run_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, 
             np.array([startup[0], startup[1], 1.0]), stick_row, lam, gamma) == STICK
     startup_f = np.empty(N_FLOAT)
     startup_i = np.empty(N_INT, dtype=np.int64)
+    escape = False
+    slip_ii = False
+    damping00 = stick_row[nz // 2] if nz == 2 else 0.0  # C: the stick force is K xi + C v
     if shortcut:
         # a joined clock runs behind the start-up run's by at most one stick phase, whose
         # length is at most the static range over the stick force's rate, lambda (2 + 2 gamma)
@@ -164,7 +234,25 @@ def run_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, 
                                  cycle_tol, max_period, False, False, False)
         startup_f[:] = canonical[4]
         startup_i[:] = canonical[5]
+        status = startup_i[I_STATUS]
+        certified = (status == STATUS_STEADY or status == STATUS_CYCLE
+                     or status == STATUS_OSCILLATION)
+        # the slip escape region: only where a direct run's joined clock certifies in time
+        escape = (certified and r_in.shape[0] > 0
+                  and escape_data[ESCAPE_TIME] + startup_f[F_T_CERTIFIED] + startup[0]
+                  - escape_data[ESCAPE_XI_LO] <= t_max)
+        slip_ii = certified and not np.isnan(escape_data[ESCAPE_F_LO])
+    z_eq = prepared[15]
     for c in prange(n_states):
+        w0 = np.array([z0s[c, 0], z0s[c, 1], 1.0])
+        if escape and escape_certifies(w0, z_eq, r_in, r_hi, escape_data):
+            escape_summary(float_summary[c], int_summary[c], startup_f, startup_i)
+            continue
+        if slip_ii and z0s[c, 1] > 1.0 and slip_ii_stick_time(
+                w0, mass[0, 0], damping00, stiffness[0, 0], lam, gamma, escape_data[ESCAPE_F_LO]
+        ) + startup_f[F_T_CERTIFIED] + startup[0] - z0s[c, 0] <= t_max:
+            escape_summary(float_summary[c], int_summary[c], startup_f, startup_i)
+            continue
         result = run_prepared(mass, lam, gamma, edges, prepared, z0s[c], t_max, max_events,
                               cycle_tol, max_period, False, False, shortcut)
         float_summary[c] = result[4]
@@ -173,6 +261,28 @@ def run_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, 
             join_startup_summary(float_summary[c], int_summary[c], result[6][0], startup[0],
                                  startup_f, startup_i, t_max)
     return float_summary, int_summary
+
+
+@njit(cache=True)
+def escape_summary(fsum, isum, startup_f, startup_i):
+    """The summaries of a state certified by the slip escape region, in place.
+
+    Its verdict and cycle (period, amplitude, ``xi`` range, stick ratio, largest velocity in
+    the cycle, mismatch, ``I_CYCLE_K``) are the start-up run's, exactly; it was certified at
+    once, without a run: ``F_T_END = F_T_CERTIFIED = 0`` as for the slip trap region, no
+    phase or step counted (``I_N_SEGMENTS = 1``, the initial phase), and the time of its last
+    stick phase and its largest velocity unknown (NaN).
+    """
+    fsum[:] = startup_f
+    isum[:] = startup_i
+    fsum[F_T_END] = 0.0
+    fsum[F_T_CERTIFIED] = 0.0
+    fsum[F_T_LAST_STICK] = np.nan
+    fsum[F_MAX_VELOCITY] = np.nan
+    isum[I_N_STICK] = 0
+    isum[I_N_BREAKAWAY] = 0
+    isum[I_N_SEGMENTS] = 1
+    isum[I_N_STEPS] = 0
 
 
 @njit(cache=True)

@@ -69,6 +69,10 @@ motion that reaches the belt speed, fails when it sticks, oscillates or runs out
 Only one degree of freedom (the plane); for more, and for a law with a single band (Coulomb,
 where the energy disk is already the whole certificate), no region is built and runs are
 bit for bit those of :func:`stickslip.kernel.system.prepare_bands`.
+
+Its complement outside the unstable slip cycle, the slip escape region of states that reach
+the belt speed and stick, is :mod:`stickslip.kernel.outer_certificate`; between the two
+regions a thin ring about the cycle is left to simulation.
 """
 
 from __future__ import annotations

@@ -60,6 +60,11 @@ MAX_SAMPLES = 50_000_000
 #: samples/s measured on two cores (bench_basin); a larger map is split into several.
 MAX_MAP_RUNS = 100_000_000
 
+#: Fewest states of a basin for which the slip escape region is built
+#: (:mod:`stickslip.kernel.outer_certificate`): measured on issue 21's weak-net-damping case,
+#: the region takes about 0.1 s to build, the time of about 400 runs it spares (bench_basin).
+ESCAPE_MIN_STATES = 1000
+
 #: States per chunk of the in-process backends when none is given (the unit of progress and
 #: of the resume store); the Dask backend cuts about 32 chunks (``default_chunk_size``).
 THREADS_CHUNK = 4096
@@ -274,7 +279,10 @@ class BasinSystem:
 
     ``mass``, ``damping``, ``stiffness`` are the dimensionless matrices of the structure,
     ``lam`` and ``gamma`` the paper's ratios, ``edges``, ``intercepts``, ``slopes`` the band
-    table of the friction law at them (:meth:`FrictionLaw.bands`), tabulated once.
+    table of the friction law at them (:meth:`FrictionLaw.bands`), tabulated once, and
+    ``kernel`` the per-system data of :func:`stickslip.kernel.batch.prepare_states` (matrix
+    exponentials, certificates, the slip trap and escape regions), computed once for every
+    chunk of a basin (empty: each chunk prepares its own).
     """
 
     mass: FloatArray
@@ -285,17 +293,27 @@ class BasinSystem:
     edges: FloatArray
     intercepts: FloatArray
     slopes: FloatArray
+    kernel: tuple[Any, ...] = field(default=(), repr=False, compare=False)
 
     @classmethod
-    def prepare(cls, structure: Structure, slider: Slider) -> BasinSystem:
-        """The arrays of ``structure`` and the band table of ``slider.friction``."""
+    def prepare(cls, structure: Structure, slider: Slider, n_states: int | None = None) -> BasinSystem:
+        """The arrays of ``structure``, the band table of ``slider.friction`` and the kernel's
+        per-system data; the slip escape region only for ``n_states`` of at least
+        :data:`ESCAPE_MIN_STATES` (or None): it costs about as much as running a few hundred
+        states, and the labels are the same without it."""
+        from stickslip.kernel.batch import prepare_states
+
         if structure.contact_dof != 0:  # states and box columns are in the contact-first order
             raise ValueError(f"basin sampling needs the contact on DOF 0 (this structure has it on "
                              f"DOF {structure.contact_dof}): pass structure.contact_first()[0] and "
                              "states in that order")
         edges, intercepts, slopes = slider.friction.bands(slider.lam, slider.gamma)
-        return cls(structure.mass, structure.damping, structure.stiffness, float(slider.lam),
-                   float(slider.gamma), edges, intercepts, slopes)
+        lam, gamma = float(slider.lam), float(slider.gamma)
+        escape = n_states is None or n_states >= ESCAPE_MIN_STATES
+        kernel = prepare_states(structure.mass, structure.damping, structure.stiffness, lam, gamma,
+                                edges, intercepts, slopes, True, escape)
+        return cls(structure.mass, structure.damping, structure.stiffness, lam, gamma, edges,
+                   intercepts, slopes, kernel)
 
 
 def run_state_batch(system: BasinSystem, states: FloatArray, options: EngineOptions,
@@ -303,17 +321,25 @@ def run_state_batch(system: BasinSystem, states: FloatArray, options: EngineOpti
     """Run ``system`` from every row of ``states`` on ``n_threads`` numba threads (all when None).
 
     The per-chunk task of :func:`basin_stability` (for
-    :func:`stickslip.sweep.executors.execute`, on every backend): ``run_states`` of
-    :mod:`stickslip.kernel.batch`. Returns the float and integer summaries, shapes
+    :func:`stickslip.sweep.executors.execute`, on every backend): ``run_prepared_states`` of
+    :mod:`stickslip.kernel.batch` on the system's data prepared once (``run_states`` when
+    there is none). Returns the float and integer summaries, shapes
     ``(n, N_FLOAT)`` and ``(n, N_INT)``.
     """
-    from stickslip.kernel.batch import run_states
+    from stickslip.kernel.batch import run_prepared_states, run_states
 
+    limits = (float(options.t_max), int(options.max_events), float(options.cycle_tol),
+              int(options.max_period))
     with numba_threads(n_threads):
-        float_summary, int_summary = run_states(
-            system.mass, system.damping, system.stiffness, system.lam, system.gamma, system.edges,
-            system.intercepts, system.slopes, states, float(options.t_max), int(options.max_events),
-            float(options.cycle_tol), int(options.max_period))
+        if system.kernel:
+            prepared, r_in, r_hi, escape_data = system.kernel
+            float_summary, int_summary = run_prepared_states(
+                system.mass, system.stiffness, system.lam, system.gamma, system.edges, prepared,
+                r_in, r_hi, escape_data, states, *limits)
+        else:
+            float_summary, int_summary = run_states(
+                system.mass, system.damping, system.stiffness, system.lam, system.gamma,
+                system.edges, system.intercepts, system.slopes, states, *limits)
     return float_summary, int_summary
 
 
@@ -358,8 +384,8 @@ def basin_stability(
         raise ValueError(f"states need shape (n, {2 * n_dof}) for a {n_dof}-DOF structure, got {z0s.shape}")
     sample_count(z0s.shape[0])
     check_states(z0s, state_names(n_dof))
-    system = BasinSystem.prepare(structure, slider)
     started = time.perf_counter()
+    system = BasinSystem.prepare(structure, slider, z0s.shape[0])
     n = z0s.shape[0]
     if chunk_size is None:
         chunk_size = default_chunk_size(n, backend) if backend == "dask" else THREADS_CHUNK
