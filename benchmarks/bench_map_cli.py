@@ -136,7 +136,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.baseline != "none":
         sources.append((f"old {args.baseline}", baseline_sources(args.baseline)))
     with tempfile.TemporaryDirectory() as tmp:
-        outputs = {}
+        outputs: dict[str, Path] = {}
         for label, src in sources:  # warm-up: compile or load the numba caches, untimed
             warm = Path(tmp) / f"warm-{len(outputs)}.nc"
             run_cli(map_arguments(4, 4, args.lam, args.zeta, args.workers, warm), src)
