@@ -289,16 +289,18 @@ def make_chunks(n_cells: int, chunk_size: int) -> list[Chunk]:
 def default_chunk_size(n_cells: int, backend: Backend = "threads") -> int:
     """Cells per chunk when none is given: progress, resume and task granularity.
 
-    In-process backends: about a hundred chunks of 64 to 4096 cells; at several thousand
+    In-process backends: about a hundred chunks of 64 to 16384 cells; at tens of thousands of
     cells per second a chunk takes well under a second, which keeps the progress bar live
-    and loses little work when a run is killed. Dask: about 32 chunks of 256 to 8192 cells,
+    and loses little work when a run is killed (each chunk costs some Python and a store
+    write: 245 writes of 4096 cells took 2.8 s of wall time, 62 of 16384 cells 1.5 s).
+    Dask: about 32 chunks of 256 to 8192 cells,
     since every task costs the scheduler a few milliseconds (measured on 2 cores: 100 tasks
     of 100 cells ran 1.3x faster on 2 workers than on 1, 20 tasks of 500 cells 1.4x).
     """
     if backend == "dask":
         size = min(8192, max(256, math.ceil(n_cells / 32)))
     else:
-        size = min(4096, max(64, math.ceil(n_cells / 100)))
+        size = min(16384, max(64, math.ceil(n_cells / 100)))
     return int(min(size, max(1, n_cells)))
 
 
