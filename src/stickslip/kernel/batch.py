@@ -98,8 +98,9 @@ def run_prepared_cells(shared, masses, dampings, stiffnesses, structure_index, l
 
     Each cell prepares only what depends on its parameter point
     (:func:`~stickslip.kernel.system.prepare_point`, bit for bit what
-    :func:`~stickslip.kernel.system.prepare_bands` gives) and runs from the startup state;
-    the cells run in parallel over numba threads.
+    :func:`~stickslip.kernel.system.prepare_bands` gives; the slip modes the run never
+    enters are not prepared at all, ``lazy``) and runs from the startup state; the cells
+    run in parallel over numba threads.
     """
     n_cells = lams.shape[0]
     float_summary = np.empty((n_cells, N_FLOAT))
@@ -110,7 +111,7 @@ def run_prepared_cells(shared, masses, dampings, stiffnesses, structure_index, l
         nb = n_bands[c]
         prepared = prepare_point(structure_data_at(shared, s), masses[s], dampings[s],
                                  stiffnesses[s], lams[c], gammas[c], edges[c, : nb + 1],
-                                 intercepts[c, :nb], slopes[c, :nb])
+                                 intercepts[c, :nb], slopes[c, :nb], True)
         result = run_prepared(masses[s], lams[c], gammas[c], edges[c, : nb + 1], prepared, z0,
                               t_max, max_events, cycle_tol, max_period, False, False, False)
         float_summary[c] = result[4]

@@ -265,6 +265,20 @@ def mode_step(ahat_mode, row, phi_out, sig_out, deriv):
     return h
 
 
+@njit(cache=True)
+def fill_mode(ahat, phi, hstep, sig_rows, mode):
+    """Fill a slip mode that :func:`prepare_point` left to the run (``lazy``); no-op otherwise.
+
+    The same :func:`mode_step` on the same matrix as an eager preparation.
+    """
+    if hstep[mode] == hstep[mode]:  # not NaN: prepared already
+        return
+    m = ahat.shape[1]
+    row = np.zeros(m)
+    row[(m - 1) // 2] = 1.0  # v_0, as for every slip mode
+    hstep[mode] = mode_step(ahat[mode], row, phi[mode], sig_rows[mode], np.zeros((N_ROWS, m)))
+
+
 #: Slots of the two modes in :func:`structure_data` that depend on the structure alone.
 SHARED_SLIP = 0
 SHARED_STICK = 1
@@ -360,11 +374,18 @@ def structure_data_at(stack, s):
 # one pass over the modes (matrices, exponentials, signatures, event tables, certificates);
 # each block is commented, and split into njit helpers it would pass a dozen arrays each way.
 @njit(cache=True)
-def prepare_point(structure, mass, damping, stiffness, lam, gamma, edges, intercepts, slopes):
+def prepare_point(structure, mass, damping, stiffness, lam, gamma, edges, intercepts, slopes,
+                  lazy=False):
     """Everything the run loop needs, computed once per parameter point.
 
     ``structure``: :func:`structure_data` of ``(mass, damping, stiffness)``; the modes and the
     Lyapunov data that do not depend on the parameter point are taken from it.
+
+    ``lazy``: the slip modes not taken from ``structure`` are left for the run to fill when it
+    first enters them (:func:`fill_mode`; their ``hstep`` is NaN until then): a Coulomb map
+    cell never enters slip-II in most of the paper's range, and its exponential was a tenth
+    of the cell's time. Only for prepared data that one run uses (threads sharing it must
+    not fill it); the filled mode is bit for bit the eager one.
 
     ``edges`` (n_bands + 1,), ``intercepts`` and ``slopes`` (n_bands,) are the friction
     law's band table: band ``b`` covers the sliding speed ``u`` in
@@ -427,6 +448,8 @@ def prepare_point(structure, mass, damping, stiffness, lam, gamma, edges, interc
             hstep[mode] = base_hstep[shared]
             phi[mode] = base_phi[shared]
             sig_rows[mode] = base_sig[shared]
+        elif lazy:
+            hstep[mode] = np.nan  # filled by fill_mode when the run first enters it
         else:
             hstep[mode] = mode_step(ahat[mode], row, phi[mode], sig_rows[mode], deriv)
     f_start = np.ones((n_modes, N_FUNCTIONALS), dtype=np.int64)
