@@ -40,7 +40,6 @@ from stickslip.kernel.engine import (
     STATUS_STUCK,
     STATUS_T_MAX,
     mode_at_belt_speed,
-    run,
     run_prepared,
 )
 from stickslip.kernel.linalg import gauss_solve
@@ -54,7 +53,13 @@ from stickslip.kernel.outer_certificate import (
     slip_escape_region,
     slip_ii_stick_time,
 )
-from stickslip.kernel.system import STICK, prepare_bands
+from stickslip.kernel.system import (
+    STICK,
+    prepare_bands,
+    prepare_point,
+    structure_data_at,
+    structure_data_stack,
+)
 
 
 @njit(cache=True)
@@ -77,7 +82,6 @@ def startup_vector(stiffness, lam, gamma):
     return z0
 
 
-@njit(parallel=True, cache=True)
 def run_cells(masses, dampings, stiffnesses, structure_index, lams, gammas, edges, intercepts,
               slopes, n_bands, t_max, max_events, cycle_tol, max_period):
     """Run every cell from the startup state; cell ``c`` uses structure ``structure_index[c]``.
@@ -88,7 +92,27 @@ def run_cells(masses, dampings, stiffnesses, structure_index, lams, gammas, edge
     :func:`coulomb_tables` for the Coulomb law.
 
     Returns the float and integer summaries, shapes ``(n_cells, N_FLOAT)`` and
-    ``(n_cells, N_INT)``, with the layouts of :mod:`stickslip.kernel.engine`.
+    ``(n_cells, N_INT)``, with the layouts of :mod:`stickslip.kernel.engine`. The structures'
+    own data (:func:`~stickslip.kernel.system.structure_data_stack`) is computed here on every
+    call; a sweep that runs many batches of the same structures computes it once and calls
+    :func:`run_prepared_cells`.
+    """
+    shared = structure_data_stack(masses, dampings, stiffnesses)
+    return run_prepared_cells(shared, masses, dampings, stiffnesses, structure_index, lams,
+                              gammas, edges, intercepts, slopes, n_bands, t_max, max_events,
+                              cycle_tol, max_period)
+
+
+@njit(parallel=True, cache=True)
+def run_prepared_cells(shared, masses, dampings, stiffnesses, structure_index, lams, gammas, edges,
+                       intercepts, slopes, n_bands, t_max, max_events, cycle_tol, max_period):
+    """:func:`run_cells` with ``shared = structure_data_stack(masses, dampings, stiffnesses)``.
+
+    Each cell prepares only what depends on its parameter point
+    (:func:`~stickslip.kernel.system.prepare_point`, bit for bit what
+    :func:`~stickslip.kernel.system.prepare_bands` gives; the slip modes the run never
+    enters are not prepared at all, ``lazy``) and runs from the startup state; the cells
+    run in parallel over numba threads.
     """
     n_cells = lams.shape[0]
     float_summary = np.empty((n_cells, N_FLOAT))
@@ -97,9 +121,11 @@ def run_cells(masses, dampings, stiffnesses, structure_index, lams, gammas, edge
         s = structure_index[c]
         z0 = startup_vector(stiffnesses[s], lams[c], gammas[c])
         nb = n_bands[c]
-        result = run(masses[s], dampings[s], stiffnesses[s], lams[c], gammas[c],
-                     edges[c, : nb + 1], intercepts[c, :nb], slopes[c, :nb], z0, t_max,
-                     max_events, cycle_tol, max_period, False, False)
+        prepared = prepare_point(structure_data_at(shared, s), masses[s], dampings[s],
+                                 stiffnesses[s], lams[c], gammas[c], edges[c, : nb + 1],
+                                 intercepts[c, :nb], slopes[c, :nb], True)
+        result = run_prepared(masses[s], lams[c], gammas[c], edges[c, : nb + 1], prepared, z0,
+                              t_max, max_events, cycle_tol, max_period, False, False, False)
         float_summary[c] = result[4]
         int_summary[c] = result[5]
     return float_summary, int_summary

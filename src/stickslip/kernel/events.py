@@ -25,22 +25,56 @@ from stickslip.kernel.polynomial import (
 )
 from stickslip.kernel.system import N_ROWS, N_SIGNATURE
 
+# Both products below are the step's main arithmetic. For the paper's two systems (state of
+# length m = 5 with the foundation, 3 on the rigid base) they are written out again with
+# constant trip counts, which LLVM unrolls: the same multiplications and additions in the same
+# order (bit for bit), at about half the time (micro-benchmark: a 5 x 5 product and copy,
+# 35 ns with the length read at run time, 19 ns with it constant).
+
 
 @njit(cache=True, inline="always")
 def signature(sig_rows, w, out):
-    """Project the state on the mode's signature rows (once per state)."""
-    for b in range(N_SIGNATURE):
-        out[b] = dot(sig_rows[b], w)
+    """Project the state on the mode's signature rows (once per state): ``out[b] = sig_rows[b] . w``."""
+    m = w.shape[0]
+    if m == 5:
+        for b in range(N_SIGNATURE):
+            acc = 0.0
+            for j in range(5):
+                acc += sig_rows[b, j] * w[j]
+            out[b] = acc
+    elif m == 3:
+        for b in range(N_SIGNATURE):
+            acc = 0.0
+            for j in range(3):
+                acc += sig_rows[b, j] * w[j]
+            out[b] = acc
+    else:
+        for b in range(N_SIGNATURE):
+            out[b] = dot(sig_rows[b], w)
 
 
 @njit(cache=True, inline="always")
 def propagate(phi, w, out):
     """``out = phi @ w``: one full step (the arithmetic of :func:`~stickslip.kernel.linalg.matvec`)."""
-    for i in range(phi.shape[0]):
-        acc = 0.0
-        for j in range(phi.shape[1]):
-            acc += phi[i, j] * w[j]
-        out[i] = acc
+    m = w.shape[0]
+    if m == 5:
+        for i in range(5):
+            acc = 0.0
+            for j in range(5):
+                acc += phi[i, j] * w[j]
+            out[i] = acc
+    elif m == 3:
+        for i in range(3):
+            acc = 0.0
+            for j in range(3):
+                acc += phi[i, j] * w[j]
+            out[i] = acc
+    else:
+        for i in range(phi.shape[0]):
+            acc = 0.0
+            for j in range(phi.shape[1]):
+                acc += phi[i, j] * w[j]
+            out[i] = acc
 
 
 @njit(cache=True, inline="always")

@@ -26,28 +26,37 @@ from numba import njit
 
 from stickslip.kernel.linalg import (
     ORIGINAL_ARITHMETIC_DOF,
-    expm,
-    forced_step,
     gauss_solve,
-    inverse,
     is_positive_definite,
     lyapunov_solve,
-    step_norm,
+)
+from stickslip.kernel.modes import (  # noqa: F401 (the mode names, imported from here by callers)
+    F_VEL,
+    F_XI,
+    N_FUNCTIONALS,
+    N_MODES,
+    N_ROWS,
+    N_SIGNATURE,
+    NEXT_BELT,
+    SLIP_I,
+    SLIP_II,
+    STEP_THETA,
+    STICK,
+    derivative_rows,
+    fill_mode,
+    find_band,
+    is_coulomb_band,
+    mode_band,
+    mode_code,
+    mode_kind,
+    mode_kind_band,
+    mode_matrices,
+    mode_step,
+    slip_matrices,
+    structure_matrices,
+    twin_mode_step,
 )
 
-SLIP_I = 0
-SLIP_II = 1
-STICK = 2
-N_MODES = 3  # with one friction band (Coulomb)
-N_ROWS = 4
-N_SIGNATURE = N_ROWS + 1
-# functionals of each mode: events 0 and 1, then the monitors of xi and v_0
-N_FUNCTIONALS = 4
-F_XI = 2
-F_VEL = 3
-STEP_THETA = 0.5
-#: next-mode code of an event that reaches the belt speed (decided by Eq. 20)
-NEXT_BELT = -1
 # layout of the slip trap region's scalars (see :func:`trap_certifies` and
 # :mod:`stickslip.kernel.certificate`)
 TRAP_ENERGY_RADIUS = 0  # radius of the energy certificate's disk in (sqrt(K) z, sqrt(M) v)
@@ -61,147 +70,6 @@ N_TRAP = 7
 
 
 @njit(cache=True)
-def mode_code(kind, band):
-    """Mode code of slip kind ``kind`` (``SLIP_I`` or ``SLIP_II``) in friction band ``band``.
-
-    Band 0 keeps the codes 0 and 1 (stick is 2), so that a one-band (Coulomb) law has the
-    mode codes it always had; band ``b >= 1`` has slip-I ``1 + 2b`` and slip-II ``2 + 2b``.
-    """
-    if band == 0:
-        return kind
-    return 1 + 2 * band + kind
-
-
-@njit(cache=True)
-def mode_kind(code):
-    """``SLIP_I``, ``SLIP_II`` or ``STICK`` of a mode code."""
-    if code <= STICK:
-        return code
-    return (code - 3) % 2
-
-
-@njit(cache=True)
-def mode_band(code):
-    """Friction band of a mode code (0 for stick)."""
-    if code <= STICK:
-        return 0
-    return (code - 3) // 2 + 1
-
-
-def mode_kind_band(code: int) -> tuple[int, int]:
-    """``(kind, band)`` of a mode code (plain Python, for result objects)."""
-    code = int(code)
-    if code <= STICK:
-        return code, 0
-    return (code - 3) % 2, (code - 3) // 2 + 1
-
-
-@njit(cache=True)
-def find_band(edges, u):
-    """Band ``b`` with ``edges[b] <= u < edges[b + 1]`` (the last band is unbounded)."""
-    nb = edges.shape[0] - 1
-    for b in range(nb - 1, -1, -1):
-        if u >= edges[b]:
-            return b
-    return 0
-
-
-@njit(cache=True)
-def _is_coulomb_band(intercept, slope, lam, gamma):
-    return slope == 0.0 and intercept == gamma * lam
-
-
-@njit(cache=True)
-def mode_matrices(mass, damping, stiffness, lam, gamma, intercepts, slopes):
-    """Augmented matrices ``A_hat[mode]`` (2 n_bands + 1, m, m) and the stick-force row (m,).
-
-    Friction band ``b`` has ``F(u) = a + s u`` (``a = intercepts[b]``, ``s = slopes[b]``)
-    with the sliding speed ``u = |1 - xi'|``. Slip-I (``u = 1 - xi'``) adds ``s`` to
-    ``C_00`` and the forcing ``(a + s - gamma lambda) e_0``; slip-II (``u = xi' - 1``) adds
-    ``s`` to ``C_00`` and the forcing ``-(a - s + gamma lambda) e_0``. A band with
-    ``s = 0`` and ``a = gamma lambda`` (Coulomb) uses the paper's expressions unchanged.
-
-    The stick force ``S = (Mass q'' + C q' + K q)_0`` with ``q_0'' = 0``, evaluated on a
-    state with ``v_0 = 1``; stick holds while ``-lambda (1 + 2 gamma) <= S <= lambda``
-    (Eq. 20).
-    """
-    n = mass.shape[0]
-    m = 2 * n + 1
-    nb = intercepts.shape[0]
-    n_modes = 2 * nb + 1
-    minv = inverse(mass)
-    acc_q = -(minv @ stiffness)
-    acc_v = -(minv @ damping)
-    ahat = np.zeros((n_modes, m, m))
-    for b in range(nb):
-        a = intercepts[b]
-        s = slopes[b]
-        coulomb = _is_coulomb_band(a, s, lam, gamma)
-        if s != 0.0:
-            damp_b = damping.copy()
-            damp_b[0, 0] += s
-            acc_vb = -(minv @ damp_b)
-        else:
-            acc_vb = acc_v
-        for kind in range(2):
-            mode = mode_code(kind, b)
-            for i in range(n):
-                ahat[mode, i, n + i] = 1.0
-                for j in range(n):
-                    ahat[mode, n + i, j] = acc_q[i, j]
-                    ahat[mode, n + i, n + j] = acc_vb[i, j]
-        mode_1 = mode_code(SLIP_I, b)
-        mode_2 = mode_code(SLIP_II, b)
-        if coulomb:
-            for i in range(n):
-                ahat[mode_2, n + i, m - 1] = -2.0 * gamma * lam * minv[i, 0]
-        else:
-            force_1 = (a + s) - gamma * lam
-            force_2 = -(a - s) - gamma * lam
-            for i in range(n):
-                ahat[mode_1, n + i, m - 1] = force_1 * minv[i, 0]
-                ahat[mode_2, n + i, m - 1] = force_2 * minv[i, 0]
-    # stick: q' = v for every DOF, v_0' = 0, the rest driven with q_0'' = 0
-    for i in range(n):
-        ahat[STICK, i, n + i] = 1.0
-    if n > 1:
-        mrr_inv = inverse(mass[1:, 1:])
-        for i in range(n - 1):
-            for j in range(n):
-                sq = 0.0
-                sv = 0.0
-                for k in range(n - 1):
-                    sq += mrr_inv[i, k] * stiffness[1 + k, j]
-                    sv += mrr_inv[i, k] * damping[1 + k, j]
-                ahat[STICK, n + 1 + i, j] = -sq
-                ahat[STICK, n + 1 + i, n + j] = -sv
-    stick_row = np.zeros(m)
-    for j in range(n):
-        stick_row[j] = stiffness[0, j]
-        stick_row[n + j] = damping[0, j]
-    for i in range(n - 1):
-        coupling = mass[0, 1 + i]
-        if coupling != 0.0:
-            for j in range(m):
-                stick_row[j] += coupling * ahat[STICK, n + 1 + i, j]
-    return ahat, stick_row
-
-
-@njit(cache=True)
-def derivative_rows(row0, ahat, out):
-    """``out[j] = row0 @ ahat^j`` for ``j = 0..N_ROWS-1``."""
-    m = row0.shape[0]
-    for i in range(m):
-        out[0, i] = row0[i]
-    for j in range(1, N_ROWS):
-        for c in range(m):
-            acc = 0.0
-            for i in range(m):
-                acc += out[j - 1, i] * ahat[i, c]
-            out[j, c] = acc
-
-
-@njit(cache=True)
 def prepare(mass, damping, stiffness, lam, gamma):
     """:func:`prepare_bands` with the Coulomb law's band table (the signature before friction laws)."""
     edges = np.array([0.0, np.inf])
@@ -210,12 +78,124 @@ def prepare(mass, damping, stiffness, lam, gamma):
     return prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
 
 
+@njit(cache=True)
+def prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes):
+    """Everything the run loop needs, computed once per parameter point: see :func:`prepare_point`.
+
+    The structure's own part (:func:`structure_data`) is computed here too; a map computes it
+    once per structure and calls :func:`prepare_point` for each cell.
+    """
+    return prepare_point(structure_data(mass, damping, stiffness), mass, damping, stiffness,
+                         lam, gamma, edges, intercepts, slopes)
+
+
+#: Slots of the two modes in :func:`structure_data` that depend on the structure alone.
+SHARED_SLIP = 0
+SHARED_STICK = 1
+
+
+@njit(cache=True)
+def structure_data(mass, damping, stiffness):
+    """The part of :func:`prepare_point` that depends on the structure alone.
+
+    Neither the stick mode nor a slip-I mode of a Coulomb band (slope 0, no forcing after the
+    shift of Eqs. 15-16) depends on ``lambda``, ``gamma`` or the friction law, and neither
+    does the Lyapunov data of a zero-slope equilibrium band; a map over ``lambda`` computes
+    them once per structure (the exponentials and the Lyapunov solve were about a third of a
+    Coulomb map's time). They are computed by the very functions :func:`prepare_point` uses
+    otherwise, on the same inputs, so the prepared data is bit for bit the same.
+
+    Returns ``(minv, acc_q, acc_v, base_ahat, stick_row, base_hstep, base_phi, base_sig, lyap,
+    kappa, n_lyap)``: :func:`structure_matrices` (``base_ahat`` holds ``(2, m, m)``: slot
+    ``SHARED_SLIP`` the Coulomb slip-I matrix, slot ``SHARED_STICK`` the stick matrix), then
+    :func:`mode_step` of both slots and :func:`lyapunov_data` of the slip-I matrix with the
+    energy function.
+    """
+    n = mass.shape[0]
+    m = 2 * n + 1
+    minv, acc_q, acc_v, stick, stick_row = structure_matrices(mass, damping, stiffness)
+    # the Coulomb law at lambda = gamma = 1: its slip-I matrix is every Coulomb band's
+    ahat = np.zeros((3, m, m))
+    slip_matrices(ahat, minv, acc_q, acc_v, damping, 1.0, 1.0, np.ones(1), np.zeros(1))
+    base_ahat = np.zeros((2, m, m))
+    base_ahat[SHARED_SLIP] = ahat[SLIP_I]
+    base_ahat[SHARED_STICK] = stick
+    base_hstep = np.empty(2)
+    base_phi = np.empty((2, m, m))
+    base_sig = np.zeros((2, N_SIGNATURE, m))
+    deriv = np.zeros((N_ROWS, m))
+    row = np.zeros(m)
+    row[n] = 1.0
+    base_hstep[SHARED_SLIP] = mode_step(base_ahat[SHARED_SLIP], row, base_phi[SHARED_SLIP],
+                                        base_sig[SHARED_SLIP], deriv)
+    base_hstep[SHARED_STICK] = mode_step(base_ahat[SHARED_STICK], stick_row, base_phi[SHARED_STICK],
+                                         base_sig[SHARED_STICK], deriv)
+    lyap, kappa, n_lyap = lyapunov_data(mass, damping, stiffness,
+                                        base_ahat[SHARED_SLIP, : m - 1, : m - 1], True)
+    return (minv, acc_q, acc_v, base_ahat, stick_row, base_hstep, base_phi, base_sig, lyap, kappa,
+            n_lyap)
+
+
+@njit(cache=True)
+def structure_data_stack(masses, dampings, stiffnesses):
+    """:func:`structure_data` of every structure of a stack, stacked (leading axis: structure).
+
+    ``n_lyap`` becomes an integer array; :func:`structure_data_at` takes one structure back out.
+    """
+    n_struct = masses.shape[0]
+    n = masses.shape[1]
+    m = 2 * n + 1
+    minv = np.empty((n_struct, n, n))
+    acc_q = np.empty((n_struct, n, n))
+    acc_v = np.empty((n_struct, n, n))
+    base_ahat = np.empty((n_struct, 2, m, m))
+    stick_row = np.empty((n_struct, m))
+    base_hstep = np.empty((n_struct, 2))
+    base_phi = np.empty((n_struct, 2, m, m))
+    base_sig = np.empty((n_struct, 2, N_SIGNATURE, m))
+    lyap = np.empty((n_struct, 2, 2 * n, 2 * n))
+    kappa = np.empty((n_struct, 2))
+    n_lyap = np.empty(n_struct, dtype=np.int64)
+    for s in range(n_struct):
+        one = structure_data(masses[s], dampings[s], stiffnesses[s])
+        minv[s] = one[0]
+        acc_q[s] = one[1]
+        acc_v[s] = one[2]
+        base_ahat[s] = one[3]
+        stick_row[s] = one[4]
+        base_hstep[s] = one[5]
+        base_phi[s] = one[6]
+        base_sig[s] = one[7]
+        lyap[s] = one[8]
+        kappa[s] = one[9]
+        n_lyap[s] = one[10]
+    return (minv, acc_q, acc_v, base_ahat, stick_row, base_hstep, base_phi, base_sig, lyap, kappa,
+            n_lyap)
+
+
+@njit(cache=True)
+def structure_data_at(stack, s):
+    """Structure ``s`` of :func:`structure_data_stack`, as :func:`structure_data` returns it."""
+    return (stack[0][s], stack[1][s], stack[2][s], stack[3][s], stack[4][s], stack[5][s],
+            stack[6][s], stack[7][s], stack[8][s], stack[9][s], stack[10][s])
+
+
 # Longer than the house's 120 lines: it fills every per-mode table of one parameter point in
 # one pass over the modes (matrices, exponentials, signatures, event tables, certificates);
 # each block is commented, and split into njit helpers it would pass a dozen arrays each way.
 @njit(cache=True)
-def prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes):
+def prepare_point(structure, mass, damping, stiffness, lam, gamma, edges, intercepts, slopes,
+                  lazy=False):
     """Everything the run loop needs, computed once per parameter point.
+
+    ``structure``: :func:`structure_data` of ``(mass, damping, stiffness)``; the modes and the
+    Lyapunov data that do not depend on the parameter point are taken from it.
+
+    ``lazy``: the slip modes not taken from ``structure`` are left for the run to fill when it
+    first enters them (:func:`fill_mode`; their ``hstep`` is NaN until then): a Coulomb map
+    cell never enters slip-II in most of the paper's range, and its exponential was a tenth
+    of the cell's time. Only for prepared data that one run uses (threads sharing it must
+    not fill it); the filled mode is bit for bit the eager one.
 
     ``edges`` (n_bands + 1,), ``intercepts`` and ``slopes`` (n_bands,) are the friction
     law's band table: band ``b`` covers the sliding speed ``u`` in
@@ -254,30 +234,40 @@ def prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slope
     m = 2 * n + 1
     nb = intercepts.shape[0]
     n_modes = 2 * nb + 1
-    ahat, stick_row = mode_matrices(mass, damping, stiffness, lam, gamma, intercepts, slopes)
+    (minv, acc_q, acc_v, base_ahat, base_stick_row, base_hstep, base_phi, base_sig, base_lyap,
+     base_kappa, base_n_lyap) = structure
+    ahat = np.zeros((n_modes, m, m))
+    slip_matrices(ahat, minv, acc_q, acc_v, damping, lam, gamma, intercepts, slopes)
+    ahat[STICK] = base_ahat[SHARED_STICK]
+    stick_row = base_stick_row.copy()
     hstep = np.empty(n_modes)
     phi = np.empty((n_modes, m, m))
-    for mode in range(n_modes):
-        norm = step_norm(ahat[mode, : m - 1, : m - 1], n)
-        hstep[mode] = STEP_THETA / max(norm, 1e-12)
-        if n > ORIGINAL_ARITHMETIC_DOF and mode != STICK and mode_kind(mode) == SLIP_II:
-            # slip-I and slip-II of a band share their 2n x 2n block (mode_matrices)
-            forced_step(phi[mode_code(SLIP_I, mode_band(mode))], ahat[mode], hstep[mode], phi[mode])
-        else:
-            phi[mode] = expm(ahat[mode] * hstep[mode])
     sig_rows = np.zeros((n_modes, N_SIGNATURE, m))
     row = np.zeros(m)
+    row[n] = 1.0
     deriv = np.zeros((N_ROWS, m))
     for mode in range(n_modes):
-        sig_rows[mode, 0, 0] = 1.0
-        row[:] = 0.0
+        shared = -1
         if mode == STICK:
-            row[:] = stick_row
+            shared = SHARED_STICK
+        elif mode_kind(mode) == SLIP_I:
+            band = mode_band(mode)
+            if is_coulomb_band(intercepts[band], slopes[band], lam, gamma):
+                shared = SHARED_SLIP
+        if shared >= 0:
+            hstep[mode] = base_hstep[shared]
+            phi[mode] = base_phi[shared]
+            sig_rows[mode] = base_sig[shared]
+        elif lazy:
+            hstep[mode] = np.nan  # filled by fill_mode when the run first enters it
         else:
-            row[n] = 1.0
-        derivative_rows(row, ahat[mode], deriv)
-        for j in range(N_ROWS):
-            sig_rows[mode, 1 + j] = deriv[j]
+            twin = mode_code(SLIP_I, mode_band(mode))
+            if n > ORIGINAL_ARITHMETIC_DOF and mode_kind(mode) == SLIP_II and hstep[twin] == hstep[twin]:
+                # slip-I and slip-II of a band share their 2n x 2n block (slip_matrices)
+                hstep[mode] = twin_mode_step(ahat[mode], row, phi[twin], hstep[twin], phi[mode],
+                                             sig_rows[mode], deriv)
+            else:
+                hstep[mode] = mode_step(ahat[mode], row, phi[mode], sig_rows[mode], deriv)
     f_start = np.ones((n_modes, N_FUNCTIONALS), dtype=np.int64)
     f_sign = np.ones((n_modes, N_FUNCTIONALS))
     f_offset = np.zeros((n_modes, N_FUNCTIONALS))
@@ -327,7 +317,7 @@ def prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slope
     s_eq = slopes[b_eq]
     force_eq = (intercepts[b_eq] + s_eq) - gamma * lam
     z_eq = np.zeros(2 * n)
-    if not _is_coulomb_band(intercepts[b_eq], s_eq, lam, gamma) and force_eq != 0.0:
+    if not is_coulomb_band(intercepts[b_eq], s_eq, lam, gamma) and force_eq != 0.0:
         e0 = np.zeros(n)
         e0[0] = 1.0
         x, _ = gauss_solve(stiffness, e0)
@@ -366,8 +356,11 @@ def prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slope
                 break
             sigma_min = cand
             e_hi += 1
-    lyap, kappa, n_lyap = lyapunov_data(mass, damping, stiffness,
-                                        ahat[eq_mode, : m - 1, : m - 1], use_energy)
+    if s_eq == 0.0:  # the structure's own slip-I matrix, and use_energy holds
+        lyap, kappa, n_lyap = base_lyap, base_kappa, base_n_lyap
+    else:
+        lyap, kappa, n_lyap = lyapunov_data(mass, damping, stiffness,
+                                            ahat[eq_mode, : m - 1, : m - 1], use_energy)
     # per Lyapunov function: the slip-I bands where it holds and the margin on |xi'| that
     # keeps the sliding speed inside them
     lyap_lo = np.full(3, b_eq, dtype=np.int64)
