@@ -18,7 +18,7 @@ from stickslip.kernel.events import (
     propagate,
     signature,
 )
-from stickslip.kernel.linalg import dot, matvec
+from stickslip.kernel.linalg import dot, grown, grown_rows, matvec
 from stickslip.kernel.polynomial import (
     MAX_BREAKPOINTS,
     N_POLYNOMIALS,
@@ -145,22 +145,6 @@ def initial_mode(w, n, stick_row, lam, gamma, edges):
     if w[n] > 1.0:
         return mode_code(SLIP_II, find_band(edges, w[n] - 1.0))
     return mode_at_belt_speed(w, stick_row, lam, gamma)
-
-
-@njit(cache=True)
-def _grown(a, size):
-    """A copy of the vector ``a`` with room for ``size`` entries (the new ones unset)."""
-    out = np.empty(size, dtype=a.dtype)
-    out[: a.shape[0]] = a
-    return out
-
-
-@njit(cache=True)
-def _grown_rows(a, size):
-    """A copy of the matrix ``a`` with room for ``size`` rows (the new ones unset)."""
-    out = np.empty((size, a.shape[1]), dtype=a.dtype)
-    out[: a.shape[0]] = a
-    return out
 
 
 @njit(cache=True)
@@ -490,7 +474,7 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             just_broke_away = True
             cur_stick += t - stick_start
             if record and n_rec[0] >= all_bk_t.shape[0] and all_bk_t.shape[0] < cap_max:
-                all_bk_t = _grown(all_bk_t, min(cap_max, 2 * all_bk_t.shape[0]))
+                all_bk_t = grown(all_bk_t, min(cap_max, 2 * all_bk_t.shape[0]))
             if record and n_rec[0] < all_bk_t.shape[0]:
                 all_bk_t[n_rec[0]] = t
             status = record_state(0, t, w, e_ev, cur_xmin, cur_xmax, cur_vmax, cur_stick, rec_t,
@@ -529,9 +513,9 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
                 n_seg -= 1
             if record and n_seg >= cap and cap < cap_max:
                 cap = min(cap_max, 2 * cap)
-                seg_t = _grown(seg_t, cap)
-                seg_mode = _grown(seg_mode, cap)
-                seg_state = _grown_rows(seg_state, cap)
+                seg_t = grown(seg_t, cap)
+                seg_mode = grown(seg_mode, cap)
+                seg_state = grown_rows(seg_state, cap)
             if record and n_seg < cap:
                 seg_t[n_seg] = t
                 seg_mode[n_seg] = mode

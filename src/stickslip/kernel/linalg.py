@@ -443,3 +443,19 @@ def lyapunov_solve(a, q):
     if a.shape[0] <= 2 * ORIGINAL_ARITHMETIC_DOF:
         return solve_lyapunov(a, q)
     return solve_lyapunov_sign(a, q)
+
+
+@njit(cache=True)
+def grown(a, size):
+    """A copy of the vector ``a`` with room for ``size`` entries (the new ones unset)."""
+    out = np.empty(size, dtype=a.dtype)
+    out[: a.shape[0]] = a
+    return out
+
+
+@njit(cache=True)
+def grown_rows(a, size):
+    """A copy of the matrix ``a`` with room for ``size`` rows (the new ones unset)."""
+    out = np.empty((size, a.shape[1]), dtype=a.dtype)
+    out[: a.shape[0]] = a
+    return out
