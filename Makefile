@@ -12,6 +12,8 @@ $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e ".[all]"
+	@# compile every numba kernel now, one family per core, so no first run waits for it
+	$(BIN)/stickslip compile
 	touch $(STAMP)
 
 run: $(STAMP)

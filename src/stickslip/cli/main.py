@@ -43,11 +43,12 @@ COMMAND_MODULES: dict[str, str] = {
     "identify": "identify_command",
     "reproduce": "reproduce_command",
     "app": "app_command",
+    "compile": "compile_command",
 }
 
 
 #: Commands that run no compiled kernel (so their start-up never imports numba).
-NUMBA_FREE_COMMANDS = frozenset({"frf", "app"})
+NUMBA_FREE_COMMANDS = frozenset({"frf", "app", "compile"})  # compile: its children compile
 
 
 def _version(value: bool) -> None:
