@@ -84,6 +84,7 @@ def test_default_inputs_render_and_show_the_verdicts() -> None:
     assert len(at.get("download_button")) == 2
 
 
+@pytest.mark.slow  # heavy (10-30 s cold); the default run keeps the cheaper app tests
 def test_changing_the_speed_changes_the_verdict() -> None:
     at = _started()
     for speed, verdicts in (
@@ -161,6 +162,7 @@ def test_existing_foundation_is_assessed() -> None:
     assert "given (assessed above)" in list(at.table[2].value.index)
 
 
+@pytest.mark.slow  # heavy (10-30 s cold); the default run keeps the cheaper app tests
 def test_stick_slip_optimal_foundation_on_demand() -> None:
     at = _started()
     assert not any("Stick-slip-optimal foundation:" in m.value for m in at.markdown)
@@ -174,6 +176,7 @@ def test_stick_slip_optimal_foundation_on_demand() -> None:
     assert not any("Stick-slip-optimal foundation:" in m.value for m in at.markdown)
 
 
+@pytest.mark.slow  # heavy (10-30 s cold); the default run keeps the cheaper app tests
 def test_disturbed_starts_on_demand() -> None:
     # issue 13: basin stability of the machine without and with its foundation, on demand
     from stickslip import Slider, rigid_base
@@ -203,6 +206,7 @@ def test_disturbed_starts_on_demand() -> None:
     assert len(at.get("image")) == images
 
 
+@pytest.mark.slow  # heavy (10-30 s cold); the default run keeps the cheaper app tests
 def test_bifurcation_diagram_on_demand(tmp_path: Path) -> None:
     # issue 20, point 5: the bifurcation diagram of the design point's machine in lambda
     import csv as csv_module

@@ -10,6 +10,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -46,6 +48,7 @@ def test_disturbance_worked_example_states_the_documented_numbers(tmp_path: Path
     assert (tmp_path / "basin_map_delta.png").stat().st_size > 10_000
 
 
+@pytest.mark.slow  # the docs-site build (slow, in .ci/run) executes the gallery too
 def test_slideway_gallery_example_goes_from_matrices_to_the_absorber(tmp_path: Path) -> None:
     """examples/plot_10_slideway.py (issue 18): the lines its text quotes come out."""
     proc = subprocess.run([sys.executable, str(ROOT / "examples" / "plot_10_slideway.py")],
