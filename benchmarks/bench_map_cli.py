@@ -42,20 +42,12 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 BASELINE_COMMIT = "6c94c46"
 #: the console script's entry point, run in a fresh interpreter
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_map import baseline_sources  # one home for the git-archive baseline  # noqa: E402
+
 RUN_CLI = "import sys; from stickslip.cli.main import run; sys.argv[0] = 'stickslip'; run()"
 #: variables compared between the current and the baseline map (bit for bit)
 COMPARED = ("verdict", "n_stick", "period", "amplitude", "stick_ratio", "t_end")
-
-
-def baseline_sources(commit: str) -> Path:
-    """The ``src`` folder of ``commit``, extracted once into a cache folder (kept for numba's cache)."""
-    folder = Path(tempfile.gettempdir()) / f"stickslip-baseline-{commit}"
-    if not (folder / "src" / "stickslip").is_dir():
-        folder.mkdir(parents=True, exist_ok=True)
-        archive = subprocess.run(["git", "-C", str(ROOT), "archive", commit, "src"], check=True,
-                                 capture_output=True).stdout
-        subprocess.run(["tar", "-x", "-C", str(folder)], input=archive, check=True)
-    return folder / "src"
 
 
 def map_arguments(n_lam: int, n_zeta: int, lam: str, zeta: str, workers: int, out: Path) -> list[str]:
