@@ -5,20 +5,21 @@ under 1 s. A warm run still pays numba's one-off cost of importing itself and re
 typing and lowering (which imports ``scipy.linalg`` for BLAS), then loading each kernel the
 command calls from the cache. The benchmark therefore also times, as floors any command
 stands on: ``import numba``; a trivial cached numba function (``import numba`` + one cached
-call: numba's floor for any numba-backed command); ``import typer`` and the pydantic models
-typer validates options with. Each command runs ``--repeat`` times after one warm-up; the
-median and the best wall time are shown, and the best CPU time (user + system), which on a
-loaded machine says what the command itself costs (on a quiet one it is close to the wall
-time: the start-up and numba's compiler run in one thread).
+call: numba's floor for any numba-backed command); typer parsing a command of five options.
+Each command runs ``--repeat`` times after one warm-up; the median and the best wall time are
+shown, and the best CPU time (user + system), which on a loaded machine says what the command
+itself costs (on a quiet one it is close to the wall time: the start-up and numba's compiler
+run in one thread).
 
-    python benchmarks/bench_startup.py [--repeat 5] [--cold]
+    python benchmarks/bench_startup.py [--repeat 5] [--cold [simulate,map,basin]]
 
 With ``--cold`` it first times ``stickslip simulate --json`` against an empty numba cache (a
 fresh ``NUMBA_CACHE_DIR``, so the package's own cache is left alone), as the first run after
 an install (issue 21 asks for under 60 s), prints what the command said on stderr and counts
 the kernels it compiled: compiled functions (numba's ``*.nbi`` index files), their
 signatures (``*.nbc``), by kernel module. A ``simulate`` must compile none of the map's
-(``batch``) or the basin's (``certificate``) kernels.
+(``batch``) or the basin's (``certificate``) kernels. ``--cold simulate,map,basin`` times a
+one-cell ``map`` and a Stribeck ``basin`` the same way, each with its own empty cache.
 """
 
 from __future__ import annotations
@@ -46,13 +47,21 @@ def total(a):
 total(np.ones(3))
 """
 
-#: typer builds a pydantic TypeAdapter per option it converts (typer >= 0.25)
+#: typer parsing one command line of five options (typer >= 0.25 converts each through a
+#: pydantic TypeAdapter, 0.1-0.2 s more; pyproject.toml holds typer below 0.25)
 TYPER_FLOOR = """
-import typer, typer._adapters
-from pydantic import TypeAdapter
+import typer
+from typer.main import get_command
 
-for kind in (float, float, str, int, bool):
-    TypeAdapter(kind).validate_python(kind(1))
+app = typer.Typer()
+
+
+@app.command()
+def main(a: float = 0.0, b: float = 0.0, c: str = "", d: int = 0, e: bool = False) -> None:
+    pass
+
+
+get_command(app)(["--a", "1", "--b", "2", "--c", "x", "--d", "3", "--e"], standalone_mode=False)
 """
 
 SIMULATE = ["simulate", "--lam", "3", "--zeta", "0.1", "--json"]
@@ -80,16 +89,27 @@ def wall(cmd: list[str], repeat: int) -> tuple[float, float, float]:
     return statistics.median(times), min(times), min(cpus)
 
 
-def cold_run(exe: str) -> tuple[float, float, str, Counter[str], int]:
-    """One ``simulate --json`` with an empty numba cache.
+#: The other commands ``--cold`` can time (``--cold simulate,map,basin``): a one-cell map, and a
+#: basin under a Stribeck law (its early certificates compile the most kernels).
+COLD_COMMANDS = {
+    "simulate": SIMULATE,
+    "map": ["map", "--lam", "3", "--zeta", "0.1", "--out", "{tmp}/m.nc", "--json"],
+    "basin": ["basin", "--lam", "2", "--zeta", "0.1", "--friction", "stribeck:vs=0.2",
+              "--samples", "1000", "--json"],
+}
+
+
+def cold_run(exe: str, argv: list[str]) -> tuple[float, float, str, Counter[str], int]:
+    """One command with an empty numba cache (a fresh ``NUMBA_CACHE_DIR``).
 
     Returns wall and CPU seconds, its stderr, the compiled functions by kernel module and the
     number of compiled signatures.
     """
     with tempfile.TemporaryDirectory(prefix="stickslip-cold-cache-") as cache:
         env = {**os.environ, "NUMBA_CACHE_DIR": cache}
+        cmd = [exe, *(a.format(tmp=cache) for a in argv)]
         start, cpu = time.perf_counter(), child_cpu()
-        done = subprocess.run([exe, *SIMULATE], check=True, capture_output=True, text=True, env=env)
+        done = subprocess.run(cmd, check=True, capture_output=True, text=True, env=env)
         seconds, cpu = time.perf_counter() - start, child_cpu() - cpu
         # numba names its files <module>.<function>-<line>.py<version>[.<n>.nbc|.nbi]
         indexes = list(Path(cache).rglob("*.nbi"))
@@ -101,8 +121,10 @@ def cold_run(exe: str) -> tuple[float, float, str, Counter[str], int]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=5)
-    parser.add_argument("--cold", action="store_true",
-                        help="first time simulate with an empty numba cache, count the kernels it compiles")
+    parser.add_argument("--cold", nargs="?", const="simulate", default="",
+                        help="first time these commands (comma-separated, of "
+                             f"{','.join(COLD_COMMANDS)}; default simulate) each with an empty "
+                             "numba cache, count the kernels they compile")
     args = parser.parse_args()
     if args.repeat < 1:
         parser.error("--repeat must be at least 1")
@@ -110,14 +132,19 @@ def main() -> None:
     exe = shutil.which("stickslip", path=str(Path(python).parent)) or "stickslip"
     print(f"PYTHONDONTWRITEBYTECODE={os.environ.get('PYTHONDONTWRITEBYTECODE', '')!r} "
           "(when set, Python compiles every stickslip module from source at each start)")
-    if args.cold:
-        seconds, cpu, notice, functions, signatures = cold_run(exe)
-        print(f"{'stickslip simulate --json (cold cache)':<42} {seconds:>9.3f} {'':>8} {cpu:>8.3f}"
-              f"{'':>10}< 60 s {'ok' if seconds < 60 else 'MISSED'}")
+    cold = [c for c in args.cold.split(",") if c]
+    if set(cold) - set(COLD_COMMANDS):
+        parser.error(f"--cold takes {', '.join(COLD_COMMANDS)}, not {args.cold!r}")
+    for command in cold:
+        seconds, cpu, notice, functions, signatures = cold_run(exe, COLD_COMMANDS[command])
+        target = f"< 60 s {'ok' if seconds < 60 else 'MISSED'}" if command == "simulate" else ""
+        print(f"{f'stickslip {command} (cold cache)':<42} {seconds:>9.3f} {'':>8} {cpu:>8.3f}"
+              f"{'':>10}{target}")
         print(f"  kernels compiled: {sum(functions.values())} functions, {signatures} signatures; "
               + ", ".join(f"{module} {n}" for module, n in sorted(functions.items())))
-        unneeded = sorted(set(functions) & {"batch", "certificate"})
-        print(f"  map/basin kernels compiled: {', '.join(unneeded) if unneeded else 'none'}")
+        if command == "simulate":
+            unneeded = sorted(set(functions) & {"batch", "certificate"})
+            print(f"  map/basin kernels compiled: {', '.join(unneeded) if unneeded else 'none'}")
         for line in notice.splitlines() or ["(nothing)"]:
             print(f"  its stderr: {line}")
     with tempfile.TemporaryDirectory() as tmp:
@@ -129,7 +156,7 @@ def main() -> None:
             ("python -c pass", [python, "-c", "pass"], None),
             ("python: import numba", [python, "-c", "import numba"], None),
             ("python: import numba, one cached call", [python, str(floor_script)], None),
-            ("python: import typer + pydantic adapters", [python, str(typer_script)], None),
+            ("python: typer parses one command", [python, str(typer_script)], None),
             ("stickslip --help", [exe, "--help"], 0.3),
             ("stickslip --version", [exe, "--version"], 0.3),
             ("stickslip simulate --json (warm)", [exe, *SIMULATE], 1.0),
@@ -150,9 +177,9 @@ def main() -> None:
                 verdict = f"< {target:g} s " + ("ok" if median < target else "MISSED")
             print(f"{label:<42} {median:>9.3f} {best:>8.3f} {cpu:>8.3f} {median / base:>9.1f}  {verdict}")
         floor, sim = "python: import numba, one cached call", "stickslip simulate --json (warm)"
-        typer_cpu = cpus["python: import typer + pydantic adapters"] - cpus["python -c pass"]
+        typer_cpu = cpus["python: typer parses one command"] - cpus["python -c pass"]
         print(f"warm simulate above numba's floor: {medians[sim] - medians[floor]:.3f} s wall (median), "
-              f"{cpus[sim] - cpus[floor]:.3f} s CPU (best), of which typer + pydantic {typer_cpu:.3f} s CPU")
+              f"{cpus[sim] - cpus[floor]:.3f} s CPU (best), of which typer {typer_cpu:.3f} s CPU")
 
 
 if __name__ == "__main__":

@@ -32,7 +32,7 @@ from numpy.typing import NDArray
 
 from stickslip.analysis.stability import steady_sliding_stability
 from stickslip.analysis.verdict import Mode, RunStatus, Verdict
-from stickslip.kernel import engine
+from stickslip.kernel import dense_output, engine
 from stickslip.kernel.system import mode_kind_band
 from stickslip.model._validate import friction_range, positive
 from stickslip.model.initial import InitialState, startup_state
@@ -171,7 +171,7 @@ class SimulationResult:
         seg_states = self.segment_states
         if self.structure.contact_dof != 0:
             seg_states = np.ascontiguousarray(seg_states[:, state_permutation(perm)])
-        states, modes = engine.evaluate(
+        states, modes = dense_output.evaluate(
             st.mass,
             st.damping,
             st.stiffness,

@@ -13,12 +13,10 @@ from typing import Annotated, Any, NoReturn
 
 import typer
 
-from stickslip.cli.console import BadInput, fail
+# typer is held below 0.25 (pyproject.toml: start-up time), which parses with click itself
+from click import exceptions as click_exceptions
 
-try:  # typer >= 0.25 ships its own copy of click
-    from typer._click import exceptions as click_exceptions
-except ImportError:  # pragma: no cover - older typer uses click itself
-    from click import exceptions as click_exceptions  # type: ignore[no-redef]
+from stickslip.cli.console import BadInput, fail
 
 #: Shown by ``stickslip --help``; every command's own ``--help`` has an example too.
 HELP = """Predict and suppress stick-slip in sliding systems on elastic foundations.

@@ -42,7 +42,7 @@ from stickslip.kernel.engine import (
     mode_at_belt_speed,
     run_prepared,
 )
-from stickslip.kernel.linalg import gauss_solve
+from stickslip.kernel.linalg import copy_vector, gauss_solve
 from stickslip.kernel.outer_certificate import (
     ESCAPE_F_LO,
     ESCAPE_TIME,
@@ -74,7 +74,7 @@ def startup_vector(stiffness, lam, gamma):
     n = stiffness.shape[0]
     e0 = np.zeros(n)
     e0[0] = 1.0
-    offset, _ = gauss_solve(stiffness, e0)
+    offset, _ = gauss_solve(stiffness.copy(), e0)  # writable, as gauss_solve always gets
     z0 = np.zeros(2 * n)
     for i in range(n):
         z0[i] = -gamma * lam * offset[i]
@@ -123,11 +123,12 @@ def run_prepared_cells(shared, masses, dampings, stiffnesses, structure_index, l
         nb = n_bands[c]
         prepared = prepare_point(structure_data_at(shared, s), masses[s], dampings[s],
                                  stiffnesses[s], lams[c], gammas[c], edges[c, : nb + 1],
-                                 intercepts[c, :nb], slopes[c, :nb], True)
+                                 intercepts[c, :nb], slopes[c, :nb], np.bool_(True))
         result = run_prepared(masses[s], lams[c], gammas[c], edges[c, : nb + 1], prepared, z0,
-                              t_max, max_events, cycle_tol, max_period, False, False, False)
-        float_summary[c] = result[4]
-        int_summary[c] = result[5]
+                              t_max, max_events, cycle_tol, max_period, np.bool_(False),
+                              np.bool_(False), np.bool_(False))
+        copy_vector(float_summary[c], result[4])
+        copy_vector(int_summary[c], result[5])
     return float_summary, int_summary
 
 
@@ -257,9 +258,10 @@ def run_prepared_states(mass, stiffness, lam, gamma, edges, prepared, r_in, r_hi
         # / K: the start-up run gets that much more time, so the horizon is the joined one's
         t_longer = t_max + lam * (2.0 + 2.0 * gamma) / stick_row[0]
         canonical = run_prepared(mass, lam, gamma, edges, prepared, startup, t_longer, max_events,
-                                 cycle_tol, max_period, False, False, False)
-        startup_f[:] = canonical[4]
-        startup_i[:] = canonical[5]
+                                 cycle_tol, max_period, np.bool_(False), np.bool_(False),
+                                 np.bool_(False))
+        copy_vector(startup_f, canonical[4])
+        copy_vector(startup_i, canonical[5])
         status = startup_i[I_STATUS]
         certified = (status == STATUS_STEADY or status == STATUS_CYCLE
                      or status == STATUS_OSCILLATION)
@@ -280,9 +282,9 @@ def run_prepared_states(mass, stiffness, lam, gamma, edges, prepared, r_in, r_hi
             escape_summary(float_summary[c], int_summary[c], startup_f, startup_i)
             continue
         result = run_prepared(mass, lam, gamma, edges, prepared, z0s[c], t_max, max_events,
-                              cycle_tol, max_period, False, False, shortcut)
-        float_summary[c] = result[4]
-        int_summary[c] = result[5]
+                              cycle_tol, max_period, np.bool_(False), np.bool_(False), shortcut)
+        copy_vector(float_summary[c], result[4])
+        copy_vector(int_summary[c], result[5])
         if shortcut and result[5][I_STATUS] == STATUS_STUCK:
             join_startup_summary(float_summary[c], int_summary[c], result[6][0], startup[0],
                                  startup_f, startup_i, t_max)
@@ -299,8 +301,8 @@ def escape_summary(fsum, isum, startup_f, startup_i):
     phase or step counted (``I_N_SEGMENTS = 1``, the initial phase), and the time of its last
     stick phase and its largest velocity unknown (NaN).
     """
-    fsum[:] = startup_f
-    isum[:] = startup_i
+    copy_vector(fsum, startup_f)
+    copy_vector(isum, startup_i)
     fsum[F_T_END] = 0.0
     fsum[F_T_CERTIFIED] = 0.0
     fsum[F_T_LAST_STICK] = np.nan
@@ -330,8 +332,8 @@ def join_startup_summary(fsum, isum, xi_stuck, xi_startup, startup_f, startup_i,
     n_bk = isum[I_N_BREAKAWAY] + startup_i[I_N_BREAKAWAY]
     n_seg = isum[I_N_SEGMENTS] + startup_i[I_N_SEGMENTS] - 1
     n_steps = isum[I_N_STEPS] + startup_i[I_N_STEPS]
-    fsum[:] = startup_f
-    isum[:] = startup_i
+    copy_vector(fsum, startup_f)
+    copy_vector(isum, startup_i)
     fsum[F_MAX_VELOCITY] = np.nan  # not tracked before the stick phase (run_prepared)
     fsum[F_T_END] = startup_f[F_T_END] + shift
     fsum[F_T_LAST_STICK] = startup_f[F_T_LAST_STICK] + shift

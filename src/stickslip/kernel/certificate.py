@@ -51,7 +51,7 @@ In ``x = sqrt(K) z``, ``y = sqrt(M) v`` (``rho^2 / 2 = x^2/2 + y^2/2`` is the en
    and ``sup |xi'|`` over its future is at most the bound of ``|v|`` on ``D``.
 
 Numerical rigour: the bounding trajectory is the engine's own exact piecewise-linear
-solution, sampled densely (step ``dt``) by :func:`stickslip.kernel.engine.evaluate`. Between
+solution, sampled densely (step ``dt``) by :func:`stickslip.kernel.dense_output.evaluate_prepared`. Between
 samples, ``|rho'| <= G = max |k| max |v| / sqrt(M)`` and ``|v'| <= A = (sqrt(K) rho_max + max
 |g|) / M`` (bounds from the sampled ranges with a 10 % bootstrap margin, which is checked), so:
 the arc's radius over an angle bin is at least the smallest adjacent sample radius minus
@@ -80,13 +80,13 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from stickslip.kernel.dense_output import evaluate_prepared
 from stickslip.kernel.engine import (
     F_T_CERTIFIED,
     F_T_END,
     I_STATUS,
     STATUS_STEADY,
     STATUS_STUCK,
-    evaluate,
     run_prepared,
 )
 from stickslip.kernel.system import (
@@ -204,13 +204,13 @@ def _trial(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, prep
     dt = period / SAMPLES_PER_PERIOD
     # cheap rejection first: one turn, which must not stick nor come back further out
     seg_t, seg_mode, seg_state, _, fsum, isum, _ = run_prepared(
-        mass, lam, gamma, edges, prepared, z0, 1.25 * period, TRIAL_EVENTS, 1e-12, 4, True, False,
-        True)
+        mass, lam, gamma, edges, prepared, z0, 1.25 * period, np.int64(TRIAL_EVENTS), 1e-12,
+        np.int64(4), np.bool_(True), np.bool_(False), np.bool_(True))
     if isum[I_STATUS] == STATUS_STUCK:
         return empty, 0.0
     if isum[I_STATUS] != STATUS_STEADY:
         times = np.arange(int(fsum[F_T_END] / dt) + 1) * dt
-        states, _ = evaluate(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes,
+        states, _ = evaluate_prepared(prepared[0], prepared[1], prepared[2],
                              seg_t, seg_mode, seg_state, times)
         for i in range(times.shape[0] - 1):
             if states[i, 1] > 0.0 and states[i + 1, 1] <= 0.0 and states[i, 0] > z_eq[0]:
@@ -219,15 +219,15 @@ def _trial(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, prep
                 break
     # the motion, recorded until the energy certificate holds (stop_at_stick: a stick ends it)
     seg_t, seg_mode, seg_state, _, fsum, isum, _ = run_prepared(
-        mass, lam, gamma, edges, prepared, z0, TRIAL_PERIODS * period, TRIAL_EVENTS, 1e-12, 4,
-        True, False, True)
+        mass, lam, gamma, edges, prepared, z0, TRIAL_PERIODS * period, np.int64(TRIAL_EVENTS), 1e-12,
+        np.int64(4), np.bool_(True), np.bool_(False), np.bool_(True))
     if isum[I_STATUS] != STATUS_STEADY:
         return empty, 0.0
     n_samples = int(fsum[F_T_CERTIFIED] / dt) + 1
     if n_samples > MAX_SAMPLES:
         return empty, 0.0
     times = np.arange(n_samples) * dt
-    states, modes = evaluate(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes,
+    states, modes = evaluate_prepared(prepared[0], prepared[1], prepared[2],
                              seg_t, seg_mode, seg_state, times)
     x = sqrt_k * (states[:, 0] - z_eq[0])
     y = sqrt_m * states[:, 1]

@@ -18,7 +18,7 @@ from stickslip.kernel.events import (
     propagate,
     signature,
 )
-from stickslip.kernel.linalg import dot, grown, grown_rows, matvec
+from stickslip.kernel.linalg import copy_vector, dot, grown, grown_rows
 from stickslip.kernel.polynomial import (
     MAX_BREAKPOINTS,
     N_POLYNOMIALS,
@@ -40,7 +40,8 @@ from stickslip.kernel.system import (
     mode_band,
     mode_code,
     mode_kind,
-    prepare_bands,
+    prepare_point,
+    structure_data,
     trap_certifies,
 )
 
@@ -235,7 +236,6 @@ def record_state(kind, t, w, key, xmin, xmax, vmax, stick_time, rec_t, rec_z, re
     return status
 
 
-@njit(cache=True)
 def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_max, max_events,
         cycle_tol, max_period, record, run_to_t_max):
     """Simulate from ``z0 = (q, v)`` until a verdict is certified, ``t_max`` or ``max_events``.
@@ -258,10 +258,24 @@ def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_m
     Returns ``(seg_t, seg_mode, seg_state, bk_t, fsum, isum, z_end)``: the start time,
     mode and state of every phase (only when ``record``), the breakaway times, the float
     and integer summaries (layouts ``F_*`` and ``I_*``) and the final state.
+
+    A Python function over three compiled entry points (:func:`structure_data`,
+    :func:`prepare_point`, :func:`run_prepared`), the steps of :func:`prepare_bands` and the
+    run: numba optimises and compiles the whole call tree of each entry point again, so one
+    compiled ``run`` over both trees cost a cold first ``simulate`` about 17 s more (issue
+    21.5); the arithmetic is the same, so the results are bit for bit those of
+    ``prepare_bands`` followed by ``run_prepared``.
     """
-    prepared = prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
+    prepared = prepared_tables(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
     return run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle_tol,
                         max_period, record, run_to_t_max, False)
+
+
+def prepared_tables(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes):
+    """:func:`prepare_bands` through its two compiled steps (see :func:`run`)."""
+    structure = structure_data(mass, damping, stiffness)
+    return prepare_point(structure, mass, damping, stiffness, lam, gamma, edges, intercepts,
+                         slopes)
 
 
 @njit(cache=True)
@@ -351,7 +365,7 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
     row = np.empty(m)
     sig0 = np.empty(N_SIGNATURE)
     sig1 = np.empty(N_SIGNATURE)
-    w[:nz] = z0
+    copy_vector(w, z0)  # w[:nz] = z0 (see kernel.linalg on slice assignment)
     w[m - 1] = 1.0
 
     t = 0.0
@@ -359,7 +373,7 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
     if record:
         seg_t[0] = 0.0
         seg_mode[0] = mode
-        seg_state[0] = w[:nz]
+        copy_vector(seg_state[0], w[:nz])
     n_seg = 1
     seg_t_last = 0.0
     n_stick = 1 if mode == STICK else 0
@@ -441,7 +455,7 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
                 signature(sig_m, w_end, sig1)
             s_end = s_ev
         else:
-            w_end[:] = w1
+            copy_vector(w_end, w1)
         if mode == STICK or not stop_at_stick:
             if mode == STICK:  # xi' = 1: xi's extremes are the step's ends, the velocity the belt's
                 lo, hi, vhi = w[0], w_end[0], 1.0
@@ -463,8 +477,8 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             os_xmax = max(os_xmax, hi)
             os_vmax = max(os_vmax, vhi)
         t += s_end
-        w[:] = w_end
-        sig0[:] = sig1
+        copy_vector(w, w_end)
+        copy_vector(sig0, sig1)
         if e_ev < 0:
             continue
         fresh = True
@@ -477,9 +491,11 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
                 all_bk_t = grown(all_bk_t, min(cap_max, 2 * all_bk_t.shape[0]))
             if record and n_rec[0] < all_bk_t.shape[0]:
                 all_bk_t[n_rec[0]] = t
-            status = record_state(0, t, w, e_ev, cur_xmin, cur_xmax, cur_vmax, cur_stick, rec_t,
-                                  rec_z, rec_key, rec_span, n_rec, max_period, cycle_tol, False,
-                                  status, STATUS_CYCLE, fsum, isum)
+            # constants as np.int64 / np.bool_: one compiled record_state (kernel.linalg's note)
+            status = record_state(np.int64(0), t, w, np.int64(e_ev), cur_xmin, cur_xmax, cur_vmax,
+                                  cur_stick, rec_t, rec_z, rec_key, rec_span, n_rec, max_period,
+                                  cycle_tol, np.bool_(False), status, np.int64(STATUS_CYCLE), fsum,
+                                  isum)
             cur_xmin = cur_xmax = w[0]
             cur_vmax = w[n]
             cur_stick = 0.0
@@ -488,9 +504,10 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             w[n] = ev_vel[mode, e_ev]
             new_mode = ev_next[mode, e_ev]
             if mode == sec_mode and e_ev == sec_event:
-                status = record_state(1, t, w, n_stick, os_xmin, os_xmax, os_vmax, 0.0, rec_t,
-                                      rec_z, rec_key, rec_span, n_rec, max_period, cycle_tol,
-                                      True, status, STATUS_OSCILLATION, fsum, isum)
+                status = record_state(np.int64(1), t, w, np.int64(n_stick), os_xmin, os_xmax,
+                                      os_vmax, 0.0, rec_t, rec_z, rec_key, rec_span, n_rec,
+                                      max_period, cycle_tol, np.bool_(True), status,
+                                      np.int64(STATUS_OSCILLATION), fsum, isum)
                 os_xmin = os_xmax = w[0]
                 os_vmax = w[n]
         else:
@@ -519,7 +536,7 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             if record and n_seg < cap:
                 seg_t[n_seg] = t
                 seg_mode[n_seg] = mode
-                seg_state[n_seg] = w[:nz]
+                copy_vector(seg_state[n_seg], w[:nz])
             seg_t_last = t
             n_seg += 1
         if (status == STATUS_CYCLE or status == STATUS_OSCILLATION) and not run_to_t_max:
@@ -542,44 +559,3 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
         w[:nz].copy(),
     )
 
-
-@njit(cache=True)
-def evaluate(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, seg_t, seg_mode,
-             seg_state, times):
-    """Exact states at sorted ``times`` from the recorded phases (dense output).
-
-    Reproduces the run loop's own step grid: full steps with ``expm(A_hat h)`` from the
-    start of each phase, then the Taylor polynomial for the remainder.
-    """
-    n = mass.shape[0]
-    nz = 2 * n
-    m = nz + 1
-    ahat, phi, hstep = prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts,
-                               slopes)[:3]
-    out = np.empty((times.shape[0], nz))
-    modes = np.empty(times.shape[0], dtype=np.int64)
-    u = np.empty((TAYLOR_DEGREE + 1, m))
-    w = np.empty(m)
-    tmp = np.empty(m)
-    res = np.empty(m)
-    n_seg = seg_t.shape[0]
-    p = -1
-    t_k = 0.0
-    for idx in range(times.shape[0]):
-        t = times[idx]
-        while p + 1 < n_seg and seg_t[p + 1] <= t:
-            p += 1
-            w[:nz] = seg_state[p]
-            w[m - 1] = 1.0
-            t_k = seg_t[p]
-        mode = seg_mode[p]
-        h = hstep[mode]
-        while t_k + h <= t:
-            matvec(phi[mode], w, tmp)
-            w[:] = tmp
-            t_k += h
-        taylor_vectors(ahat[mode], w, u)
-        taylor_state(u, t - t_k, res)
-        out[idx] = res[:nz]
-        modes[idx] = mode
-    return out, modes

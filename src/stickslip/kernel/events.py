@@ -158,27 +158,27 @@ def first_reach(sig_rows, start, sign, offset, sig0, sig1, w0, h, ahat, u, have_
         taylor_vectors(ahat, w0, u, quick)
         have_u[0] = 1
     if quick and _no_sign_change(sig0, sig1, start):
-        _polynomials(sig_rows, start, sign, offset, u, row, coef, 1)  # g and g' (Newton)
+        _polynomials(sig_rows, start, sign, offset, u, row, coef, np.int64(1))  # g and g' (Newton)
         ga = coef[0, 0]
-        gb = poly_value(coef, 0, h)
+        gb = poly_value(coef, np.int64(0), h)
         if gb >= 0.0 and gb > ga:
             if ga >= 0.0:
                 return np.inf if departing else 0.0
             slope = coef[1, 0]
             tangent = -ga / slope if slope != 0.0 else np.nan  # Newton's first point from s = 0
-            return monotone_root(coef, 0, 0.0, h, ga, gb, tangent)
+            return monotone_root(coef, np.int64(0), 0.0, h, ga, gb, tangent)
         return np.inf
-    _polynomials(sig_rows, start, sign, offset, u, row, coef)
+    _polynomials(sig_rows, start, sign, offset, u, row, coef, np.int64(DERIVATIVE_DEPTH + 1))
     npts = monotone_breakpoints(coef, 0.0, h, bp)
-    ga = poly_value(coef, 0, bp[0])
+    ga = poly_value(coef, np.int64(0), bp[0])
     for i in range(npts - 1):
-        gb = poly_value(coef, 0, bp[i + 1])
+        gb = poly_value(coef, np.int64(0), bp[i + 1])
         if gb >= 0.0 and gb > ga:
             if ga >= 0.0:
                 if not (departing and i == 0):
                     return bp[i]
             else:
-                return monotone_root(coef, 0, bp[i], bp[i + 1], ga, gb)
+                return monotone_root(coef, np.int64(0), bp[i], bp[i + 1], ga, gb, np.nan)
         ga = gb
     return np.inf
 
@@ -194,12 +194,12 @@ def interior_range(sig_rows, start, sig0, sig1, w0, s_end, ahat, u, have_u, row,
     if bound_lo >= known_lo and bound_hi <= known_hi:
         return lo, hi
     if have_u[0] == 0:
-        taylor_vectors(ahat, w0, u)
+        taylor_vectors(ahat, w0, u, np.bool_(False))
         have_u[0] = 1
-    _polynomials(sig_rows, start, 1.0, 0.0, u, row, coef)
+    _polynomials(sig_rows, start, 1.0, 0.0, u, row, coef, np.int64(DERIVATIVE_DEPTH + 1))
     npts = monotone_breakpoints(coef, 0.0, s_end, bp)
     for i in range(1, npts - 1):
-        g = poly_value(coef, 0, bp[i])
+        g = poly_value(coef, np.int64(0), bp[i])
         lo = min(lo, g)
         hi = max(hi, g)
     return lo, hi

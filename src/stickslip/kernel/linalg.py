@@ -1,6 +1,14 @@
 """Small dense linear algebra for the kernel (numba, arrays only).
 
 The matrices here are tiny (a few rows), so explicit loops beat BLAS calls.
+
+Compile time (issue 21.5): the kernels copy arrays with :func:`copy_vector` and
+:func:`copy_matrix`, never by slice assignment (``a[:] = b``): numba compiles, with every
+slice assignment of an array, a shape check whose error message formats both shapes, and that
+brings in its string machinery (about 3.5 s of a cold first run). Constant integer and
+boolean arguments of calls between kernels are passed as ``np.int64(...)`` or
+``np.bool_(...)``: numba compiles a callee once more for every literal constant it is called
+with.
 """
 
 from __future__ import annotations
@@ -25,6 +33,21 @@ def matvec(a: np.ndarray, x: np.ndarray, out: np.ndarray) -> None:
         for j in range(m):
             acc += a[i, j] * x[j]
         out[i] = acc
+
+
+@njit(cache=True)
+def copy_vector(dst: np.ndarray, src: np.ndarray) -> None:
+    """``dst[:] = src`` for vectors of equal length (see the module's note on compile time)."""
+    for i in range(src.shape[0]):
+        dst[i] = src[i]
+
+
+@njit(cache=True)
+def copy_matrix(dst: np.ndarray, src: np.ndarray) -> None:
+    """``dst[:, :] = src`` for matrices of equal shape (see the module's note on compile time)."""
+    for i in range(src.shape[0]):
+        for j in range(src.shape[1]):
+            dst[i, j] = src[i, j]
 
 
 @njit(cache=True)
@@ -131,7 +154,7 @@ def expm(a: np.ndarray) -> np.ndarray:
             matmul_rowwise(result, result, tmp)
         else:
             matmul(result, result, tmp)
-        result[:, :] = tmp
+        copy_matrix(result, tmp)
     return result
 
 
@@ -409,7 +432,7 @@ def forced_step(phi_twin, ahat, h, out):
     """
     m = ahat.shape[0]
     nz = m - 1
-    out[:, :] = phi_twin
+    copy_matrix(out, phi_twin)
     term = np.empty(nz)
     nxt = np.empty(nz)
     col = np.empty(nz)
@@ -449,7 +472,7 @@ def lyapunov_solve(a, q):
 def grown(a, size):
     """A copy of the vector ``a`` with room for ``size`` entries (the new ones unset)."""
     out = np.empty(size, dtype=a.dtype)
-    out[: a.shape[0]] = a
+    copy_vector(out, a)
     return out
 
 
@@ -457,5 +480,5 @@ def grown(a, size):
 def grown_rows(a, size):
     """A copy of the matrix ``a`` with room for ``size`` rows (the new ones unset)."""
     out = np.empty((size, a.shape[1]), dtype=a.dtype)
-    out[: a.shape[0]] = a
+    copy_matrix(out, a)
     return out

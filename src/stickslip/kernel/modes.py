@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from stickslip.kernel.linalg import expm, forced_step, inverse, step_norm
+from stickslip.kernel.linalg import copy_matrix, copy_vector, expm, forced_step, inverse, step_norm
 
 SLIP_I = 0
 SLIP_II = 1
@@ -90,7 +90,7 @@ def structure_matrices(mass, damping, stiffness):
     """
     n = mass.shape[0]
     m = 2 * n + 1
-    minv = inverse(mass)
+    minv = inverse(mass.copy())  # a writable C-order copy, as every matrix inverse() gets
     acc_q = -(minv @ stiffness)
     acc_v = -(minv @ damping)
     # stick: q' = v for every DOF, v_0' = 0, the rest driven with q_0'' = 0
@@ -98,7 +98,7 @@ def structure_matrices(mass, damping, stiffness):
     for i in range(n):
         stick[i, n + i] = 1.0
     if n > 1:
-        mrr_inv = inverse(mass[1:, 1:])
+        mrr_inv = inverse(mass[1:, 1:].copy())
         for i in range(n - 1):
             for j in range(n):
                 sq = 0.0
@@ -203,7 +203,7 @@ def mode_signature(ahat_mode, row, sig_out, deriv):
     sig_out[0, 0] = 1.0
     derivative_rows(row, ahat_mode, deriv)
     for j in range(N_ROWS):
-        sig_out[1 + j] = deriv[j]
+        copy_vector(sig_out[1 + j], deriv[j])
 
 
 @njit(cache=True)
@@ -218,7 +218,7 @@ def mode_step(ahat_mode, row, phi_out, sig_out, deriv):
     m = ahat_mode.shape[0]
     norm = step_norm(ahat_mode[: m - 1, : m - 1], (m - 1) // 2)
     h = STEP_THETA / max(norm, 1e-12)
-    phi_out[:, :] = expm(ahat_mode * h)
+    copy_matrix(phi_out, expm(ahat_mode * h))
     mode_signature(ahat_mode, row, sig_out, deriv)
     return h
 

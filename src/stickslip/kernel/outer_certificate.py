@@ -77,7 +77,7 @@ the events a direct run would spend on the way, see ``run_states``).
 
 Numerical rigour, as for the trap region: the bounding trajectory is the engine's exact
 piecewise-linear solution sampled at ``dt`` (:data:`SAMPLES_PER_PERIOD`;
-:func:`stickslip.kernel.engine.evaluate`). Between samples ``|v'| <= A = (sqrt(K) rho_max +
+:func:`stickslip.kernel.dense_output.evaluate_prepared`). Between samples ``|v'| <= A = (sqrt(K) rho_max +
 k_abs max|v|) / M`` and ``|rho'| <= G = k_abs max|v| / sqrt(M)`` (``|rho'| = |k| y^2 / (M rho)
 <= |k| |v| / sqrt(M)``), with bootstrap bounds 10 % beyond the sampled ranges, checked. So:
 each envelope bound is the smallest adjacent sample radius minus ``G dt`` and ``R`` the
@@ -107,7 +107,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from stickslip.kernel.engine import F_T_END, I_STATUS, STATUS_STUCK, evaluate, run_prepared
+from stickslip.kernel.dense_output import evaluate_prepared
+from stickslip.kernel.engine import F_T_END, I_STATUS, STATUS_STUCK, run_prepared
 from stickslip.kernel.system import SLIP_I, mode_kind, secant_range
 
 #: Angle bins of the stored region.
@@ -341,10 +342,10 @@ def first_return_outwards(mass, damping, stiffness, lam, gamma, edges, intercept
     z0 = np.array([z_eq[0] + rho0 / sqrt_k, 0.0])
     budget = TURN_EVENTS_PER_BAND * edges.shape[0] + 64  # a turn crosses each edge twice
     seg_t, seg_mode, seg_state, _, fsum, isum, _ = run_prepared(
-        mass, lam, gamma, edges, prepared, z0, 1.05 * 2.0 * np.pi / omega_min, budget, 1e-12, 4,
-        True, False, True)
+        mass, lam, gamma, edges, prepared, z0, 1.05 * 2.0 * np.pi / omega_min, budget, 1e-12,
+        np.int64(4), np.bool_(True), np.bool_(False), np.bool_(True))
     times = np.arange(int(fsum[F_T_END] / dt)) * dt
-    states, _ = evaluate(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, seg_t,
+    states, _ = evaluate_prepared(prepared[0], prepared[1], prepared[2], seg_t,
                          seg_mode, seg_state, times)
     for i in range(times.shape[0] - 1):
         v_a = states[i, 1]
@@ -407,8 +408,8 @@ def _trial(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, prep
     z0 = np.array([z_eq[0] + rho0 / sqrt_k, 0.0])
     # the motion, recorded until it reaches the belt speed (stop_at_stick ends the run there)
     seg_t, seg_mode, seg_state, _, fsum, isum, _ = run_prepared(
-        mass, lam, gamma, edges, prepared, z0, TRIAL_PERIODS * period, TRIAL_EVENTS, 1e-12, 4,
-        True, False, True)
+        mass, lam, gamma, edges, prepared, z0, TRIAL_PERIODS * period, np.int64(TRIAL_EVENTS), 1e-12,
+        np.int64(4), np.bool_(True), np.bool_(False), np.bool_(True))
     if isum[I_STATUS] != STATUS_STUCK:
         return empty, empty, 0  # decayed, oscillates, or too slow
     t_stick = fsum[F_T_END]
@@ -416,7 +417,7 @@ def _trial(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, prep
     if n_samples > MAX_SAMPLES or n_samples < 4:
         return empty, empty, 0
     times = np.arange(n_samples) * dt
-    states, modes = evaluate(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes,
+    states, modes = evaluate_prepared(prepared[0], prepared[1], prepared[2],
                              seg_t, seg_mode, seg_state, times)
     for i in range(n_samples):
         if mode_kind(modes[i]) != SLIP_I or not states[i, 1] < 1.0:
@@ -457,7 +458,7 @@ def _trial(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, prep
             for k in range(CROSSING_REFINE):
                 window[k] = times[i] + k * dt_c
             window[CROSSING_REFINE] = times[i + 1]
-            fine, _ = evaluate(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes,
+            fine, _ = evaluate_prepared(prepared[0], prepared[1], prepared[2],
                                seg_t, seg_mode, seg_state, window)
             x_c = np.nan
             for k in range(CROSSING_REFINE):
@@ -476,7 +477,7 @@ def _trial(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, prep
     pad = rate_rho * dt
     dt_f = period / FIRST_TURN_SAMPLES
     times_f = np.arange(int(times[crossings[0] + 1] / dt_f) + 2) * dt_f
-    first, _ = evaluate(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, seg_t,
+    first, _ = evaluate_prepared(prepared[0], prepared[1], prepared[2], seg_t,
                         seg_mode, seg_state, times_f)
     x_f = sqrt_k * (first[:, 0] - z_eq[0])
     y_f = sqrt_m * first[:, 1]

@@ -153,7 +153,7 @@ def monotone_breakpoints(coef: np.ndarray, a: float, b: float, out: np.ndarray) 
         for i in range(npts - 1):
             f_next = poly_value(coef, d, pts[i + 1])
             if (f_prev < 0.0 < f_next) or (f_prev > 0.0 > f_next):
-                r = monotone_root(coef, d, pts[i], pts[i + 1], f_prev, f_next)
+                r = monotone_root(coef, d, pts[i], pts[i + 1], f_prev, f_next, np.nan)
                 if new[nnew - 1] < r < b and nnew < MAX_BREAKPOINTS - 1:
                     new[nnew] = r
                     nnew += 1

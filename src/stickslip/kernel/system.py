@@ -26,6 +26,8 @@ from numba import njit
 
 from stickslip.kernel.linalg import (
     ORIGINAL_ARITHMETIC_DOF,
+    copy_matrix,
+    copy_vector,
     gauss_solve,
     is_positive_definite,
     lyapunov_solve,
@@ -118,8 +120,8 @@ def structure_data(mass, damping, stiffness):
     ahat = np.zeros((3, m, m))
     slip_matrices(ahat, minv, acc_q, acc_v, damping, 1.0, 1.0, np.ones(1), np.zeros(1))
     base_ahat = np.zeros((2, m, m))
-    base_ahat[SHARED_SLIP] = ahat[SLIP_I]
-    base_ahat[SHARED_STICK] = stick
+    copy_matrix(base_ahat[SHARED_SLIP], ahat[SLIP_I])
+    copy_matrix(base_ahat[SHARED_STICK], stick)
     base_hstep = np.empty(2)
     base_phi = np.empty((2, m, m))
     base_sig = np.zeros((2, N_SIGNATURE, m))
@@ -131,7 +133,7 @@ def structure_data(mass, damping, stiffness):
     base_hstep[SHARED_STICK] = mode_step(base_ahat[SHARED_STICK], stick_row, base_phi[SHARED_STICK],
                                          base_sig[SHARED_STICK], deriv)
     lyap, kappa, n_lyap = lyapunov_data(mass, damping, stiffness,
-                                        base_ahat[SHARED_SLIP, : m - 1, : m - 1], True)
+                                        base_ahat[SHARED_SLIP, : m - 1, : m - 1], np.bool_(True))
     return (minv, acc_q, acc_v, base_ahat, stick_row, base_hstep, base_phi, base_sig, lyap, kappa,
             n_lyap)
 
@@ -158,16 +160,17 @@ def structure_data_stack(masses, dampings, stiffnesses):
     n_lyap = np.empty(n_struct, dtype=np.int64)
     for s in range(n_struct):
         one = structure_data(masses[s], dampings[s], stiffnesses[s])
-        minv[s] = one[0]
-        acc_q[s] = one[1]
-        acc_v[s] = one[2]
-        base_ahat[s] = one[3]
-        stick_row[s] = one[4]
-        base_hstep[s] = one[5]
-        base_phi[s] = one[6]
-        base_sig[s] = one[7]
-        lyap[s] = one[8]
-        kappa[s] = one[9]
+        copy_matrix(minv[s], one[0])  # no slice assignment: see kernel.linalg's note
+        copy_matrix(acc_q[s], one[1])
+        copy_matrix(acc_v[s], one[2])
+        copy_vector(stick_row[s], one[4])
+        copy_vector(base_hstep[s], one[5])
+        for k in range(2):
+            copy_matrix(base_ahat[s, k], one[3][k])
+            copy_matrix(base_phi[s, k], one[6][k])
+            copy_matrix(base_sig[s, k], one[7][k])
+            copy_matrix(lyap[s, k], one[8][k])
+        copy_vector(kappa[s], one[9])
         n_lyap[s] = one[10]
     return (minv, acc_q, acc_v, base_ahat, stick_row, base_hstep, base_phi, base_sig, lyap, kappa,
             n_lyap)
@@ -238,7 +241,7 @@ def prepare_point(structure, mass, damping, stiffness, lam, gamma, edges, interc
      base_kappa, base_n_lyap) = structure
     ahat = np.zeros((n_modes, m, m))
     slip_matrices(ahat, minv, acc_q, acc_v, damping, lam, gamma, intercepts, slopes)
-    ahat[STICK] = base_ahat[SHARED_STICK]
+    copy_matrix(ahat[STICK], base_ahat[SHARED_STICK])
     stick_row = base_stick_row.copy()
     hstep = np.empty(n_modes)
     phi = np.empty((n_modes, m, m))
@@ -256,8 +259,8 @@ def prepare_point(structure, mass, damping, stiffness, lam, gamma, edges, interc
                 shared = SHARED_SLIP
         if shared >= 0:
             hstep[mode] = base_hstep[shared]
-            phi[mode] = base_phi[shared]
-            sig_rows[mode] = base_sig[shared]
+            copy_matrix(phi[mode], base_phi[shared])
+            copy_matrix(sig_rows[mode], base_sig[shared])
         elif lazy:
             hstep[mode] = np.nan  # filled by fill_mode when the run first enters it
         else:
@@ -320,7 +323,7 @@ def prepare_point(structure, mass, damping, stiffness, lam, gamma, edges, interc
     if not is_coulomb_band(intercepts[b_eq], s_eq, lam, gamma) and force_eq != 0.0:
         e0 = np.zeros(n)
         e0[0] = 1.0
-        x, _ = gauss_solve(stiffness, e0)
+        x, _ = gauss_solve(stiffness.copy(), e0)  # writable, as gauss_solve always gets
         for i in range(n):
             z_eq[i] = force_eq * x[i]
     # energy certificate: valid on the bands [e_lo, e_hi] around u = 1 where C + sigma e_0 e_0'
@@ -373,7 +376,7 @@ def prepare_point(structure, mass, damping, stiffness, lam, gamma, edges, interc
     lyap3 = np.zeros((3, 2 * n, 2 * n))
     kappa3 = np.zeros(3)
     for p in range(n_lyap):
-        lyap3[p] = lyap[p]
+        copy_matrix(lyap3[p], lyap[p])
         kappa3[p] = kappa[p]
     if b_eq > 0 and edges[b_eq] == 1.0:
         # the equilibrium sits on a band edge (e.g. a table point at u = 1): both bands share
@@ -385,7 +388,7 @@ def prepare_point(structure, mass, damping, stiffness, lam, gamma, edges, interc
             e_v[n] = 1.0
             x, ok = gauss_solve(p_common, e_v)
             if ok and x[n] > 0.0:
-                lyap3[n_lyap] = p_common
+                copy_matrix(lyap3[n_lyap], p_common)
                 kappa3[n_lyap] = x[n]
                 lyap_lo[n_lyap] = b_eq - 1
                 lyap_hi[n_lyap] = b_eq
@@ -492,11 +495,12 @@ def lyapunov_data(mass, damping, stiffness, a, use_energy):
         kappa[0] = x[n]
         n_lyap = 1
     # Lyapunov's theorem: a is Hurwitz iff a' P + P a = -I has a positive definite solution
-    p, ok = lyapunov_solve(a, np.eye(nz))
+    # C order, as _common_lyapunov's: one compiled lyapunov_solve for both
+    p, ok = lyapunov_solve(np.ascontiguousarray(a), np.eye(nz))
     if ok and is_positive_definite(p):
         x, ok = gauss_solve(p, e_v)
         if ok and x[n] > 0.0:
-            lyap[n_lyap] = p
+            copy_matrix(lyap[n_lyap], p)
             kappa[n_lyap] = x[n]
             n_lyap += 1
     return lyap, kappa, n_lyap
