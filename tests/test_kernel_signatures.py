@@ -24,7 +24,8 @@ import pytest
 
 #: Kernels whose compile took 0.3 s or more of a cold ``simulate`` (the profile of issue 21.5).
 HEAVY = {
-    "engine": ["run_prepared", "record_state", "evaluate_prepared"],
+    "engine": ["run_prepared", "record_state"],
+    "dense_output": ["evaluate_prepared"],
     "system": ["structure_data", "prepare_point", "lyapunov_data", "_common_lyapunov"],
     "modes": ["structure_matrices", "slip_matrices", "mode_step", "twin_mode_step", "fill_mode",
               "mode_signature"],

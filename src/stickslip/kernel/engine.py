@@ -272,7 +272,7 @@ def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_m
 
 
 def prepared_tables(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes):
-    """:func:`prepare_bands` through its two compiled steps (see :func:`run`)."""
+    """:func:`~stickslip.kernel.system.prepare_bands` through its two compiled steps (see :func:`run`)."""
     structure = structure_data(mass, damping, stiffness)
     return prepare_point(structure, mass, damping, stiffness, lam, gamma, edges, intercepts,
                          slopes)
@@ -304,7 +304,7 @@ def _summaries(fsum, isum, status, t, last_bound, max_v, t_last_stick, n_stick, 
 @njit(cache=True)
 def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle_tol, max_period,
                  record, run_to_t_max, stop_at_stick):
-    """:func:`run` with the per-system data of :func:`prepare_bands` computed once.
+    """:func:`run` with the per-system data of :func:`~stickslip.kernel.system.prepare_bands` computed once.
 
     Many runs of one system (basin stability: one system, many initial states) share the
     matrix exponentials and certificates; ``prepared`` is only read, so threads may share it.

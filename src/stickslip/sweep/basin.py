@@ -31,6 +31,7 @@ from stickslip.analysis.simulation import EngineOptions
 from stickslip.analysis.verdict import VERDICTS, Verdict, verdict_codes, verdict_flag_attributes
 from stickslip.io.provenance import provenance_attributes
 from stickslip.kernel import engine
+from stickslip.kernel.interrupt import deferred_sigint
 from stickslip.model._validate import random_seed
 from stickslip.model.initial import MAX_STATE
 from stickslip.model.parameters import Slider
@@ -385,7 +386,10 @@ def basin_stability(
     sample_count(z0s.shape[0])
     check_states(z0s, state_names(n_dof))
     started = time.perf_counter()
-    system = BasinSystem.prepare(structure, slider, z0s.shape[0])
+    # Ctrl-C while the system's data is prepared (and its kernels compile) is held, as inside a
+    # chunk (kernel.interrupt): it stops the run once the first chunk is kept
+    with deferred_sigint() as sigint:
+        system = BasinSystem.prepare(structure, slider, z0s.shape[0])
     n = z0s.shape[0]
     if chunk_size is None:
         chunk_size = default_chunk_size(n, backend) if backend == "dask" else THREADS_CHUNK
@@ -415,6 +419,8 @@ def basin_stability(
         done += chunk.size
         if progress is not None:
             progress(done, n)
+        sigint.raise_if_caught()
+    sigint.raise_if_caught()  # every chunk was stored already
     if chunk_store is not None:
         chunk_store.record_run(len(chunks) - len(missing), len(missing), backend)
     return BasinResult(structure, slider, opts, z0s, verdict_codes(isum[:, engine.I_STATUS]), fsum,
