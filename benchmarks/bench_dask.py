@@ -46,9 +46,11 @@ def main(argv: list[str] | None = None) -> int:
                             execution=ExecutionOptions(backend="serial", chunk_size=args.chunk_size))
     t_serial = time.perf_counter() - t0
     print(f"serial in-process (1 thread): {t_serial:6.2f} s  {n_cells / t_serial:8,.0f} cells/s")
-    occurrence_map([1.0, 2.0], [0.1, 0.2], dva, backend="threads", workers=2)  # start the thread pool
+    occurrence_map([1.0, 2.0], [0.1, 0.2], dva,
+                   execution=ExecutionOptions(backend="threads", workers=2))  # start the thread pool
     t0 = time.perf_counter()
-    threads = occurrence_map(lam, zeta, dva, backend="threads", workers=2, chunk_size=args.chunk_size)
+    threads = occurrence_map(lam, zeta, dva, execution=ExecutionOptions(
+        backend="threads", workers=2, chunk_size=args.chunk_size))
     t_threads = time.perf_counter() - t0
     same = all(threads.dataset[n].values.tobytes() == serial.dataset[n].values.tobytes()
                for n in serial.dataset.variables)
