@@ -92,6 +92,14 @@ def _probe(module: str) -> object:
     return njit(namespace["probe"])  # type: ignore[call-overload]
 
 
+def test_the_first_run_notice_says_roughly_how_long_each_command_compiles() -> None:
+    # bench_startup.py --cold simulate,map,basin on 2 cores: 42 s, 78 s, 115 s
+    assert main.first_run_notice("simulate") == main.FIRST_RUN_NOTICE
+    assert "about a minute" in main.first_run_notice("map")
+    assert "about two minutes" in main.first_run_notice("basin")
+    assert set(main.FIRST_RUN_DURATION) <= main.ENGINE_COMMANDS
+
+
 def test_a_compile_is_announced_once_and_summed_up_on_stderr(capsys: pytest.CaptureFixture[str]) -> None:
     watch = main.CompileWatch(announced=False)
     try:

@@ -159,9 +159,24 @@ def engine_cache_is_cold() -> bool:
                    for index in folder.rglob("engine.run_prepared-*.nbi"))
 
 
-#: The first-run notice on stderr (never on stdout: ``--json`` prints one object there).
-FIRST_RUN_NOTICE = ("stickslip: first run: compiling the simulation engine with numba, about a minute "
-                    "(once; later runs load it from the cache)")
+#: How long a command's first run compiles, roughly, on a 2-core machine with an empty cache
+#: (``benchmarks/bench_startup.py --cold simulate,map,basin``: 42 s, 78 s, 115 s); commands
+#: not listed compile the engine's family, about a minute.
+FIRST_RUN_DURATION = {"basin": "about two minutes", "basin-map": "about two minutes",
+                      "reproduce": "a few minutes"}
+
+
+def first_run_notice(command: str | None = None) -> str:
+    """The first-run notice of ``command`` on stderr (never on stdout: ``--json`` prints one
+    object there), with its rough compile time (:data:`FIRST_RUN_DURATION`)."""
+    return (f"stickslip: first run: compiling the simulation engine with numba, "
+            f"{FIRST_RUN_DURATION.get(command or '', 'about a minute')} "
+            "(once; later runs load it from the cache)")
+
+
+#: The notice of a command with the engine's compile time (``simulate``, ``map``, ...).
+FIRST_RUN_NOTICE = first_run_notice()
+
 
 def _announce_compilation(argv: list[str]) -> bool:
     """On the first engine command after an install, say on stderr that numba compiles now.
@@ -171,7 +186,7 @@ def _announce_compilation(argv: list[str]) -> bool:
     """
     command = invoked_command(argv)
     if command in ENGINE_COMMANDS and "--help" not in argv and engine_cache_is_cold():
-        print(FIRST_RUN_NOTICE, file=sys.stderr, flush=True)
+        print(first_run_notice(command), file=sys.stderr, flush=True)
         return True
     return False
 

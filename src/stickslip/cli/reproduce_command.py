@@ -38,7 +38,7 @@ def reproduce(
     columns = (TextColumn("{task.description}"), BarColumn(), TextColumn("{task.percentage:>3.0f}%"),
                TimeElapsedColumn())
     with Progress(*columns, transient=False, disable=json) as bar:
-        task = bar.add_task("starting (the first run compiles the engine, about a minute)", total=1)
+        task = bar.add_task("starting (the first run compiles the kernels, a few minutes)", total=1)
 
         def progress(step: str, done: int, total: int) -> None:
             bar.update(task, description=step, completed=done, total=max(total, 1))
