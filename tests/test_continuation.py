@@ -101,7 +101,7 @@ def test_critical_weakening_is_the_first_crossing_on_random_structures(stages: i
 
 @pytest.mark.parametrize("zeta", [0.05, 0.1])
 def test_stability_optimum_is_stable_below_its_delta_crit(zeta: float) -> None:
-    from stickslip.analysis.tuning import optimal_foundation_stability
+    from stickslip.analysis.stability_tuning import optimal_foundation_stability
 
     result = optimal_foundation_stability(zeta)
     structure = elastic_foundation(zeta, result.foundation)

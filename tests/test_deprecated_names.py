@@ -26,12 +26,20 @@ def test_physical_system_new_names_do_not_warn_and_old_ones_do() -> None:
         positional = PhysicalSystem(2.0, 5e4, 20.0, 0.5, 0.3, 150.0, 0.05)
         assert (new.mass, new.stiffness, new.damping) == (2.0, 5e4, 20.0)
     assert positional == new
-    with pytest.warns(DeprecationWarning, match="PhysicalSystem.m is deprecated"):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
         old = PhysicalSystem(m=2.0, k=5e4, c=20.0, **MACHINE)  # type: ignore[arg-type]
+    messages = sorted(str(w.message) for w in caught if w.category is DeprecationWarning)
+    assert messages == [
+        f"PhysicalSystem.{former} is deprecated: use PhysicalSystem.{name}"
+        for former, name in (("c", "damping"), ("k", "stiffness"), ("m", "mass"))
+    ]
     assert old == new
     with pytest.warns(DeprecationWarning, match="use PhysicalSystem.damping"):
         assert old.c == 20.0
-    with pytest.raises(TypeError, match="both mass= and its former name m="):
+    with pytest.warns(DeprecationWarning, match="PhysicalSystem.m is deprecated"), pytest.raises(
+        TypeError, match="both mass= and its former name m="
+    ):
         PhysicalSystem(mass=2.0, m=2.0, stiffness=5e4, damping=20.0, **MACHINE)  # type: ignore[arg-type]
     with pytest.raises(TypeError, match="missing damping"):
         PhysicalSystem(mass=2.0, stiffness=5e4, **MACHINE)
