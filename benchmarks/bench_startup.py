@@ -13,6 +13,13 @@ run in one thread).
 
     python benchmarks/bench_startup.py [--repeat 5] [--cold [simulate,map,basin]]
 
+It times the ``stickslip`` next to the Python that runs it. The project's ``.venv`` holds the
+test extra, whose ``twine`` brings ``cffi`` (through keyring, SecretStorage and cryptography);
+numba imports ``cffi`` at its first dispatch when it is installed, about 0.08 s of its floor.
+A user's plain install has no ``cffi``; to time that, run the benchmark with the Python of
+one (``python -m venv /tmp/plain && /tmp/plain/bin/pip install . &&
+/tmp/plain/bin/python benchmarks/bench_startup.py``). The first line says which it is.
+
 With ``--cold`` it first times ``stickslip simulate --json`` against an empty numba cache (a
 fresh ``NUMBA_CACHE_DIR``, so the package's own cache is left alone), as the first run after
 an install (issue 21 asks for under 60 s), prints what the command said on stderr and counts
@@ -132,6 +139,9 @@ def main() -> None:
     exe = shutil.which("stickslip", path=str(Path(python).parent)) or "stickslip"
     print(f"PYTHONDONTWRITEBYTECODE={os.environ.get('PYTHONDONTWRITEBYTECODE', '')!r} "
           "(when set, Python compiles every stickslip module from source at each start)")
+    has_cffi = subprocess.run([python, "-c", "import importlib.util as u; "
+                               "raise SystemExit(u.find_spec('cffi') is None)"]).returncode == 0
+    print(f"{python}: cffi {'installed (numba imports it: part of its floor)' if has_cffi else 'absent'}")
     cold = [c for c in args.cold.split(",") if c]
     if set(cold) - set(COLD_COMMANDS):
         parser.error(f"--cold takes {', '.join(COLD_COMMANDS)}, not {args.cold!r}")
