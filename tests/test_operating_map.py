@@ -119,3 +119,53 @@ def test_old_progress_keyword_still_reports_cells_done_with_a_warning() -> None:
         operating_map(three_dof_machine(), Axis.parse("0.05,0.1", "speed"), Axis.parse("50", "load"),
                       options=OPTIONS, progress=seen.append)
     assert seen[0] == 0 and seen[-1] == 2
+
+
+def test_file_gives_the_map_back_bit_for_bit_with_its_fingerprint(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    # reference: the map as computed; netCDF-4 stores float64, so every array must come back
+    # byte for byte, and the fingerprint is the hash of what determined the map
+    from stickslip.io.netcdf import write_dataset
+    from stickslip.sweep.operating_map import OperatingMap, operating_fingerprint
+
+    machine = three_dof_machine()
+    res = grid(machine, backend="serial")
+    speeds = np.asarray(Axis.parse("log:0.005:0.5:4", "speed").values)
+    assert res.fingerprint == operating_fingerprint(machine, speeds, np.array([20.0, 200.0]), OPTIONS)
+    assert res.fingerprint != operating_fingerprint(machine, speeds, np.array([20.0, 201.0]), OPTIONS)
+    assert res.fingerprint != operating_fingerprint(machine, speeds, np.array([20.0, 200.0]),
+                                                    EngineOptions(t_max=OPTIONS.t_max / 2))
+    path = write_dataset(res.to_xarray(), tmp_path / "vw.nc")
+    back = OperatingMap.from_netcdf(path)
+    assert arrays(back) == arrays(res)
+    assert (back.speed.tobytes(), back.load.tobytes()) == (res.speed.tobytes(), res.load.tobytes())
+    assert (back.machine, back.zeta, back.gamma, back.friction, back.fingerprint) == (
+        res.machine, res.zeta, res.gamma, res.friction, res.fingerprint)
+    assert back.summary() == res.summary()
+
+
+def test_map_config_reuses_its_own_file_and_refuses_another(tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
+    # like the dimensionless map: the same configuration is read back, not run again; another
+    # one (or a file without a map's fingerprint) is refused in one line with the file untouched
+    from tests.cli_helpers import run_cli
+    from tests.test_cli_machine import cli_json, write_structure_file
+
+    path = write_structure_file(tmp_path / "m.toml")
+    out = tmp_path / "vw.nc"
+    base = ["map", "--config", str(path), "--speed", "log:0.005:0.5:4", "--out", str(out)]
+    first = cli_json([*base, "--load", "20,200"], capsys)
+    stamp, data = out.stat().st_mtime_ns, out.read_bytes()
+    again = cli_json([*base, "--load", "20,200", "--csv", str(tmp_path / "vw.csv")], capsys)
+    assert (first["reused_output"], again["reused_output"]) == (False, True)
+    assert again["fractions"] == first["fractions"] and again["machine"] == first["machine"]
+    assert (out.stat().st_mtime_ns, out.read_bytes()) == (stamp, data)
+    assert len((tmp_path / "vw.csv").read_text().splitlines()) == 1 + 8  # header and 4 x 2 cells
+    code, stdout, err = run_cli([*base, "--load", "20,300"], capsys)
+    assert code == 2 and stdout == "" and len(err.strip().splitlines()) == 1
+    assert "another configuration" in err and "--overwrite" in err and "Traceback" not in err
+    assert (out.stat().st_mtime_ns, out.read_bytes()) == (stamp, data)
+    other = cli_json([*base, "--load", "20,300", "--overwrite"], capsys)
+    assert other["reused_output"] is False and other["load_range_N"] == [20.0, 300.0]
+    stranger = tmp_path / "notes.nc"
+    stranger.write_text("not a map")
+    code, stdout, err = run_cli([*base[:-1], str(stranger), "--load", "20,200"], capsys)
+    assert code == 2 and "fingerprint" in err and stranger.read_text() == "not a map"

@@ -170,7 +170,8 @@ def _check_existing_output(out: Path, fingerprint: str, overwrite: bool) -> bool
     found = read_fingerprint(out)
     if found == fingerprint:
         return True
-    what = "a map of another configuration" if found else "something that is not a stickslip map"
+    what = ("a map of another configuration" if found
+            else "something without a stickslip map's fingerprint")
     raise BadInput(f"output file {str(out)!r} exists and holds {what}; pass --overwrite to replace it")
 
 
@@ -465,15 +466,21 @@ def operating_map_command(config: Path, speed: str | None, load: str | None, *, 
     serially, or on Dask, bit-identical), finished chunks go to the resume store ``OUT.parts``
     (a killed run resumes from it; ``--overwrite`` discards a store of another configuration),
     and the map is written once at the end (:data:`stickslip.sweep.operating_map.MAX_CELLS`
-    bounds it).
+    bounds it). As for the dimensionless map, an ``out`` that already holds this very map (the
+    same :func:`~stickslip.sweep.operating_map.operating_fingerprint`) is reused, not run
+    again; one holding anything else is refused unless ``--overwrite``.
     """
+    import numpy as np
+
     from stickslip.analysis.simulation import EngineOptions
+    from stickslip.cli.cleanup import UndoOnRefusal
     from stickslip.cli.machine_config import config_machine
     from stickslip.io.lock import output_lock
+    from stickslip.io.netcdf import write_dataset
     from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.executors import check_backend
     from stickslip.sweep.grid import Axis
-    from stickslip.sweep.operating_map import MAX_CELLS, operating_map
+    from stickslip.sweep.operating_map import MAX_CELLS, OperatingMap, operating_fingerprint, operating_map
     from stickslip.sweep.store import StoreMismatch, discard_store
 
     backend, workers, scheduler, chunk_size, scheduler_timeout = execution
@@ -505,42 +512,46 @@ def operating_map_command(config: Path, speed: str | None, load: str | None, *, 
     machine, _ = config_machine(config)
     if out.suffix.lower() != ".nc":
         raise BadInput(f"output file {str(out)!r} must end in .nc (netCDF)")
-    check_output_path(out, overwrite=overwrite, option="--out")
+    check_output_path(out, option="--out")
     if csv is not None:
         check_output_path(csv, overwrite=overwrite, option="--csv")
     if plot is not None:
         check_figure_path(plot, overwrite=overwrite)
+    fingerprint = operating_fingerprint(machine, np.asarray(axes[0].values), np.asarray(axes[1].values),
+                                        options)
     reach = _scheduler_context(scheduler, scheduler_timeout)  # before any file is made
     store = store_path(out)
-    enabled = not json and sys.stderr.isatty()
+    undo = UndoOnRefusal([out.parent], [store])  # before anything is made
     out.parent.mkdir(parents=True, exist_ok=True)  # every check passed: writing starts
-    with reach, _ProgressBar(enabled, f"map {len(axes[0])}x{len(axes[1])} (V, W)") as bar:
-        try:
-            result = operating_map(machine, axes[0], axes[1], options=options,
-                                   execution=ExecutionOptions(
-                                       backend=chosen, workers=workers, scheduler=scheduler,
-                                       chunk_size=chunk_size, progress=bar, store=store,
-                                       overwrite=overwrite))
-        except StoreMismatch as exc:
-            raise BadInput(str(exc)) from None
-    from stickslip.io.netcdf import write_dataset
-
-    with output_lock(out):
-        dataset = result.to_xarray()
-        write_dataset(dataset, out, overwrite=True)
+    with undo, output_lock(out), reach:
+        reused = _check_existing_output(out, fingerprint, overwrite)
+        if reused:
+            result = OperatingMap.from_netcdf(out)
+        else:
+            enabled = not json and sys.stderr.isatty()
+            with _ProgressBar(enabled, f"map {len(axes[0])}x{len(axes[1])} (V, W)") as bar:
+                try:
+                    result = operating_map(machine, axes[0], axes[1], options=options,
+                                           execution=ExecutionOptions(
+                                               backend=chosen, workers=workers, scheduler=scheduler,
+                                               chunk_size=chunk_size, progress=bar, store=store,
+                                               overwrite=overwrite))
+                except StoreMismatch as exc:
+                    raise BadInput(str(exc)) from None
+            write_dataset(result.to_xarray(), out, overwrite=True)
+            discard_store(store)
         if csv is not None:
-            dataset.to_dataframe().reset_index().to_csv(csv, index=False)
-    discard_store(store)
-    payload = result.to_dict()
-    payload.update({"config": str(config), "dataset": str(out),
-                    "csv": None if csv is None else str(csv), "plot": None})
-    if plot is not None:
-        payload["plot"] = str(result.plot().savefig(plot))
+            result.to_xarray().to_dataframe().reset_index().to_csv(csv, index=False)
+        payload = result.to_dict()
+        payload.update({"config": str(config), "dataset": str(out), "reused_output": reused,
+                        "csv": None if csv is None else str(csv), "plot": None})
+        if plot is not None:
+            payload["plot"] = str(result.plot().savefig(plot))
     if json:
         print_json(payload)
         return
     typer.echo(result.summary())
-    typer.echo(f"dataset     {out}")
+    typer.echo(f"dataset     {out}" + ("  (reused: it already held this map)" if reused else ""))
 
 
 def register(app: typer.Typer) -> None:

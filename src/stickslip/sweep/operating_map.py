@@ -29,6 +29,7 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import json
+import os
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -39,6 +40,7 @@ from numpy.typing import NDArray
 
 from stickslip.analysis.simulation import EngineOptions
 from stickslip.analysis.verdict import VERDICTS, RunStatus
+from stickslip.io.netcdf import FINGERPRINT_ATTR, read_dataset
 from stickslip.io.provenance import package_version
 from stickslip.kernel import engine
 from stickslip.model.friction import CoulombFriction, FrictionLaw
@@ -90,6 +92,9 @@ class OperatingMap:
         The fixed groups of the contact.
     friction : str
         The SI law.
+    fingerprint : str
+        :func:`operating_fingerprint` of what determined the map (stored in the file: a later
+        ``map --config`` of the same configuration reuses the file instead of running again).
     """
 
     speed: FloatArray
@@ -103,6 +108,7 @@ class OperatingMap:
     zeta: float
     gamma: float
     friction: str
+    fingerprint: str = ""
 
     def fractions(self) -> dict[str, float]:
         """Fraction of cells with each verdict."""
@@ -125,8 +131,33 @@ class OperatingMap:
                     "load": ("load", self.load, {"units": "N", "long_name": "normal load W"})},
             attrs={"machine": str(self.machine.get("name")), "n_dof": int(self.machine["n_dof"]),
                    "contact_dof": int(self.machine["contact_dof"]), "zeta": self.zeta,
-                   "gamma": self.gamma, "friction": self.friction},
+                   "gamma": self.gamma, "friction": self.friction,
+                   "machine_json": json.dumps(self.machine, sort_keys=True),
+                   FINGERPRINT_ATTR: self.fingerprint},
         )
+
+    @classmethod
+    def from_xarray(cls, dataset: xr.Dataset) -> OperatingMap:
+        """The map back from :meth:`to_xarray` (every array bit for bit: netCDF keeps float64)."""
+        try:
+            attrs = dataset.attrs
+            return cls(np.asarray(dataset["speed"].values, dtype=np.float64),
+                       np.asarray(dataset["load"].values, dtype=np.float64),
+                       np.asarray(dataset["lambda"].values, dtype=np.float64),
+                       np.asarray(dataset["verdict"].values).astype(str),
+                       np.asarray(dataset["period"].values, dtype=np.float64),
+                       np.asarray(dataset["amplitude"].values, dtype=np.float64),
+                       np.asarray(dataset["stick_ratio"].values, dtype=np.float64),
+                       json.loads(str(attrs["machine_json"])), float(attrs["zeta"]),
+                       float(attrs["gamma"]), str(attrs["friction"]),
+                       str(attrs.get(FINGERPRINT_ATTR, "")))
+        except (KeyError, ValueError) as exc:
+            raise ValueError(f"not an operating map written by this version of stickslip ({exc})") from None
+
+    @classmethod
+    def from_netcdf(cls, path: str | os.PathLike[str]) -> OperatingMap:
+        """Read a map written by ``map --config`` (:func:`stickslip.io.netcdf.write_dataset`)."""
+        return cls.from_xarray(read_dataset(path))
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary: axes, fractions and the groups (no per-cell arrays)."""
@@ -231,6 +262,19 @@ def operating_configuration(machine: Machine, speeds: FloatArray, loads: FloatAr
             "package_version": package_version()}
 
 
+def operating_fingerprint(machine: Machine, speeds: FloatArray, loads: FloatArray,
+                          options: EngineOptions) -> str:
+    """SHA-256 of :func:`operating_configuration`: the resume store's tag and the file's.
+
+    Two maps with the same fingerprint have the same answers (same structure to the bit, law,
+    grid, engine options, start and package version), so the command line reuses a file that
+    holds it instead of running the map again.
+    """
+    configuration = operating_configuration(machine, np.asarray(speeds, dtype=np.float64),
+                                            np.asarray(loads, dtype=np.float64), options)
+    return hashlib.sha256(json.dumps(configuration, sort_keys=True).encode()).hexdigest()
+
+
 # Over 60 lines: the docstring states every parameter; the body is the occurrence map's chunk
 # loop (load the stored chunks, run the missing ones, save each as it finishes).
 def operating_map(machine: Machine, speeds: Axis, loads: Axis, *,
@@ -290,11 +334,10 @@ def operating_map(machine: Machine, speeds: Axis, loads: Axis, *,
     n_cells = v.size * w.size
     size = int(run.chunk_size) if run.chunk_size is not None else default_chunk_size(n_cells, run.backend)
     chunk_store = None
+    fingerprint = operating_fingerprint(machine, v, w, opts)
     if run.store is not None:
-        configuration = operating_configuration(machine, v, w, opts)
-        fingerprint = hashlib.sha256(json.dumps(configuration, sort_keys=True).encode()).hexdigest()
-        chunk_store = ChunkStore(run.store, fingerprint, configuration, n_cells, size,
-                                 overwrite=run.overwrite)
+        chunk_store = ChunkStore(run.store, fingerprint, operating_configuration(machine, v, w, opts),
+                                 n_cells, size, overwrite=run.overwrite)
         size = chunk_store.chunk_size
     chunks = make_chunks(n_cells, size)
     fsum = np.full((n_cells, engine.N_FLOAT), np.nan)
@@ -323,4 +366,4 @@ def operating_map(machine: Machine, speeds: Axis, loads: Axis, *,
                         (fsum[:, engine.F_PERIOD] * cells.time_scale).reshape(shape),
                         (fsum[:, engine.F_AMPLITUDE] * cells.length_scale).reshape(shape),
                         fsum[:, engine.F_STICK_RATIO].reshape(shape), machine.to_dict(),
-                        cells.zeta, cells.gamma, machine.friction.law)
+                        cells.zeta, cells.gamma, machine.friction.law, fingerprint)
