@@ -80,6 +80,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel is stamped with the whole kernel folder)
 from stickslip.kernel.dense_output import evaluate_prepared
 from stickslip.kernel.engine import (
     F_T_CERTIFIED,

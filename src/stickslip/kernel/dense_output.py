@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel is stamped with the whole kernel folder)
 from stickslip.kernel.engine import prepared_tables
 from stickslip.kernel.linalg import copy_vector, matvec
 from stickslip.kernel.polynomial import TAYLOR_DEGREE, taylor_state, taylor_vectors

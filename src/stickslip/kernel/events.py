@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel is stamped with the whole kernel folder)
 from stickslip.kernel.linalg import dot
 from stickslip.kernel.polynomial import (
     DERIVATIVE_DEPTH,

@@ -16,6 +16,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel is stamped with the whole kernel folder)
+
 TAYLOR_DEGREE_EXPM = 18
 
 #: Upper bound on the squarings of :func:`expm`: halving any finite double (at most

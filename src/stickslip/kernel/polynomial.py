@@ -18,6 +18,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel is stamped with the whole kernel folder)
+
 TAYLOR_DEGREE = 16
 DERIVATIVE_DEPTH = 3
 MAX_BREAKPOINTS = 8
