@@ -30,26 +30,27 @@ from typing import Any
 KERNEL_DIR = Path(__file__).resolve().parent
 
 
-@functools.lru_cache(maxsize=8)
-def _stamp_of(root: Path, files: tuple[tuple[str, int, int], ...]) -> str:
-    digest = hashlib.sha256()
-    for name, _mtime_ns, _size in files:  # the stats are the memo's key, the contents the stamp
-        digest.update(name.encode() + b"\0" + (root / name).read_bytes())
-    return digest.hexdigest()
-
-
 def kernel_source_stamp(folder: Path | None = None) -> str:
     """SHA-256 (hex) of the names and contents of every ``*.py`` in ``folder`` (the kernels').
 
-    Read again only when a file's modification time or size changed (one ``stat`` per file
-    at each cache load, a fraction of a millisecond for the folder).
+    The kernel folder's stamp is computed once per process (numba asks for it at every
+    ``@njit(cache=True)`` and every cache load; 3 ms once): an edit is seen by the next process,
+    which is when a stale cache would be loaded.
     """
-    root = KERNEL_DIR if folder is None else Path(folder).resolve()
-    stats = tuple((path.name, path.stat().st_mtime_ns, path.stat().st_size)
-                  for path in sorted(root.glob("*.py")))
-    return _stamp_of(root, stats)
+    if folder is None:
+        return _kernel_folder_stamp()
+    digest = hashlib.sha256()
+    for path in sorted(Path(folder).glob("*.py")):
+        digest.update(path.name.encode() + b"\0" + path.read_bytes())
+    return digest.hexdigest()
 
 
+@functools.cache
+def _kernel_folder_stamp() -> str:
+    return kernel_source_stamp(KERNEL_DIR)
+
+
+@functools.cache
 def _in_kernel_dir(py_file: str) -> bool:
     try:
         return Path(py_file).resolve().parent == KERNEL_DIR
