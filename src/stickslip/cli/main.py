@@ -160,8 +160,9 @@ def engine_cache_is_cold() -> bool:
 
 
 #: How long a command's first run compiles, roughly, on a 2-core machine with an empty cache
-#: (``benchmarks/bench_startup.py --cold simulate,map,basin``: 42 s, 78 s, 115 s); commands
-#: not listed compile the engine's family, about a minute.
+#: (``benchmarks/bench_startup.py --cold simulate,map,basin``: 42 s, 78 s, 115 s on 2026-11-24;
+#: 50 s, 94 s, 133 s on a slower 2026-11-25); commands not listed compile the engine's family,
+#: about a minute.
 FIRST_RUN_DURATION = {"basin": "about two minutes", "basin-map": "about two minutes",
                       "reproduce": "a few minutes"}
 
