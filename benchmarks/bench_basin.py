@@ -26,7 +26,8 @@ stickslip.kernel.outer_certificate), with the trap region alone and with neither
 many statuses agree with the run without them (all must). Then a foundation (2 DOF)
 basin with the same law (foundation mass and stiffness ratios 1, damping ratio 0.1; at most
 FOUNDATION_SAMPLES states: every 2-DOF state runs to its own verdict): samples/s only (the trap
-region is 1-DOF; its baseline is the oracle).
+region is 1-DOF; its baseline is the oracle), with its states, stick phases and share of the steps
+by verdict (where an N-DOF basin's time goes).
 """
 
 from __future__ import annotations
@@ -46,6 +47,7 @@ from tests.oracle import oracle_simulate_structure
 from stickslip import Foundation, InitialState, Slider, Verdict, elastic_foundation, rigid_base
 from stickslip.analysis.simulation import EngineOptions
 from stickslip.kernel.batch import prepare_states, run_prepared_states
+from stickslip.kernel.engine import I_N_STEPS, I_N_STICK
 from stickslip.kernel.outer_certificate import ESCAPE_F_LO
 from stickslip.model.friction import CoulombFriction, StribeckFriction
 from stickslip.sweep.basin import BasinSystem, basin_stability, sample_box
@@ -114,8 +116,28 @@ def main() -> None:
               f"{fr:.4f} +- {se:.4f}      {agree}/{args.oracle_samples}", flush=True)
         if name == "weak net damping":
             ab_lines.append(early_certificate_ab(structure, slider, states, args.repeats))
+        if structure.n_dof > 1:
+            ab_lines.append(f"{name}: " + work_by_verdict(result))
     for line in ab_lines:
         print(line)
+
+
+def work_by_verdict(result) -> str:  # type: ignore[no-untyped-def]
+    """Where an N-DOF basin's time goes: states, stick phases and share of the steps by verdict.
+
+    Beyond one degree of freedom a stick phase ends at a state that depends on the rest of the
+    structure, so every state runs to its own certified verdict (no shortcut, no trap region).
+    """
+    steps = result.int_summary[:, I_N_STEPS]
+    parts = []
+    for verdict in (Verdict.STEADY_SLIDING, Verdict.STICK_SLIP):
+        mask = result.verdict == verdict.code
+        if mask.any():
+            parts.append(f"{verdict.value} {int(mask.sum())} states, "
+                         f"{result.int_summary[mask, I_N_STICK].mean():.1f} stick phases and "
+                         f"{steps[mask].mean():,.0f} steps each, {steps[mask].sum() / steps.sum():.0%} "
+                         "of the steps")
+    return "; ".join(parts)
 
 
 def early_certificate_ab(structure, slider, states, repeats: int) -> str:  # type: ignore[no-untyped-def]
