@@ -155,14 +155,36 @@ def test_ctrl_c_anywhere_is_one_line(raised: str, monkeypatch: pytest.MonkeyPatc
 
 
 def test_deferred_sigint_records_and_restores() -> None:
-    # the handler only records inside the block; the previous one is back afterwards
+    # the handler only records inside the block; the previous one is back afterwards. Python's
+    # own handler is installed first: a run started in the background by a shell without job
+    # control inherits SIGINT ignored, where deferred_sigint rightly leaves it alone
     from stickslip.kernel.interrupt import deferred_sigint
 
-    before = signal.getsignal(signal.SIGINT)
-    with deferred_sigint() as sigint:
-        signal.raise_signal(signal.SIGINT)  # would raise KeyboardInterrupt with Python's handler
-        assert sigint.caught
-    assert signal.getsignal(signal.SIGINT) is before
+    inherited = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        before = signal.getsignal(signal.SIGINT)
+        with deferred_sigint() as sigint:
+            signal.raise_signal(signal.SIGINT)  # would raise KeyboardInterrupt with Python's handler
+            assert sigint.caught
+        assert signal.getsignal(signal.SIGINT) is before
+    finally:
+        signal.signal(signal.SIGINT, inherited)
     with pytest.raises(KeyboardInterrupt):
         sigint.raise_if_caught()
     sigint.raise_if_caught()  # once only
+
+
+def test_deferred_sigint_leaves_an_ignored_sigint_alone() -> None:
+    # a job started in the background without job control inherits SIGINT ignored: it stays so
+    from stickslip.kernel.interrupt import deferred_sigint
+
+    inherited = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        with deferred_sigint() as sigint:
+            assert signal.getsignal(signal.SIGINT) is signal.SIG_IGN
+            signal.raise_signal(signal.SIGINT)
+        assert not sigint.caught
+        assert signal.getsignal(signal.SIGINT) is signal.SIG_IGN
+        sigint.raise_if_caught()  # nothing recorded, nothing raised
+    finally:
+        signal.signal(signal.SIGINT, inherited)
