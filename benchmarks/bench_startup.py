@@ -7,9 +7,10 @@ command calls from the cache. The benchmark therefore also times, as floors any 
 stands on: ``import numba``; a trivial cached numba function (``import numba`` + one cached
 call: numba's floor for any numba-backed command); ``import scipy.linalg`` after numpy (numba's
 first dispatch loads its target registries, and ``numba.np.arraymath`` imports
-``scipy.linalg.cython_blas`` to check for BLAS: part of the floor, 0.27-0.32 s in profiles on
-2026-11-25, a third of it ``numpy.f2py``, which scipy's vendored ``array_api_compat`` pulls in
-by listing numpy's attributes); typer parsing a command of five options.
+``scipy.linalg.cython_blas`` to check for BLAS: part of the floor, printed in the closing line;
+``python -X importtime -c "import numpy, scipy.linalg"`` shows what it imports, ``numpy.f2py``
+among it, which scipy's vendored ``array_api_compat`` pulls in by listing numpy's attributes);
+typer parsing a command of five options.
 Each command runs ``--repeat`` times after one warm-up; the median and the best wall time are
 shown, and the best CPU time (user + system), which on a loaded machine says what the command
 itself costs (on a quiet one it is close to the wall time: the start-up and numba's compiler
