@@ -204,8 +204,13 @@ class SlipSection:
 
         Also keeps ``(period, amplitude, max velocity)`` of the run in :attr:`last`.
         """
+        return self.first_maximum(self.full_state(y))
+
+    def first_maximum(self, z0: FloatArray) -> FloatArray | None:
+        """The first velocity maximum after ``tau = 0`` of the motion from the full state ``z0``
+        (reduced), or None when the slider reaches the belt speed within three periods of the
+        slowest mode or has no maximum."""
         n = self.n
-        z0 = self.full_state(y)
         if not np.all(np.isfinite(z0)) or z0[n] >= 1.0:
             return None
         # a period of the slowest mode bounds the search for the next maximum

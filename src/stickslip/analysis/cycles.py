@@ -103,12 +103,15 @@ class CycleSearch:
     cycles: tuple[Cycle, ...]
     n_seeds: int
     n_map_evaluations: int
+    #: slip oscillations (:mod:`stickslip.analysis.slip_oscillations`), when searched for
+    slip_oscillations: tuple[Any, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready: ``cycles`` (a list) and the search's size."""
+        """JSON-ready: ``cycles`` and ``slip_oscillations`` (lists) and the search's size."""
         return {
             "cycles": [c.to_dict() for c in self.cycles],
             "n_cycles": len(self.cycles),
+            "slip_oscillations": [c.to_dict() for c in self.slip_oscillations],
             "lambda": self.slider.lam,
             "zeta": self.structure.zeta,
             "gamma": self.slider.gamma,
@@ -409,6 +412,7 @@ def find_cycles(
     max_period: int = 2,
     seed: int = 0,
     options: EngineOptions | None = None,
+    slip_oscillations: bool = False,
 ) -> CycleSearch:
     """Every stick-slip cycle found at this parameter point, with its stability.
 
@@ -428,12 +432,22 @@ def find_cycles(
         Random seed of the seeding.
     options : EngineOptions, optional
         Horizon of the seeding runs.
+    slip_oscillations : bool
+        Also look for the periodic motions that never stick, stable and unstable
+        (:func:`stickslip.analysis.slip_oscillations.find_slip_oscillations`, its own seeds).
 
     Returns
     -------
     CycleSearch
         The distinct cycles found, each with its period, amplitude and Floquet multipliers.
     """
+    if slip_oscillations:
+        from stickslip.analysis.slip_oscillations import find_slip_oscillations
+
+        search = find_cycles(structure, slider, seeds=seeds, box=box, max_period=max_period, seed=seed,
+                             options=options)
+        return replace(search, slip_oscillations=find_slip_oscillations(
+            structure, slider, seeds=seeds, seed=seed, options=options))
     if structure.contact_dof != 0:  # search the contact-first twin; states back in user order
         inner, perm = structure.contact_first()
         search = find_cycles(inner, slider, seeds=seeds, box=box, max_period=max_period, seed=seed,
