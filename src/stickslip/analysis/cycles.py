@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.simulation import EngineOptions, SimulationResult, simulate
+from stickslip.analysis.simulation import EngineOptions, SimulationResult, run_engine
 from stickslip.analysis.verdict import Verdict
 from stickslip.kernel.linalg import expm
 from stickslip.kernel.system import SLIP_I, SLIP_II, STICK, mode_kind_band, mode_matrices
@@ -139,7 +139,9 @@ class _ReturnMap:
         self.direction = int(direction)
         self.level = (float(slider.lam) if direction == SLIP_I
                       else -float(slider.lam) * (1.0 + 2.0 * float(slider.gamma)))
-        _edges, intercepts, slopes = slider.friction.bands(float(slider.lam), float(slider.gamma))
+        edges, intercepts, slopes = slider.friction.bands(float(slider.lam), float(slider.gamma))
+        #: the friction bands' edges in the sliding speed ``u`` (their event surfaces)
+        self.edges: FloatArray = np.asarray(edges, dtype=np.float64)
         self.options = EngineOptions(t_max=options.t_max, max_events=RETURN_EVENTS * len(intercepts))
         self.n = structure.n_dof
         self.evaluations = 0
@@ -162,24 +164,25 @@ class _ReturnMap:
         self.slip_normal[self.n] = 1.0
         #: ``d state(b) / d b`` (2n, 2n - 2): the foundation coordinates are copied, and
         #: ``xi`` moves to keep ``S = lambda`` (see :meth:`state`)
-        n, st = self.n, structure
+        n, row = self.n, self.stick_normal
         self.lift = np.zeros((n2, n2 - 2))
         self.lift[1:n, : n - 1] = np.eye(n - 1)
         self.lift[n + 1:, n - 1:] = np.eye(n - 1)
-        self.lift[0, : n - 1] = -st.stiffness[0, 1:] / st.stiffness[0, 0]
-        self.lift[0, n - 1:] = -st.damping[0, 1:] / st.stiffness[0, 0]
+        self.lift[0, : n - 1] = -row[1:n] / row[0]
+        self.lift[0, n - 1:] = -row[n + 1:] / row[0]
 
     def state(self, b: FloatArray) -> FloatArray:
         """Breakaway state from the foundation coordinates ``b``: ``xi' = 1`` and ``S`` at the
         section's level (``lambda`` onto slip-I, ``-lambda (1 + 2 gamma)`` onto slip-II)."""
-        n, st = self.n, self.structure
+        n, row = self.n, self.stick_normal
         q = np.zeros(n)
         v = np.zeros(n)
         v[0] = 1.0
         q[1:], v[1:] = b[: n - 1], b[n - 1:]
-        # S = K_0j q_j + C_0j v_j (the stick force of Eq. 20 with xi'' = 0) equals the level
-        rest = st.stiffness[0, 1:] @ q[1:] + st.damping[0, :] @ v
-        q[0] = (self.level - rest) / st.stiffness[0, 0]
+        # S = s_j z_j (the stick force of Eq. 20 with xi'' = 0; K_0j q_j + C_0j v_j for a
+        # diagonal mass, with the stick mode's accelerations added for a coupled one)
+        rest = row[1:n] @ q[1:] + row[n:] @ v
+        q[0] = (self.level - rest) / row[0]
         return np.concatenate([q, v])
 
     def reduce(self, state: FloatArray) -> FloatArray:
@@ -199,8 +202,8 @@ class _ReturnMap:
         initial = InitialState(state[:n], state[n:])
         for run_on in (False, True):
             self.evaluations += 1
-            result = simulate(self.structure, self.slider, initial=initial, options=self.options,
-                              run_to_t_max=run_on, record=True)
+            # the engine alone: the map's runs are no verdicts (simulate proves its candidates)
+            result = run_engine(self.structure, self.slider, initial, self.options, True, run_on)
             # the start is itself a breakaway: the engine may register it at t = 0 or within
             # rounding of it (its stick force equals lambda only to rounding); it is not "next"
             times = [t for t in result.breakaway_times if t > 1e-9][:count]
@@ -492,8 +495,8 @@ def find_cycles(
                 scale = max(1.0, float(np.max(np.abs(full))))
                 if any(np.max(np.abs(full - c.breakaway_state)) <= 1e-7 * scale for c in cycles):
                     continue
-                certified = simulate(structure, slider, initial=InitialState(full[:n], full[n:]),
-                                     options=opts, record=False)
+                certified = run_engine(structure, slider, InitialState(full[:n], full[n:]), opts,
+                                       False, False)
                 if certified.verdict is not Verdict.STICK_SLIP or certified.cycle_length != k:
                     continue
                 if any(c.stick_phases == k and c.breakaway_onto != name

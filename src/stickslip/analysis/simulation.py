@@ -42,6 +42,7 @@ from stickslip.model.structure import Structure, state_permutation, to_user_orde
 if TYPE_CHECKING:
     import xarray as xr
 
+    from stickslip.analysis.cycle_proof import CycleProof
     from stickslip.analysis.disturbance import SafeDisturbance
 
 FloatArray = NDArray[np.float64]
@@ -118,6 +119,7 @@ class SimulationResult:
     growth_rate: float = math.nan
     steady_sliding_stable: bool = False
     friction_bands: tuple[FloatArray, FloatArray, FloatArray] | None = field(default=None, repr=False)
+    cycle_proof: CycleProof | None = field(default=None, repr=False)
 
     @property
     def cycle_k(self) -> int:
@@ -274,6 +276,7 @@ class SimulationResult:
             "growth_rate": num(self.growth_rate),
             "steady_sliding_stable": bool(self.steady_sliding_stable),
             "safe_disturbance": self.safe_disturbance.to_dict(),
+            "cycle_proof": None if self.cycle_proof is None else self.cycle_proof.to_dict(),
         }
 
     def plot(self, **kwargs: Any) -> Any:
@@ -448,6 +451,17 @@ def simulate(
     friction_range(slider.lam, slider.gamma)  # 2 gamma lambda must not overflow (issue 12)
     if structure.contact_dof != 0:
         return _simulate_contact_first(structure, slider, initial, opts, record, run_to_t_max)
+    return _proven(run_engine(structure, slider, initial, opts, record, run_to_t_max), opts)
+
+
+def run_engine(structure: Structure, slider: Slider, initial: InitialState | None,
+               opts: EngineOptions, record: bool, run_to_t_max: bool) -> SimulationResult:
+    """One run of the engine (contact on DOF 0) as a :class:`SimulationResult`.
+
+    A stick-slip verdict here is the engine's *candidate* (a breakaway state repeated to
+    ``cycle_tol``); :func:`simulate` proves it (:func:`_proven`). :func:`find_cycles`
+    starts runs on fixed points it proves itself.
+    """
     if initial is None:
         initial = startup_state(structure, slider)
     z0 = initial.as_vector(structure.n_dof)
@@ -504,6 +518,55 @@ def simulate(
         growth_rate=stability.growth_rate,
         steady_sliding_stable=stability.stable,
         friction_bands=bands,
+    )
+
+
+def _proven(result: SimulationResult, opts: EngineOptions) -> SimulationResult:
+    """The run with its stick-slip candidate proven, corrected to the minimal period, or undetermined.
+
+    One degree of freedom: the breakaway state is unique (``xi' = 1``, ``S = lambda``), so the
+    first repeat is exact and the cycle has one stick phase; nothing to prove. More degrees
+    of freedom: :func:`stickslip.analysis.cycle_proof.prove_cycle` (Newton on the exact return
+    map, a tube bound over a ball, contraction in the adapted norm, every shorter divisor
+    excluded). When the proven period is the run's own, every number of the run stands (bit
+    for bit); when it is shorter, the cycle's period, amplitude and stick ratio are those of
+    an engine run started on the proven fixed point. Unproven: ``undetermined``.
+    """
+    if result.status is not RunStatus.CERTIFIED_CYCLE or result.structure.n_dof < 2:
+        return result
+    from stickslip.analysis.cycle_proof import prove_cycle
+
+    structure, slider = result.structure, result.slider
+    if result.t_end == result.t_certified:
+        state = result.final_state
+    else:  # run on past the certificate: the breakaway state at the certificate
+        state = run_engine(structure, slider, result.initial, opts, False, False).final_state
+    k = result.cycle_length
+    proof = prove_cycle(structure, slider, state, k, opts)
+    if proof is None:
+        return replace(result, verdict=Verdict.UNDETERMINED, status=RunStatus.UNPROVEN_CYCLE,
+                       certificate=f"undetermined (period-{k} candidate, not proven): "
+                                   f"{result.certificate}")
+    certificate = f"{result.certificate}; {proof.describe()}"
+    if proof.stick_phases == k:
+        return replace(result, certificate=certificate, cycle_proof=proof)
+    n = structure.n_dof
+    cycle = run_engine(structure, slider,
+                       InitialState(proof.fixed_point[:n], proof.fixed_point[n:], "proven cycle"),
+                       replace(opts, max_period=proof.stick_phases), False, False)
+    if cycle.status is not RunStatus.CERTIFIED_CYCLE or cycle.cycle_length != proof.stick_phases:
+        return replace(result, verdict=Verdict.UNDETERMINED, status=RunStatus.UNPROVEN_CYCLE,
+                       certificate=f"undetermined (period-{proof.stick_phases} cycle proven but "
+                                   f"its run did not repeat): {result.certificate}")
+    return replace(
+        result,
+        certificate=(f"breakaway state repeats after {k} stick phase(s) to "
+                     f"{result.cycle_mismatch:.1e} (relative), a multiple of the proven period; "
+                     f"{proof.describe()}"),
+        cycle_length=proof.stick_phases, period=cycle.period, amplitude=cycle.amplitude,
+        xi_range=cycle.xi_range, stick_ratio=cycle.stick_ratio,
+        cycle_max_velocity=cycle.cycle_max_velocity, cycle_mismatch=cycle.cycle_mismatch,
+        cycle_proof=proof,
     )
 
 

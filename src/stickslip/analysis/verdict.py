@@ -69,6 +69,11 @@ class RunStatus(Enum):
         engine.STATUS_OSCILLATION,
         "slip oscillation (never sticking) certified by a repeating Poincare-section state",
     )
+    UNPROVEN_CYCLE = (
+        8,
+        "a breakaway state repeated but no divisor of its period could be proven a contracting "
+        "fixed point of the return map; increase t_max to run on",
+    )
 
     def __init__(self, code: int, message: str) -> None:
         self.code = code
