@@ -75,6 +75,8 @@ SAMPLE_STEP = 0.02
 RADIUS_START = 1e-1
 RADIUS_FACTOR = 4.0
 RADIUS_TRIES = 24
+#: Breakaways computed per engine run when a run goes on to enter the proven ball.
+EXTRA_CHUNK = 32
 
 
 @dataclass(frozen=True)
@@ -113,6 +115,9 @@ class CycleProof:
     residual: float
     extra_stick_phases: int = 0
     breakaway_onto: str = "slip-I"
+    norm_matrix: FloatArray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)
+    """``C`` of the adapted norm ``||x||_W = ||C x||_2``; the proven ball is
+    ``||C (b - b_hat)|| <= radius / ||C^-1||_2``."""
 
     @property
     def moduli(self) -> FloatArray:
@@ -123,10 +128,12 @@ class CycleProof:
         """One line: what was checked."""
         moduli = ", ".join(f"{m:.3g}" for m in self.moduli[:4])
         more = "" if self.moduli.size <= 4 else f" (+{self.moduli.size - 4})"
-        return (f"fixed point of the {self.stick_phases}-stick-phase return map proven by "
-                f"contraction (theta {self.contraction:.3g} < 1 on a ball of radius "
-                f"{self.radius:.2e}; |multipliers| {moduli}{more}); the run's breakaway state is "
-                f"{self.distance:.2e} from it; no shorter period")
+        later = (f" {self.extra_stick_phases} stick phase(s) later" if self.extra_stick_phases
+                 else "")
+        return (f"proven: the {self.stick_phases}-stick-phase return map contracts (theta "
+                f"{self.contraction:.3g}) a ball of radius {self.radius:.2e} about its fixed "
+                f"point, which holds the run's state{later} (distance {self.distance:.2e}); no "
+                f"shorter period; |multipliers| {moduli}{more}")
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready numbers of the proof."""
@@ -508,7 +515,7 @@ def _contraction_ball(pmap: _ReturnMap, cand: _Candidate) -> tuple[float, float,
 
 def prove_cycle(structure: Structure, slider: Slider, breakaway_state: FloatArray,
                 candidate_phases: int, options: EngineOptions, *,
-                extra_breakaways: int = 64) -> CycleProof | None:
+                extra_breakaways: int = 512) -> CycleProof | None:
     """Prove the stable cycle a run converges to, with its minimal period (see module notes).
 
     Parameters
@@ -542,20 +549,28 @@ def prove_cycle(structure: Structure, slider: Slider, breakaway_state: FloatArra
         if ball is None:
             continue
         rho, theta, chol = ball
+        later: list[FloatArray] = []
         radius = rho * float(np.linalg.norm(np.linalg.inv(chol), 2)) if chol.size else rho
         onto = "slip-I" if direction == SLIP_I else "slip-II"
         multipliers = np.asarray(np.linalg.eigvals(cand.jac), dtype=np.complex128)
         # the run's state, or one of its next breakaways on this piece, inside the W-ball
         state = np.asarray(breakaway_state, dtype=np.float64)
-        later = [state] + pmap.next_breakaways(state, int(extra_breakaways))
-        for extra, z in enumerate(later):
-            if pmap.direction_of(z) != direction:
-                continue
-            b = pmap.reduce(z)
-            if float(np.linalg.norm(chol @ (b - cand.b_hat))) <= rho:
-                return CycleProof(q, pmap.state(cand.b_hat), multipliers, theta, radius,
-                                  float(np.linalg.norm(b - cand.b_hat)), cand.residual, extra,
-                                  onto)
+        extra = 0
+        while True:  # bounded: at most extra_breakaways more breakaways, in chunks
+            if pmap.direction_of(state) == direction:
+                b = pmap.reduce(state)
+                if float(np.linalg.norm(chol @ (b - cand.b_hat))) <= rho:
+                    return CycleProof(q, pmap.state(cand.b_hat), multipliers, theta, radius,
+                                      float(np.linalg.norm(b - cand.b_hat)), cand.residual,
+                                      extra, onto, chol)
+            if extra >= extra_breakaways:
+                break
+            if not later:
+                later = pmap.next_breakaways(state, min(EXTRA_CHUNK, extra_breakaways - extra))
+                if not later:
+                    break
+            state = later.pop(0)
+            extra += 1
     return None
 
 

@@ -78,6 +78,11 @@ class Cycle:
     multipliers: NDArray[np.complex128] = field(repr=False)
     stable: bool
     breakaway_onto: str = "slip-I"
+    proof_radius: float = float("nan")
+    """Radius of a ball about ``breakaway_state``'s foundation coordinates holding exactly one
+    fixed point of ``P^k`` and no shorter period (:func:`stickslip.analysis.cycle_proof.prove_existence`);
+    every listed cycle has one."""
+    orbit: tuple[FloatArray, ...] = field(default=(), repr=False)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready, with the keys of ``stickslip cycles --json``."""
@@ -91,6 +96,7 @@ class Cycle:
             "multipliers": [{"re": float(m.real), "im": float(m.imag), "abs": float(abs(m))}
                             for m in self.multipliers],
             "breakaway_state": [float(x) for x in self.breakaway_state],
+            "proof_radius": float(self.proof_radius),
         }
 
 
@@ -458,10 +464,10 @@ def find_cycles(
         mapped = tuple(replace(c, breakaway_state=to_user_order(c.breakaway_state, perm))
                        for c in search.cycles)
         return replace(search, structure=structure, cycles=mapped)
+    from stickslip.analysis.cycle_proof import prove_existence  # it builds on _ReturnMap
+
     opts = options or EngineOptions()
     n = structure.n_dof
-    if np.any(structure.mass != np.diag(np.diag(structure.mass))):
-        raise ValueError("the cycle search needs a diagonal mass matrix (the paper's structures)")
     pmaps = {d: _ReturnMap(structure, slider, opts, d) for d in (SLIP_I, SLIP_II)}
     pmap = pmaps[SLIP_I]
     rng = np.random.default_rng(random_seed(seed))
@@ -493,8 +499,12 @@ def find_cycles(
                 b, jac = solution
                 full = pm.state(b)
                 scale = max(1.0, float(np.max(np.abs(full))))
-                if any(np.max(np.abs(full - c.breakaway_state)) <= 1e-7 * scale for c in cycles):
-                    continue
+                if any(np.max(np.abs(full - z)) <= 1e-7 * scale
+                       for c in cycles for z in (c.breakaway_state, *c.orbit)):
+                    continue  # a cycle found before, from this or another of its breakaways
+                radius = 0.0 if n == 1 else prove_existence(structure, slider, b, k, opts, direction)
+                if radius is None:
+                    continue  # no proof that a cycle of exactly k stick phases is there
                 certified = run_engine(structure, slider, InitialState(full[:n], full[n:]), opts,
                                        False, False)
                 if certified.verdict is not Verdict.STICK_SLIP or certified.cycle_length != k:
@@ -507,8 +517,9 @@ def find_cycles(
                 multipliers = (np.asarray(np.linalg.eigvals(jac), dtype=np.complex128) if jac.size
                                else np.zeros(0, dtype=np.complex128))
                 stable = bool(np.all(np.abs(multipliers) < 1.0))
+                orbit = tuple(pm.next_breakaways(full, k)) if n > 1 else ()
                 cycles.append(Cycle(full, k, certified.period, certified.amplitude,
-                                    certified.stick_ratio, multipliers, stable, name))
+                                    certified.stick_ratio, multipliers, stable, name, radius, orbit))
             if n == 1:
                 break
     cycles.sort(key=lambda c: (c.stick_phases, c.amplitude))

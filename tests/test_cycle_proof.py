@@ -1,0 +1,136 @@
+"""A stick-slip certificate is a proof of the minimal cycle (analysis.cycle_proof).
+
+References: the period of the slideway example's cycle (20.94 ms, one stick phase) is the
+stable cycle that ``stickslip cycles --config`` finds (Newton on the exact return map),
+independent of the run's repeat test that reported 41.87 ms before; for random machines the
+reference is the same :func:`find_cycles` search, and the proven ball is checked by direct
+engine runs started on its boundary.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from stickslip import simulate
+from stickslip.analysis.cycle_proof import divisors
+from stickslip.analysis.cycles import _ReturnMap, find_cycles
+from stickslip.analysis.simulation import EngineOptions
+from stickslip.analysis.verdict import RunStatus, Verdict
+from stickslip.io.machine_file import machine_from_file, read_machine_file
+from stickslip.model.parameters import Slider
+from stickslip.model.structure import Structure
+
+SLIDEWAY = Path(__file__).resolve().parent.parent / "examples" / "slideway" / "machine.toml"
+
+
+def random_machine(rng: np.random.Generator) -> tuple[Structure, Slider]:
+    """A grounded chain of 3-10 masses with the contact on any DOF, proportional or not damped.
+
+    Normalised on the contact DOF (``m = k = 1`` there), damping ratio 2-10 % on it.
+    """
+    n = int(rng.integers(3, 11))
+    mass = np.diag(rng.uniform(0.3, 3.0, n))
+    stiffness = np.diag(rng.uniform(0.3, 3.0, n))
+    springs = rng.uniform(0.3, 3.0, n - 1)
+    for i in range(n - 1):
+        stiffness[i:i + 2, i:i + 2] += springs[i] * np.array([[1.0, -1.0], [-1.0, 1.0]])
+    contact = int(rng.integers(0, n))
+    mass, stiffness = mass / mass[contact, contact], stiffness / stiffness[contact, contact]
+    if rng.uniform() < 0.5:  # proportional (Rayleigh)
+        damping = rng.uniform(0.0, 0.05) * mass + rng.uniform(0.01, 0.08) * stiffness
+    else:
+        a = rng.normal(size=(n, n)) * 0.05
+        damping = a @ a.T + 0.02 * np.eye(n)
+    damping *= 2.0 * rng.uniform(0.02, 0.1) / damping[contact, contact]
+    return (Structure(mass, damping, stiffness, name=f"chain{n}", contact_dof=contact),
+            Slider(float(rng.uniform(0.5, 5.0)), gamma=float(rng.uniform(0.5, 2.0))))
+
+
+def test_divisors() -> None:
+    assert divisors(1) == [1]
+    assert divisors(6) == [1, 2, 3, 6]
+    assert divisors(7) == [1, 7]
+
+
+def test_slideway_period_is_the_minimal_cycle() -> None:
+    """The project's own example: the run saw a 2-stick-phase repeat; the cycle has one."""
+    machine, _ = machine_from_file(read_machine_file(SLIDEWAY),
+                                   {"mu_s": 0.15, "mu_k": 0.10, "load": 2600.0, "speed": 0.5e-3})
+    structure, slider = machine.to_dimensionless()
+    run = simulate(structure, slider)
+    assert run.verdict is Verdict.STICK_SLIP
+    assert run.cycle_length == 1
+    assert run.cycle_proof is not None and run.cycle_proof.stick_phases == 1
+    seconds = run.period * machine.reference_system().time_scale
+    assert seconds == pytest.approx(20.94e-3, abs=0.01e-3)  # cycles --config: 20.94 ms
+    search = find_cycles(structure, slider, seeds=4, max_period=1)
+    stable = [c for c in search.cycles if c.stable]
+    assert stable and min(abs(c.period - run.period) for c in stable) <= 1e-7 * run.period
+    assert "proven" in run.certificate and run.to_dict()["cycle_proof"]["stick_phases"] == 1
+
+
+def _check_ball(structure: Structure, slider: Slider, run, rng: np.random.Generator) -> None:
+    """Direct runs from the proven ball's boundary stay in it and contract by ``theta``."""
+    proof = run.cycle_proof
+    inner, _ = structure.contact_first()
+    onto = 0 if proof.breakaway_onto == "slip-I" else 1
+    pmap = _ReturnMap(inner, slider, EngineOptions(), onto)
+    b_hat = pmap.reduce(proof.fixed_point)
+    chol = proof.norm_matrix
+    rho = proof.radius / np.linalg.norm(np.linalg.inv(chol), 2)
+    floor = 1e-12 * max(1.0, float(np.max(np.abs(proof.fixed_point))))
+    for _ in range(2):
+        u = rng.normal(size=b_hat.size)
+        b = b_hat + np.linalg.solve(chol, u / np.linalg.norm(u)) * rho
+        bound = rho
+        for _ in range(6):
+            b_next = pmap(b, proof.stick_phases)
+            assert b_next is not None  # the ball's states reach the section again
+            dist = float(np.linalg.norm(chol @ (b_next - b_hat)))
+            bound = proof.contraction * bound + proof.residual * np.linalg.norm(chol, 2)
+            assert dist <= bound + floor * np.linalg.norm(chol, 2)
+            b = b_next
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_random_machines_period_is_a_stable_cycle(seed: int) -> None:
+    _random_machines(seed, 4)
+
+
+@pytest.mark.slow
+def test_two_hundred_random_machines() -> None:
+    """Issue 29's acceptance set: 200 machines of 3-10 DOF (20 seeds x 10)."""
+    for seed in range(100, 120):
+        _random_machines(seed, 10)
+
+
+def _random_machines(seed: int, count: int) -> None:
+    rng = np.random.default_rng(seed)
+    for _ in range(count):
+        structure, slider = random_machine(rng)
+        run = simulate(structure, slider, record=False)
+        if run.status is RunStatus.UNPROVEN_CYCLE:
+            pytest.fail(f"seed {seed}: {structure.name} unproven: {run.certificate}")
+        if run.verdict is not Verdict.STICK_SLIP:
+            continue
+        proof = run.cycle_proof
+        assert proof is not None and proof.contraction < 1.0
+        assert proof.distance <= proof.radius
+        search = find_cycles(structure, slider, seeds=4, max_period=max(2, run.cycle_length))
+        same = [c for c in search.cycles if c.stable and c.stick_phases == run.cycle_length
+                and abs(c.period - run.period) <= 1e-7 * run.period]
+        assert same, (seed, structure.name, run.period,
+                      [(c.period, c.stick_phases, c.stable) for c in search.cycles])
+        _check_ball(structure, slider, run, rng)
+
+
+def test_one_dof_needs_no_proof() -> None:
+    """The rigid base: the breakaway state is unique, the first repeat is the cycle (Eq. 20)."""
+    from stickslip import rigid_base
+
+    run = simulate(rigid_base(0.1), Slider(3.0))
+    assert run.verdict is Verdict.STICK_SLIP and run.cycle_length == 1
+    assert run.cycle_proof is None
