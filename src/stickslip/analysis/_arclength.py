@@ -175,11 +175,22 @@ def trace_branch(tracer: ArclengthTracer, start: BranchState, lo: float, hi: flo
         out = tracer.step(at, h)
         if out is not None and acceptable_step(at, out[0]):
             new, its = out
-            events += located_events(tracer, at, new)
-            points.append(new)
             if not lo <= new.p <= hi:
+                # land on the end of the range itself (the parameter held there), so the
+                # branch reaches it instead of stopping one step short
+                bound = hi if new.p > hi else lo
+                if at.p == bound:  # already on it (a branch started at the end of the range)
+                    stop = "range-end"
+                    break
+                end = land_on_bound(tracer, at, new, bound)
+                if end is not None:
+                    new = end
+                events += located_events(tracer, at, new)
+                points.append(new)
                 stop = "range-end"
                 break
+            events += located_events(tracer, at, new)
+            points.append(new)
             if its <= FAST_NEWTON and grow:
                 h = min(h_max, 1.5 * h)
             grow = True
@@ -209,6 +220,19 @@ def trace_branch(tracer: ArclengthTracer, start: BranchState, lo: float, hi: flo
             stop = "step-too-small"
         break
     return TracedRun(points, events, stop)
+
+
+def land_on_bound(tracer: ArclengthTracer, at: BranchState, beyond: BranchState, bound: float
+                  ) -> BranchState | None:
+    """The branch's point at ``p = bound``, between the accepted ``at`` (inside the range) and
+    ``beyond`` (outside): Newton with the parameter held, from the linear interpolation; None
+    when it does not converge or is not a step of the branch (see :func:`acceptable_step`)."""
+    w = (bound - at.p) / (beyond.p - at.p)
+    guess = at.y + w * (beyond.y - at.y)
+    out = tracer.correct(guess, bound, at.tangent, None)
+    if out is None or not acceptable_step(at, out[0]):
+        return None
+    return out[0]
 
 
 def acceptable_step(at: BranchState, new: BranchState) -> bool:

@@ -31,7 +31,7 @@ from stickslip.analysis.cycles import _ReturnMap
 from stickslip.analysis.simulation import EngineOptions, simulate
 from stickslip.analysis.stability import slip_matrix
 from stickslip.analysis.verdict import Verdict
-from stickslip.kernel.system import SLIP_I
+from stickslip.kernel.system import SLIP_I, STICK, mode_kind_band
 from stickslip.model.friction import CoulombFriction, FrictionLaw, LinearFriction, evaluate_bands
 from stickslip.model.initial import InitialState
 from stickslip.model.parameters import Foundation, Slider
@@ -144,14 +144,31 @@ class StickSlipSection:
         return self.pmap.state(y)
 
     def measure(self, y: FloatArray) -> tuple[float, float, float] | None:
-        """Period, amplitude and stick ratio of the cycle, from a certifying run."""
+        """Period, amplitude and stick ratio of the cycle, from a certifying run.
+
+        Where the run's certificate is not given (next to a grazing, where the proof's ball
+        shrinks to nothing) they are read off the run of the map itself, whose ``k``-th
+        breakaway returns to the fixed point: the period is its time, the amplitude half the
+        peak-to-peak of ``xi`` over it (extrema at the roots of ``xi'``), the stick ratio the
+        share of stick phases.
+        """
         n = self.structure.n_dof
         z = self.full_state(y)
         run = simulate(self.structure, self.slider, initial=InitialState(z[:n], z[n:]),
                        options=self.pmap.options, record=False)
-        if run.verdict is not Verdict.STICK_SLIP or run.period is None or run.amplitude is None:
+        if run.verdict is Verdict.STICK_SLIP and run.period is not None and run.amplitude is not None:
+            return float(run.period), float(run.amplitude), float(run.stick_ratio or 0.0)
+        mapped = self.pmap._run(z, self.k)
+        if mapped is None:
             return None
-        return float(run.period), float(run.amplitude), float(run.stick_ratio or 0.0)
+        result, times = mapped
+        period = float(times[-1])
+        xs = xi_extrema(result, period)
+        seg_t = np.append(result.segment_times, np.inf)
+        stuck = sum(max(0.0, min(float(seg_t[i + 1]), period) - float(seg_t[i]))
+                    for i, m in enumerate(result.segment_modes)
+                    if mode_kind_band(int(m))[0] == STICK and seg_t[i] < period)
+        return period, 0.5 * (max(xs) - min(xs)), stuck / period
 
 
 class SlipSection:
@@ -234,7 +251,7 @@ class SlipSection:
                 t_peak = refined_root(lambda t: self._accel_at(run, t), grid[i], grid[i + 1])
                 zq, zv, _ = run.state_at(np.array([t_peak]))
                 z1 = np.concatenate([zq[0], zv[0]])
-                x_ext = self._xi_extrema(run, t_peak)
+                x_ext = xi_extrema(run, t_peak)
                 self.last = (t_peak, 0.5 * (max(x_ext) - min(x_ext)), float(z1[n]))
                 return self.reduce(z1)
         return None
@@ -242,17 +259,6 @@ class SlipSection:
     def _accel_at(self, run: Any, t: float) -> float:
         q, v, _ = run.state_at(np.array([t]))
         return float(self.accel(np.concatenate([q[0], v[0]]))[0])
-
-    def _xi_extrema(self, run: Any, t_end: float) -> list[float]:
-        """``xi`` at the roots of ``xi'`` in ``[0, t_end]`` (and at the ends)."""
-        grid = np.linspace(0.0, t_end, 200)
-        q, v, _ = run.state_at(grid)
-        out = [float(q[0, 0]), float(q[-1, 0])]
-        for i in range(grid.size - 1):
-            if v[i, 0] * v[i + 1, 0] < 0.0:
-                t = refined_root(lambda s: float(run.state_at(np.array([s]))[1][0, 0]), grid[i], grid[i + 1])
-                out.append(float(run.state_at(np.array([t]))[0][0, 0]))
-        return out
 
     def residual(self, y: FloatArray) -> tuple[FloatArray, FloatArray] | None:
         py = self.step(y)
@@ -283,6 +289,19 @@ class SlipSection:
         if self.step(y) is None or self.last is None:
             return None
         return self.last[0], self.last[1], 0.0
+
+
+def xi_extrema(run: Any, t_end: float, points: int = 400) -> list[float]:
+    """The slider's ``xi`` at the roots of ``xi'`` in ``[0, t_end]`` (and at the ends) of a
+    recorded run (sign changes on a grid of ``points``, refined by Brent's method)."""
+    grid = np.linspace(0.0, t_end, points)
+    q, v, _ = run.state_at(grid)
+    out = [float(q[0, 0]), float(q[-1, 0])]
+    for i in range(grid.size - 1):
+        if v[i, 0] * v[i + 1, 0] < 0.0:
+            t = refined_root(lambda s: float(run.state_at(np.array([s]))[1][0, 0]), grid[i], grid[i + 1])
+            out.append(float(run.state_at(np.array([t]))[0][0, 0]))
+    return out
 
 
 def refined_root(f: Callable[[float], float], a: float, b: float) -> float:

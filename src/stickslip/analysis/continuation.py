@@ -48,6 +48,7 @@ from stickslip.analysis._periodic_sections import (
 )
 from stickslip.analysis.cycles import find_cycles
 from stickslip.analysis.simulation import EngineOptions
+from stickslip.analysis.slip_oscillations import find_slip_oscillations
 from stickslip.analysis.stability import growth_rate, hopf_weakenings, one_sided_slopes, slip_matrix
 from stickslip.kernel.system import SLIP_I, SLIP_II
 from stickslip.model.friction import CoulombFriction, LinearFriction
@@ -59,6 +60,10 @@ __all__ = ["PARAMETERS", "Branch", "BranchPoint", "ContinuationResult", "Continu
 
 #: Peak velocity of the first slip oscillation computed next to a Hopf point.
 SLIP_START = 0.02
+#: Points of the range (ends included) where slip oscillations are searched for and where
+#: a foundation's stick-slip cycles are (:func:`find_cycles`): every branch that exists at one
+#: of them is traced, whether or not an event in the range leads to it.
+SEARCH_POINTS = 5
 
 
 @dataclass(frozen=True)
@@ -346,6 +351,7 @@ def continue_cycles(
         _foundation_branches(system, param, lo, hi, max_period, seeds, max_steps, opts, branches, events)
     if not isinstance(system.friction, (CoulombFriction, LinearFriction)):
         _slip_branches(system, param, lo, hi, hopf, max_steps, opts, branches, events)
+        _searched_slip_branches(system, param, lo, hi, seeds, max_steps, opts, branches, events)
     events.sort(key=lambda e: e.param)
     return ContinuationResult(system, param, (lo, hi), tuple(branches), grid, rates, tuple(events))
 
@@ -483,6 +489,39 @@ def _slip_branches(system: ContinuationSystem, name: str, lo: float, hi: float, 
             index = len(branches)
             branches.append(branch)
             events += [replace(e, branch=index) for e in evs]
+
+
+def _searched_slip_branches(system: ContinuationSystem, name: str, lo: float, hi: float, seeds: int,
+                            max_steps: int, opts: EngineOptions, branches: list[Branch],
+                            events: list[Event]) -> None:
+    """Slip oscillations found by :func:`find_slip_oscillations` at :data:`SEARCH_POINTS`
+    points of the range (whether or not a Hopf point is near), each not yet on a branch
+    continued both ways."""
+    h_max = 0.05 * (hi - lo)
+    for p0 in np.linspace(lo, hi, SEARCH_POINTS):
+        structure, slider = system.with_value(name, float(p0)).build()
+        for osc in find_slip_oscillations(structure, slider, seeds=seeds, options=opts):
+            if _on_branch(branches, float(p0), osc.amplitude, "slip-oscillation"):
+                continue
+            tracer = ArclengthTracer(system, name, lambda s: SlipSection(s, opts))
+            tracer.bounds = (lo, hi)
+            sec = tracer.section(float(p0))
+            assert isinstance(sec, SlipSection)
+            y0 = sec.reduce(osc.state)
+            ev = tracer.jacobians(y0, float(p0))
+            sig = sec.signature(y0)
+            if ev is None or sig is None:
+                continue
+            t0 = unit_tangent(ev[1], np.eye(y0.size + 1)[-1])
+            runs = [trace_branch(tracer, BranchState(float(p0), y0, ev[2], -t0, sig), lo, hi,
+                                 0.2 * h_max, h_max, max_steps),
+                    trace_branch(tracer, BranchState(float(p0), y0, ev[2], t0, sig), lo, hi,
+                                 0.2 * h_max, h_max, max_steps)]
+            branch, evs = _to_branch(tracer, runs, "slip-oscillation", 0)
+            if branch.points:
+                index = len(branches)
+                branches.append(branch)
+                events += [replace(e, branch=index) for e in evs]
 
 
 def slip_oscillation(system: ContinuationSystem, peak_velocity: float, *,

@@ -306,9 +306,8 @@ def find_slip_oscillations(
         return ()
     if structure.contact_dof != 0:  # the contact-first twin; states back in the user's order
         inner, perm = structure.contact_first()
-        found = find_slip_oscillations(inner, slider, seeds=seeds, seed=seed, options=options)
-        return tuple(SlipOscillation(to_user_order(c.state, perm), c.peak_velocity, c.period,
-                                     c.amplitude, c.multipliers, c.stable, c.found_by) for c in found)
+        inner_found = find_slip_oscillations(inner, slider, seeds=seeds, seed=seed, options=options)
+        return tuple(replace(c, state=to_user_order(c.state, perm)) for c in inner_found)
     opts = options or EngineOptions()
     section = slip_section(structure, slider, opts)
     rng = np.random.default_rng(random_seed(seed))

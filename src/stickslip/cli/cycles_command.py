@@ -1,4 +1,4 @@
-"""``stickslip cycles``: the stick-slip cycles that exist at a point, whatever the start."""
+"""``stickslip cycles``: the periodic motions that exist at a point, whatever the start."""
 
 from __future__ import annotations
 
@@ -29,7 +29,8 @@ def cycles(
     seed: Annotated[int, typer.Option("--seed", help="seed of the starts")] = 0,
     json: JSON = False,
 ) -> None:
-    """Stick-slip cycles at a point: fixed points of the breakaway return map, with stability.
+    """Periodic motions at a point, stable and unstable: stick-slip cycles (fixed points of the
+    breakaway return map) and slip oscillations (never sticking; velocity-dependent friction).
 
     Example: stickslip cycles --lam 15 --zeta 0.1 --dva optimal --json
 
@@ -57,13 +58,14 @@ def cycles(
         slider = Slider(lam, gamma=gamma, friction=parse_friction_option(friction))
         found = parse_dva(dva, zeta, k_scale)
         structure = chain_structure(zeta, () if found is None else (found,))
-    result = find_cycles(structure, slider, seeds=seeds, max_period=max_period, seed=seed)
+    result = find_cycles(structure, slider, seeds=seeds, max_period=max_period, seed=seed,
+                         slip_oscillations=True)
     payload = result.to_dict()
     if run is not None:
         # seconds and metres: tau = omega_n t (Eq. 17), displacements in V / omega_n (Eqs. 15-16)
         scales = run.scales()
         payload.update({"config": str(config), "scales": scales, "machine": run.machine.to_dict()})
-        for c in payload["cycles"]:
+        for c in payload["cycles"] + payload["slip_oscillations"]:
             c["period_s"] = None if c["period"] is None else c["period"] * scales["time_scale_s"]
             c["amplitude_m"] = (None if c["amplitude"] is None
                                 else c["amplitude"] * scales["length_scale_m"])
@@ -77,15 +79,22 @@ def _print(p: dict[str, Any]) -> None:
     lines = [f"cycles      {p['structure']} (lambda={p['lambda']:.6g}, zeta={p['zeta']:.6g}, "
              f"gamma={p['gamma']:.6g}), friction {p['friction']}"]
     if not p["cycles"]:
-        lines.append(f"none found  from {p['n_seeds']} starts: every disturbed start ends in steady sliding "
-                     "or in no cycle of the periods searched")
+        lines.append(f"none found  from {p['n_seeds']} starts: no stick-slip cycle of the periods searched")
     for i, c in enumerate(p["cycles"], start=1):
         mults = ", ".join(f"{m['abs']:.4g}" for m in c["multipliers"])
         why = (f"|Floquet multipliers| {mults}" if mults else
                "rigid base: a stick phase resets the whole state, the return map has no multipliers")
-        lines.append(f"cycle {i}     period {c['period']:.6g}  amplitude {c['amplitude']:.6g}  "
+        si = (f" ({c['period_s']:.6g} s, {c['amplitude_m']:.6g} m)" if "period_s" in c else "")
+        lines.append(f"cycle {i}     period {c['period']:.6g}  amplitude {c['amplitude']:.6g}{si}  "
                      f"stick ratio {c['stick_ratio']:.4g}  {c['stick_phases']} stick phase(s)  "
                      f"{'stable' if c['stable'] else 'UNSTABLE'} ({why})")
+    for i, c in enumerate(p["slip_oscillations"], start=1):
+        mults = ", ".join(f"{m['abs']:.4g}" for m in c["multipliers"])
+        si = (f" ({c['period_s']:.6g} s, {c['amplitude_m']:.6g} m)" if "period_s" in c else "")
+        lines.append(f"slip osc. {i} period {c['period']:.6g}  amplitude {c['amplitude']:.6g}{si}  "
+                     f"peak velocity {c['peak_velocity']:.6g}  never sticks  "
+                     f"{'stable' if c['stable'] else 'UNSTABLE'} (|Floquet multipliers| {mults}; "
+                     f"found by {', '.join(c['found_by'])})")
     lines.append(f"search      {p['n_seeds']} starts, {p['n_map_evaluations']} return-map evaluations")
     typer.echo("\n".join(lines))
 

@@ -1,0 +1,132 @@
+"""Slip oscillations found at a point without a Hopf point (issue 30, point 1).
+
+The published bistable case: rigid base, ``lambda = 1/3``, ``zeta = 0.05``, ``gamma = 1``, the
+exponential Stribeck law with ``v_s / V = 1/3`` (``n = 1``). Steady sliding is linearly stable
+there (its Hopf point, ``lambda_H = 2 zeta u_s e^(1/u_s)``, is about 0.67) and an unstable slip
+oscillation separates its basin from that of the stable stick-slip cycle.
+
+Sources of the reference values:
+
+* an independent event-driven ``scipy.integrate.solve_ivp`` (DOP853, rtol 1e-12) integration,
+  **backwards in time**, of the smooth law written here in shifted coordinates: the unstable
+  cycle of a planar system is a stable cycle backwards in time, so the backward run converges
+  to it from either side; its period is the time between two velocity zeros of one sign and
+  its amplitude half the peak-to-peak of ``xi``;
+* two seeds of the search that share nothing (the section scan with backward iteration of the
+  engine's map, and the basin code's slip trap and escape regions) must give the same cycle.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from stickslip.analysis.cycles import find_cycles
+from stickslip.analysis.slip_oscillations import find_slip_oscillations
+from stickslip.model.friction import CoulombFriction, StribeckFriction
+from stickslip.model.parameters import Slider
+from stickslip.model.structure import rigid_base
+from tests.cli_helpers import run_cli
+
+LAM, ZETA, GAMMA, US = 1.0 / 3.0, 0.05, 1.0, 0.3333
+
+
+def backward_cycle(lam: float, zeta: float = ZETA, us: float = US, start: float = 0.5
+                   ) -> tuple[float, float]:
+    """Period and amplitude of the cycle reached backwards in time by ``solve_ivp``.
+
+    ``xi'' + 2 zeta xi' + xi = F(1 - xi') - gamma lam`` with ``F(u) = lam (gamma + e^(-u/u_s))``
+    (``mu_0 = mu_s``), i.e. ``xi'' + 2 zeta xi' + xi = lam e^(-(1 - xi') / u_s)`` in slip-I.
+    """
+
+    def rhs(_t: float, z: np.ndarray) -> list[float]:
+        return [z[1], -2.0 * zeta * z[1] - z[0] + lam * math.exp(-(1.0 - z[1]) / us)]
+
+    def turn(_t: float, z: np.ndarray) -> float:
+        return float(z[1])
+
+    x_s = lam * math.exp(-1.0 / us)  # steady sliding
+    sol = solve_ivp(rhs, (0.0, -1500.0), [x_s + start, 0.0], method="DOP853", rtol=1e-12,
+                    atol=1e-13, events=turn)
+    assert sol.status == 0
+    assert float(np.max(sol.y[1])) < 1.0  # never reaches the belt speed: a slip oscillation
+    t_ev, x_ev = sol.t_events[0], sol.y_events[0][:, 0]
+    top, bottom = x_ev[x_ev > x_s], x_ev[x_ev < x_s]
+    assert abs(top[-1] - top[-2]) < 1e-10 and abs(bottom[-1] - bottom[-2]) < 1e-10  # converged
+    t_top = t_ev[x_ev > x_s]
+    return float(abs(t_top[-1] - t_top[-2])), 0.5 * float(top[-1] - bottom[-1])
+
+
+def test_the_published_unstable_slip_oscillation_matches_backward_time_solve_ivp() -> None:
+    # law interpolated to 1e-6 lambda: the engine's cycle is the smooth law's to about that
+    slider = Slider(LAM, gamma=GAMMA, friction=StribeckFriction(US, tolerance=1e-6))
+    (osc,) = find_slip_oscillations(rigid_base(ZETA), slider)
+    period, amplitude = backward_cycle(LAM)
+    assert not osc.stable and osc.multiplier > 1.0
+    assert osc.amplitude == pytest.approx(amplitude, abs=1e-6)
+    assert osc.period == pytest.approx(period, abs=1e-6)
+    assert 0.0 < osc.peak_velocity < 1.0
+    # two independent seeds arrive at it: the engine's section scan and the trap certificate
+    assert {"section scan", "trap certificate"} <= set(osc.found_by)
+
+
+def test_both_sides_of_the_backward_run_reach_the_same_cycle() -> None:
+    # the oracle itself: from inside and from outside the cycle, one answer
+    inside, outside = backward_cycle(LAM, start=0.3), backward_cycle(LAM, start=0.8)
+    assert inside == pytest.approx(outside, abs=1e-9)
+
+
+def test_cycles_lists_the_stick_slip_cycle_and_the_unstable_slip_oscillation(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    code, text, _ = run_cli(["cycles", "--lam", repr(LAM), "--zeta", "0.05", "--gamma", "1", "--dva", "none",
+                             "--friction", "stribeck:vs=0.3333,n=1", "--json"], capsys)
+    assert code == 0
+    payload = json.loads(text)
+    (cycle,) = payload["cycles"]
+    assert cycle["stable"] and cycle["stick_ratio"] > 0.0
+    (osc,) = payload["slip_oscillations"]
+    assert osc["kind"] == "slip-oscillation" and osc["stable"] is False
+    assert osc["multipliers"][0]["abs"] > 1.0
+    period, amplitude = backward_cycle(LAM)
+    # the default law tolerance 1e-4 lambda: the cycle to about that
+    assert osc["amplitude"] == pytest.approx(amplitude, rel=1e-4)
+    assert osc["period"] == pytest.approx(period, rel=1e-5)
+    # the unstable cycle lies between steady sliding and the stick-slip cycle
+    assert osc["amplitude"] < cycle["amplitude"]
+    code, text, _ = run_cli(["cycles", "--lam", repr(LAM), "--zeta", "0.05", "--gamma", "1",
+                             "--friction", "stribeck:vs=0.3333,n=1"], capsys)
+    assert code == 0 and "UNSTABLE" in text and "slip osc." in text
+
+
+def test_no_search_without_velocity_dependence() -> None:
+    # Coulomb: slip-I is a damped linear oscillator, no isolated periodic motion without stick
+    assert find_slip_oscillations(rigid_base(ZETA), Slider(2.0, friction=CoulombFriction())) == ()
+    search = find_cycles(rigid_base(0.1), Slider(2.0), slip_oscillations=True)
+    assert search.slip_oscillations == () and search.to_dict()["slip_oscillations"] == []
+
+
+@pytest.mark.slow
+def test_continue_traces_the_unstable_slip_oscillation_over_the_published_range(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    # no Hopf point in the range: the branch comes from the search at points of the range
+    code, text, _ = run_cli(["continue", "--param", "lam", "--range", "0.3:0.3667", "--zeta", "0.05",
+                             "--gamma", "1", "--dva", "none", "--friction", "stribeck:vs=0.3333,n=1",
+                             "--json"], capsys)
+    assert code == 0
+    payload = json.loads(text)
+    assert not [e for e in payload["events"] if e["type"] == "hopf"]
+    kinds = sorted(b["kind"] for b in payload["branches"])
+    assert kinds == ["slip-oscillation", "stick-slip"]
+    slip = next(b for b in payload["branches"] if b["kind"] == "slip-oscillation")
+    lams = [p["lam"] for p in slip["points"]]
+    assert min(lams) == pytest.approx(0.3, abs=1e-12) and max(lams) == pytest.approx(0.3667, abs=1e-12)
+    assert all(not p["stable"] and p["multiplier"] > 1.0 for p in slip["points"])
+    for lam in (0.3, 0.3667):
+        point = next(p for p in slip["points"] if abs(p["lam"] - lam) < 1e-12)
+        period, amplitude = backward_cycle(lam)
+        assert point["amplitude"] == pytest.approx(amplitude, rel=1e-4)
+        assert point["period"] == pytest.approx(period, rel=1e-5)
