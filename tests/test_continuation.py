@@ -245,6 +245,20 @@ def test_a_branch_seeded_several_times_is_traced_once() -> None:
     assert all(8.0 <= p.param <= 24.0 for p in result.branches[0].points)  # type: ignore[attr-defined]
 
 
+def test_the_branch_reaches_the_end_of_the_range() -> None:
+    # issue 30.2: a branch that runs out of the range ends on its end (the parameter held
+    # there), not one step short of it; the point there is a fixed point like any other
+    system, result = _foundation_result()
+    (branch,) = result.branches  # type: ignore[attr-defined]
+    assert branch.stop_reason.endswith("forward: range-end")
+    end = max(branch.points, key=lambda q: q.param)
+    assert end.param == 24.0
+    structure, slider = system.with_value("lam", 24.0).build()
+    (cycle,) = find_cycles(structure, slider, seeds=6).cycles
+    assert end.amplitude == pytest.approx(cycle.amplitude, rel=1e-9)
+    assert end.period == pytest.approx(cycle.period, rel=1e-9)
+
+
 @pytest.mark.parametrize("lam", [10.0, 17.5])
 def test_every_cycle_found_lies_on_a_continued_branch(lam: float) -> None:
     system, result = _foundation_result()
@@ -435,6 +449,7 @@ def test_fold_and_period_doubling_are_located_to_their_closed_forms() -> None:
     # the branch went round the fold: it ends on the other half, y = -sqrt(lambda - 1)
     end = run.points[-1]
     assert end.y[0] == pytest.approx(-math.sqrt(end.p - 1.0), abs=1e-9)
+    assert end.p == 4.0  # landed on the end of the range (issue 30.2)
 
 
 def test_neimark_sacker_is_located_to_its_closed_form() -> None:

@@ -424,9 +424,10 @@ def _stick_slip_factory(k: int, opts: EngineOptions, direction: int
 def _foundation_branches(system: ContinuationSystem, name: str, lo: float, hi: float, max_period: int,
                          seeds: int, max_steps: int, opts: EngineOptions, branches: list[Branch],
                          events: list[Event]) -> None:
-    """Stick-slip branches with a foundation, seeded by :func:`find_cycles` at three points."""
+    """Stick-slip branches with a foundation, seeded by :func:`find_cycles` at
+    :data:`SEARCH_POINTS` points of the range."""
     h_max = 0.05 * (hi - lo)
-    for p0 in (lo, 0.5 * (lo + hi), hi):
+    for p0 in (float(p) for p in np.linspace(lo, hi, SEARCH_POINTS)):
         structure, slider = system.with_value(name, p0).build()
         for cycle in find_cycles(structure, slider, seeds=seeds, max_period=max_period,
                                  options=opts).cycles:
