@@ -86,7 +86,10 @@ class SimulationResult:
         Largest real part of the eigenvalues of the linearisation about steady sliding
         (per unit ``tau``); positive: steady sliding is linearly unstable.
     steady_sliding_stable : bool
-        ``growth_rate < 0``.
+        ``growth_rate`` below minus its round-off bound.
+    steady_sliding_neutral : bool
+        ``|growth_rate|`` within its round-off bound: marginally stable (see
+        :class:`~stickslip.analysis.stability.SteadySlidingStability`).
     """
 
     structure: Structure
@@ -120,6 +123,7 @@ class SimulationResult:
     steady_sliding_stable: bool = False
     friction_bands: tuple[FloatArray, FloatArray, FloatArray] | None = field(default=None, repr=False)
     cycle_proof: CycleProof | None = field(default=None, repr=False)
+    steady_sliding_neutral: bool = False
 
     @property
     def cycle_k(self) -> int:
@@ -275,6 +279,7 @@ class SimulationResult:
             "friction": {**self.slider.friction.to_dict(), "description": self.friction_description},
             "growth_rate": num(self.growth_rate),
             "steady_sliding_stable": bool(self.steady_sliding_stable),
+            "steady_sliding_neutral": bool(self.steady_sliding_neutral),
             "safe_disturbance": self.safe_disturbance.to_dict(),
             "cycle_proof": None if self.cycle_proof is None else self.cycle_proof.to_dict(),
         }
@@ -517,6 +522,7 @@ def run_engine(structure: Structure, slider: Slider, initial: InitialState | Non
         friction_description=description,
         growth_rate=stability.growth_rate,
         steady_sliding_stable=stability.stable,
+        steady_sliding_neutral=stability.neutral,
         friction_bands=bands,
     )
 

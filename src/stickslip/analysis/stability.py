@@ -29,6 +29,9 @@ from stickslip.model.structure import Structure
 
 FloatArray = NDArray[np.float64]
 
+#: Round-off bound of a computed growth rate, in units of ``eps ||A||_F``.
+ROUND_OFF_FACTOR = 1000.0
+
 
 @dataclass(frozen=True)
 class SteadySlidingStability:
@@ -45,7 +48,7 @@ class SteadySlidingStability:
     growth_rate : float
         Largest real part of the eigenvalues.
     stable : bool
-        ``growth_rate < 0``.
+        ``growth_rate < -round_off``: asymptotically stable beyond round-off.
     routh_hurwitz : bool or None
         The closed-form Routh-Hurwitz verdict for 1 and 2 DOF, None otherwise.
     kink : bool
@@ -61,6 +64,20 @@ class SteadySlidingStability:
     stable: bool
     routh_hurwitz: bool | None
     kink: bool = False
+    round_off: float = 0.0
+
+    @property
+    def neutral(self) -> bool:
+        """``|growth_rate| <= round_off``: neither growing nor decaying, to round-off.
+
+        ``round_off = ROUND_OFF_FACTOR * eps * ||A||_F`` (per unit ``tau``, ``A`` the
+        first-order matrix) bounds the round-off error of a computed growth rate: a
+        backward-stable eigensolver returns the eigenvalues of ``A + E`` with
+        ``||E|| ~ n eps ||A||``, and the factor leaves room for non-normal matrices. Neutral
+        is marginally stable: an undamped structure, or a weakening that exactly cancels the
+        damping.
+        """
+        return abs(self.growth_rate) <= self.round_off
 
 
 def linearised_damping(structure: Structure, slope: float) -> FloatArray:
@@ -261,12 +278,14 @@ def steady_sliding_stability(structure: Structure, slider: Slider) -> SteadySlid
         Eigenvalues, growth rate, stability and local weakening.
     """
     left, right = one_sided_slopes(slider)
-    slope, eig, growth = right, np.zeros(0, dtype=np.complex128), -np.inf
+    slope, eig, growth, round_off = right, np.zeros(0, dtype=np.complex128), -np.inf, 0.0
     for s in (right, left) if left != right else (right,):
-        e = np.asarray(np.linalg.eigvals(slip_matrix(structure, s)), dtype=np.complex128)
+        matrix = slip_matrix(structure, s)
+        e = np.asarray(np.linalg.eigvals(matrix), dtype=np.complex128)
         g = float(np.max(e.real))
         if g > growth:
             slope, eig, growth = s, e, g
+            round_off = ROUND_OFF_FACTOR * float(np.finfo(float).eps * np.linalg.norm(matrix))
     rh: bool | None = None
     if structure.n_dof == 1:
         scale = float(np.sqrt(structure.mass[0, 0] * structure.stiffness[0, 0]))
@@ -274,7 +293,8 @@ def steady_sliding_stability(structure: Structure, slider: Slider) -> SteadySlid
         rh = routh_hurwitz_1dof(zeta, -0.5 * slope / scale)
     elif structure.n_dof == 2:
         rh = routh_hurwitz_2dof(structure, slope)
-    return SteadySlidingStability(slope, -0.5 * slope, eig, growth, growth < 0.0, rh, left != right)
+    return SteadySlidingStability(slope, -0.5 * slope, eig, growth, growth < -round_off, rh,
+                                  left != right, round_off)
 
 
 def growth_rate(structure: Structure, delta: float) -> float:

@@ -173,8 +173,10 @@ def _print_summary(p: dict[str, Any]) -> None:
         f"max xi'     {fmt(p['max_velocity'])}   t_end {fmt(p['t_end'])}   events {p['n_events']}",
         f"initial     {p['initial_condition']}",
         f"friction    {p['friction']['description']}",
-        "sliding     steady sliding is linearly "
-        + ("stable" if p["steady_sliding_stable"] else "UNSTABLE")
+        "sliding     steady sliding is "
+        + ("linearly stable" if p["steady_sliding_stable"] else
+           "neutral (marginally stable: the growth rate is zero to round-off)"
+           if p.get("steady_sliding_neutral") else "linearly UNSTABLE")
         + f" (growth rate {fmt(p['growth_rate'])} per unit tau)",
         f"disturbance {_disturbance_line(p)}",
     ]
@@ -199,7 +201,9 @@ def _disturbance_line(p: dict[str, Any]) -> str:
     cannot start stick-slip" reads as a contradiction.
     """
     line = f"of steady sliding: {p['safe_disturbance_sentence']}"
-    if p["verdict"] == "stick-slip" and p["steady_sliding_stable"]:
+    if p.get("steady_sliding_neutral"):
+        line += " (neutral: a small disturbance neither grows nor decays)"
+    elif p["verdict"] == "stick-slip" and p["steady_sliding_stable"]:
         line += " (the start-up above is not such a disturbance: it starts far from steady sliding)"
     return line
 
