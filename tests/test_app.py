@@ -15,6 +15,7 @@ import importlib.util
 import io
 import json
 import math
+import re
 from pathlib import Path
 from typing import Any
 
@@ -28,6 +29,12 @@ from stickslip.cli import app_command
 from tests.cli_helpers import run_cli as _run
 
 APP = Path(app_command.APP_SCRIPT)
+
+
+def _errors(at: AppTest) -> list[str]:
+    """The red boxes' texts as the user reads them (the page escapes Markdown, issue 31)."""
+    return [re.sub(r"\\(.)", r"\1", str(e.value)) for e in at.error]
+
 #: A page run's time limit; the engine is compiled before the first page run (fixture below),
 #: so this bounds the app's own work, not numba's first compile.
 TIMEOUT = 120.0
@@ -101,7 +108,7 @@ def test_bad_input_replaces_the_results_and_a_fix_restores_them() -> None:
     at = _started()
     at.text_input(key="k").set_value("5 kg").run()
     assert not at.exception
-    assert [e.value for e in at.error] == [
+    assert _errors(at) == [
         "Spring stiffness k: '5 kg' has the wrong unit for the slider stiffness: expected N/m "
         "(dimension [force] / [length]), got kg"
     ]
@@ -135,7 +142,7 @@ def test_bad_input_is_one_clear_line_and_nothing_is_computed(key: str, text: str
     at.session_state[key] = text  # as if typed before the first run: nothing to compute
     at.run()
     assert not at.exception
-    messages = [e.value for e in at.error]
+    messages = _errors(at)
     assert len(messages) == 1
     assert expected in messages[0] and "\n" not in messages[0]
     assert not at.metric and not at.table and not at.get("image")
@@ -147,7 +154,7 @@ def test_inputs_outside_the_model_range_are_one_line() -> None:
     at.session_state["m"] = "1e-300 kg"
     at.run()
     assert not at.exception
-    (message,) = [e.value for e in at.error]
+    (message,) = _errors(at)
     assert message.startswith("Cannot analyse these inputs:") and "is above 0.9" in message
 
 
@@ -392,7 +399,7 @@ def test_bad_friction_slope_is_one_line_and_nothing_is_computed() -> None:
     at.session_state["slope"] = "2 kg"
     at.run()
     assert not at.exception
-    (message,) = [e.value for e in at.error]
+    (message,) = _errors(at)
     assert message.startswith("Friction slope σ") and "wrong unit" in message and "s/m" in message
     assert "\n" not in message
     assert not at.metric and not at.table and not at.dataframe and not at.get("image")
@@ -495,8 +502,8 @@ def test_app_command_without_streamlit_is_one_line(monkeypatch: pytest.MonkeyPat
     assert err.count("\n") == 1 and "pip install stickslip[app]" in err
 
 
-def test_app_command_runs_streamlit_on_the_script(monkeypatch: pytest.MonkeyPatch,
-                                                  capsys: pytest.CaptureFixture[str]) -> None:
+def _started_commands(monkeypatch: pytest.MonkeyPatch) -> list[list[str]]:
+    """The command lines ``stickslip app`` starts (recorded, not run)."""
     calls: list[list[str]] = []
 
     class FakeProcess:
@@ -508,13 +515,51 @@ def test_app_command_runs_streamlit_on_the_script(monkeypatch: pytest.MonkeyPatc
 
     monkeypatch.setattr(app_command.subprocess, "Popen", FakeProcess)
     monkeypatch.setattr(app_command.signal, "signal", lambda *a: None)
-    code, _, _ = _run(["app", "--port", "8600", "--headless"], capsys)
-    assert code == 0
+    return calls
+
+
+def test_app_command_runs_streamlit_on_the_script(monkeypatch: pytest.MonkeyPatch,
+                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    calls = _started_commands(monkeypatch)
+    code, _, err = _run(["app", "--port", "8600", "--headless"], capsys)
+    assert code == 0 and err == ""
     (command,) = calls
     assert command[1:4] == ["-m", "streamlit", "run"]
     assert Path(command[4]) == APP and APP.is_file()
     assert command[command.index("--server.port") + 1] == "8600"
     assert command[command.index("--server.headless") + 1] == "true"
+    # issue 31: this computer only by default, no tracebacks sent to the browser, upload limit
+    assert command[command.index("--server.address") + 1] == "127.0.0.1"
+    assert command[command.index("--client.showErrorDetails") + 1] == "none"
+    from stickslip.io.machine_file import UPLOAD_MAX_MB
+
+    assert command[command.index("--server.maxUploadSize") + 1] == str(UPLOAD_MAX_MB)
+
+
+@pytest.mark.parametrize("address,warned", [
+    ("0.0.0.0", True), ("::", True), ("192.0.2.7", True), ("myhost.example", True),
+    ("127.0.0.1", False), ("127.0.1.1", False), ("::1", False), ("localhost", False),
+])
+def test_app_command_warns_when_opened_to_the_network(
+        address: str, warned: bool, monkeypatch: pytest.MonkeyPatch,
+        capsys: pytest.CaptureFixture[str]) -> None:
+    calls = _started_commands(monkeypatch)
+    code, out, err = _run(["app", "--address", address, "--headless"], capsys)
+    assert code == 0 and out == ""
+    (command,) = calls
+    assert command[command.index("--server.address") + 1] == address
+    if warned:
+        assert err.count("\n") == 1 and err.startswith("stickslip: warning: --address")
+        assert "no login" in err
+    else:
+        assert err == ""
+
+
+def test_app_command_refuses_an_empty_address(monkeypatch: pytest.MonkeyPatch,
+                                              capsys: pytest.CaptureFixture[str]) -> None:
+    calls = _started_commands(monkeypatch)
+    code, _, err = _run(["app", "--address", " "], capsys)
+    assert code == 2 and err.count("\n") == 1 and "--address" in err and not calls
 
 
 def test_app_command_rejects_a_bad_port(capsys: pytest.CaptureFixture[str]) -> None:

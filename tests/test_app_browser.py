@@ -1,6 +1,8 @@
-"""The web app in a real headless Chromium: the page loads, and the verdict follows the input.
+"""The web app in a real headless Chromium: the page loads, the verdict follows the input, and
+the security cases of issue 31 are refused as a user on the network would meet them.
 
-A real ``streamlit run`` server on a free localhost port, driven by Playwright through
+A real ``streamlit run`` server (the command line of ``stickslip app``, so with its default
+address, 127.0.0.1) on a free localhost port, driven by Playwright through
 Debian's Chromium (``/usr/bin/chromium``; Playwright's own browser download is not used).
 The test never installs anything: ``make test`` installs Chromium first, visibly (its
 ``browser`` step: ``apt-get install chromium chromium-driver`` as root when missing), and
@@ -11,6 +13,7 @@ says what to install.
 from __future__ import annotations
 
 import importlib
+import io
 import shutil
 import socket
 import subprocess
@@ -22,11 +25,19 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pytest
+import scipy.io
+import scipy.sparse
 
 pytest.importorskip("streamlit", reason="the app extra (streamlit) is not installed")
 
-from stickslip.cli.app_command import APP_SCRIPT
+from stickslip.cli.app_command import streamlit_command
+from stickslip.io.machine_file import UPLOAD_MAX_DOF
+
+SLIDEWAY = Path(__file__).resolve().parents[1] / "examples" / "slideway"
+SECRET = "hunter2"
+MACHINE_PAGE = "your machine (matrices or modes)"
 
 CHROMIUM = Path("/usr/bin/chromium")
 CHROMIUM_ARGS = [
@@ -85,23 +96,19 @@ def _wait_until_healthy(url: str, process: subprocess.Popen[bytes], log: Path) -
                 f"{_tail(log.read_text(errors='replace'), 10)}")
 
 
-@pytest.fixture
-def server(tmp_path: Path) -> Iterator[str]:
-    """A ``streamlit run`` of the app on a free localhost port; always terminated."""
+@pytest.fixture(scope="module")
+def served(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[str, Path]]:
+    """``stickslip app``'s server on a free localhost port, and its log; always terminated."""
     port = _free_port()
     url = f"http://127.0.0.1:{port}"
-    log = tmp_path / "streamlit.log"
-    command = [
-        sys.executable, "-m", "streamlit", "run", str(APP_SCRIPT),
-        "--server.headless", "true", "--server.address", "127.0.0.1", "--server.port", str(port),
-        "--browser.gatherUsageStats", "false", "--server.fileWatcherType", "none",
-        "--client.toolbarMode", "viewer",
-    ]
+    log = tmp_path_factory.mktemp("streamlit") / "streamlit.log"
+    command = [*streamlit_command(port, headless=True), "--server.fileWatcherType", "none"]
+    assert sys.executable == command[0]
     with log.open("wb") as sink:
         process = subprocess.Popen(command, stdout=sink, stderr=subprocess.STDOUT)
         try:
             _wait_until_healthy(url, process, log)
-            yield url
+            yield url, log
         finally:
             process.terminate()
             try:
@@ -111,33 +118,184 @@ def server(tmp_path: Path) -> Iterator[str]:
                 process.wait()
 
 
-def test_page_loads_and_the_verdict_follows_the_speed(server: str) -> None:
+@pytest.fixture(scope="module")
+def server(served: tuple[str, Path]) -> str:
+    """The URL of the app's server."""
+    return served[0]
+
+
+@pytest.fixture(scope="module")
+def browser(served: tuple[str, Path]) -> Iterator[Any]:
+    """One headless Chromium for the module (Playwright); closed at the end."""
     chromium = _chromium()
     sync_api = _playwright()
-    expect = sync_api.expect
     with sync_api.sync_playwright() as playwright:
-        browser = playwright.chromium.launch(executable_path=chromium, args=CHROMIUM_ARGS,
-                                             headless=True)
+        instance = playwright.chromium.launch(executable_path=chromium, args=CHROMIUM_ARGS,
+                                              headless=True)
         try:
-            page = browser.new_page(viewport={"width": 1400, "height": 1000})
-            page.goto(server, wait_until="domcontentloaded", timeout=PAGE_TIMEOUT_MS)
-            verdict = (page.locator('[data-testid="stMetric"]')
-                       .filter(has_text="Verdict with foundation")
-                       .locator('[data-testid="stMetricValue"]'))
-            # defaults: 5 cm/s is below the critical speed 0.0619 m/s with the foundation
-            expect(verdict).to_have_text("stick-slip", timeout=PAGE_TIMEOUT_MS)
-
-            speed = page.get_by_role("textbox", name="Belt speed V", exact=True)
-            speed.fill("10 cm/s")
-            speed.press("Enter")
-            expect(verdict).to_have_text("steady-sliding", timeout=PAGE_TIMEOUT_MS)
-
-            stiffness = page.get_by_role("textbox", name="Spring stiffness k", exact=True)
-            stiffness.fill("5 kg")
-            stiffness.press("Enter")
-            alert = page.locator('[data-testid="stAlert"]').filter(has_text="wrong unit")
-            expect(alert).to_have_count(1, timeout=PAGE_TIMEOUT_MS)
-            expect(verdict).to_have_count(0)
-            expect(page.locator('[data-testid="stException"]')).to_have_count(0)
+            yield instance
         finally:
-            browser.close()
+            instance.close()
+
+
+@pytest.fixture
+def page(browser: Any) -> Iterator[Any]:
+    """A fresh page (a new app session); closed after the test."""
+    tab = browser.new_page(viewport={"width": 1400, "height": 1000})
+    try:
+        yield tab
+    finally:
+        tab.close()
+
+
+def test_page_loads_and_the_verdict_follows_the_speed(server: str, page: Any) -> None:
+    expect = _playwright().expect
+    page.goto(server, wait_until="domcontentloaded", timeout=PAGE_TIMEOUT_MS)
+    verdict = (page.locator('[data-testid="stMetric"]')
+               .filter(has_text="Verdict with foundation")
+               .locator('[data-testid="stMetricValue"]'))
+    # defaults: 5 cm/s is below the critical speed 0.0619 m/s with the foundation
+    expect(verdict).to_have_text("stick-slip", timeout=PAGE_TIMEOUT_MS)
+
+    speed = page.get_by_role("textbox", name="Belt speed V", exact=True)
+    speed.fill("10 cm/s")
+    speed.press("Enter")
+    expect(verdict).to_have_text("steady-sliding", timeout=PAGE_TIMEOUT_MS)
+
+    stiffness = page.get_by_role("textbox", name="Spring stiffness k", exact=True)
+    stiffness.fill("5 kg")
+    stiffness.press("Enter")
+    alert = page.locator('[data-testid="stAlert"]').filter(has_text="wrong unit")
+    expect(alert).to_have_count(1, timeout=PAGE_TIMEOUT_MS)
+    expect(verdict).to_have_count(0)
+    expect(page.locator('[data-testid="stException"]')).to_have_count(0)
+
+
+# Issue 31, security: each case as a user of the page meets it.
+
+
+def test_the_server_listens_on_this_computer_only(served: tuple[str, Path]) -> None:
+    url, log = served
+    port = int(url.rsplit(":", 1)[1])
+    text = log.read_text(errors="replace")
+    assert f"URL: http://127.0.0.1:{port}" in text and "Network URL" not in text
+    others = [address for address in _own_addresses() if not address.startswith("127.")]
+    if not others:
+        pytest.skip("this computer has no address but loopback to try the port on")
+    for address in others:
+        family = socket.AF_INET6 if ":" in address else socket.AF_INET
+        with socket.socket(family, socket.SOCK_STREAM) as sock:
+            sock.settimeout(2.0)
+            assert sock.connect_ex((address, port)) != 0, f"the app answers on {address}"
+
+
+def _own_addresses() -> list[str]:
+    """This computer's IP addresses (``hostname -I``; empty where it is not available)."""
+    try:
+        out = subprocess.run(["hostname", "-I"], capture_output=True, text=True, timeout=10,
+                             check=False).stdout
+    except OSError:
+        return []
+    return out.split()
+
+
+def _alert_of(page: Any, text: str) -> Any:
+    """The one red box holding ``text``, waited for."""
+    alert = page.locator('[data-testid="stAlert"]').filter(has_text=text)
+    _playwright().expect(alert).to_have_count(1, timeout=PAGE_TIMEOUT_MS)
+    return alert
+
+
+def _assert_nothing_of_the_server(page: Any, alert: Any) -> str:
+    """The alert's text, after checking the page shows no secret, path, link or traceback."""
+    body = page.locator("body").inner_text()
+    assert SECRET not in body
+    assert "/tmp" not in body and "stickslip-machine" not in body
+    assert alert.locator("a").count() == 0
+    _playwright().expect(page.locator('[data-testid="stException"]')).to_have_count(0)
+    # the invisible word joiner that keeps a URL from becoming a link (app/messages.py)
+    return str(alert.inner_text()).replace("\u2060", "").strip()
+
+
+def _upload(page: Any, server: str, files: dict[str, bytes]) -> None:
+    """Open the machine page and upload ``files`` (name -> content) together."""
+    page.goto(server, wait_until="domcontentloaded", timeout=PAGE_TIMEOUT_MS)
+    page.get_by_text(MACHINE_PAGE, exact=True).click()
+    page.get_by_text("uploaded files", exact=True).click(timeout=PAGE_TIMEOUT_MS)
+    chooser = page.locator('[data-testid="stFileUploaderDropzoneInput"]')
+    chooser.set_input_files([{"name": name, "mimeType": "application/octet-stream",
+                              "buffer": content} for name, content in files.items()])
+
+
+def _slideway_with(old: str, new: str) -> dict[str, bytes]:
+    files = {p.name: p.read_bytes() for p in SLIDEWAY.iterdir() if p.suffix in (".toml", ".mtx")}
+    text = files["machine.toml"].decode()
+    assert old in text
+    return {**files, "machine.toml": text.replace(old, new).encode()}
+
+
+def test_an_uploaded_machine_file_reaches_no_file_on_the_server(server: str, page: Any,
+                                                                 tmp_path: Path) -> None:
+    secret = tmp_path / "secret.csv"
+    secret.write_text(f"1,0\n0,{SECRET}\n")
+    absent = tmp_path / "absent.csv"
+    shown = {}
+    for path in (secret, absent):
+        _upload(page, server, _slideway_with('stiffness = "K.mtx"', f'stiffness = "{path}"'))
+        alert = _alert_of(page, "not one of the files uploaded with it")
+        shown[path] = _assert_nothing_of_the_server(page, alert)
+    # the same line whether the file exists or not (the path itself is the user's text,
+    # which the second line of defence removes too)
+    assert shown[secret] == shown[absent]
+    assert "<path>" in shown[secret]
+
+    for old, new in (('stiffness = "K.mtx"', 'stiffness = "../../../../etc/passwd"'),
+                     ("attach_dof = 2\n", f'attach_dof = 2\n[friction]\nlaw = "table"\n'
+                                          f'table = "{secret}"\n')):
+        _upload(page, server, _slideway_with(old, new))
+        _assert_nothing_of_the_server(page, _alert_of(page, "not one of the files uploaded"))
+
+
+def test_a_bad_upload_is_named_without_its_content(server: str, page: Any) -> None:
+    toml = ('mu_s = 0.5\nmu_k = 0.3\nload = "100 N"\nspeed = "1 cm/s"\n[structure]\n'
+            'mass = [[2.0, 0.0], [0.0, 1.0]]\nstiffness = "{}"\ncontact_dof = 0\n')
+    _upload(page, server, {"m.toml": toml.format("K.csv").encode(),
+                           "K.csv": f"3e4,-1e4\n-1e4,{SECRET}\n".encode()})
+    text = _assert_nothing_of_the_server(page, _alert_of(page, "is not a number"))
+    assert "'K.csv' cannot be read: row 2, column 2 is not a number" in text
+
+    buffer = io.BytesIO()
+    np.save(buffer, np.array([SECRET, None], dtype=object), allow_pickle=True)
+    _upload(page, server, {"m.toml": toml.format("K.npy").encode(), "K.npy": buffer.getvalue()})
+    text = _assert_nothing_of_the_server(page, _alert_of(page, "pickled data"))
+    assert "'K.npy' cannot be read" in text
+
+
+def test_user_text_is_shown_literally(server: str, page: Any) -> None:
+    link = "[click me](http://example.com)"
+    _upload(page, server, _slideway_with('stiffness = "K.mtx"', f'stiffness = "{link}"'))
+    alert = _alert_of(page, "not one of the files uploaded")
+    assert link in _assert_nothing_of_the_server(page, alert)
+
+    page.goto(server, wait_until="domcontentloaded", timeout=PAGE_TIMEOUT_MS)
+    typed = "__import__('os') :smile: $x^2$ *b* <b>c</b>"
+    stiffness = page.get_by_role("textbox", name="Spring stiffness k", exact=True)
+    stiffness.fill(typed)
+    stiffness.press("Enter")
+    alert = _alert_of(page, "__import__")
+    text = _assert_nothing_of_the_server(page, alert)
+    assert typed in text, text
+    assert alert.locator("strong, em, b, .katex, img").count() == 0
+
+
+def test_the_largest_model_is_stated_and_enforced(server: str, page: Any) -> None:
+    n = UPLOAD_MAX_DOF + 1
+    buffer = io.BytesIO()
+    scipy.io.mmwrite(buffer, scipy.sparse.identity(n, format="coo"), symmetry="symmetric")
+    toml = (b'mu_s = 0.5\nmu_k = 0.3\nload = "100 N"\nspeed = "1 cm/s"\n[structure]\n'
+            b'mass = "I.mtx"\nstiffness = "I.mtx"\ncontact_dof = 0\n')
+    _upload(page, server, {"m.toml": toml, "I.mtx": buffer.getvalue()})
+    text = _assert_nothing_of_the_server(page, _alert_of(page, "DOF accepted here"))
+    assert f"a {n}-DOF model, beyond the {UPLOAD_MAX_DOF} DOF accepted here" in text
+    caption = page.get_by_text("Largest model accepted", exact=False)
+    _playwright().expect(caption).to_contain_text(f"{UPLOAD_MAX_DOF:,} DOF")

@@ -164,7 +164,7 @@ def parse_friction_inputs(raw: Mapping[str, str]) -> tuple[PhysicalFriction | No
                 header = next(line for line in text.splitlines()
                               if line.strip() and not line.startswith("#"))
                 if "mu" not in [h.strip().lower() for h in header.split(",")]:
-                    raise ValueError(f"{name} needs columns v [m/s] and mu, got {header.strip()}")
+                    raise ValueError(f"{name} needs columns v [m/s] and mu in its header row")
                 columns = friction_csv_columns(text, name)
             except ValueError as exc:
                 errors.append("Friction table: " + " ".join(str(exc).split()))

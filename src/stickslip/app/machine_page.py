@@ -1,9 +1,11 @@
 """The web app's "your machine" page: a machine file with its matrices, or modes typed in.
 
 Issue 18 point 3: the app takes the machine the command line takes. Either the machine TOML
-and the matrix files it names are uploaded together (they are written to a temporary folder and
-read by :func:`stickslip.io.machine_file.read_machine_file`, the one reader, so every check and
-message is the command line's), or the modes from a modal test are typed (frequencies in Hz,
+and the matrix files it names are uploaded together (read from memory by
+:func:`stickslip.io.machine_file.read_machine_file`, the one reader, so every check and message
+is the command line's; issue 31: the machine file may name only the files uploaded with it, by
+base name, and nothing is read from the server's disk), or the modes from a modal test are
+typed (frequencies in Hz,
 damping ratios, mass-normalised mode-shape values at the contact in 1/sqrt(kg)) with the
 operating point; the typed fields become a ``[structure]`` ``modes`` table read by the same
 reader. The answers are :func:`stickslip.analysis.machine_absorber.design_machine`'s.
@@ -11,10 +13,15 @@ reader. The answers are :func:`stickslip.analysis.machine_absorber.design_machin
 
 from __future__ import annotations
 
-import tempfile
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
+
+from stickslip.io.machine_file import UPLOAD_MAX_DOF, UPLOAD_MAX_MB
+
+#: The statement of both limits, shown on the page.
+LIMITS = (f"Largest model accepted: {UPLOAD_MAX_DOF:,} DOF, {UPLOAD_MAX_MB} MB of files in all "
+          "(the command line 'stickslip design --config' takes larger ones).")
 
 #: The typed modal machine's fields: key -> (label, default).
 MODE_INPUTS: dict[str, tuple[str, str]] = {
@@ -74,7 +81,9 @@ def machine_from_files(files: Mapping[str, bytes], toml_name: str | None = None)
     Raises
     ------
     ValueError
-        One line: no or several TOML files, or the reader's message (which names the file).
+        One line: no or several TOML files, or the reader's message (which names the file
+        by its base name, never a path of the server; the limits of an upload are
+        :data:`~stickslip.io.machine_file.UPLOAD_MAX_MB` and ``UPLOAD_MAX_DOF``).
     """
     from stickslip.io.machine_file import machine_from_file, read_machine_file
     from stickslip.model.inputs import quantities_to_si
@@ -85,22 +94,20 @@ def machine_from_files(files: Mapping[str, bytes], toml_name: str | None = None)
             raise ValueError(f"upload exactly one machine .toml file with its matrices "
                              f"(got {len(tomls)})")
         toml_name = tomls[0]
-    with tempfile.TemporaryDirectory(prefix="stickslip-machine-") as folder:
-        for name, content in files.items():
-            (Path(folder) / Path(name).name).write_bytes(content)
-        machine_file = read_machine_file(Path(folder) / Path(toml_name).name,
-                                         label=f"machine file {Path(toml_name).name!r}")
-        if not machine_file.has_structure:
-            raise ValueError(f"machine file {toml_name!r} has no [structure] table: the paper's "
-                             "slider is entered on the main page")
-        values = quantities_to_si({key: machine_file.raw.get(key)
-                                   for key in ("mu_s", "mu_k", "load", "speed")},
-                                  source=lambda key: f"machine file {toml_name!r}: {key} =")
-        missing = [key for key in ("mu_s", "mu_k", "load", "speed") if key not in values]
-        if missing:
-            raise ValueError(f"machine file {toml_name!r} lacks {', '.join(missing)}")
-        machine, reduction = machine_from_file(machine_file, values)
-        absorber = machine_file.absorber()
+    toml_name = Path(toml_name).name
+    machine_file = read_machine_file(Path(toml_name), label=f"machine file {toml_name!r}",
+                                     files=files)
+    if not machine_file.has_structure:
+        raise ValueError(f"machine file {toml_name!r} has no [structure] table: the paper's "
+                         "slider is entered on the main page")
+    values = quantities_to_si({key: machine_file.raw.get(key)
+                               for key in ("mu_s", "mu_k", "load", "speed")},
+                              source=lambda key: f"machine file {toml_name!r}: {key} =")
+    missing = [key for key in ("mu_s", "mu_k", "load", "speed") if key not in values]
+    if missing:
+        raise ValueError(f"machine file {toml_name!r} lacks {', '.join(missing)}")
+    machine, reduction = machine_from_file(machine_file, values)
+    absorber = machine_file.absorber()
     return machine, absorber, reduction
 
 
@@ -120,11 +127,14 @@ def show_machine_page() -> None:
     """Lay out the "your machine" page (Streamlit)."""
     import streamlit as st
 
+    from stickslip.app.messages import show_error
     from stickslip.plot.operating import machine_modes_plot
 
     st.title("Your machine: any linear structure, the contact on any DOF")
     st.caption("Upload the machine TOML of 'stickslip design --config' with the matrix files it "
-               "names (.mtx, .npy, .csv), or type the modes of a modal test at the contact.")
+               "names (.mtx, .npy, .csv), or type the modes of a modal test at the contact. "
+               "The machine file may name only the files uploaded with it, by their names "
+               "without folders. " + LIMITS)
     source = st.radio("Structure from", ("typed modes", "uploaded files"), key="machine_source",
                       horizontal=True)
     try:
@@ -139,13 +149,11 @@ def show_machine_page() -> None:
         else:
             raw = {key: st.text_input(label, value=default, key=f"machine_{key}")
                    for key, (label, default) in MODE_INPUTS.items()}
-            with tempfile.TemporaryDirectory(prefix="stickslip-modes-") as folder:
-                path = Path(folder) / "modes.toml"
-                path.write_text(modes_machine_toml(raw), encoding="utf-8")
-                machine, absorber, reduction = machine_from_files({path.name: path.read_bytes()})
+            machine, absorber, reduction = machine_from_files(
+                {"modes.toml": modes_machine_toml(raw).encode("utf-8")})
         report = machine_design(machine, absorber, reduction)
     except ValueError as exc:
-        st.error(" ".join(str(exc).split()))
+        show_error(str(exc))
         return
     payload = report.to_dict()
     st.subheader("Verdict at the operating point")

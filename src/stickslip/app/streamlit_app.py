@@ -64,6 +64,7 @@ from stickslip.app.inputs import (
     si_key,
     system_from_key,
 )
+from stickslip.app.messages import show_error
 from stickslip.io.provenance import package_version
 from stickslip.model.initial import STARTUP_DESCRIPTION
 from stickslip.model.parameters import Foundation
@@ -360,13 +361,13 @@ def main() -> None:
     system, errors = parse_inputs(raw)
     if system is None:
         for line in errors:
-            st.error(line)
+            show_error(line)
         st.info("Nothing is computed until every input is valid.")
         return
     try:
         _show_results(raw, system)
     except ValueError as exc:  # valid inputs whose dimensionless groups leave the model's range
-        st.error("Cannot analyse these inputs: " + " ".join(str(exc).split()))
+        show_error("Cannot analyse these inputs: " + str(exc))
 
 
 def _show_results(raw: Mapping[str, str], system: PhysicalSystem) -> None:

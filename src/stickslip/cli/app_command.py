@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib.util
+import ipaddress
 import signal
 import subprocess
 import sys
@@ -16,12 +17,32 @@ from stickslip.cli.console import BadInput
 APP_SCRIPT = Path(__file__).resolve().parent.parent / "app" / "streamlit_app.py"
 #: Seconds left to Streamlit to shut down after Ctrl-C before it is killed.
 SHUTDOWN_TIMEOUT = 10.0
+#: The address served by default: this computer only.
+DEFAULT_ADDRESS = "127.0.0.1"
 
 
-def streamlit_command(port: int | None, headless: bool) -> list[str]:
-    """The ``python -m streamlit run`` command line that serves the app."""
+def is_loopback(address: str) -> bool:
+    """True when ``address`` reaches this computer only (127.0.0.0/8, ::1, ``localhost``)."""
+    if address.strip().lower() == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(address.strip().strip("[]")).is_loopback
+    except ValueError:  # a host name: it may resolve to any interface
+        return False
+
+
+def streamlit_command(port: int | None, headless: bool, address: str = DEFAULT_ADDRESS) -> list[str]:
+    """The ``python -m streamlit run`` command line that serves the app on ``address``.
+
+    Tracebacks are not sent to the browser (they name the server's files); uploads are
+    limited to :data:`~stickslip.io.machine_file.UPLOAD_MAX_MB`.
+    """
+    from stickslip.io.machine_file import UPLOAD_MAX_MB
+
     command = [sys.executable, "-m", "streamlit", "run", str(APP_SCRIPT),
-               "--browser.gatherUsageStats", "false", "--client.toolbarMode", "viewer"]
+               "--browser.gatherUsageStats", "false", "--client.toolbarMode", "viewer",
+               "--server.address", address, "--client.showErrorDetails", "none",
+               "--server.maxUploadSize", str(UPLOAD_MAX_MB)]
     if port is not None:
         command += ["--server.port", str(port)]
     if headless:
@@ -37,14 +58,28 @@ def app(
     headless: Annotated[
         bool, typer.Option("--headless", help="do not open a browser (servers, containers)")
     ] = False,
+    address: Annotated[
+        str,
+        typer.Option("--address", help="address to serve on (default 127.0.0.1: this computer "
+                     "only; 0.0.0.0 opens the app to the network, with a warning)"),
+    ] = DEFAULT_ADDRESS,
 ) -> None:
     """Start the web app: design calculator, verdicts, maps and time histories in a browser.
 
+    It serves this computer only unless --address opens it to others: the app has no login,
+    and anyone who reaches it can run computations on this computer.
+
     Example: stickslip app --port 8600 --headless
     """
+    if not address.strip():
+        raise BadInput("--address '' is empty: give an address such as 127.0.0.1 (this computer "
+                       "only) or 0.0.0.0 (every interface)")
     if importlib.util.find_spec("streamlit") is None:
         raise BadInput("streamlit is not installed; install the app extra: pip install stickslip[app]")
-    process = subprocess.Popen(streamlit_command(port, headless))
+    if not is_loopback(address):
+        print(f"stickslip: warning: --address {address} opens the app to other computers; it has "
+              "no login, and anyone who reaches it can run computations here", file=sys.stderr)
+    process = subprocess.Popen(streamlit_command(port, headless, address.strip()))
     signal.signal(signal.SIGTERM, _interrupt)
     try:
         code = process.wait()

@@ -35,8 +35,9 @@ built in :mod:`stickslip.model.machine`. :mod:`stickslip.io.config` is its flat 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from pathlib import Path
+from pathlib import Path, PurePosixPath, PureWindowsPath
 from typing import Any
 
 import numpy as np
@@ -52,6 +53,11 @@ STRUCTURE_KEYS = frozenset({"mass", "stiffness", "damping", "rayleigh", "modal_d
                             "cutoff"})
 MODE_KEYS = frozenset({"frequencies", "damping_ratios", "shapes"})
 ABSORBER_KEYS = frozenset({"mass", "attach_dof", "attach"})
+#: Limits of a machine file read from uploads (``files=``, the web app): all its files
+#: together (MB) and the largest structure (DOF; its reduction and design take about a
+#: minute at this size on a 2-core machine). The command line has no such limit.
+UPLOAD_MAX_MB = 50
+UPLOAD_MAX_DOF = 1000
 
 
 @dataclass(frozen=True)
@@ -79,6 +85,11 @@ class MachineFile:
         the caller (flags may override them).
     friction_table, structure_table, absorber_table : dict or None
         The ``[friction]``, ``[structure]`` and ``[absorber]`` tables.
+    files : mapping or None
+        Uploaded files by base name (the web app): the only files this one may name
+        (:func:`uploaded_file`); None reads the files it names from disk, relative to ``path``.
+    max_dof : int or None
+        The largest structure accepted (DOF), or None for no limit but the readers'.
     """
 
     path: Path
@@ -87,6 +98,8 @@ class MachineFile:
     structure_table: dict[str, Any] | None = field(default=None)
     absorber_table: dict[str, Any] | None = None
     shown_as: str | None = field(default=None, compare=False)
+    files: Mapping[str, bytes] | None = field(default=None, compare=False, repr=False)
+    max_dof: int | None = field(default=None, compare=False)
 
     @property
     def label(self) -> str:
@@ -104,8 +117,20 @@ class MachineFile:
 
         if self.friction_table is None:
             return PhysicalFriction()
+        source = f"{self.label}: [friction]"
+        columns = None
+        if self.files is not None and "table" in self.friction_table:
+            from stickslip.model.friction_input import friction_csv_columns
+
+            spec = self.friction_table["table"]
+            content = uploaded_file(spec, self.files, f"{source} table")
+            try:
+                text = content.decode("utf-8-sig")
+            except UnicodeDecodeError:
+                raise ValueError(f"{source} table = {spec!r} is not UTF-8 text") from None
+            columns = friction_csv_columns(text, repr(spec))
         return physical_friction_from_config(self.friction_table, base_dir=self.path.parent,
-                                             source=f"{self.label}: [friction]")
+                                             source=source, table_columns=columns)
 
     def absorber(self) -> AbsorberSpec | None:
         """The ``[absorber]`` table, checked (mass in kg; ``attach_dof`` or ``attach``)."""
@@ -141,7 +166,42 @@ class MachineFile:
         """
         return build_structure(self.structure_table or {}, base_dir=self.path.parent,
                                source=f"{self.label}: [structure]", absorber=self.absorber(),
-                               operating_point=(speed, load, mu_s, mu_k))
+                               operating_point=(speed, load, mu_s, mu_k), files=self.files,
+                               max_dof=self.max_dof)
+
+
+#: How many uploaded names a refusal lists.
+_NAMES_LISTED = 8
+
+
+def uploaded_file(spec: object, files: Mapping[str, bytes], source: str) -> bytes:
+    """The bytes of the uploaded file that ``spec`` names: a plain base name among ``files``.
+
+    The sandbox of an uploaded machine file: anything else (an absolute path, ``..``, a
+    subfolder, a name that was not uploaded, not a string) is refused with one line that is
+    the same whether or not such a file exists anywhere: the disk is never looked at.
+
+    Parameters
+    ----------
+    spec : object
+        The value of a file-valued key (``[structure] mass``, ``[friction] table``, ...).
+    files : mapping
+        The uploaded files: base name -> content.
+    source : str
+        How the message names the key (file and key).
+
+    Returns
+    -------
+    bytes
+        The file's content.
+    """
+    if (isinstance(spec, str) and spec in files and spec not in ("", ".", "..")
+            and spec == PurePosixPath(spec).name == PureWindowsPath(spec).name):
+        return files[spec]
+    names = sorted(files)
+    listed = ", ".join(names[:_NAMES_LISTED]) + (", ..." if len(names) > _NAMES_LISTED else "")
+    raise ValueError(f"{source} = {spec!r} is not one of the files uploaded with it: an uploaded "
+                     f"machine file may name only those, by base name (uploaded: {listed})")
 
 
 def _whole(value: object, src: str) -> int:
@@ -160,7 +220,9 @@ def _numbers(value: object, src: str) -> list[float]:
     return out
 
 
-def read_machine_file(path: Path, *, label: str | None = None) -> MachineFile:
+def read_machine_file(path: Path, *, label: str | None = None,
+                      files: Mapping[str, bytes] | None = None,
+                      max_dof: int | None = None) -> MachineFile:
     """Parse the machine TOML file; the structure's files are read by :meth:`structure_matrices`.
 
     Refused with one line: a missing or invalid file, unknown keys, ``[structure]`` together
@@ -172,14 +234,34 @@ def read_machine_file(path: Path, *, label: str | None = None) -> MachineFile:
         The TOML file; the files it names are relative to it.
     label : str, optional
         How messages name the file (default ``--config 'PATH'``).
+    files : mapping, optional
+        Uploaded files, base name -> content (the web app). Then the machine file is
+        ``files[path.name]``, nothing is read from disk, and every file it names must be one
+        of these, by base name (:func:`uploaded_file`).
+    max_dof : int, optional
+        The largest structure accepted (DOF): a larger one is refused before it is reduced.
+        With ``files``: :data:`UPLOAD_MAX_DOF` unless given, and the files may hold
+        :data:`UPLOAD_MAX_MB` in all.
     """
     path = Path(path)
     label = label or f"--config {str(path)!r}"
-    data = read_toml_file(path, label)
+    content = None
+    if files is not None:
+        size = sum(len(data) for data in files.values())
+        if size > UPLOAD_MAX_MB * 1024**2:
+            raise ValueError(f"{label}: the uploaded files hold {size / 1024**2:.1f} MB, beyond "
+                             f"the {UPLOAD_MAX_MB} MB accepted")
+        max_dof = UPLOAD_MAX_DOF if max_dof is None else max_dof
+        content = uploaded_file(path.name, files, f"{label}: the file")
+    data = read_toml_file(path, label, content)
     tables = {name: data.get(name) for name in ("friction", "structure", "absorber")}
     for name, table in tables.items():
         if table is not None and not isinstance(table, dict):
             raise ValueError(f"{label}: {name} = {table!r} must be a table ([{name}])")
+    top_level = sorted(k for k in data if k not in tables and k != "system")
+    if "system" in data and top_level:
+        raise ValueError(f"{label}: {', '.join(top_level)} at the top level and a [system] table "
+                         "both give the quantities; give them in one place (the top level)")
     section = data.get("system", {k: v for k, v in data.items() if k not in tables})
     if not isinstance(section, dict):
         raise ValueError(f"{label}: 'system' must be a table of quantities, not {section!r}")
@@ -195,12 +277,12 @@ def read_machine_file(path: Path, *, label: str | None = None) -> MachineFile:
         raise ValueError(f"{label}: [absorber] needs a [structure] (for the paper's slider, the "
                          "foundation is m_a, k_a, c_a)")
     return MachineFile(path, dict(section), tables["friction"], tables["structure"],
-                       tables["absorber"], shown_as=label)
+                       tables["absorber"], shown_as=label, files=files, max_dof=max_dof)
 
 
 def _modal_table(table: dict[str, Any], source: str) -> tuple[Any, Any, Any]:
     """``(mass, damping, stiffness)`` of a ``[structure]`` table given as ``modes`` (contact first)."""
-    from stickslip.model.machine import modal_structure
+    from stickslip.model.machine import MAX_DIRECT_DOF, modal_structure
 
     extra = sorted(set(table) - {"modes", "name"})
     if extra:
@@ -213,13 +295,22 @@ def _modal_table(table: dict[str, Any], source: str) -> tuple[Any, Any, Any]:
     freqs = [to_si("frequency", f, source=f"{source} modes.frequencies =")
              for f in (modes["frequencies"] if isinstance(modes["frequencies"], list)
                        else [modes["frequencies"]])]
+    if len(freqs) > MAX_DIRECT_DOF:
+        raise ValueError(f"{source}: modes has {len(freqs)} modes; at most {MAX_DIRECT_DOF} are "
+                         "run (modal tables are not reduced): give the modes of the frequency "
+                         "range the contact excites, the lowest first")
     m: Any
     c: Any
     k: Any
     try:
-        m, c, k = modal_structure(freqs, _numbers(modes["damping_ratios"],
-                                                  f"{source} modes.damping_ratios"),
-                                  _numbers(modes["shapes"], f"{source} modes.shapes"))
+        with np.errstate(over="raise", invalid="raise", under="raise"):
+            m, c, k = modal_structure(freqs, _numbers(modes["damping_ratios"],
+                                                      f"{source} modes.damping_ratios"),
+                                      _numbers(modes["shapes"], f"{source} modes.shapes"))
+    except FloatingPointError:
+        raise ValueError(f"{source} modes: frequencies {modes['frequencies']!r} and shapes "
+                         f"{modes['shapes']!r} give matrices beyond the range of floating-point "
+                         "numbers (check their units)") from None
     except ValueError as exc:
         raise ValueError(f"{source} modes: {exc}") from None
     return m, c, k
@@ -257,12 +348,15 @@ def _table_damping(table: dict[str, Any], m: Any, k: Any, c: Any, names: tuple[s
 def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str,
                     absorber: AbsorberSpec | None = None,
                     operating_point: tuple[float, float, float, float] | None = None,
+                    files: Mapping[str, bytes] | None = None, max_dof: int | None = None,
                     ) -> tuple[Any, Any, Any, int, str, Any]:
     """``(mass, damping, stiffness, contact_dof, name, reduction)`` of a ``[structure]`` table.
 
     Matrices in SI, checked by :class:`stickslip.model.machine.Machine` next; ``reduction``
     is the :class:`~stickslip.analysis.reduction.ReducedStructure` when the model was larger
-    than :data:`~stickslip.model.machine.MAX_DIRECT_DOF`, else None.
+    than :data:`~stickslip.model.machine.MAX_DIRECT_DOF`, else None. With ``files`` (uploads
+    by base name) the matrix files are those only (:func:`uploaded_file`); a model above
+    ``max_dof`` DOF is refused.
     """
     import scipy.sparse
 
@@ -288,7 +382,9 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
         raise ValueError(f"{source}: contact_dof is missing (the 0-based DOF the belt rubs)")
     contact = _whole(table["contact_dof"], f"{source} contact_dof")
     mats = {key: read_matrix(table[key], quantity=key, unit=table.get(f"{key}_unit"),
-                             base_dir=base_dir, source=f"{source} {key}")
+                             base_dir=base_dir, source=f"{source} {key}",
+                             content=None if files is None or not isinstance(table[key], str)
+                             else uploaded_file(table[key], files, f"{source} {key}"))
             for key in ("mass", "stiffness", "damping") if key in table}
     if "damping_unit" in table and "damping" not in table:
         raise ValueError(f"{source}: damping_unit is given but no damping matrix")
@@ -297,6 +393,9 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
         if mat.shape[0] != n:
             raise ValueError(f"{source} {key} = {table[key]!r} is {mat.shape[0]}x{mat.shape[0]}, "
                              f"but mass is {n}x{n}")
+    if max_dof is not None and n > max_dof:
+        raise ValueError(f"{source}: the matrices are {n}x{n}, a {n}-DOF model, beyond the "
+                         f"{max_dof} DOF accepted here")
     if contact >= n:
         raise ValueError(f"{source} contact_dof = {contact} is beyond the {n} DOF of the matrices "
                          f"(0 to {n - 1})")
@@ -304,13 +403,19 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
         raise ValueError(f"{source.replace('[structure]', '[absorber]')} attach_dof = "
                          f"{absorber.attach_dof} is beyond the {n} DOF of the structure")
     reduction = None
+    label = {key: f"{source} {key} = {table[key]!r}" if key in table else f"{source} {key}"
+             for key in ("mass", "damping", "stiffness")}
+    names = (label["mass"], label["damping"], label["stiffness"])
     if n > MAX_DIRECT_DOF:
-        from stickslip.analysis.reduction import default_cutoff_hz, reduce_structure
+        from stickslip.analysis.reduction import check_cutoff, default_cutoff_hz, reduce_structure
+        from stickslip.model.structure import check_large_matrices
 
+        check_large_matrices(mats["mass"], mats.get("damping"), mats["stiffness"], names=names)
         kept = [contact] + ([absorber.attach_dof] if absorber is not None
                             and absorber.attach_dof is not None else [])
         if "cutoff" in table:
-            cutoff = to_si("frequency", table["cutoff"], source=f"{source} cutoff =")
+            cutoff = check_cutoff(to_si("frequency", table["cutoff"], source=f"{source} cutoff ="),
+                                  source=f"{source} cutoff = {table['cutoff']!r}")
         elif operating_point is None:
             raise ValueError(f"{source}: a {n}-DOF model needs cutoff (or the operating point)")
         else:
@@ -325,9 +430,6 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
         dense = {key: mat.toarray() if scipy.sparse.issparse(mat) else mat for key, mat in mats.items()}
         m, k = dense["mass"], dense["stiffness"]
         c = dense.get("damping")
-    label = {key: f"{source} {key} = {table[key]!r}" if key in table else f"{source} {key}"
-             for key in ("mass", "damping", "stiffness")}
-    names = (label["mass"], label["damping"], label["stiffness"])
     c = _table_damping(table, m, k, c, names, source)
     try:
         m, c, k = checked_matrices(m, c, k, names=names, limit=None)

@@ -8,6 +8,8 @@ Every problem is one ``ValueError`` line naming the file (or key) and why.
 
 from __future__ import annotations
 
+import contextlib
+import io
 from pathlib import Path
 from typing import Any
 
@@ -25,6 +27,20 @@ MAX_DENSE_ENTRIES = 25_000_000
 #: Largest Matrix Market model read (DOF); beyond, even the sparse reduction is out of reach.
 MAX_SPARSE_DOF = 1_000_000
 
+#: Fewest bytes one entry takes in a Matrix Market file: ``"1 1\n"`` in coordinate format (a
+#: pattern entry; a real one takes 6), ``"1\n"`` in array format. A header that declares more
+#: entries than the file's size can hold is refused before anything is allocated.
+MTX_MIN_ENTRY_BYTES = {"coordinate": 4, "array": 2}
+
+#: Largest ``.csv`` matrix file read, bytes: :data:`MAX_DENSE_ENTRIES` numbers of 32 characters.
+MAX_CSV_BYTES = 32 * MAX_DENSE_ENTRIES
+
+#: The first bytes of a ``.npy`` file, and of what is sometimes saved under that name instead.
+NPY_MAGIC = b"\x93NUMPY"
+_NOT_NPY = {b"PK\x03\x04": "a .npz archive (numpy.savez), not one array; save the matrix with "
+                            "numpy.save",
+            b"\x80": "a Python pickle, not a .npy array; save the matrix with numpy.save"}
+
 
 def unit_factor(quantity: str, unit: object, *, source: str) -> float:
     """SI value of one ``unit`` of ``quantity`` (``"kN/m"`` for a stiffness: 1000.0)."""
@@ -33,56 +49,164 @@ def unit_factor(quantity: str, unit: object, *, source: str) -> float:
     return to_si(quantity, f"1 {unit.strip()}", source=source)
 
 
-def _read_file(path: Path, source: str) -> Any:
+class _Unreadable(ValueError):
+    """Why a file's content is refused, in our words (never quoting the file)."""
+
+
+_KINDS = {".mtx": "Matrix Market", ".npy": "NumPy .npy", ".csv": "CSV"}
+
+
+def _read_file(path: Path, source: str, content: bytes | None = None) -> Any:
+    """The matrix in the file ``path``, or in ``content`` (an uploaded file named ``path``).
+
+    With ``content`` nothing is read from disk, the messages name the file by its base name
+    only, and a parser's own message (which may quote the file) is replaced by ours.
+    """
+    uploaded = content is not None
+    shown = repr(path.name) if uploaded else repr(str(path))
+    if not uploaded:
+        _check_regular_file(path, source)
+    suffix = path.suffix.lower()
+    if suffix not in _KINDS:
+        raise ValueError(f"{source}: {shown} has suffix {suffix!r}; use .mtx, .npy or .csv")
+    try:
+        handle: Any = io.BytesIO(content) if content is not None else path
+        if suffix == ".mtx":
+            return _read_mtx(handle if uploaded else str(path), uploaded)
+        if suffix == ".npy":
+            return _read_npy(handle, uploaded)
+        size = len(content) if content is not None else path.stat().st_size
+        if size > MAX_CSV_BYTES:
+            raise _Unreadable(f"it holds {size} bytes, beyond the {MAX_CSV_BYTES} read from a .csv "
+                              "(use a sparse .mtx for large models)")
+        raw = content if content is not None else path.read_bytes()
+        return _read_csv(raw.decode("utf-8-sig"))
+    except _Unreadable as exc:
+        raise ValueError(f"{source}: {shown} cannot be read: {exc}") from None
+    except UnicodeDecodeError:
+        raise ValueError(f"{source}: {shown} cannot be read: it is not UTF-8 text") from None
+    except (ValueError, OSError, EOFError) as exc:
+        detail = f"it is not a valid {_KINDS[suffix]} file of real numbers" if uploaded else str(exc)
+        raise ValueError(f"{source}: {shown} cannot be read: {detail}") from None
+
+
+def _check_regular_file(path: Path, source: str) -> None:
+    """Refuse a missing path, and anything that is not a regular file (a FIFO, a device, a
+    folder), which could block the reader or never end."""
+    import stat
+
+    try:
+        mode = path.stat().st_mode
+    except FileNotFoundError:
+        raise ValueError(f"{source}: file {str(path)!r} does not exist") from None
+    except OSError as exc:
+        raise ValueError(f"{source}: {str(path)!r} cannot be read: {exc.strerror or exc}") from None
+    if not stat.S_ISREG(mode):
+        raise ValueError(f"{source}: {str(path)!r} is not a regular file (a folder, FIFO or "
+                         "device); name the matrix file itself")
+
+
+def _check_mtx_size(rows: int, entries: int, fmt: str, symmetry: str, size: int) -> None:
+    """Refuse a Matrix Market header that declares more entries than the file can hold."""
+    if fmt == "array":
+        needed = rows * rows if symmetry == "general" else rows * (rows + 1) // 2
+    else:
+        needed = entries
+    most = size // MTX_MIN_ENTRY_BYTES.get(fmt, 2)
+    if needed > most:
+        raise _Unreadable(f"its header declares {needed} entries ({rows}x{rows}), but its "
+                          f"{size} bytes hold at most {most}: the header does not match the data")
+
+
+def _read_mtx(handle: Any, uploaded: bool) -> Any:
     import scipy.io
     import scipy.sparse
 
-    if not path.is_file():
-        raise ValueError(f"{source}: file {str(path)!r} does not exist")
-    suffix = path.suffix.lower()
+    if uploaded:
+        header = handle.readline().decode("ascii", "replace")
+        handle.seek(0)
+    else:
+        with open(handle, "rb") as file:
+            header = file.readline().decode("ascii", "replace")
+    if not header.lower().startswith("%%matrixmarket"):
+        raise _Unreadable("it has no %%MatrixMarket header")
+    if " complex" in header.lower():
+        raise _Unreadable("it holds complex numbers; the matrices must be real")
+    rows, cols, entries, fmt, _field, symmetry = scipy.io.mminfo(handle)
+    if uploaded:
+        size = handle.seek(0, io.SEEK_END)
+        handle.seek(0)
+    else:
+        size = Path(handle).stat().st_size
+    if rows != cols:
+        raise _Unreadable(f"it is {rows}x{cols}, not square")
+    if rows > MAX_SPARSE_DOF:
+        raise _Unreadable(f"it has {rows} DOF, beyond the supported {MAX_SPARSE_DOF}")
+    if fmt == "array" and rows * cols > MAX_DENSE_ENTRIES:
+        raise _Unreadable(f"it is a dense {rows}x{cols} array; store large models sparse "
+                          "(coordinate format)")
+    _check_mtx_size(rows, entries, fmt, symmetry, size)
     try:
-        if suffix == ".mtx":
-            with path.open("rb") as handle:
-                header = handle.readline().decode("ascii", "replace")
-            if not header.lower().startswith("%%matrixmarket"):
-                raise ValueError("it has no %%MatrixMarket header")
-            if " complex" in header.lower():
-                raise ValueError("it holds complex numbers; the matrices must be real")
-            rows, cols, _entries, fmt, _field, _symm = scipy.io.mminfo(str(path))
-            if rows != cols:
-                raise ValueError(f"it is {rows}x{cols}, not square")
-            if rows > MAX_SPARSE_DOF:
-                raise ValueError(f"it has {rows} DOF, beyond the supported {MAX_SPARSE_DOF}")
-            if fmt == "array" and rows * cols > MAX_DENSE_ENTRIES:
-                raise ValueError(f"it is a dense {rows}x{cols} array; store large models sparse "
-                                 "(coordinate format)")
-            data = scipy.io.mmread(str(path))
-            if scipy.sparse.issparse(data):
-                return scipy.sparse.csr_matrix(data, dtype=np.float64)
-            return np.asarray(data, dtype=np.float64)
-        if suffix == ".npy":
-            data = np.load(path, allow_pickle=False, mmap_mode="r")
-            if data.size > MAX_DENSE_ENTRIES:
-                raise ValueError(f"it holds {data.size} entries, beyond {MAX_DENSE_ENTRIES} (use a "
-                                 "sparse .mtx for large models)")
-            if not np.issubdtype(data.dtype, np.number) or np.issubdtype(data.dtype, np.complexfloating):
-                raise ValueError(f"it holds {data.dtype} values, not real numbers")
-            return np.array(data, dtype=np.float64)
-        if suffix == ".csv":
-            text = path.read_text(encoding="utf-8-sig")
-            delimiter = ";" if ";" in text and "," not in text else ","
-            rows_out = [[float(x) for x in line.split(delimiter)]
-                        for line in text.splitlines() if line.strip()]
-            return np.array(rows_out, dtype=np.float64)
-    except ValueError as exc:
-        raise ValueError(f"{source}: {str(path)!r} cannot be read: {exc}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ValueError(f"{source}: {str(path)!r} cannot be read: {exc}") from None
-    raise ValueError(f"{source}: {str(path)!r} has suffix {suffix!r}; use .mtx, .npy or .csv")
+        data = scipy.io.mmread(handle)
+    except (RuntimeError, OverflowError, MemoryError) as exc:
+        raise _Unreadable(f"its entries do not match its header ({exc})") from None
+    if scipy.sparse.issparse(data):
+        return scipy.sparse.csr_matrix(data, dtype=np.float64)
+    return np.asarray(data, dtype=np.float64)
+
+
+def _read_npy(handle: Any, uploaded: bool) -> Any:
+    """One array from a ``.npy`` file; its magic and header are checked before it is loaded
+    (an empty file, a ``.npz`` archive or a pickle under that name, an object array, a size
+    beyond :data:`MAX_DENSE_ENTRIES`)."""
+    with open(handle, "rb") if not uploaded else contextlib.nullcontext(handle) as file:
+        magic = file.read(len(NPY_MAGIC))
+        if not magic:
+            raise _Unreadable("it is empty (0 bytes)")
+        if magic != NPY_MAGIC:
+            kind = next((why for start, why in _NOT_NPY.items() if magic.startswith(start)),
+                        "not a NumPy .npy file (it does not start as numpy.save writes one)")
+            raise _Unreadable(f"it is {kind}")
+        file.seek(0)
+        version = np.lib.format.read_magic(file)
+        shape, _order, dtype = (np.lib.format.read_array_header_1_0(file) if version == (1, 0)
+                                else np.lib.format.read_array_header_2_0(file))
+        if dtype.hasobject:
+            raise _Unreadable("it holds Python objects (pickled data), which are never loaded")
+        entries = int(np.prod(shape, dtype=np.float64))
+        if entries > MAX_DENSE_ENTRIES:
+            raise _Unreadable(f"it holds {entries} entries, beyond {MAX_DENSE_ENTRIES} (use a "
+                              "sparse .mtx for large models)")
+        file.seek(0)
+    data = np.load(handle, allow_pickle=False, mmap_mode=None if uploaded else "r")
+    if not np.issubdtype(data.dtype, np.number) or np.issubdtype(data.dtype, np.complexfloating):
+        raise _Unreadable(f"it holds {data.dtype} values, not real numbers")
+    return np.array(data, dtype=np.float64)
+
+
+def _read_csv(text: str) -> Any:
+    """Rows of numbers, comma or semicolon separated; a bad entry is named by row and column."""
+    delimiter = ";" if ";" in text and "," not in text else ","
+    rows_out = []
+    for row, line in enumerate(text.splitlines(), start=1):
+        if not line.strip():
+            continue
+        values = []
+        for column, item in enumerate(line.split(delimiter), start=1):
+            try:
+                values.append(float(item))
+            except ValueError:
+                raise _Unreadable(f"row {row}, column {column} is not a number") from None
+        rows_out.append(values)
+    try:
+        return np.array(rows_out, dtype=np.float64)
+    except ValueError:
+        raise _Unreadable("its rows have different numbers of columns") from None
 
 
 def read_matrix(spec: object, *, quantity: str, unit: object = None,
-                base_dir: Path | None = None, source: str = "matrix") -> Any:
+                base_dir: Path | None = None, source: str = "matrix",
+                content: bytes | None = None) -> Any:
     """One structure matrix in SI units: a dense array, or a ``scipy.sparse`` CSR matrix.
 
     Parameters
@@ -96,6 +220,9 @@ def read_matrix(spec: object, *, quantity: str, unit: object = None,
         The unit of the entries (``"kg"``, ``"kN/m"``, ``"N*s/m"``); SI when None.
     source : str
         How the message names the value (file and key).
+    content : bytes, optional
+        The bytes of the file ``spec`` names (an uploaded file, checked by the caller): then
+        nothing is read from disk and messages never quote the file or a server path.
 
     Returns
     -------
@@ -108,12 +235,14 @@ def read_matrix(spec: object, *, quantity: str, unit: object = None,
     factor = 1.0 if unit is None else unit_factor(quantity, unit, source=f"{source}_unit")
     if isinstance(spec, str):
         path = Path(spec)
-        if base_dir is not None and not path.is_absolute():
+        if content is None and base_dir is not None and not path.is_absolute():
             path = base_dir / path
-        data = _read_file(path, f"{source} = {spec!r}")
+        data = _read_file(path, f"{source} = {spec!r}", content)
         where = f"{source} = {spec!r}"
     elif isinstance(spec, list):
         where = f"{source} (inline)"
+        if _has_boolean(spec):
+            raise ValueError(f"{where} has true/false entries; the matrix entries must be numbers")
         try:
             data = np.array(spec, dtype=np.float64)
         except (TypeError, ValueError):
@@ -127,3 +256,8 @@ def read_matrix(spec: object, *, quantity: str, unit: object = None,
     if not np.all(np.isfinite(values)):
         raise ValueError(f"{where} has NaN or infinite entries")
     return data * factor if factor != 1.0 else data
+
+
+def _has_boolean(rows: list[Any]) -> bool:
+    """True when a TOML array of rows holds a boolean (which numpy would read as 0 or 1)."""
+    return any(isinstance(x, bool) or (isinstance(x, list) and _has_boolean(x)) for x in rows)

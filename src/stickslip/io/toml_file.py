@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Any
 
 
-def read_toml_file(path: str | Path, label: str) -> dict[str, Any]:
+def read_toml_file(path: str | Path, label: str, content: bytes | None = None) -> dict[str, Any]:
     """The tables of the TOML file ``path``, or one ``ValueError`` line naming ``label`` and why.
 
     Parameters
@@ -16,6 +16,8 @@ def read_toml_file(path: str | Path, label: str) -> dict[str, Any]:
         The file (UTF-8, with or without a byte-order mark).
     label : str
         How messages name the file, e.g. ``--config 'machine.toml'``.
+    content : bytes, optional
+        The file's bytes (an uploaded file): then nothing is read from disk.
 
     Returns
     -------
@@ -23,6 +25,8 @@ def read_toml_file(path: str | Path, label: str) -> dict[str, Any]:
         The parsed document.
     """
     try:
+        if content is not None:
+            return tomllib.loads(content.decode("utf-8-sig"))
         return tomllib.loads(Path(path).read_text(encoding="utf-8-sig"))
     except FileNotFoundError:
         raise ValueError(f"{label} does not exist") from None

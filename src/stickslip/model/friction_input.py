@@ -85,7 +85,8 @@ def _friction_csv(text: str, p: str) -> tuple[str, list[float], list[float]]:
         raise ValueError(f"friction table {p} needs a header row and at least one data row")
     header = [h.strip().lower() for h in rows[0]]
     if "v" not in header or ("mu" not in header and "f" not in header):
-        raise ValueError(f"friction table {p} needs columns v and mu (or v and f), got {', '.join(header)}")
+        raise ValueError(f"friction table {p} needs columns v and mu (or v and f), got "
+                         f"{len(header)} columns with other names")
     second = "mu" if "mu" in header else "f"
     iv = header.index("v")
     iy = header.index(second)
@@ -101,8 +102,9 @@ def _friction_csv(text: str, p: str) -> tuple[str, list[float], list[float]]:
             v.append(number(row[iv]))
             y.append(number(row[iy]))
         except (IndexError, ValueError):
-            raise ValueError(f"friction table {p}, line {k}: not two numbers: "
-                             f"{delimiter.join(row)}") from None
+            # the line itself is not quoted: the message never shows a file's content
+            raise ValueError(f"friction table {p}, line {k}: not two numbers in columns "
+                             f"{header[iv]} and {second}") from None
     return second, v, y
 
 

@@ -369,7 +369,9 @@ def foundation_to_physical(foundation: Foundation, m: float, k: float) -> Physic
 
 
 def physical_friction_from_config(table: Mapping[str, Any], *, base_dir: Path | None = None,
-                                  source: str = "[friction]") -> PhysicalFriction:
+                                  source: str = "[friction]",
+                                  table_columns: tuple[list[float], list[float]] | None = None,
+                                  ) -> PhysicalFriction:
     """The ``[friction]`` table of a TOML configuration (DESIGN.md section 8) in SI units.
 
     Keys: ``law`` (coulomb | linear | table | stribeck), ``slope`` (linear, s/m), ``mu_0``,
@@ -385,6 +387,9 @@ def physical_friction_from_config(table: Mapping[str, Any], *, base_dir: Path | 
         Directory against which a relative ``table`` path is read.
     source : str
         Its name in error messages.
+    table_columns : tuple of list of float, optional
+        The ``v`` [m/s] and ``mu`` columns of the file ``table`` names, already read by the
+        caller (an uploaded file): then nothing is read from disk.
 
     Returns
     -------
@@ -394,8 +399,8 @@ def physical_friction_from_config(table: Mapping[str, Any], *, base_dir: Path | 
     from stickslip.model.friction_input import read_friction_csv_columns
     from stickslip.model.inputs import friction_fields
 
-    columns = None
-    if isinstance(table, Mapping) and "table" in table:
+    columns = table_columns
+    if columns is None and isinstance(table, Mapping) and "table" in table:
         path = table["table"]
         if not isinstance(path, str):
             raise ValueError(f"{source}: table = {path!r} must be the path of a CSV file")
