@@ -2,8 +2,10 @@
 
 One search serves every caller: the boundary curves of :func:`stickslip.sweep.stick_slip_boundary`
 (all brackets of all ``zeta`` bisected together, one parallel batch per round), the onset of
-one structure (:func:`lowest_onset`, used by the design procedure, the stick-slip tuning and
-the reproduction) and anything built on them. The rules, stated once:
+one structure (:func:`find_onset` and :func:`lowest_onset`, used by the design procedure, the
+stick-slip tuning and the reproduction; :func:`speed_and_load_onsets` for a machine's own
+friction law, whose dimensionless form moves with the belt speed or the load) and anything
+built on them. The rules, stated once:
 
 * a bracket ``(lo, hi)`` has certified verdicts of different kinds at its ends;
 * the midpoint is geometric, ``sqrt(lo hi)`` (``lambda`` spans decades);
@@ -18,6 +20,7 @@ from __future__ import annotations
 import itertools
 import math
 import warnings
+from collections import Counter
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -25,10 +28,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.simulation import EngineOptions, simulate
+from stickslip.analysis.simulation import EngineOptions, SimulationResult, simulate
 from stickslip.analysis.verdict import RunStatus, Verdict
 from stickslip.model._validate import positive
 from stickslip.model.parameters import Slider
+from stickslip.model.physical import PhysicalSystem
 from stickslip.model.structure import Structure
 
 FloatArray = NDArray[np.float64]
@@ -162,8 +166,44 @@ def bisect_crossings(
     return crossings, n_runs
 
 
+#: ``slider_at(lam)``: the contact at ``lambda = lam`` (its friction law may change with it).
+SliderAt = Callable[[float], Slider]
+#: ``on_run(lam, result)``: called after every run of a search (progress, undetermined runs).
+RunHook = Callable[[float, SimulationResult], None]
+
+
+def run_code(structure: Structure, slider: Slider, options: EngineOptions,
+             on_run: RunHook | None = None) -> int:
+    """Certified verdict code of one run of ``slider`` from the startup state.
+
+    Raises ``ValueError`` on a spent step budget (a structure the engine cannot step through).
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless mass, damping and stiffness matrices.
+    slider : Slider
+        ``lambda``, ``gamma`` and the dimensionless friction law.
+    options : EngineOptions
+        Horizon, event budget and cycle tolerance.
+    on_run : callable, optional
+        ``on_run(slider.lam, result)`` after the run.
+
+    Returns
+    -------
+    int
+        :attr:`Verdict.code` of the run.
+    """
+    result = simulate(structure, slider, options=options, record=False)
+    if on_run is not None:
+        on_run(slider.lam, result)
+    if result.status is RunStatus.MAX_STEPS:
+        raise ValueError(f"lambda={slider.lam:g}: {result.status.message}")
+    return result.verdict.code
+
+
 def verdict_code(structure: Structure, lam: float, gamma: float, options: EngineOptions) -> int:
-    """Certified verdict code of one run from the startup state (raises on a spent step budget).
+    """Certified verdict code of one Coulomb run from the startup state (raises on a spent step budget).
 
     Parameters
     ----------
@@ -181,10 +221,229 @@ def verdict_code(structure: Structure, lam: float, gamma: float, options: Engine
     int
         :attr:`Verdict.code` of the run.
     """
-    result = simulate(structure, Slider(lam, gamma=gamma), options=options, record=False)
-    if result.status is RunStatus.MAX_STEPS:
-        raise ValueError(f"lambda={lam:g}: {result.status.message}")
-    return result.verdict.code
+    return run_code(structure, Slider(lam, gamma=gamma), options)
+
+
+@dataclass(frozen=True)
+class Onset:
+    """Result of :func:`find_onset`: the smallest ``lambda`` with a stick-slip verdict.
+
+    Attributes
+    ----------
+    lam : float
+        The onset (dimensionless): ``lam_min`` when the first scan point already stick-slips
+        (the true onset is at most that), ``inf`` when nothing up to ``lam_max`` does.
+    lam_min, lam_max : float
+        The range searched.
+    converged : bool
+        False when a bisection run ended undetermined (the onset is then only bracketed).
+    n_runs : int
+        Simulations made.
+    n_undetermined : int
+        Runs that ended undetermined (horizon, event budget, unproven cycle): scan points
+        counted as not stick-slip, or the bisection run that stopped the search.
+    bracket : tuple of float
+        ``(lam_below, lam_above)``: the last scan step or the final bisection bracket, between
+        a run that did not stick-slip and one that did (``(lam_min, lam_min)`` or
+        ``(lam_max, inf)`` at the ends of the range).
+    undetermined_by : tuple of (str, int)
+        The undetermined runs by run status (:attr:`RunStatus.label`, count): why they are.
+    """
+
+    lam: float
+    lam_min: float
+    lam_max: float
+    converged: bool
+    n_runs: int
+    n_undetermined: int = 0
+    bracket: tuple[float, float] = (math.nan, math.nan)
+    undetermined_by: tuple[tuple[str, int], ...] = ()
+
+    @property
+    def at_lower_bound(self) -> bool:
+        """Stick-slip already at ``lam_min``: the onset is ``<= lam_min``, not ``lam_min``."""
+        return self.lam <= self.lam_min
+
+    @property
+    def above_range(self) -> bool:
+        """No stick-slip anywhere up to ``lam_max``: the onset is above it (or does not exist)."""
+        return math.isinf(self.lam)
+
+
+def find_onset(
+    structure: Structure,
+    *,
+    gamma: float = 2.0,
+    slider_at: SliderAt | None = None,
+    lam_min: float = 0.05,
+    lam_max: float = 200.0,
+    growth: float = 1.25,
+    rtol: float = 1e-6,
+    options: EngineOptions | None = None,
+    on_run: RunHook | None = None,
+) -> Onset:
+    """Smallest ``lambda`` with a stick-slip verdict from the startup state, and how it was found.
+
+    The scan multiplies ``lambda`` by ``growth`` from ``lam_min`` until the first stick-slip
+    verdict (undetermined scan points and other verdicts count as not stick-slip), then
+    :func:`bisect_crossings` bisects the last step on "stick-slip or not". A stick-slip island
+    narrower than one scan step can be stepped over; for every verdict change, use
+    :func:`stickslip.sweep.stick_slip_boundary`.
+
+    Parameters
+    ----------
+    structure : Structure
+        The slider on its structure (rigid base, foundation or chain).
+    gamma : float
+        ``mu_k / (mu_s - mu_k)``, dimensionless (the Coulomb contact, without ``slider_at``).
+    slider_at : callable, optional
+        ``slider_at(lam)``: the contact at ``lambda = lam``, for a friction law whose
+        dimensionless form moves with ``lambda`` (a Stribeck law's ``v_s / V`` when the belt
+        speed ``V`` sets ``lambda``). Default: the paper's Coulomb law, ``Slider(lam, gamma)``.
+    lam_min, lam_max : float
+        Scan range, dimensionless.
+    growth : float
+        Ratio of consecutive scan points, > 1.
+    rtol : float
+        Relative width of the final bracket.
+    options : EngineOptions, optional
+        Engine limits of every run.
+    on_run : callable, optional
+        ``on_run(lam, result)`` after every run (progress; the status of undetermined runs).
+
+    Returns
+    -------
+    Onset
+        The onset, the range searched, whether the bisection converged and the number of runs.
+    """
+    lam_min = positive("lam_min", lam_min)
+    if growth <= 1.0:
+        raise ValueError(f"growth={growth!r} must exceed 1")
+    opts = options or EngineOptions()
+    contact = slider_at or (lambda lam: Slider(lam, gamma=gamma))
+    n_runs = n_undetermined = 0
+    why: Counter[str] = Counter()
+
+    def watch(lam: float, result: SimulationResult) -> None:
+        if result.verdict is Verdict.UNDETERMINED:
+            why[result.status.label] += 1
+        if on_run is not None:
+            on_run(lam, result)
+
+    def stick_slips(lam: float) -> int:
+        nonlocal n_runs, n_undetermined
+        n_runs += 1
+        code = run_code(structure, contact(lam), opts, watch)
+        if code == Verdict.UNDETERMINED.code:
+            n_undetermined += 1
+        if code in (Verdict.STICK_SLIP.code, Verdict.UNDETERMINED.code):
+            return code
+        return Verdict.STEADY_SLIDING.code  # "not stick-slip": a slip oscillation counts as steady here
+
+    def done(lam: float, converged: bool, bracket: tuple[float, float]) -> Onset:
+        return Onset(lam, lam_min, lam_max, converged, n_runs, n_undetermined, bracket,
+                     tuple(sorted(why.items())))
+
+    def classify(_group: IntArray, lams: FloatArray) -> CodeArray:
+        return np.array([stick_slips(float(lam)) for lam in lams], dtype=np.int8)
+
+    lo = lam_min
+    if stick_slips(lo) == Verdict.STICK_SLIP.code:
+        return done(lo, True, (lo, lo))
+    hi = lo * growth
+    while stick_slips(hi) != Verdict.STICK_SLIP.code:
+        if hi >= lam_max:
+            return done(math.inf, True, (hi, math.inf))
+        lo, hi = hi, min(hi * growth, lam_max)
+    [(_, crossing)], _ = bisect_crossings(classify, [(0, lo, hi, Verdict.STEADY_SLIDING.code)], rtol)
+    return done(crossing.lam, crossing.converged, (crossing.lam_below, crossing.lam_above))
+
+
+@dataclass(frozen=True)
+class SpeedLoadOnsets:
+    """The onset of stick-slip of one structure along the belt speed and along the normal load.
+
+    ``lambda = (mu_s - mu_k) W / (V sqrt(m k))`` moves with ``V`` and with ``W``; a friction
+    law's dimensionless form moves with one of them too (a Stribeck law's ``v_s / V`` and
+    ``sigma_v W / (2 sqrt(m k))``, a linear law's ``sigma W / (2 sqrt(m k))``, a table's
+    ``v_i / V``), so the two onsets differ except under the paper's Coulomb law.
+
+    Attributes
+    ----------
+    speed : Onset
+        ``lambda`` moved by the belt speed at the operating load: stick-slip below
+        ``V_c = (mu_s - mu_k) W / (lambda_c sqrt(m k))``.
+    load : Onset
+        ``lambda`` moved by the normal load at the operating speed: stick-slip above
+        ``W_c = lambda_c V sqrt(m k) / (mu_s - mu_k)``.
+    own_law : bool
+        True when the searches ran with a law other than the paper's Coulomb law.
+    """
+
+    speed: Onset
+    load: Onset
+    own_law: bool
+
+
+def speed_and_load_onsets(
+    structure: Structure,
+    system: PhysicalSystem,
+    *,
+    lam_min: float = 0.05,
+    lam_max: float = 200.0,
+    rtol: float = 1e-6,
+    options: EngineOptions | None = None,
+    on_run: Callable[[str, float, SimulationResult], None] | None = None,
+) -> SpeedLoadOnsets:
+    """Onsets of stick-slip along ``V`` and along ``W`` with the machine's own friction law.
+
+    Each is :func:`find_onset` with the contact rebuilt at every ``lambda`` from the SI law
+    (:meth:`~stickslip.model.physical.PhysicalFriction.dimensionless`) at the belt speed
+    ``V(lambda)`` (operating load) or the load ``W(lambda)`` (operating speed). Under the
+    paper's Coulomb law both are one search, the Coulomb :func:`find_onset`.
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless structure of the machine (scaled by ``system``'s ``m`` and ``k``).
+    system : PhysicalSystem
+        The contact in SI: ``m``, ``k`` of the scaling, ``mu_s``, ``mu_k``, operating ``W``
+        and ``V``, friction law (a machine's :meth:`~stickslip.model.machine.Machine.reference_system`).
+    lam_min, lam_max, rtol : float
+        Scan range and relative bracket width of each search, dimensionless.
+    options : EngineOptions, optional
+        Engine limits of every run.
+    on_run : callable, optional
+        ``on_run(axis, lam, result)`` after every run, ``axis`` ``"speed"`` or ``"load"``
+        (``"speed"`` for the single Coulomb search).
+
+    Returns
+    -------
+    SpeedLoadOnsets
+    """
+    gamma = system.mu_k / (system.mu_s - system.mu_k)
+
+    def search(axis: str, slider_at: SliderAt | None) -> Onset:
+        hook = None if on_run is None else (lambda lam, result: on_run(axis, lam, result))
+        return find_onset(structure, gamma=gamma, slider_at=slider_at, lam_min=lam_min,
+                          lam_max=lam_max, rtol=rtol, options=options, on_run=hook)
+
+    if system.friction.law == "coulomb":
+        onset = search("speed", None)
+        return SpeedLoadOnsets(onset, onset, own_law=False)
+    law, m, k = system.friction, system.mass, system.stiffness
+
+    def at_speed(lam: float) -> Slider:
+        speed = system.speed_for_lambda(lam)
+        return Slider(lam, gamma=gamma,
+                      friction=law.dimensionless(m, k, system.mu_s, system.mu_k, system.load, speed))
+
+    def at_load(lam: float) -> Slider:
+        load = system.load_for_lambda(lam)
+        return Slider(lam, gamma=gamma,
+                      friction=law.dimensionless(m, k, system.mu_s, system.mu_k, load, system.speed))
+
+    return SpeedLoadOnsets(search("speed", at_speed), search("load", at_load), own_law=True)
 
 
 def lowest_onset(
@@ -199,12 +458,9 @@ def lowest_onset(
 ) -> float:
     """Smallest ``lambda`` with a stick-slip verdict from the startup state (dimensionless).
 
-    The design value: below it the system slides steadily. The scan multiplies ``lambda`` by
-    ``growth`` from ``lam_min`` until the first stick-slip verdict (undetermined scan points
-    count as not stick-slip), then :func:`bisect_crossings` bisects the last step. Returns
-    ``lam_min`` if it already stick-slips and ``inf`` if nothing up to ``lam_max`` does. A
-    stick-slip island narrower than one scan step can be stepped over; for every verdict
-    change, use :func:`stickslip.sweep.stick_slip_boundary`.
+    The design value: below it the system slides steadily. :func:`find_onset` with the paper's
+    Coulomb law; its ``lam`` alone. Returns ``lam_min`` if it already stick-slips and ``inf``
+    if nothing up to ``lam_max`` does.
 
     Parameters
     ----------
@@ -227,22 +483,5 @@ def lowest_onset(
         The onset, dimensionless: ``lam_min`` if that already stick-slips, ``inf`` if nothing up
         to ``lam_max`` does.
     """
-    lam_min = positive("lam_min", lam_min)
-    if growth <= 1.0:
-        raise ValueError(f"growth={growth!r} must exceed 1")
-    opts = options or EngineOptions()
-
-    def classify(_group: IntArray, lams: FloatArray) -> CodeArray:
-        return np.array([verdict_code(structure, float(lam), gamma, opts) for lam in lams],
-                        dtype=np.int8)
-
-    lo = lam_min
-    if verdict_code(structure, lo, gamma, opts) == Verdict.STICK_SLIP.code:
-        return lo
-    hi = lo * growth
-    while verdict_code(structure, hi, gamma, opts) != Verdict.STICK_SLIP.code:
-        if hi >= lam_max:
-            return math.inf
-        lo, hi = hi, min(hi * growth, lam_max)
-    [(_, crossing)], _ = bisect_crossings(classify, [(0, lo, hi, Verdict.STEADY_SLIDING.code)], rtol)
-    return crossing.lam
+    return find_onset(structure, gamma=gamma, lam_min=lam_min, lam_max=lam_max, growth=growth,
+                      rtol=rtol, options=options).lam

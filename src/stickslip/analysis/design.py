@@ -7,16 +7,23 @@ which belt speed and above which normal load stick-slip starts, by the paper's c
 
 ``lambda = (mu_s - mu_k) W / (V sqrt(m k))`` grows with the load and falls with the speed,
 so stick-slip (``lambda`` above its critical value) happens for ``V < V_c`` and ``W > W_c``.
+
+The closed forms are the paper's, for its Coulomb law (``mu = mu_k`` while sliding). The
+simulated critical speed and load are those of the machine's own friction law: a law whose
+dimensionless form moves with ``V`` or ``W`` (Stribeck, linear, table) has its own onset along
+each, found by the exact boundary search of
+:func:`stickslip.analysis.critical.speed_and_load_onsets`.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
 from typing import Any
 
-from stickslip.analysis.critical import lowest_onset
-from stickslip.analysis.simulation import simulate
+from stickslip.analysis.critical import Onset, SpeedLoadOnsets, speed_and_load_onsets
+from stickslip.analysis.simulation import EngineOptions, simulate
 from stickslip.analysis.theory import (
     FITTED_ZETA_RANGE,
     MAX_DESIGN_ZETA,
@@ -25,7 +32,7 @@ from stickslip.analysis.theory import (
     equivalent_damping_fit,
     optimal_foundation_fit,
 )
-from stickslip.analysis.verdict import Verdict
+from stickslip.analysis.verdict import RunStatus, Verdict
 from stickslip.model._validate import positive
 from stickslip.model.friction import CoulombFriction
 from stickslip.model.parameters import Foundation
@@ -37,20 +44,51 @@ from stickslip.model.physical import (
 )
 from stickslip.model.structure import Structure, elastic_foundation, rigid_base
 
+#: Friction law of the closed-form rows (Eqs. 36, 37, 39): the paper's.
+COULOMB_LAW = "coulomb (the paper's law, mu = mu_k while sliding)"
+
+#: ``progress(stage, runs)``: the design procedure's current stage and the simulations it has
+#: made so far (called when a stage starts, with 0, and after every run).
+DesignProgress = Callable[[str, int], None]
+
 
 @dataclass(frozen=True)
 class CriticalValues:
-    """Critical ``lambda`` and what it means for the machine (SI units)."""
+    """Critical ``lambda`` and what it means for the machine (SI units).
+
+    Attributes
+    ----------
+    lam : float
+        Critical ``lambda`` at the critical speed (dimensionless); NaN when a search ended at
+        a bound of its range (``note`` says which).
+    speed : float
+        m/s: stick-slip below this belt speed (at the operating load); ``inf``: at every speed.
+    load : float
+        N: stick-slip above this normal load (at the operating speed); ``0``: at every load.
+    lam_load : float or None
+        Critical ``lambda`` at the critical load, when it differs from ``lam`` (a friction law
+        whose dimensionless form moves with ``V`` or ``W``).
+    law : str
+        The friction law of these values (:data:`COULOMB_LAW` for the paper's procedure).
+    note : str
+        What the numbers are when they are not a converged crossing (a bound of the search,
+        undetermined runs, the exact limit at ``zeta = 0``); empty otherwise.
+    """
 
     lam: float
-    speed: float  # m/s: stick-slip below this belt speed
-    load: float  # N: stick-slip above this normal load
+    speed: float
+    load: float
+    lam_load: float | None = None
+    law: str = COULOMB_LAW
+    note: str = ""
 
-    def to_dict(self) -> dict[str, float | None]:
-        def num(x: float) -> float | None:
-            return x if math.isfinite(x) else None
+    def to_dict(self) -> dict[str, float | str | None]:
+        def num(x: float | None) -> float | None:
+            return x if x is not None and math.isfinite(x) else None
 
-        return {"lambda": num(self.lam), "speed": num(self.speed), "load": num(self.load)}
+        return {"lambda": num(self.lam), "speed": num(self.speed), "load": num(self.load),
+                "lambda_load": num(self.lam if self.lam_load is None else self.lam_load),
+                "law": self.law, "note": self.note or None}
 
 
 @dataclass(frozen=True)
@@ -59,7 +97,10 @@ class DesignReport:
 
     ``critical`` maps ``rigid_theory`` (Eq. 39), ``rigid_exact`` (Eq. 36),
     ``rigid_simulation``, ``foundation_theory`` (Eq. 37 with ``zeta_eq``) and
-    ``foundation_simulation`` to :class:`CriticalValues`.
+    ``foundation_simulation`` to :class:`CriticalValues`. The theory and exact rows are the
+    paper's Coulomb procedure; the simulation rows use the machine's friction law.
+    ``status`` maps ``rigid`` and ``foundation`` to the run status of the verdict at the
+    operating point (why a verdict is undetermined: horizon, event or step budget).
     """
 
     system: PhysicalSystem
@@ -78,13 +119,17 @@ class DesignReport:
     stick_slip_optimum: dict[str, Any] | None = None
     stability: dict[str, Any] | None = None
     stability_optimum: dict[str, Any] | None = None
+    status: dict[str, RunStatus] | None = None
+    options: EngineOptions = field(default_factory=EngineOptions)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON keys of the ``design`` command (issue 6)."""
         crit = self.critical
 
-        def pick(attr: str) -> dict[str, float | None]:
+        def pick(attr: str) -> dict[str, Any]:
             return {k: v.to_dict()[attr] for k, v in crit.items()}
+
+        status = self.status or {}
 
         f = self.foundation
         r = self.recommended
@@ -99,6 +144,11 @@ class DesignReport:
             "critical_lambda": pick("lambda"),
             "critical_speed": pick("speed"),
             "critical_load": pick("load"),
+            "critical_lambda_load": pick("lambda_load"),
+            "critical_law": pick("law"),
+            "critical_note": pick("note"),
+            "verdict_status": {k: {"status": v.label, "message": v.message} for k, v in status.items()},
+            "t_max": self.options.t_max,
             "foundation": {
                 "m_a": f.m_a, "k_a": f.k_a, "c_a": f.c_a,
                 "M": dimensionless.mass_ratio, "K": dimensionless.stiffness_ratio,
@@ -132,6 +182,7 @@ class DesignReport:
 
 
 def _critical(system: PhysicalSystem, lam: float) -> CriticalValues:
+    """The speed and load of a closed-form critical ``lambda`` (Coulomb law)."""
     if not math.isfinite(lam) or lam <= 0.0:
         return CriticalValues(lam, math.inf if lam <= 0 else 0.0,
                               0.0 if lam <= 0 else math.inf)
@@ -142,9 +193,84 @@ def _label(stick_slip: bool) -> str:
     return Verdict.STICK_SLIP.value if stick_slip else Verdict.STEADY_SLIDING.value
 
 
+def _onset_note(onset: Onset, what: str, si_at: Callable[[float], float], unit: str,
+                ends: tuple[str, str], count_runs: bool = True) -> str:
+    """What a search that did not end in a converged crossing found, in the machine's units.
+
+    ``ends``: the ends of the range along this axis, least and most prone to stick-slip
+    (``("fastest", "slowest")`` for the speed, ``("lightest", "heaviest")`` for the load).
+    """
+    parts = []
+    if onset.at_lower_bound:
+        parts.append(f"stick-slip already at the {ends[0]} {what} searched, {si_at(onset.lam_min):.4g} "
+                     f"{unit} (lambda = {onset.lam_min:g}, the search's lower bound): the critical "
+                     f"{what} lies beyond it, not found")
+    elif onset.above_range:
+        parts.append(f"no run certified stick-slip, as far as the {ends[1]} {what}, "
+                     f"{si_at(onset.lam_max):.4g} {unit} (lambda = {onset.lam_max:g}, the search's "
+                     "upper bound): no critical value inside it")
+    elif not onset.converged:
+        a, b = sorted(si_at(x) for x in onset.bracket)
+        parts.append(f"an undetermined run stopped the bisection: the critical {what} lies between "
+                     f"{a:.4g} and {b:.4g} {unit}")
+    if onset.n_undetermined and count_runs:
+        messages = {status.label: status.message.split(";")[0] for status in RunStatus}
+        why = ", ".join(f"{n}: {messages[label]}" for label, n in onset.undetermined_by)
+        parts.append(f"{onset.n_undetermined} of {onset.n_runs} runs undetermined ({why}), counted "
+                     "as not stick-slip: a larger t_max may decide them")
+    return "; ".join(parts)
+
+
+def _searched(system: PhysicalSystem, onsets: SpeedLoadOnsets, exact_limit: float | None) -> CriticalValues:
+    """Critical values of the onset searches along the speed and the load, with their notes.
+
+    ``exact_limit``: the closed-form critical ``lambda`` when it is known to be 0 (the
+    undamped rigid base, Eq. 36): a search that finds stick-slip at its lower bound then
+    reports that limit (every speed, every load) instead of the bound.
+    """
+    law = system.slider().friction.describe() if onsets.own_law else COULOMB_LAW
+    speed_on, load_on = onsets.speed, onsets.load
+    if exact_limit == 0.0 and speed_on.at_lower_bound and load_on.at_lower_bound:
+        return CriticalValues(
+            0.0, math.inf, 0.0, law=law,
+            note=(f"zeta = 0, undamped: the exact limit lambda_c = 0 of Eq. (36); the simulation "
+                  f"agrees, stick-slip at lambda = {speed_on.lam_min:g}, the lowest searched"))
+
+    def value(onset: Onset, si_at: Callable[[float], float]) -> tuple[float, float]:
+        if onset.at_lower_bound or onset.above_range:
+            return math.nan, math.nan
+        return onset.lam, si_at(onset.lam)
+
+    lam, speed = value(speed_on, system.speed_for_lambda)
+    lam_load, load = value(load_on, system.load_for_lambda)
+    notes = [f"{axis}: {text}" for axis, text in (
+        ("speed", _onset_note(speed_on, "belt speed", system.speed_for_lambda, "m/s",
+                              ("fastest", "slowest"))),
+        ("load", _onset_note(load_on, "normal load", system.load_for_lambda, "N",
+                             ("lightest", "heaviest"), count_runs=onsets.own_law)),
+    ) if text]
+    return CriticalValues(lam, speed, load, lam_load if onsets.own_law else None, law, "; ".join(notes))
+
+
+def _status_warning(where: str, status: RunStatus, options: EngineOptions) -> str:
+    """Why the verdict ``where`` is undetermined, and how to decide it."""
+    why = status.message.split(";")[0]
+    if status is RunStatus.T_MAX:
+        how = (f"a longer horizon may decide it: t_max = {options.t_max:g} now (dimensionless time "
+               f"omega_n t), try {10 * options.t_max:g} (--t-max on the command line)")
+    elif status is RunStatus.MAX_EVENTS:
+        how = (f"the run switched mode {options.max_events:,} times (chattering or a very long "
+               "transient); a larger event budget may decide it")
+    else:
+        why, how = status.message.split(":")[0], status.message.partition(":")[2].strip()
+    return f"the verdict {where} is undetermined: {why}; {how}"
+
+
 def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
                       rtol: float = 1e-6, stick_slip_optimum: bool = False,
-                      max_foundation_deflection: float | None = None) -> DesignReport:
+                      max_foundation_deflection: float | None = None,
+                      options: EngineOptions | None = None,
+                      progress: DesignProgress | None = None) -> DesignReport:
     """Run the design procedure of the paper's Fig. 16 and check it by simulation.
 
     Parameters
@@ -168,11 +294,18 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
         the sliding speed. Default: four times the slider spring's deflection under the same
         force, ``4 mu_k W / k`` (the dimensionless default
         :data:`~stickslip.analysis.stability_tuning.MAX_FOUNDATION_DEFLECTION_RATIO`).
+    options : EngineOptions, optional
+        Engine limits of every simulation (horizon ``t_max`` in dimensionless time
+        ``tau = omega_n t``, event budget); the defaults of :class:`EngineOptions`.
+    progress : callable, optional
+        ``progress(stage, runs)`` when a stage starts and after every simulation (a progress
+        display for long runs).
 
     Returns
     -------
     DesignReport
-        Verdicts, critical values (theory and simulation) and the foundations, in SI units.
+        Verdicts, critical values (theory: the paper's Coulomb procedure; simulation: the
+        machine's friction law) and the foundations, in SI units.
     """
     slider = system.slider()
     lam, zeta, gamma = slider.lam, system.zeta, slider.gamma
@@ -181,6 +314,22 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
             f"zeta={zeta:.4g} (c={system.damping:g} N s/m) is above {MAX_DESIGN_ZETA}: the slider is "
             "so damped that the design procedure (Eqs. 28-33, fitted for zeta <= 0.4) does not apply"
         )
+    opts = options or EngineOptions()
+    runs = 0
+    stage = ""
+
+    def start(name: str) -> None:
+        nonlocal stage
+        stage = name
+        if progress is not None:
+            progress(stage, runs)
+
+    def count(*_: object) -> None:
+        nonlocal runs
+        runs += 1
+        if progress is not None:
+            progress(stage, runs)
+
     recommended_dimless = optimal_foundation_fit(zeta)
     recommended = foundation_to_physical(recommended_dimless, system.mass, system.stiffness)
     if system.foundation is not None:
@@ -199,47 +348,74 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
     rigid = rigid_base(zeta)
     with_foundation = elastic_foundation(zeta, dimensionless)
     lam_hi = max(lam_max, 4.0 * lam)
+    own = "" if isinstance(slider.friction, CoulombFriction) else " (the machine's friction law)"
+
+    def searched(structure: Structure, exact_limit: float | None) -> CriticalValues:
+        onsets = speed_and_load_onsets(structure, system, lam_min=1e-3, lam_max=lam_hi, rtol=rtol,
+                                       options=opts, on_run=count)
+        return _searched(system, onsets, exact_limit)
+
+    start("verdicts at the operating point")
+    run_rigid = simulate(rigid, slider, options=opts, record=False)
+    count()
+    run_found = simulate(with_foundation, slider, options=opts, record=False)
+    count()
+    start(f"critical speed and load, rigid base{own}")
+    rigid_limit = 0.0 if zeta == 0.0 and not own else None
+    rigid_sim = searched(rigid, rigid_limit)
+    start(f"critical speed and load, with foundation{own}")
+    found_sim = searched(with_foundation, None)
     crit = {
         "rigid_theory": _critical(system, critical_lambda_approx(zeta)),
         "rigid_exact": _critical(system, critical_lambda_exact(zeta)),
-        "rigid_simulation": _critical(
-            system, lowest_onset(rigid, gamma=gamma, lam_min=1e-3, lam_max=lam_hi, rtol=rtol)),
+        "rigid_simulation": rigid_sim,
         "foundation_theory": _critical(system, critical_lambda_approx(zeta_eq)),
-        "foundation_simulation": _critical(
-            system, lowest_onset(with_foundation, gamma=gamma, lam_min=1e-3, lam_max=lam_hi, rtol=rtol)),
+        "foundation_simulation": found_sim,
     }
-    sim_rigid = simulate(rigid, slider, record=False).verdict
-    sim_found = simulate(with_foundation, slider, record=False).verdict
     verdicts = {
         "rigid": {
             "theory": _label(lam >= crit["rigid_theory"].lam),
             "exact": _label(lam >= crit["rigid_exact"].lam),
-            "simulation": sim_rigid.value,
+            "simulation": run_rigid.verdict.value,
         },
         "foundation": {
             "theory": _label(lam >= crit["foundation_theory"].lam),
-            "simulation": sim_found.value,
+            "simulation": run_found.verdict.value,
         },
     }
+    status = {"rigid": run_rigid.status, "foundation": run_found.status}
     warnings = []
+    if zeta == 0.0:
+        warnings.append("c = 0 (undamped slider, zeta = 0): on a rigid base it stick-slips at every "
+                        "speed and load (Eq. 36); give the slider's damping c if it has any")
     if zeta > FITTED_ZETA_RANGE:
         warnings.append(
             f"zeta={zeta:.3g} is outside the range 0 <= zeta <= 0.4 on which Eqs. (28)-(33) are "
             "fitted: trust the simulated verdicts, not the theory column"
         )
-    if not isinstance(slider.friction, CoulombFriction):
+    if own:
         warnings.append(
-            "critical speeds and loads follow the paper's procedure for the Coulomb law; the "
-            f"simulated verdicts at the operating point use the friction law ({slider.friction.describe()})"
+            "the theory and Eq. 36 rows are the paper's procedure for its Coulomb law (mu = mu_k "
+            "while sliding); the simulation rows and verdicts use the machine's friction law "
+            f"({slider.friction.describe()}), whose critical speed and load are searched separately "
+            "(the law moves with the belt speed and the load)"
         )
-    optimum = _stick_slip_optimum(system, zeta, gamma, lam) if stick_slip_optimum else None
+    for where, result in (("on the rigid base", run_rigid), ("with the foundation", run_found)):
+        if result.verdict is Verdict.UNDETERMINED:
+            warnings.append(_status_warning(where, result.status, opts))
+    optimum = None
+    if stick_slip_optimum:
+        start("stick-slip-optimal foundation (Coulomb law)")
+        optimum = _stick_slip_optimum(system, zeta, gamma, lam)
+    start("stability of steady sliding")
     stability = stability_margin(system, {"rigid": rigid, "foundation": with_foundation})
     stable_best = None
     if not isinstance(slider.friction, CoulombFriction) or max_foundation_deflection is not None:
+        start("stability-optimal foundation")
         stable_best = stability_optimum(system, max_foundation_deflection)
     return DesignReport(system, lam, zeta, gamma, zeta_eq, zeta_eq_source, foundation, dimensionless,
                         source, recommended, verdicts, crit, tuple(warnings), optimum, stability,
-                        stable_best)
+                        stable_best, status, opts)
 
 
 def stability_optimum(system: PhysicalSystem, max_foundation_deflection: float | None = None

@@ -31,15 +31,17 @@ Each result reports the critical speed and load without and with the absorber.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.critical import lowest_onset
+from stickslip.analysis.critical import lowest_onset, speed_and_load_onsets
 from stickslip.analysis.frequency_response import response_peak
-from stickslip.analysis.simulation import simulate
+from stickslip.analysis.simulation import EngineOptions, SimulationResult, simulate
+from stickslip.analysis.verdict import RunStatus, Verdict
 from stickslip.model.machine import Machine
 
 FloatArray = NDArray[np.float64]
@@ -121,19 +123,25 @@ class CriticalPoint:
     load: float
 
     @classmethod
-    def of(cls, machine: Machine) -> CriticalPoint:
+    def of(cls, machine: Machine, options: EngineOptions | None = None,
+           on_run: Callable[[str, float, SimulationResult], None] | None = None) -> CriticalPoint:
         """Onset of stick-slip of ``machine``: ``lambda_c`` in its own contact scaling, SI values.
 
         The verdict at a belt speed does not depend on the scaling, so ``V_c`` and ``W_c``
         of machines with different ``m_ref``, ``k_ref`` (an absorber on the contact DOF) are
-        comparable; their ``lambda_c`` are not.
+        comparable; their ``lambda_c`` are not. With the machine's own friction law
+        (:func:`~stickslip.analysis.critical.speed_and_load_onsets`): under a law that moves
+        with the belt speed or the load, ``V_c`` and ``W_c`` come from one search each and
+        ``lam`` is the one at ``V_c``.
         """
-        structure = machine.structure()
-        lam = lowest_onset(structure, gamma=machine.slider().gamma, lam_min=LAM_MIN,
-                           lam_max=LAM_MAX, rtol=1e-6)
-        if not math.isfinite(lam):
-            return cls(lam, 0.0, math.inf)
-        return cls(lam, machine.speed_for_lambda(lam), machine.load_for_lambda(lam))
+        onsets = speed_and_load_onsets(machine.structure(), machine.reference_system(),
+                                       lam_min=LAM_MIN, lam_max=LAM_MAX, rtol=1e-6,
+                                       options=options, on_run=on_run)
+        lam = onsets.speed.lam
+        speed = 0.0 if not math.isfinite(lam) else machine.speed_for_lambda(lam)
+        lam_load = onsets.load.lam
+        load = math.inf if not math.isfinite(lam_load) else machine.load_for_lambda(lam_load)
+        return cls(lam, speed, load)
 
     def to_dict(self) -> dict[str, Any]:
         """``lambda_c``, ``critical_speed_m_per_s``, ``critical_load_N`` (None when infinite)."""
@@ -179,9 +187,13 @@ class MachineDesign:
     peak_receptance : float
         ``max |H_cc|`` of the bare machine, m/N.
     critical : CriticalPoint
-        Onset of stick-slip without absorber (Coulomb law).
+        Onset of stick-slip without absorber (the machine's friction law).
     absorbers : tuple of AbsorberDesign
         The H-infinity and the stick-slip optimum (empty without ``[absorber]``).
+    status : RunStatus or None
+        How the run at the operating point ended (why an undetermined verdict is one).
+    t_max : float
+        Its dimensionless horizon.
     """
 
     machine: Machine
@@ -192,6 +204,8 @@ class MachineDesign:
     peak_receptance: float
     critical: CriticalPoint
     absorbers: tuple[AbsorberDesign, ...] = field(default=())
+    status: RunStatus | None = None
+    t_max: float = EngineOptions().t_max
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready report (SI units in the key names, dimensionless numbers beside them)."""
@@ -206,6 +220,7 @@ class MachineDesign:
                 "peak_receptance_m_per_N": self.peak_receptance,
                 "critical": self.critical.to_dict(),
                 "critical_speed": num(self.critical.speed), "critical_load": num(self.critical.load),
+                "status": None if self.status is None else self.status.label, "t_max": self.t_max,
                 "absorbers": [a.to_dict() for a in self.absorbers]}
 
     def summary(self) -> str:
@@ -217,6 +232,10 @@ class MachineDesign:
                     if math.isfinite(self.period_s) else ""),
                  f"stick-slip below V_c={c.speed:.4g} m/s / above W_c={c.load:.4g} N "
                  f"(lambda_c={c.lam:.4g}); peak receptance {self.peak_receptance:.4g} m/N"]
+        if self.verdict == Verdict.UNDETERMINED.value and self.status is not None:
+            hint = (f"; rerun with a longer horizon, --t-max {10 * self.t_max:g} (now {self.t_max:g})"
+                    if self.status is RunStatus.T_MAX else "")
+            lines.insert(2, f"undetermined because: {self.status.message}{hint}")
         for a in self.absorbers:
             lines.append(f"absorber ({a.objective}): m_a={a.mass:.4g} kg, k_a={a.stiffness:.4g} N/m, "
                          f"c_a={a.damping:.4g} N s/m -> V_c={a.critical.speed:.4g} m/s, "
@@ -317,7 +336,9 @@ def tune_machine_absorber(machine: Machine, mass: float, attach_dof: int | None,
 
 
 def design_machine(machine: Machine, absorber_mass: float | None = None,
-                   attach_dof: int | None = None, *, stick_slip: bool = True) -> MachineDesign:
+                   attach_dof: int | None = None, *, stick_slip: bool = True,
+                   options: EngineOptions | None = None,
+                   progress: Callable[[str, int], None] | None = None) -> MachineDesign:
     """Verdict at the operating point, critical speed and load, and the tuned absorbers.
 
     Parameters
@@ -330,19 +351,40 @@ def design_machine(machine: Machine, absorber_mass: float | None = None,
         The DOF the absorber hangs on; None mounts the machine on it (the paper's foundation).
     stick_slip : bool
         Also find the stick-slip optimum (many simulations).
+    options : EngineOptions, optional
+        Engine limits of the run at the operating point and of the onset searches.
+    progress : callable, optional
+        ``progress(stage, runs)`` when a stage starts and after every run of the searches.
 
     Returns
     -------
     MachineDesign
         Verdict, period and amplitude in SI, critical point and absorbers.
     """
+    runs = 0
+
+    def tell(stage: str) -> Callable[..., None]:
+        def count(*_: object) -> None:
+            nonlocal runs
+            runs += 1
+            if progress is not None:
+                progress(stage, runs)
+
+        if progress is not None:
+            progress(stage, runs)
+        return count
+
     structure, slider = machine.to_dimensionless()
-    run = simulate(structure, slider, record=False)
+    tell("verdict at the operating point")
+    run = simulate(structure, slider, options=options, record=False)
     ref = machine.reference_system()
     period = run.period * ref.time_scale
     amplitude = run.amplitude * ref.length_scale
     absorbers: tuple[AbsorberDesign, ...] = ()
+    critical = CriticalPoint.of(machine, options, tell("critical speed and load"))
     if absorber_mass is not None:
+        tell("absorber tuning")
         absorbers = tune_machine_absorber(machine, absorber_mass, attach_dof, stick_slip=stick_slip)
     return MachineDesign(machine, run.verdict.value, period, amplitude, run.certificate,
-                         _peak_si(machine), CriticalPoint.of(machine), absorbers)
+                         _peak_si(machine), critical, absorbers, run.status,
+                         (options or EngineOptions()).t_max)

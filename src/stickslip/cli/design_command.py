@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import sys
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
 
@@ -12,6 +14,7 @@ from stickslip.cli.machine_config import collect_inputs, load_machine_file
 from stickslip.model.units import QUANTITIES, to_si
 
 if TYPE_CHECKING:
+    from stickslip.analysis.simulation import EngineOptions
     from stickslip.model.physical import PhysicalFriction
 
 
@@ -46,7 +49,7 @@ def read_config(path: Path) -> dict[str, Any]:
 
 
 def read_friction_config(path: Path | None) -> PhysicalFriction:
-    """The ``[friction]`` table of the TOML file (DESIGN.md section 8); Coulomb without one."""
+    """The ``[friction]`` table of the TOML file (docs/friction.md); Coulomb without one."""
     from stickslip.model.physical import PhysicalFriction
 
     if path is None:
@@ -54,7 +57,9 @@ def read_friction_config(path: Path | None) -> PhysicalFriction:
     return load_machine_file(path).friction()
 
 
-def design_machine_file(flags: dict[str, Any], config: Path, *, stick_slip: bool) -> Any:
+def design_machine_file(flags: dict[str, Any], config: Path, *, stick_slip: bool,
+                        options: EngineOptions | None = None,
+                        progress: Callable[[str, int], None] | None = None) -> Any:
     """The machine of a ``[structure]`` file designed: verdict, critical speed/load, absorbers."""
     from stickslip.analysis.machine_absorber import design_machine
     from stickslip.cli.machine_config import config_machine
@@ -67,7 +72,7 @@ def design_machine_file(flags: dict[str, Any], config: Path, *, stick_slip: bool
         attach = (absorber.attach_dof if reduction is None
                   else reduction.kept_dofs.index(absorber.attach_dof))
     report = design_machine(machine, None if absorber is None else absorber.mass, attach,
-                            stick_slip=stick_slip)
+                            stick_slip=stick_slip, options=options, progress=progress)
     return report, reduction
 
 
@@ -99,25 +104,36 @@ def design(
                           "force mu_k W [m], e.g. '2 mm': bounds the stability-optimal foundation, "
                           "reported for a speed-dependent friction law (default 4 mu_k W / k)"),
     ] = None,
+    t_max: Annotated[
+        float | None,
+        typer.Option("--t-max", help="dimensionless time horizon omega_n t of each simulation "
+                                     "(default 5000): raise it when a verdict is undetermined"),
+    ] = None,
     json: Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")] = False,
 ) -> None:
     """Will it stick-slip, at which speed or load, and which foundation stops it (Fig. 16).
 
-    Example: stickslip design --m "2 kg" --k "50 kN/m" --mu-s 0.5 --mu-k 0.3 --load "500 N" --speed "5 cm/s"
+    Example: stickslip design --m "2 kg" --k "50 kN/m" --c "20 N*s/m" --mu-s 0.5 --mu-k 0.3
+    --load "500 N" --speed "5 cm/s"
+
+    Without --c (or c in the file) the slider is undamped, c = 0, and the report says so.
 
     The same keys, and a friction table, from a TOML file: stickslip design --config machine.toml
 
     Any linear structure: a [structure] table in the file (matrices from .mtx/.npy/.csv or
     modes, contact_dof), and an [absorber] table (mass, attach_dof) for the absorber that
-    fixes it (DESIGN.md section 10).
+    fixes it (docs/structures.md).
     """
     from stickslip.analysis.design import design_foundation
     from stickslip.model.physical import PhysicalFoundation, PhysicalSystem
 
+    options = _engine_options(t_max)
     flags = {"m": m, "k": k, "c": c, "mu_s": mu_s, "mu_k": mu_k, "load": load, "speed": speed,
              "m_a": m_a, "k_a": k_a, "c_a": c_a}
     if config is not None and _has_structure(config):
-        machine_report, reduction = design_machine_file(flags, config, stick_slip=stick_slip_optimum)
+        with DesignProgress(not json and sys.stderr.isatty()) as bar:
+            machine_report, reduction = design_machine_file(flags, config, stick_slip=stick_slip_optimum,
+                                                            options=options, progress=bar)
         machine_payload = machine_report.to_dict()
         machine_payload["reduction"] = None if reduction is None else reduction.summary()
         if json:
@@ -142,66 +158,175 @@ def design(
             raise BadInput(str(exc)) from None
         if not deflection > 0.0:
             raise BadInput(f"--max-foundation-deflection {max_foundation_deflection!r} must be positive")
-    report = design_foundation(system, stick_slip_optimum=stick_slip_optimum,
-                               max_foundation_deflection=deflection)
+    with DesignProgress(not json and sys.stderr.isatty()) as bar:
+        report = design_foundation(system, stick_slip_optimum=stick_slip_optimum,
+                                   max_foundation_deflection=deflection, options=options, progress=bar)
     payload = report.to_dict()
+    payload["damping_given"] = _damping_given(c, config)
     if json:
         print_json(payload)
         return
     typer.echo(format_report(payload))
 
 
+def _engine_options(t_max: float | None) -> EngineOptions:
+    """The engine limits of ``--t-max`` (the defaults without it); one line on a bad value."""
+    from stickslip.analysis.simulation import EngineOptions
+
+    if t_max is None:
+        return EngineOptions()
+    try:
+        return EngineOptions(t_max=t_max)
+    except ValueError as exc:
+        raise BadInput(f"--t-max {t_max!r}: {exc}") from None
+
+
+def _damping_given(c: str | None, config: Path | None) -> bool:
+    """True when the slider's damping ``c`` came from ``--c`` or the machine file."""
+    return c is not None or (config is not None and "c" in read_config(config))
+
+
+class DesignProgress:
+    """The design procedure's progress on stderr: its stage, the simulations made, the time spent.
+
+    Drawn with rich as the map command's bar is, and only on a terminal; the stage count is
+    open-ended (each search stops when it has bracketed its onset), so it shows runs, not a
+    fraction.
+    """
+
+    def __init__(self, enabled: bool) -> None:
+        self.enabled = enabled
+        self._bar: Any = None
+        self._task: Any = None
+
+    def __enter__(self) -> DesignProgress:
+        if self.enabled:
+            from rich.console import Console
+            from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+
+            self._bar = Progress(SpinnerColumn(), TextColumn("design: {task.description}"),
+                                 TextColumn("{task.completed:.0f} runs"), TimeElapsedColumn(),
+                                 console=Console(stderr=True), transient=True)
+            self._bar.__enter__()
+            self._task = self._bar.add_task("starting", total=None)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self._bar is not None:
+            self._bar.__exit__(*exc)
+
+    def __call__(self, stage: str, runs: int) -> None:
+        if self._bar is not None:
+            self._bar.update(self._task, description=stage, completed=runs)
+
+
 def _has_structure(config: Path) -> bool:
     return load_machine_file(config).has_structure
 
 
+def _num(x: float | None, unit: str = "") -> str:
+    """A number in 4 significant digits, with its unit; "-" for none. Never "-0"."""
+    if x is None:
+        return "-"
+    return f"{x + 0.0:.4g}{(' ' + unit) if unit else ''}"
+
+
+def _slope_text(sigma: float) -> str:
+    """The friction slope ``d mu / d v_r`` steady sliding tolerates (``sigma`` in s/m, >= -sigma)."""
+    if sigma > 0.0:
+        return f"a friction slope down to -{_num(sigma, 's/m')}"
+    if sigma == 0.0:
+        return "no friction weakening at all (slope 0 s/m: the slider is undamped)"
+    return f"no weakening: it needs a friction slope of at least +{_num(-sigma, 's/m')}"
+
+
+def _critical_rows(p: dict[str, Any], keys: tuple[str, ...], indent: str) -> list[str]:
+    """One line per critical-value row (``lambda_c``, ``V_c``, ``W_c``) and its note beneath."""
+    lines = []
+    for key in keys:
+        lam, speed, load = (p["critical_lambda"][key], p["critical_speed"][key],
+                            p["critical_load"][key])
+        lam_load = p["critical_lambda_load"][key]
+        if lam == 0.0:
+            values = "lambda_c=0: stick-slip at every belt speed and every normal load"
+        elif lam_load is not None and lam_load != lam:
+            values = (f"V_c={_num(speed, 'm/s'):>12} (lambda_c={_num(lam)})  "
+                      f"W_c={_num(load, 'N'):>10} (lambda_c={_num(lam_load)})")
+        else:
+            values = (f"lambda_c={_num(lam):>10}  V_c={_num(speed, 'm/s'):>14}  "
+                      f"W_c={_num(load, 'N'):>12}")
+        lines.append(f"{indent}{key:24} {values}")
+        if p["critical_note"][key]:
+            lines.append(f"{indent}{'':24} ({p['critical_note'][key]})")
+    return lines
+
+
 def format_report(p: dict[str, Any]) -> str:
     """Plain-text table of the design report."""
-    def g(x: float | None, unit: str = "") -> str:
-        return "-" if x is None else f"{x:.4g}{(' ' + unit) if unit else ''}"
-
+    g = _num
     f = p["foundation"]
     r = p["recommended_foundation"]
+    own_law = p["critical_law"]["rigid_simulation"] != p["critical_law"]["rigid_theory"]
+    head = ("Coulomb theory", "Coulomb Eq. 36", "own law sim.") if own_law else (
+        "theory", "exact Eq. 36", "simulation")
     lines = [
         f"dimensionless groups  lambda={g(p['lambda'])}  zeta={g(p['zeta'])}  gamma={g(p['gamma'])}"
         f"  zeta_eq={g(p['zeta_eq'])} ({p['zeta_eq_source']})",
+    ]
+    if p["system"]["c"] == 0.0:
+        lines.append("slider damping c = 0 (undamped, zeta = 0)"
+                     + ("" if p.get("damping_given", True) else ": no --c given (nor c in the file)"))
+    lines += [
         "",
-        f"{'':24}{'theory':>16}{'exact Eq. 36':>16}{'simulation':>16}",
+        f"{'':24}{head[0]:>16}{head[1]:>16}{head[2]:>16}",
         f"{'rigid base':24}{p['verdict']['rigid']['theory']:>16}{p['verdict']['rigid']['exact']:>16}"
         f"{p['verdict']['rigid']['simulation']:>16}",
         f"{'with foundation':24}{p['verdict']['foundation']['theory']:>16}{'':>16}"
         f"{p['verdict']['foundation']['simulation']:>16}",
         "",
-        "stick-slip below the critical belt speed / above the critical normal load:",
     ]
-    for key in ("rigid_theory", "rigid_exact", "rigid_simulation", "foundation_theory",
-                "foundation_simulation"):
-        lines.append(
-            f"  {key:24} lambda_c={g(p['critical_lambda'][key]):>10}  "
-            f"V_c={g(p['critical_speed'][key], 'm/s'):>14}  W_c={g(p['critical_load'][key], 'N'):>12}"
-        )
-    lines += [
-        "",
-        f"foundation assessed ({f['source']}): m_a={g(f['m_a'], 'kg')}, k_a={g(f['k_a'], 'N/m')}, "
-        f"c_a={g(f['c_a'], 'N s/m')}  (M={g(f['M'])}, K={g(f['K'])}, zeta_a={g(f['zeta_a'])})",
-        f"recommended foundation (Eqs. 28-30): m_a={g(r['m_a'], 'kg')}, k_a={g(r['k_a'], 'N/m')}, "
-        f"c_a={g(r['c_a'], 'N s/m')}",
-    ]
+    closed_forms = ("rigid_theory", "rigid_exact", "foundation_theory")
+    simulated = ("rigid_simulation", "foundation_simulation")
+    if own_law:
+        lines += [
+            f"stick-slip below the critical belt speed V_c (at the load W={g(p['system']['load'], 'N')}) "
+            f"/ above the critical normal load W_c (at the speed V={g(p['system']['speed'], 'm/s')}):",
+            "  the paper's procedure, for its Coulomb law (mu = mu_k while sliding), closed forms:",
+            *_critical_rows(p, closed_forms, "    "),
+            f"  the machine's friction law ({p['critical_law']['rigid_simulation']}), exact boundary "
+            "search by simulation (the law moves with V and W: one search along each):",
+            *_critical_rows(p, simulated, "    "),
+        ]
+    else:
+        lines += ["stick-slip below the critical belt speed / above the critical normal load:",
+                  *_critical_rows(p, ("rigid_theory", "rigid_exact", "rigid_simulation",
+                                      "foundation_theory", "foundation_simulation"), "  ")]
+    recommended = (f"m_a={g(r['m_a'], 'kg')}, k_a={g(r['k_a'], 'N/m')}, c_a={g(r['c_a'], 'N s/m')}")
+    dimensionless = f"(M={g(f['M'])}, K={g(f['K'])}, zeta_a={g(f['zeta_a'])})"
+    lines.append("")
+    if f["source"].startswith("recommended"):
+        lines.append(f"foundation assessed: the recommended one (Fig. 16 procedure, Eqs. 28-30): "
+                     f"{recommended}  {dimensionless}")
+    else:
+        lines += [f"foundation assessed ({f['source']}): m_a={g(f['m_a'], 'kg')}, k_a={g(f['k_a'], 'N/m')}, "
+                  f"c_a={g(f['c_a'], 'N s/m')}  {dimensionless}",
+                  f"recommended foundation (Eqs. 28-30): {recommended}"]
     best = p.get("stick_slip_optimal_foundation")
     if best:
         onset = (f">= {best['lambda_crit_at_least']:g} (none found)" if best["lambda_crit"] is None
                  else f"{best['lambda_crit']:.4g}, V_c={g(best['critical_speed'], 'm/s')}, "
                  f"W_c={g(best['critical_load'], 'N')}")
         lines.append(
-            f"stick-slip-optimal foundation: m_a={g(best['m_a'], 'kg')}, k_a={g(best['k_a'], 'N/m')}, "
+            f"stick-slip-optimal foundation{' (Coulomb law)' if own_law else ''}: "
+            f"m_a={g(best['m_a'], 'kg')}, k_a={g(best['k_a'], 'N/m')}, "
             f"c_a={g(best['c_a'], 'N s/m')}; stick-slip onset lambda_c {onset}"
         )
     stable_best = p.get("stability_optimal_foundation")
     if stable_best:
         lines.append(
             f"stability-optimal foundation: m_a={g(stable_best['m_a'], 'kg')}, "
-            f"k_a={g(stable_best['k_a'], 'N/m')}, c_a={g(stable_best['c_a'], 'N s/m')}; tolerates a "
-            f"friction slope down to -{g(stable_best['sigma_crit'], 's/m')} "
+            f"k_a={g(stable_best['k_a'], 'N/m')}, c_a={g(stable_best['c_a'], 'N s/m')}; tolerates "
+            f"{_slope_text(stable_best['sigma_crit'])} "
             f"(delta_crit={g(stable_best['delta_crit'])}); static deflection under mu_k W "
             f"{g(stable_best['foundation_deflection'], 'm')} "
             f"(bound {g(stable_best['max_foundation_deflection'], 'm')})"
@@ -214,7 +339,7 @@ def format_report(p: dict[str, Any]) -> str:
             lines.append(
                 f"  {('rigid base' if name == 'rigid' else 'with foundation'):22}"
                 f"{'stable' if s['stable'] else 'UNSTABLE':>9}  growth rate {g(s['growth_rate'], '1/s')}; "
-                f"tolerates a friction slope down to -{g(s['sigma_crit'], 's/m')} "
+                f"tolerates {_slope_text(s['sigma_crit'])} "
                 f"(delta_crit={g(s['delta_crit'])}, law's delta={g(s['delta_local'])}, "
                 f"margin {g(s['margin'])})"
             )
