@@ -102,7 +102,9 @@ def basin(
     initial_states: Annotated[
         Path | None, typer.Option("--initial-states", help="CSV of states instead of sampling")
     ] = None,
-    t_max: Annotated[float, typer.Option("--t-max", help="dimensionless horizon of each run")] = 5000.0,
+    t_max: Annotated[float, typer.Option(
+        "--t-max", help="dimensionless horizon omega_n t of each run (default 5000): raise it when "
+        "samples end undetermined")] = 5000.0,
     backend: BACKEND = None,
     workers: WORKERS = None,
     scheduler: SCHEDULER = None,
@@ -208,7 +210,8 @@ def basin(
                                                                 scheduler=scheduler, progress=bar,
                                                                 store=store, overwrite=overwrite))
         payload = result.to_dict()
-        payload.update({"labels": None, "dataset": None, "plot": None})
+        payload.update({"labels": None, "dataset": None, "plot": None,
+                        "undetermined_by": undetermined_statuses(result)})
         if out is not None:
             assert labels is not None and dataset is not None and store is not None
             write_labels(result, labels, rows, columns)
@@ -278,6 +281,33 @@ def _sample_physical(structure: Any, slider: Any, reference: Any, samples: int,
     return sample_box(structure, slider, samples, converted, seed)
 
 
+def undetermined_statuses(result: Any) -> dict[str, int]:
+    """How many runs of a basin ended undetermined, by run status label (``t-max``, ...)."""
+    import numpy as np
+
+    from stickslip.analysis.verdict import RunStatus, Verdict
+    from stickslip.kernel import engine
+
+    codes = result.int_summary[:, engine.I_STATUS]
+    undetermined = result.verdict == Verdict.UNDETERMINED.code
+    found = np.unique(codes[undetermined], return_counts=True)
+    return {RunStatus.from_code(int(code)).label: int(n) for code, n in zip(*found, strict=True)}
+
+
+def undetermined_line(p: dict[str, Any]) -> str | None:
+    """Why the undetermined samples are so and how to decide them; None when there are none."""
+    from stickslip.analysis.verdict import RunStatus
+
+    by = p.get("undetermined_by") or {}
+    if not by:
+        return None
+    messages = {status.label: status.message.split(";")[0] for status in RunStatus}
+    why = "; ".join(f"{n} {messages[label]}" for label, n in by.items())
+    hint = (f"; a longer horizon may decide them: --t-max {10 * p['t_max']:g} (now {p['t_max']:g})"
+            if "t-max" in by or "unproven-cycle" in by else "")
+    return f"undetermined {sum(by.values())}: {why}{hint}"
+
+
 def _print_summary(p: dict[str, Any]) -> None:
     fr, se, chunks = p["fractions"], p["standard_errors"], p["chunks"]
     parts = [f"{k} {fr[k]:.4f} +- {se[k]:.4f}" for k in fr if fr[k] > 0.0]
@@ -289,6 +319,9 @@ def _print_summary(p: dict[str, Any]) -> None:
                                if chunks["loaded"] else ""),
         f"fractions   {', '.join(parts)} (binomial standard errors)",
     ]
+    why = undetermined_line(p)
+    if why:
+        lines.append(why)
     for key in ("labels", "dataset", "plot"):
         if p[key]:
             lines.append(f"{key:<11} {p[key]}")
