@@ -19,6 +19,7 @@ import re
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pytest
 
 pytest.importorskip("streamlit", reason="the app extra (streamlit) is not installed")
@@ -89,6 +90,40 @@ def test_default_inputs_render_and_show_the_verdicts() -> None:
     # two time-history figures and the occurrence map
     assert len(at.get("image")) == 3
     assert len(at.get("download_button")) == 2
+
+
+def test_the_cycles_period_and_amplitude_are_shown_in_seconds_and_metres() -> None:
+    """Issue 31: the rigid base's certified cycle at the defaults, in s and m.
+
+    Reference: ``simulate`` of the public API on the defaults' dimensionless groups
+    (lambda = (mu_s - mu_k) W / (V sqrt(m k)), zeta = c / (2 sqrt(m k)), gamma = mu_k /
+    (mu_s - mu_k), paper Eq. 22), scaled by 1/omega_n and V/omega_n (omega_n = sqrt(k/m)).
+    """
+    from stickslip import Slider, rigid_base, simulate
+
+    m, k, c, w, v = 2.0, 5e4, 20.0, 500.0, 0.05
+    root_mk, omega = math.sqrt(m * k), math.sqrt(k / m)
+    run = simulate(rigid_base(c / (2 * root_mk)), Slider(0.2 * w / (v * root_mk), gamma=1.5))
+    assert run.cycle_length > 0
+    at = _started()
+    assert not at.exception
+    assert _metric(at, "rigid base: period T") == f"{run.period / omega:.4g} s"
+    assert _metric(at, "rigid base: amplitude") == f"{run.amplitude * v / omega:.4g} m"
+
+
+def test_the_time_plots_are_in_si() -> None:
+    from stickslip import Slider, rigid_base, simulate
+    from stickslip.app.figures import PLOT_POINTS, figure_of_run
+
+    run = simulate(rigid_base(0.1), Slider(3.0), record=True)
+    scales = (0.01, 0.002, 0.5)  # s, m, m/s
+    plain, si = figure_of_run(run, "t"), figure_of_run(run, "t", scales)
+    for index, (x_scale, y_scale) in enumerate(((scales[0], scales[1]), (scales[1], scales[2]))):
+        expected, drawn = plain.axes[index].lines[0], si.axes[index].lines[0]
+        np.testing.assert_allclose(drawn.get_xdata(), np.asarray(expected.get_xdata()) * x_scale)
+        np.testing.assert_allclose(drawn.get_ydata(), np.asarray(expected.get_ydata()) * y_scale)
+    assert si.axes[0].get_xlabel() == "time t [s]" and si.axes[0].get_ylabel() == "$x$ [m]"
+    assert si.axes[1].get_ylabel() == "slider v [m/s]" and PLOT_POINTS > 0
 
 
 @pytest.mark.slow  # heavy (10-30 s cold); the default run keeps the cheaper app tests

@@ -31,11 +31,16 @@ def fmt(x: float | None, unit: str = "") -> str:
     return f"{x:.4g}" + (f" {unit}" if unit else "")
 
 
-def figure_of_run(result: SimulationResult, title: str) -> Figure:
-    """Time history of ``xi`` (stick phases shaded) next to the phase portrait."""
+def figure_of_run(result: SimulationResult, title: str,
+                  si: tuple[float, float, float] | None = None) -> Figure:
+    """Time history of the slider (stick phases shaded) next to the phase portrait.
+
+    ``si``: ``(1/omega_n [s], V/omega_n [m], V [m/s])`` draws both in s, m and m/s
+    (:func:`~stickslip.plot.simulation.time_history_plot`); dimensionless without.
+    """
     fig, (ax_t, ax_p) = new_grid(1, 2, figsize=(10.0, 3.0), width_ratios=(2.2, 1.0))
-    time_history_plot(result, ax=ax_t, quantity="position", n_points=PLOT_POINTS)
-    phase_portrait_plot(result, ax=ax_p, n_points=PLOT_POINTS)
+    time_history_plot(result, ax=ax_t, quantity="position", n_points=PLOT_POINTS, si=si)
+    phase_portrait_plot(result, ax=ax_p, n_points=PLOT_POINTS, si=si)
     fig.suptitle(title)
     return fig
 

@@ -370,6 +370,21 @@ def main() -> None:
         show_error("Cannot analyse these inputs: " + str(exc))
 
 
+def _show_cycle(name: str, result: Any, system: PhysicalSystem) -> None:
+    """The certified cycle's period and amplitude in s and m (and dimensionless)."""
+    if not result.cycle_length:
+        st.caption(f"{name}: no periodic stick-slip cycle ({result.verdict.value}).")
+        return
+    cols = st.columns(3)
+    cols[0].metric(f"{name}: period T", _fmt(result.period * system.time_scale, "s"),
+                   help=f"τ = {_fmt(result.period)} in units of 1/ω_n")
+    cols[1].metric(f"{name}: amplitude", _fmt(result.amplitude * system.length_scale, "m"),
+                   help=f"half the peak-to-peak slider displacement; {_fmt(result.amplitude)} "
+                        "in units of V/ω_n")
+    cols[2].metric(f"{name}: time stuck", _fmt(100.0 * result.stick_ratio, "%"),
+                   help="fraction of the period the slider sticks to the belt")
+
+
 def _show_results(raw: Mapping[str, str], system: PhysicalSystem) -> None:
     report = design_report(si_key(system))
     lam, zeta, gamma = report["lambda"], report["zeta"], report["gamma"]
@@ -392,14 +407,16 @@ def _show_results(raw: Mapping[str, str], system: PhysicalSystem) -> None:
     f = report["foundation"]
     assessed: FoundationKey = (f["M"], f["K"], f["zeta_a"])
     st.subheader("Operating point: time history and phase portrait")
-    st.caption(f"Dimensionless: τ = ω_n t (1 unit = {_fmt(system.time_scale, 's')}), ξ in units of "
-               f"V/ω_n = {_fmt(system.length_scale, 'm')} from the kinetic-friction equilibrium, "
-               f"ξ' in units of V. Stick phases shaded.")
+    st.caption(f"Slider displacement x from its kinetic-friction equilibrium and velocity v, in "
+               f"SI (the computation's τ = ω_n t has 1 unit = {_fmt(system.time_scale, 's')}, "
+               f"ξ = x / {_fmt(system.length_scale, 'm')}, ξ' = v / V). Stick phases shaded.")
     law = system.slider().friction
     runs = operating_point_runs(lam, zeta, gamma, assessed, law)
+    si = (system.time_scale, system.length_scale, system.speed)
     for name, result in runs.items():
         side = "rigid" if name == "rigid base" else "foundation"
-        st.pyplot(figure_of_run(result, f"{name}: {report['verdict'][side]['simulation']}"))
+        st.pyplot(figure_of_run(result, f"{name}: {report['verdict'][side]['simulation']}", si))
+        _show_cycle(name, result, system)
 
     st.subheader("Occurrence map around the operating point")
     given = assessed if system.foundation is not None else None

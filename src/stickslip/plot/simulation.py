@@ -31,7 +31,8 @@ def _history(result: SimulationResult, t_start: float, n_points: int) -> TimeHis
     return result.time_history(n_points=n_points, t_start=t_start)
 
 
-def _shade_stick(ax: Axes, result: SimulationResult, t_start: float) -> list[Any]:
+def _shade_stick(ax: Axes, result: SimulationResult, t_start: float,
+                 time_scale: float | None = None) -> list[Any]:
     from stickslip.analysis.verdict import Mode
 
     artists: list[Any] = []
@@ -39,11 +40,22 @@ def _shade_stick(ax: Axes, result: SimulationResult, t_start: float) -> list[Any
     for i, mode in enumerate(result.segment_modes):
         if mode == Mode.STICK and times[i + 1] > t_start:
             label = "stick" if not artists else None
-            artists.append(
-                ax.axvspan(max(times[i], t_start), times[i + 1], color=STICK_COLOR, alpha=0.35,
-                           lw=0, label=label)
-            )
+            start, end = max(times[i], t_start), times[i + 1]
+            if time_scale is not None:
+                start, end = start * time_scale, end * time_scale
+            artists.append(ax.axvspan(start, end, color=STICK_COLOR, alpha=0.35, lw=0,
+                                      label=label))
     return artists
+
+
+def _si_scales(si: tuple[float, float, float] | None) -> tuple[float, float, float]:
+    """``(time, length, speed)`` scales of the ``si`` keyword, checked (1.0 each without)."""
+    if si is None:
+        return 1.0, 1.0, 1.0
+    if len(si) != 3 or not all(np.isfinite(x) and x > 0.0 for x in si):
+        raise ValueError(f"si={si!r} must be (time scale [s], length scale [m], speed [m/s]), "
+                         "each positive")
+    return float(si[0]), float(si[1]), float(si[2])
 
 
 def time_history_plot(
@@ -54,6 +66,7 @@ def time_history_plot(
     t_start: float = 0.0,
     n_points: int = 4000,
     show_foundation: bool = True,
+    si: tuple[float, float, float] | None = None,
 ) -> PlotResult:
     """Draw ``xi`` (or ``xi'``) against ``tau`` with stick phases shaded (paper Figs. 7, 12-13).
 
@@ -70,6 +83,9 @@ def time_history_plot(
         Samples of the exact trajectory (every mode switch is added).
     show_foundation : bool
         Also draw the first foundation mass (grey), as in Figs. 12-13.
+    si : tuple of float, optional
+        ``(1/omega_n [s], V/omega_n [m], V [m/s])`` of the physical system: draw the time in s,
+        the displacement (from the kinetic-friction equilibrium) in m and the velocity in m/s.
 
     Returns
     -------
@@ -78,21 +94,34 @@ def time_history_plot(
     """
     if quantity not in ("position", "velocity"):
         raise ValueError(f"quantity={quantity!r} must be 'position' or 'velocity'")
+    time_scale, length_scale, speed = _si_scales(si)
     fig, ax = new_axes(ax, figsize=HISTORY_SIZE)
     hist = _history(result, t_start, n_points)
     data = hist.position if quantity == "position" else hist.velocity
-    artists: list[Any] = _shade_stick(ax, result, t_start)
+    t = hist.t
+    if si is not None:
+        t, data = t * time_scale, data * (length_scale if quantity == "position" else speed)
+    artists: list[Any] = _shade_stick(ax, result, t_start, None if si is None else time_scale)
     symbol = "\\xi" if quantity == "position" else "\\xi'"
-    artists += ax.plot(hist.t, data[:, 0], color=PRIMARY_COLOR, lw=1.0, label=f"${symbol}$ slider")
+    if si is not None:
+        symbol = "x" if quantity == "position" else "v"
+    artists += ax.plot(t, data[:, 0], color=PRIMARY_COLOR, lw=1.0, label=f"${symbol}$ slider")
     if show_foundation and data.shape[1] > 1:
         sym_a = "\\xi_a" if quantity == "position" else "\\xi_a'"
-        artists += ax.plot(hist.t, data[:, 1], color=FOUNDATION_COLOR, lw=1.0,
+        if si is not None:
+            sym_a = "x_a" if quantity == "position" else "v_a"
+        artists += ax.plot(t, data[:, 1], color=FOUNDATION_COLOR, lw=1.0,
                            label=f"${sym_a}$ foundation")
     if quantity == "velocity":
-        artists.append(ax.axhline(1.0, color="tab:red", lw=0.8, ls="--", label="belt speed"))
-    ax.set_xlabel(r"dimensionless time $\tau$")
-    ax.set_ylabel(f"${symbol}$")
-    ax.set_xlim(hist.t[0], hist.t[-1])
+        artists.append(ax.axhline(speed if si is not None else 1.0, color="tab:red", lw=0.8,
+                                  ls="--", label="belt speed"))
+    if si is None:
+        ax.set_xlabel(r"dimensionless time $\tau$")
+        ax.set_ylabel(f"${symbol}$")
+    else:
+        ax.set_xlabel("time t [s]")
+        ax.set_ylabel(f"${symbol}$ [m]" if quantity == "position" else f"${symbol}$ [m/s]")
+    ax.set_xlim(t[0], t[-1])
     ax.legend(loc="upper right", fontsize="small", framealpha=0.85)
     return PlotResult(fig, [ax], artists)
 
@@ -103,6 +132,7 @@ def phase_portrait_plot(
     ax: Axes | None = None,
     t_start: float = 0.0,
     n_points: int = 4000,
+    si: tuple[float, float, float] | None = None,
 ) -> PlotResult:
     """Draw the trajectory in the ``(xi, xi')`` plane (paper Figs. 14-15).
 
@@ -117,21 +147,26 @@ def phase_portrait_plot(
         First time drawn, dimensionless.
     n_points : int
         Samples of the exact trajectory.
+    si : tuple of float, optional
+        ``(1/omega_n [s], V/omega_n [m], V [m/s])``: draw the plane in m and m/s.
 
     Returns
     -------
     PlotResult
         One axes; the artists are the orbit, the start marker and the belt-speed line.
     """
+    _, length_scale, speed = _si_scales(si)
     fig, ax = new_axes(ax, figsize=(4.4, 4.0))
     hist = _history(result, t_start, n_points)
-    artists: list[Any] = ax.plot(hist.position[:, 0], hist.velocity[:, 0], color=PRIMARY_COLOR,
-                                 lw=0.9)
-    artists += ax.plot(hist.position[0, 0], hist.velocity[0, 0], "o", color="tab:green", ms=4,
-                       label="start")
-    artists.append(ax.axhline(1.0, color="tab:red", lw=0.8, ls="--", label="belt speed"))
-    ax.set_xlabel(r"$\xi$")
-    ax.set_ylabel(r"$\xi'$")
+    x, v = hist.position[:, 0], hist.velocity[:, 0]
+    if si is not None:
+        x, v = x * length_scale, v * speed
+    artists: list[Any] = ax.plot(x, v, color=PRIMARY_COLOR, lw=0.9)
+    artists += ax.plot(x[0], v[0], "o", color="tab:green", ms=4, label="start")
+    artists.append(ax.axhline(speed if si is not None else 1.0, color="tab:red", lw=0.8,
+                              ls="--", label="belt speed"))
+    ax.set_xlabel(r"$\xi$" if si is None else "slider x [m]")
+    ax.set_ylabel(r"$\xi'$" if si is None else "slider v [m/s]")
     ax.legend(loc="lower right", fontsize="small", frameon=False)
     return PlotResult(fig, [ax], artists)
 
