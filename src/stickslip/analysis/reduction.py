@@ -53,6 +53,32 @@ CUTOFF_FACTOR = 3.0
 #: Most fixed-interface modes kept (the reduced model must stay runnable directly: 60 DOF).
 MAX_KEPT_MODES = 56
 
+#: Highest cut-off frequency accepted, Hz: 1 GHz, far above any structural mode a friction
+#: contact excites (a higher one only keeps the lowest :data:`MAX_KEPT_MODES` modes, as this
+#: one does); beyond, ``(2 pi f)**2`` would leave the floating-point range.
+MAX_CUTOFF_HZ = 1e9
+
+
+def check_cutoff(cutoff_hz: float, *, source: str = "cutoff_hz") -> float:
+    """``cutoff_hz`` if it is a frequency in ``(0, MAX_CUTOFF_HZ]`` Hz, else one ``ValueError`` line.
+
+    Parameters
+    ----------
+    cutoff_hz : float
+        The cut-off frequency, Hz.
+    source : str
+        How the message names the value.
+
+    Returns
+    -------
+    float
+        The cut-off, Hz.
+    """
+    if not (isinstance(cutoff_hz, (int, float)) and 0.0 < cutoff_hz <= MAX_CUTOFF_HZ):
+        raise ValueError(f"{source} must be a positive frequency up to {MAX_CUTOFF_HZ:g} Hz (1 GHz, "
+                         f"far above any structural mode); got {cutoff_hz!r} Hz")
+    return float(cutoff_hz)
+
 
 @dataclass(frozen=True)
 class ReducedStructure:
@@ -166,16 +192,19 @@ def reduce_structure(mass: Any, stiffness: Any, kept_dofs: tuple[int, ...] | lis
     kept = tuple(dict.fromkeys(int(d) for d in kept_dofs))
     if not kept or min(kept) < 0 or max(kept) >= n:
         raise ValueError(f"kept DOFs {kept} must lie in 0..{n - 1}")
-    if not (cutoff_hz > 0.0 and math.isfinite(cutoff_hz)):
-        raise ValueError(f"cutoff_hz={cutoff_hz!r} must be a positive frequency")
+    cutoff_hz = check_cutoff(cutoff_hz)
     b = np.array(kept)
     interior = np.setdiff1d(np.arange(n), b)
     nb, ni = b.size, interior.size
     k_ii = k[interior][:, interior].tocsc()
     m_ii = m[interior][:, interior].tocsc()
     k_ib = k[interior][:, b].toarray()
-    lu = splu(k_ii)
-    psi_i = -lu.solve(k_ib) if ni else np.zeros((0, nb))
+    try:
+        lu = splu(k_ii) if ni else None
+    except RuntimeError:  # "Factor is exactly singular"
+        raise ValueError("the stiffness matrix with the kept DOFs held is singular: part of the "
+                         "structure is free (not grounded)") from None
+    psi_i = -lu.solve(k_ib) if lu is not None else np.zeros((0, nb))
     modes = np.zeros((ni, 0))
     truncated = False
     if ni:

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -76,13 +77,126 @@ def _matrix(name: str, value: object, n: int | None = None,
             f"{name} has an entry of magnitude {np.abs(a).max():.3g}, beyond the supported "
             f"{MAX_MATRIX_ENTRY:g} (the engine's products would overflow)"
         )
-    asym = float(np.abs(a - a.T).max())
-    if asym > SYMMETRY_RTOL * float(np.abs(a).max()):
-        raise ValueError(f"{name} is not symmetric: |A - A^T| reaches {asym:.3g}, beyond "
-                         f"{SYMMETRY_RTOL:g} of its largest entry")
+    check_symmetric(name, a)
     a = 0.5 * (a + a.T)
     a.setflags(write=False)
     return a
+
+
+def check_symmetric(name: str, matrix: Any) -> None:
+    """Refuse a matrix (dense or ``scipy.sparse``) that is not symmetric beyond round-off.
+
+    The one symmetry rule of the package, whatever the size of the model:
+    ``max|A - A^T| <= SYMMETRY_RTOL max|A|``; what passes is symmetrised by the caller.
+
+    Parameters
+    ----------
+    name : str
+        How the message names the matrix.
+    matrix : ndarray or scipy.sparse matrix
+        Square and finite.
+
+    Returns
+    -------
+    None
+        Raises ``ValueError`` (one line) for an asymmetric matrix.
+    """
+    import scipy.sparse
+
+    if scipy.sparse.issparse(matrix):
+        a = scipy.sparse.csr_matrix(matrix)
+        diff = abs(a - a.T)
+        asym = float(diff.max()) if diff.nnz else 0.0
+        top = float(abs(a).max()) if a.nnz else 0.0
+    else:
+        a = np.asarray(matrix)
+        asym = float(np.abs(a - a.T).max())
+        top = float(np.abs(a).max())
+    if asym > SYMMETRY_RTOL * top:
+        raise ValueError(f"{name} is not symmetric: |A - A^T| reaches {asym:.3g}, beyond "
+                         f"{SYMMETRY_RTOL:g} of its largest entry {top:.3g}")
+
+
+def _first_nonpositive_diagonal(matrix: Any) -> int | None:
+    diag = np.asarray(matrix.diagonal(), dtype=np.float64)
+    bad = np.flatnonzero(~(diag > 0.0))
+    return int(bad[0]) if bad.size else None
+
+
+def check_large_matrices(mass: Any, damping: Any, stiffness: Any, *,
+                         names: tuple[str, str, str] = ("mass matrix", "damping matrix",
+                                                        "stiffness matrix")) -> None:
+    """The checks of :func:`check_matrices` for a model too large for dense eigenvalues.
+
+    Each matrix symmetric (:func:`check_symmetric`); ``mass`` and ``stiffness`` positive
+    definite, tested by Sylvester's law of inertia: with a symmetric ordering and no row
+    exchange, ``A = P L D L' P'`` and ``A`` has as many negative eigenvalues as ``D`` has
+    negative pivots (a zero pivot forces a row exchange, or stops the factorisation: the
+    matrix is singular). A pivot at or below ``max(FREE_MODE_RTOL, n eps)`` of the largest is
+    a singular stiffness, a free rigid-body mode (the rank tolerance of ``numpy.linalg.
+    matrix_rank`` is ``n eps`` of the largest singular value). ``damping``: its diagonal
+    ``>= 0`` here; its reduction is checked by :func:`check_matrices`.
+
+    Parameters
+    ----------
+    mass, damping, stiffness : ndarray or scipy.sparse matrix
+        Square, same size, finite; ``damping`` may be None.
+    names : tuple of str
+        How the messages name them.
+
+    Returns
+    -------
+    None
+        Raises ``ValueError`` (one line) naming the matrix, the DOF and why.
+    """
+    for name, matrix in zip(names, (mass, damping, stiffness), strict=True):
+        if matrix is not None:
+            check_symmetric(name, matrix)
+    dof = _first_nonpositive_diagonal(mass)
+    if dof is not None:
+        raise ValueError(f"{names[0]} must be positive definite (every mass > 0): the mass at DOF "
+                         f"{dof} (its diagonal entry) is {float(mass.diagonal()[dof]):.3g}")
+    if damping is not None:
+        diag = np.asarray(damping.diagonal(), dtype=np.float64)
+        if diag.min() < 0.0:
+            raise ValueError(f"{names[1]} must be positive semi-definite (dampers >= 0): its "
+                             f"diagonal entry at DOF {int(np.argmin(diag))} is {diag.min():.3g}")
+    for name, matrix, what in ((names[0], mass, "mass"), (names[2], stiffness, "stiffness")):
+        _check_definite(name, matrix, what)
+
+
+def _check_definite(name: str, matrix: Any, what: str) -> None:
+    """Positive definiteness of a large symmetric matrix by the signs of its LDL' pivots."""
+    import scipy.sparse
+    from scipy.sparse.linalg import splu
+
+    a = scipy.sparse.csc_matrix(matrix, dtype=np.float64)
+    n = a.shape[0]
+    free = ("the structure is not grounded: a free rigid-body mode (zero stiffness); add a "
+            "spring to the ground" if what == "stiffness" else "a mass-less motion")
+    try:
+        lu = splu(a, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                  options={"SymmetricMode": True})
+    except RuntimeError:  # SuperLU: "Factor is exactly singular"
+        raise ValueError(f"{name} is singular: {free}") from None
+    pivots = np.asarray(lu.U.diagonal(), dtype=np.float64)
+    order = np.asarray(lu.perm_c)
+    if not np.array_equal(np.asarray(lu.perm_r), order):  # a zero pivot forced a row exchange
+        raise ValueError(f"{name} is not positive definite: its symmetric elimination meets a zero "
+                         f"pivot (a singular or indefinite {what})")
+    top = float(np.abs(pivots).max())
+    negative = np.flatnonzero(pivots < 0.0)
+    if negative.size:
+        dof = int(np.flatnonzero(order == negative[0])[0])
+        raise ValueError(f"{name} is not positive definite: it has {negative.size} negative "
+                         f"eigenvalue(s) (negative pivots of its LDL' factorisation, Sylvester's "
+                         f"law of inertia), the first met at DOF {dof}")
+    tol = max(FREE_MODE_RTOL, n * np.finfo(float).eps) * top
+    small = np.flatnonzero(pivots <= tol)
+    if small.size:
+        dof = int(np.flatnonzero(order == small[0])[0])
+        raise ValueError(f"{name} is singular (a pivot of its LDL' factorisation at DOF {dof} is "
+                         f"{float(pivots[small[0]]):.3g}, at most {tol:.3g}): {free}")
 
 
 def checked_matrices(mass: object, damping: object, stiffness: object, *,
@@ -136,18 +250,28 @@ def check_matrices(mass: FloatArray, damping: FloatArray, stiffness: FloatArray)
     None
         Raises ``ValueError`` (one line) for a matrix the engine cannot take.
     """
+    dof = _first_nonpositive_diagonal(mass)
+    if dof is not None:
+        raise ValueError(f"mass matrix must be positive definite (every mass > 0): the mass at DOF "
+                         f"{dof} (its diagonal entry) is {float(mass[dof, dof]):.3g}")
     m_eig = np.linalg.eigvalsh(mass)
     if m_eig.min() <= 0.0:
         raise ValueError(f"mass matrix must be positive definite (every mass > 0): its smallest "
                          f"eigenvalue is {m_eig.min():.3g}")
+    if m_eig.min() <= FREE_MODE_RTOL * m_eig.max():
+        raise ValueError(f"mass matrix is numerically singular: its eigenvalues span "
+                         f"{m_eig.min():.3g} to {m_eig.max():.3g}, a ratio beyond "
+                         f"{1 / FREE_MODE_RTOL:.0e} (check the units of the masses)")
     k_eig, k_vec = np.linalg.eigh(stiffness)
     k_top = max(float(np.abs(k_eig).max()), np.finfo(float).tiny)
     if k_eig.min() < -FREE_MODE_RTOL * k_top:
         raise ValueError(f"stiffness matrix is not positive semi-definite: eigenvalue "
                          f"{k_eig.min():.3g} < 0 (its mode moves DOFs {_moving_dofs(k_vec[:, 0])})")
     if k_eig.min() <= FREE_MODE_RTOL * k_top:
-        raise ValueError(f"the structure is not grounded: a free rigid-body mode (zero stiffness) "
-                         f"moves DOFs {_moving_dofs(k_vec[:, 0])}; add a spring to the ground")
+        raise ValueError(f"the structure is not grounded: a free rigid-body mode (stiffness "
+                         f"eigenvalue {k_eig.min():.3g}, at most {FREE_MODE_RTOL:g} of the largest "
+                         f"{k_top:.3g}) moves DOFs {_moving_dofs(k_vec[:, 0])}; add a spring to "
+                         "the ground")
     scale = max(1.0, float(np.abs(damping).max()))
     if np.linalg.eigvalsh(damping).min() < -1e-12 * scale:
         raise ValueError("damping matrix must be positive semi-definite (dampers >= 0)")

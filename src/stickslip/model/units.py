@@ -86,6 +86,17 @@ def _parse(flag: str, text: str, what: str) -> tuple[float, str]:
     return float(number), unit
 
 
+def _angle_exponent(ureg: Any, unit: Any) -> float:
+    """The power of the radian in ``unit``'s root units: 1 for rad/s, rpm, deg/s; 0 for Hz.
+
+    pint takes the radian as dimensionless, so it converts ``"75.398 rad/s"`` and ``"720 rpm"``
+    to 75.398 "Hz" (1/s). A frequency in Hz counts cycles per second: the caller divides an
+    angular frequency by 2 pi (720 rpm = 12 Hz).
+    """
+    _factor, root = ureg.get_root_units(unit)
+    return float(dict(root._units).get("radian", 0))
+
+
 def to_si(name: str, value: str | float | int, *, source: str | None = None) -> float:
     """Convert ``value`` for quantity ``name`` to an SI float, checking its dimension.
 
@@ -94,7 +105,9 @@ def to_si(name: str, value: str | float | int, *, source: str | None = None) -> 
     naming the value and why: a wrong dimension (a mass given for a stiffness), a decimal
     comma, two numbers, arithmetic, a value that is not a number or a string (a TOML date,
     list or table), or a result that is not finite. ``source`` names where the value came
-    from in the message (default: the command-line flag, e.g. ``--m``).
+    from in the message (default: the command-line flag, e.g. ``--m``). A frequency (Hz,
+    cycles per second) may be given as an angular frequency: ``"75.398 rad/s"`` and
+    ``"720 rpm"`` are 12 Hz; an angle unit in any other quantity is refused.
 
     Parameters
     ----------
@@ -129,7 +142,15 @@ def to_si(name: str, value: str | float | int, *, source: str | None = None) -> 
             except Exception:
                 raise ValueError(f"{flag} {text!r}: {unit_text!r} is not a unit pint understands") from None
             quantity = ureg.Quantity(magnitude, unit)
-            if dim == "":
+            angle = _angle_exponent(ureg, unit)
+            angular = angle == 1 and si_unit == "Hz" and quantity.check(dim)
+            if angle and not angular and quantity.check(dim):
+                raise ValueError(f"{flag} {text!r}: an angle unit ({unit_text!r}) does not belong to "
+                                 f"the {what} (in {si_unit or 'no unit'})")
+            if angular:  # an angular frequency (rad/s, rpm, deg/s): Hz = (rad/s) / (2 pi)
+                factor, _root = ureg.get_root_units(unit)
+                number = magnitude * float(factor) / (2.0 * math.pi)
+            elif dim == "":
                 if not quantity.dimensionless:
                     raise ValueError(f"{flag} {text!r} must be dimensionless ({what})")
                 number = float(quantity.to("dimensionless").magnitude)
