@@ -1,0 +1,140 @@
+"""``design`` answers with the machine's own friction law (issue 32, item 1).
+
+The critical belt speed ``V_c`` and load ``W_c`` of a law whose dimensionless form moves with
+``V`` or ``W`` come from one exact onset search along each
+(:func:`stickslip.analysis.critical.speed_and_load_onsets`); the paper's Coulomb closed forms
+stay beside them, labelled as such.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+from pathlib import Path
+
+import pytest
+from scipy.optimize import brentq
+
+from stickslip import PhysicalSystem
+from stickslip.analysis.critical import lowest_onset, speed_and_load_onsets
+from stickslip.analysis.design import COULOMB_LAW, design_foundation
+from stickslip.analysis.simulation import simulate
+from stickslip.analysis.theory import critical_lambda_linear, optimal_foundation_fit
+from stickslip.analysis.verdict import Verdict
+from stickslip.cli.design_command import format_report
+from stickslip.model.physical import PhysicalFriction
+from stickslip.model.structure import elastic_foundation, rigid_base
+from tests.cli_helpers import run_cli
+
+# issue 32 item 1: the Stribeck machine whose design printed V_c = 0.0747 m/s (the Coulomb
+# value) on every rigid-base row; the issue gives its true limit as 0.2718 m/s
+STRIBECK = PhysicalSystem(mass=0.538, stiffness=6957.0, damping=5.746, mu_s=0.6, mu_k=0.2, load=10.0,
+                          speed=0.19, friction=PhysicalFriction("stribeck", stribeck_velocity=0.1,
+                                                                viscous=0.02))
+STRIBECK_TOML = """m = "0.538 kg"
+k = "6957 N/m"
+c = "5.746 N*s/m"
+mu_s = 0.6
+mu_k = 0.2
+load = "10 N"
+speed = "0.19 m/s"
+
+[friction]
+law = "stribeck"
+stribeck_velocity = "0.1 m/s"
+viscous = "0.02 s/m"
+"""
+
+
+def _bisect_speed(system: PhysicalSystem, slow: float, fast: float, rtol: float) -> float:
+    """The stick-slip limit in belt speed by bisection of direct ``simulate`` runs (rigid base).
+
+    Independent of the onset search: the machine is rebuilt at each speed from its SI values
+    (``PhysicalSystem.slider()``: lambda and the law's ``v_s / V`` and viscous term), midpoints
+    are arithmetic in ``V``, and nothing of :mod:`stickslip.analysis.critical` is used.
+    """
+    def stick_slips(speed: float) -> bool:
+        at = dataclasses.replace(system, speed=speed)
+        verdict = simulate(rigid_base(at.zeta), at.slider(), record=False).verdict
+        assert verdict is not Verdict.UNDETERMINED, f"V={speed}: undetermined"
+        return verdict is Verdict.STICK_SLIP
+
+    assert stick_slips(slow) and not stick_slips(fast)
+    for _ in range(60):  # bounded: 60 halvings are far below rtol
+        if fast - slow <= rtol * slow:
+            break
+        mid = 0.5 * (slow + fast)
+        slow, fast = (mid, fast) if stick_slips(mid) else (slow, mid)
+    return 0.5 * (slow + fast)
+
+
+def test_stribeck_machine_critical_speed_is_its_own_laws() -> None:
+    onsets = speed_and_load_onsets(rigid_base(STRIBECK.zeta), STRIBECK, lam_min=1e-3, lam_max=200.0)
+    assert onsets.own_law and onsets.speed.converged and onsets.speed.n_undetermined == 0
+    v_c = STRIBECK.speed_for_lambda(onsets.speed.lam)
+    # reference 1: issue 32 item 1 states the true limit, 0.2718 m/s (4 digits)
+    assert round(v_c, 4) == 0.2718
+    # reference 2: bisection in V with direct simulate runs (independent of the search);
+    # issue 32: the machine stick-slips at 0.25 m/s; 0.30 m/s is above the stated limit
+    assert v_c == pytest.approx(_bisect_speed(STRIBECK, 0.25, 0.30, 1e-7), rel=2e-6)
+    # the paper's Coulomb value is 3.6x lower (issue 32): the answer the command gave before
+    coulomb = lowest_onset(rigid_base(STRIBECK.zeta), gamma=STRIBECK.slider().gamma, lam_min=1e-3)
+    assert STRIBECK.speed_for_lambda(coulomb) == pytest.approx(0.0747, abs=5e-5)
+    # along the load the law's viscous term moves too: another onset, below the operating
+    # load of 10 N, where the machine stick-slips (its own simulated verdict at 0.19 m/s)
+    w_c = STRIBECK.load_for_lambda(onsets.load.lam)
+    assert onsets.load.lam != onsets.speed.lam and w_c < STRIBECK.load
+    assert simulate(rigid_base(STRIBECK.zeta), STRIBECK.slider(), record=False).verdict is Verdict.STICK_SLIP
+
+
+def test_linear_law_critical_speed_and_load_are_eq_36_at_the_effective_damping() -> None:
+    # a linear law mu = mu_k - sigma v_r: delta = sigma W / (2 sqrt(m k)) moves with the load only
+    sigma = 0.01
+    system = PhysicalSystem(mass=2.0, stiffness=50e3, damping=20.0, mu_s=0.5, mu_k=0.3, load=500.0,
+                            speed=0.05, friction=PhysicalFriction("linear", slope=sigma))
+    d = design_foundation(system).to_dict()
+    root_mk = math.sqrt(2.0 * 50e3)
+    # reference: critical_lambda_linear, Eq. (36) at zeta - delta (derivation in its docstring)
+    along_speed = critical_lambda_linear(system.zeta, sigma * 500.0 / (2.0 * root_mk))
+    # along the load delta = sigma V lambda / (2 (mu_s - mu_k)): the fixed point of the same form
+    along_load = brentq(lambda lam: lam - critical_lambda_linear(system.zeta, sigma * 0.05 * lam / 0.4),
+                        1e-3, 50.0, xtol=1e-14)
+    assert d["critical_lambda"]["rigid_simulation"] == pytest.approx(along_speed, rel=1e-6)
+    assert d["critical_lambda_load"]["rigid_simulation"] == pytest.approx(along_load, rel=1e-6)
+    assert d["critical_speed"]["rigid_simulation"] == pytest.approx(
+        system.speed_for_lambda(along_speed), rel=1e-6)
+    assert d["critical_load"]["rigid_simulation"] == pytest.approx(
+        system.load_for_lambda(along_load), rel=1e-6)
+    # the Coulomb procedure is stated beside it, labelled
+    assert d["critical_law"]["rigid_exact"] == COULOMB_LAW
+    assert d["critical_law"]["rigid_simulation"].startswith("linear")
+    assert any("Coulomb law" in w and "machine's friction law" in w for w in d["warnings"])
+
+
+def test_coulomb_search_is_todays_onset_bit_for_bit() -> None:
+    # the paper's law: one search, the same float as lowest_onset (tests/test_coulomb_bit_identity)
+    system = PhysicalSystem(mass=2.0, stiffness=50e3, damping=20.0, mu_s=0.5, mu_k=0.3, load=500.0,
+                            speed=0.05)
+    structure = elastic_foundation(system.zeta, optimal_foundation_fit(system.zeta))
+    onsets = speed_and_load_onsets(structure, system, lam_min=1e-3, lam_max=200.0)
+    assert not onsets.own_law and onsets.speed is onsets.load
+    assert onsets.speed.lam == lowest_onset(structure, gamma=system.slider().gamma, lam_min=1e-3,
+                                            lam_max=200.0)
+
+
+@pytest.mark.slow
+def test_stribeck_design_command_states_both_laws(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    cfg = tmp_path / "machine.toml"
+    cfg.write_text(STRIBECK_TOML)
+    code, out, err = run_cli(["design", "--config", str(cfg), "--no-stick-slip-optimum", "--json"], capsys)
+    assert code == 0, err
+    d = json.loads(out)
+    # reference: issue 32 item 1, 0.2718 m/s (checked by bisection above)
+    assert round(d["critical_speed"]["rigid_simulation"], 4) == 0.2718
+    assert d["critical_speed"]["rigid_exact"] == pytest.approx(0.0747, abs=5e-5)
+    assert d["critical_law"]["rigid_simulation"].startswith("stribeck")
+    text = format_report(d)  # the command's text output of this very report
+    assert "the paper's procedure, for its Coulomb law" in text
+    assert "the machine's friction law (stribeck" in text
+    assert "V_c=  0.2718 m/s" in text
