@@ -428,6 +428,39 @@ def test_linear_law_shows_the_stability_table_of_the_design_report() -> None:
                        for row, key in (("rigid base", "rigid"), ("with foundation", "foundation"))]
 
 
+def test_linear_law_shows_the_design_commands_warning_and_stability_optimal_foundation(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """Issue 31: what 'stickslip design' prints for a non-Coulomb law, on the page too.
+
+    Reference: the JSON of ``stickslip design --config`` on the same machine, the app's
+    defaults with ``[friction] law = "linear", slope = "0.02 s/m"``.
+    """
+    from stickslip.app.streamlit_app import _fmt
+
+    config = tmp_path / "machine.toml"
+    config.write_text('m = "2 kg"\nk = "50 kN/m"\nc = "20 N*s/m"\nmu_s = 0.5\nmu_k = 0.3\n'
+                      'load = "500 N"\nspeed = "5 cm/s"\n[friction]\nlaw = "linear"\n'
+                      'slope = "0.02 s/m"\n')
+    code, out, _ = _run(["design", "--config", str(config), "--json"], capsys)
+    assert code == 0
+    cli = json.loads(out)
+    (procedure,) = [w for w in cli["warnings"] if "paper's procedure" in w]
+    stable = cli["stability_optimal_foundation"]
+
+    at = _started()
+    at.selectbox(key="friction_law").set_value("linear").run()
+    assert not at.exception and not at.error
+    shown = [re.sub(r"\\(.)", r"\1", str(w.value)) for w in at.warning]
+    assert procedure in shown
+    foundation = [t.value for t in at.table if "m_a [kg]" in t.value.columns]
+    (table,) = foundation
+    assert list(table.loc["stability-optimal"]) == [_fmt(stable["m_a"]), _fmt(stable["k_a"]),
+                                                   _fmt(stable["c_a"])]
+    critical = [t.value for t in at.table if "friction law" in t.value.columns]
+    assert len(critical) == 1
+    assert critical[0].loc["rigid base, simulation", "friction law"] == cli["friction"]
+
+
 def test_bad_friction_slope_is_one_line_and_nothing_is_computed() -> None:
     at = AppTest.from_file(str(APP), default_timeout=TIMEOUT)
     at.session_state["friction_law"] = "linear"

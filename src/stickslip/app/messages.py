@@ -78,3 +78,10 @@ def show_error(message: str, where: Any = None) -> None:
     import streamlit as st
 
     (where or st).error(literal_markdown(sanitised(message)))
+
+
+def show_warning(message: str, where: Any = None) -> None:
+    """Show ``message`` in a yellow box, as :func:`show_error` does (sanitised, literal)."""
+    import streamlit as st
+
+    (where or st).warning(literal_markdown(sanitised(message)))

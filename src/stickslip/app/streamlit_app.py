@@ -64,7 +64,7 @@ from stickslip.app.inputs import (
     si_key,
     system_from_key,
 )
-from stickslip.app.messages import show_error
+from stickslip.app.messages import show_error, show_warning
 from stickslip.io.provenance import package_version
 from stickslip.model.initial import STARTUP_DESCRIPTION
 from stickslip.model.parameters import Foundation
@@ -152,11 +152,15 @@ def _show_critical(report: Mapping[str, Any], system: PhysicalSystem) -> None:
         "foundation_theory": "with foundation, theory (Eq. 37 with ζ_eq)",
         "foundation_simulation": "with foundation, simulation",
     }
-    _table(list(rows.values()), {
+    columns = {
         "critical λ": [_fmt(report["critical_lambda"][k]) for k in rows],
         "critical speed V_c [m/s]": [_fmt(report["critical_speed"][k]) for k in rows],
         "critical load W_c [N]": [_fmt(report["critical_load"][k]) for k in rows],
-    })
+    }
+    laws = report.get("critical_law") or {}
+    if any(laws.get(k) != laws.get("rigid_theory") for k in rows):  # not the paper's law alone
+        columns["friction law"] = [str(laws.get(k, "")) for k in rows]
+    _table(list(rows.values()), columns)
     speed = report["critical_speed"]["foundation_simulation"]
     load = report["critical_load"]["foundation_simulation"]
     st.markdown(
@@ -205,6 +209,9 @@ def _show_foundation(report: Mapping[str, Any], system: PhysicalSystem) -> None:
     rows = {"recommended (Eqs. 28-30)": r}
     if system.foundation is not None:
         rows["given (assessed above)"] = f
+    stable = report.get("stability_optimal_foundation")
+    if stable:  # 'stickslip design' lists it for a law that depends on the sliding speed
+        rows["stability-optimal"] = stable
     _table(list(rows), {
         "m_a [kg]": [_fmt(x["m_a"]) for x in rows.values()],
         "k_a [N/m]": [_fmt(x["k_a"]) for x in rows.values()],
@@ -213,6 +220,15 @@ def _show_foundation(report: Mapping[str, Any], system: PhysicalSystem) -> None:
     st.caption(f"Foundation assessed: {f['source']}; dimensionless M = {_fmt(f['M'])}, "
                f"K = {_fmt(f['K'])}, ζ_a = {_fmt(f['zeta_a'])}; ζ_eq = {_fmt(report['zeta_eq'])} "
                f"({report['zeta_eq_source']}).")
+    if stable:
+        sigma = stable["sigma_crit"]
+        tolerated = (f"friction slopes dμ/dv_r down to −{_fmt(sigma, 's/m')}" if sigma > 0.0
+                     else f"no weakening (it needs a slope of at least +{_fmt(-sigma, 's/m')})")
+        st.caption(f"Stability-optimal foundation (as listed by 'stickslip design'): steady "
+                   f"sliding tolerates {tolerated} (δ_crit = {_fmt(stable['delta_crit'])}); "
+                   f"static deflection under μk W {_fmt(stable['foundation_deflection'], 'm')} "
+                   f"(bound {_fmt(stable['max_foundation_deflection'], 'm')}); M = "
+                   f"{_fmt(stable['M'])}, K = {_fmt(stable['K'])}, ζ_a = {_fmt(stable['zeta_a'])}.")
 
 
 def _show_stick_slip_optimum(report: Mapping[str, Any], system: PhysicalSystem
@@ -398,6 +414,8 @@ def _show_results(raw: Mapping[str, str], system: PhysicalSystem) -> None:
     cols[4].metric("ω_n [rad/s]", _fmt(system.natural_frequency), help="√(k/m)")
 
     st.subheader("Does it stick-slip?")
+    for warning in report.get("warnings", []):  # those of 'stickslip design'
+        show_warning(warning)
     _show_verdicts(report)
     _show_critical(report, system)
     _show_foundation(report, system)
