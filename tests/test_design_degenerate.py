@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import math
 import re
+from pathlib import Path
 
 import pytest
 
@@ -110,3 +111,18 @@ def test_progress_reports_stages_and_runs(capsys: pytest.CaptureFixture[str]) ->
     # not a terminal (the test's captured stderr): no progress drawn
     code, _, err = run_cli(["design", *WITH_C], capsys)
     assert code == 0 and err == ""
+
+
+def test_machine_file_undetermined_verdict_says_why(tmp_path: Path,
+                                                    capsys: pytest.CaptureFixture[str]) -> None:
+    from tests.test_cli_machine import write_structure_file
+
+    machine = write_structure_file(tmp_path / "chain3.toml")
+    code, out, err = run_cli(["design", "--config", str(machine), "--t-max", "1"], capsys)
+    assert code == 0, err
+    assert ": undetermined" in out
+    assert "undetermined because: time horizon reached" in out and "--t-max 10 (now 1)" in out
+    # every search run is undetermined at this horizon: the search's bound is named, not printed
+    assert "the search's upper bound" in out and "V_c=0 m/s" not in out
+    d = json.loads(run_cli(["design", "--config", str(machine), "--t-max", "1", "--json"], capsys)[1])
+    assert d["status"] == "t-max" and d["t_max"] == 1.0

@@ -223,24 +223,40 @@ class MachineDesign:
                 "status": None if self.status is None else self.status.label, "t_max": self.t_max,
                 "absorbers": [a.to_dict() for a in self.absorbers]}
 
+    def _critical_text(self) -> str:
+        """The critical point, or what its search found at a bound of its range."""
+        c = self.critical
+        if math.isinf(c.lam):
+            return (f"no stick-slip certified up to lambda = {LAM_MAX:g}, the search's upper bound "
+                    f"({_bound_text(self.machine, LAM_MAX)}): no critical speed or load inside it")
+        if c.lam <= LAM_MIN:
+            return (f"stick-slip already at lambda = {LAM_MIN:g}, the search's lower bound "
+                    f"({_bound_text(self.machine, LAM_MIN)}): V_c and W_c lie beyond it")
+        return (f"stick-slip below V_c={c.speed:.4g} m/s / above W_c={c.load:.4g} N "
+                f"(lambda_c={c.lam:.4g})")
+
     def summary(self) -> str:
         """Plain-text report."""
-        c = self.critical
         lines = [self.machine.summary(),
                  f"at V={self.machine.speed:.4g} m/s, W={self.machine.load:.4g} N: {self.verdict}"
                  + (f" (period {self.period_s:.4g} s, amplitude {self.amplitude_m:.4g} m)"
                     if math.isfinite(self.period_s) else ""),
-                 f"stick-slip below V_c={c.speed:.4g} m/s / above W_c={c.load:.4g} N "
-                 f"(lambda_c={c.lam:.4g}); peak receptance {self.peak_receptance:.4g} m/N"]
+                 f"{self._critical_text()}; peak receptance {self.peak_receptance:.4g} m/N"]
         if self.verdict == Verdict.UNDETERMINED.value and self.status is not None:
-            hint = (f"; rerun with a longer horizon, --t-max {10 * self.t_max:g} (now {self.t_max:g})"
-                    if self.status is RunStatus.T_MAX else "")
-            lines.insert(2, f"undetermined because: {self.status.message}{hint}")
+            why = (f"{self.status.message.split(';')[0]}; rerun with a longer horizon, --t-max "
+                   f"{10 * self.t_max:g} (now {self.t_max:g})" if self.status is RunStatus.T_MAX
+                   else self.status.message)
+            lines.insert(2, f"undetermined because: {why}")
         for a in self.absorbers:
             lines.append(f"absorber ({a.objective}): m_a={a.mass:.4g} kg, k_a={a.stiffness:.4g} N/m, "
                          f"c_a={a.damping:.4g} N s/m -> V_c={a.critical.speed:.4g} m/s, "
                          f"W_c={a.critical.load:.4g} N, peak {a.peak_receptance:.4g} m/N")
         return "\n".join(lines)
+
+
+def _bound_text(machine: Machine, lam: float) -> str:
+    """``V`` (m/s) and ``W`` (N) at ``lambda = lam`` of ``machine``'s contact."""
+    return f"V = {machine.speed_for_lambda(lam):.4g} m/s, W = {machine.load_for_lambda(lam):.4g} N"
 
 
 def _peak_si(machine: Machine) -> float:
