@@ -68,6 +68,7 @@ from stickslip.analysis.identification_result import (
     IdentificationResult,
     undetermined,
 )
+from stickslip.model.friction import STRIBECK_RANGES
 
 FloatArray = NDArray[np.float64]
 
@@ -94,6 +95,22 @@ SLIP_FRACTION = 1e-3
 BLAS_THREADS = 1
 #: Iteration budget of each trial start of a Stribeck fit.
 MULTISTART_EVALUATIONS = 12
+#: The residuals are judged against the record's own noise (the weights are one over each
+#: channel's white-noise level, :func:`~stickslip.analysis.identification_estimates.noise_level`),
+#: so a model that describes the record has a reduced chi-square near 1. Above this one (the
+#: residuals twice the noise) the result carries a warning that the model does not describe
+#: the record.
+MISMATCH_CHI2 = 4.0
+#: Above this reduced chi-square (residuals ten times the noise) the fit is refused: no motion
+#: of the law describes the record (no stick-slip, a wrong mass or drive speed). Only when the
+#: record's noise is measurable (above :data:`NOISE_FLOOR` of its range): a noise-free record
+#: has no yardstick.
+REFUSE_CHI2 = 100.0
+NOISE_FLOOR = 1e-5
+#: A stated mass beyond this factor of the mass the record's slip phases imply
+#: (``k / omega^2``, :class:`~stickslip.analysis.identification_estimates.RecordEstimates`) is
+#: flagged: the slip phases of a 1 kg slider last 1000**0.5 times less than those of 1000 kg.
+MASS_FACTOR = 10.0
 
 __all__ = ["LAWS", "UNDETERMINED_RULE", "IdentificationResult", "MeasuredRecord", "RecordError",
            "identify"]
@@ -259,6 +276,7 @@ def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulo
     law = law.strip().lower()
     if law not in (*LAWS, "auto"):
         raise ValueError(f"law {law!r} is not one of {', '.join(LAWS)}, auto")
+    check_known(known, law)
     knots = _check_table_speeds(table_speeds) if table_speeds is not None else None
     if knots is not None and law != "table":
         raise ValueError(f"table_speeds are the knots of the table law, not of {law!r}")
@@ -269,6 +287,55 @@ def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulo
     with _blas_limited(blas_threads):
         return _identify(record, known, law, mass=mass, load=load, speed=speed, bootstrap=bootstrap,
                          seed=seed, fit_offset=fit_offset, knots=knots)
+
+
+#: What a value held fixed must be: positive, non-negative or just finite (any sign).
+_KNOWN_SIGN = {"k": "positive", "mu_s": "positive", "stribeck_velocity": "positive",
+               "exponent": "positive", "c": "non-negative", "mu_k": "non-negative"}
+
+
+def check_known(known: Mapping[str, Any], law: str) -> None:
+    """Refuse, in one line, a value held fixed that the fit cannot take.
+
+    Each is a finite real number (``force_offset = inf`` is not); ``k``, ``mu_s``,
+    ``stribeck_velocity`` and ``exponent`` positive, ``c`` and ``mu_k`` non-negative,
+    ``mu_s > mu_k`` when both are given; and a parameter of the law fitted (``slope`` belongs
+    to the linear law, not to ``coulomb``; ``auto`` fits coulomb, linear and stribeck).
+
+    Parameters
+    ----------
+    known : mapping
+        Parameters held fixed, by name, SI.
+    law : str
+        The law asked for (``auto`` included).
+
+    Returns
+    -------
+    None
+        Raises ``ValueError`` naming the parameter, its value and why.
+    """
+    laws = ("coulomb", "linear", "stribeck") if law == "auto" else (law,)
+    own = {n for name in laws for n in LAW_PARAMETERS[name]}
+    if "table" in laws:
+        own |= {f"table_mu_{i}" for i in range(MAX_TABLE_KNOTS)}
+    for name, value in known.items():
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise ValueError(f"{name} = {value!r} held fixed must be a finite number")
+        sign = _KNOWN_SIGN.get(name)
+        if (sign == "positive" and not value > 0.0) or (sign == "non-negative" and value < 0.0):
+            raise ValueError(f"{name} = {value!r} held fixed must be {sign}")
+        shared = name in ("k", "c", "mu_s", "mu_k", "force_offset", "force_drift")
+        if not shared and name not in own:
+            owners = [n for n in LAWS if name in LAW_PARAMETERS[n]] or ["table"]
+            raise ValueError(f"{name} held fixed does not belong to the {law} law (it is a "
+                             f"parameter of the {' and '.join(owners)} law)")
+    if "exponent" in known:
+        low, high, why = STRIBECK_RANGES["exponent"]
+        if not low <= known["exponent"] <= high:
+            raise ValueError(f"exponent = {known['exponent']!r} held fixed must lie in [{low:g}, "
+                             f"{high:g}] ({why})")
+    if "mu_s" in known and "mu_k" in known and not known["mu_s"] > known["mu_k"]:
+        raise ValueError(f"mu_s = {known['mu_s']!r} held fixed must exceed mu_k = {known['mu_k']!r}")
 
 
 _BLAS_LOCK = threading.Lock()
@@ -437,6 +504,7 @@ def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tup
         params["mu_k"] = FitParameter("mu_k", knot.value, knot.stderr, "", free=knot.free,
                                       estimate=values[lowest], interval=knot.interval)
     criteria = {name: _criteria_report(p, r) for name, (p, r) in fits.items()}
+    warnings = _judge(record, est, chi2, res.fun.size - _n_params(problem), mass=mass)
     rms = {n: float(np.sqrt(np.mean((model[n] - getattr(record, n)) ** 2))) for n in record.channels}
     stick_cycles = sum(1 for seg in problem.segments if seg.in_stick and seg.stop - seg.start > 1)
     return IdentificationResult(
@@ -452,4 +520,29 @@ def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tup
         success=bool(res.success), message=str(res.message), source=record.source,
         fit_offset=fit_offset, condition=float(singular[0] / singular[-1]) if singular[-1] > 0 else math.inf,
         covariance=cov, covariance_names=tuple(reported), bootstrap=bootstrap, table_visited=tuple(visited),
+        warnings=warnings,
     )
+
+
+def _judge(record: MeasuredRecord, est: RecordEstimates, chi2: float, dof: int, *,
+           mass: float) -> tuple[str, ...]:
+    """Warnings on a fit (or a refusal): residuals against the record's noise, the mass."""
+    reduced = chi2 / max(dof, 1)
+    ratio = mass / est.implied_mass if math.isfinite(est.implied_mass) and est.implied_mass > 0 else 1.0
+    mass_note = ""
+    if not 1.0 / MASS_FACTOR <= ratio <= MASS_FACTOR:
+        mass_note = (f"the stated mass {mass:.4g} kg is {ratio:.3g} times the {est.implied_mass:.3g} kg "
+                     "that the record's slip phases imply (k / omega^2)")
+    noisy = all(est.noise[n] > NOISE_FLOOR * float(np.ptp(getattr(record, n))) for n in record.channels)
+    verdict = (f"the model does not describe the record: its residuals are {math.sqrt(reduced):.3g} "
+               f"times the record's own noise (reduced chi-square {reduced:.3g})")
+    if reduced > REFUSE_CHI2 and noisy:
+        why = mass_note or ("is it stick-slip, and are the mass, load and drive speed right?")
+        raise RecordError(f"{verdict}, beyond {math.sqrt(REFUSE_CHI2):g} times: no fit is reported; {why}")
+    out = []
+    if reduced > MISMATCH_CHI2:
+        out.append(f"{verdict}, above {math.sqrt(MISMATCH_CHI2):g} times: the values are those of the "
+                   "closest model, not of the record")
+    if mass_note:
+        out.append(mass_note + ": check --mass")
+    return tuple(out)

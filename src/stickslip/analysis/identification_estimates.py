@@ -39,6 +39,10 @@ FloatArray = NDArray[np.float64]
 MIN_STICK_PHASES = 2
 #: Fewest samples per stick-slip period the estimates need.
 MIN_SAMPLES_PER_PERIOD = 40
+#: In a stick phase the slider moves with the belt: a displacement record's rising phases must
+#: move at the drive speed ``V`` within this fraction (the median over the stick phases), or
+#: they are not stick phases (a smooth oscillation, a wrong ``--speed``, a wrong sign of x).
+STICK_SPEED_RTOL = 0.1
 
 
 class RecordError(ValueError):
@@ -156,6 +160,7 @@ class RecordEstimates:
     stick_phases: tuple[StickPhase, ...]
     noise: dict[str, float] = field(default_factory=dict)
     starts_in_stick: bool = False
+    implied_mass: float = math.nan  # k / omega^2 of the slip phases' duration (undamped Coulomb)
 
     @property
     def breakaway_times_index(self) -> list[int]:
@@ -280,6 +285,15 @@ def estimate(record: MeasuredRecord, *, mass: float, load: float, speed: float) 
         if record.F is not None and record.x is not None:
             f_vs_x.append(np.polyfit(record.x[sl], record.F[sl], 1))
     rate = float(np.median(rates))
+    if record.x is not None:
+        spans = [slice(ph.start, ph.breakaway + 1) for ph in stick]
+        x_rate = float(np.median([np.polyfit(t[sl], record.x[sl], 1)[0] for sl in spans]))
+        if not abs(x_rate / speed - 1.0) <= STICK_SPEED_RTOL:
+            raise RecordError(
+                f"the record has no stick phase: its rising phases move at {x_rate:.4g} m/s, "
+                f"{x_rate / speed:.3g} times the drive speed V = {speed:.4g} m/s (a sticking slider "
+                f"moves with the belt, within {STICK_SPEED_RTOL:.0%}); check --speed and the sign "
+                "of x, or that the record shows stick-slip")
     peak = float(np.median([ph.peak_value for ph in stick]))
     onset = float(np.median([ph.onset_value for ph in stick if ph.start > 0] or [stick[-1].onset_value]))
     # slip duration: from a breakaway to the next stick onset
@@ -308,8 +322,9 @@ def estimate(record: MeasuredRecord, *, mass: float, load: float, speed: float) 
     u_max = speed + math.hypot(d0 * omega0, speed)
     if k0 <= 0.0 or not math.isfinite(k0):
         raise RecordError("the stick phases of the record do not rise: cannot read the stiffness")
+    implied_mass = k0 / _slip_omega(t_slip, d0, speed) ** 2 if slips else math.nan
     return RecordEstimates(
         period=period, k=k0, c=c0, mu_s=mu_s0, mu_k=mu_k0, force_offset=offset,
         max_sliding_speed=u_max, stick_phases=tuple(stick), noise=noise,
-        starts_in_stick=stick[0].start == 0,
+        starts_in_stick=stick[0].start == 0, implied_mass=implied_mass,
     )

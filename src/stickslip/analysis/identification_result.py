@@ -34,6 +34,17 @@ PARAMETER_UNITS: dict[str, str] = {
 #: record), so the record does not say which curve it saw.
 SHAPE_RELATIVE_STDERR = 0.5
 
+def _toml_string(text: str) -> str:
+    """``text`` as a TOML basic string: quoted, every control character escaped.
+
+    JSON's escapes (``\\"``, ``\\\\``, ``\\n``, ``\\uXXXX``) are TOML's; DEL, which JSON leaves
+    raw and TOML forbids, is escaped too. A record named ``"a\\n[friction]"`` stays one line.
+    """
+    import json
+
+    return json.dumps(text, ensure_ascii=True).replace("\x7f", "\\u007f")
+
+
 UNDETERMINED_RULE = (
     "a fitted parameter is undetermined (value null) when it lies along a numerically null "
     "direction of the column-scaled Jacobian at the optimum (singular value below 1e-8 of the "
@@ -172,6 +183,7 @@ class IdentificationResult:
     covariance_names: tuple[str, ...] = ()
     bootstrap: int = 0
     table_visited: tuple[bool, ...] = ()
+    warnings: tuple[str, ...] = ()
 
     # ------------------------------------------------------------------ values
     def values(self) -> dict[str, float]:
@@ -220,6 +232,7 @@ class IdentificationResult:
             "n_samples": self.n_samples,
             "n_free": self.n_free,
             "reduced_chi2": self.chi2 / max(self.n_samples * len(self.measured) - self.n_free, 1),
+            "warnings": list(self.warnings),
             "correlations": {f"{a},{b}": v for (a, b), v in self.correlations.items()},
             "information_criteria": self.criteria,
             "known": {"m": self.mass, "load": self.load, "speed": self.speed},
@@ -250,7 +263,7 @@ class IdentificationResult:
                              f"{', '.join(missing)} (fix them with known values and fit again)")
         v = {n: (p.value if p.value is not None else p.estimate) for n, p in self.parameters.items()}
         lines = [
-            f"# identified by stickslip identify from {self.source} (law {self.law})",
+            f"# identified by stickslip identify from {_toml_string(self.source)} (law {self.law})",
             "# residual RMS: " + ", ".join(f"{n} {r:.4g} {_CHANNEL_UNITS[n]}"
                                            for n, r in self.residual_rms.items()),
             "[system]",
@@ -271,7 +284,7 @@ class IdentificationResult:
             lines += [f"mu_0 = {v['mu_s']!r}", f'stribeck_velocity = "{v["stribeck_velocity"]!r} m/s"',
                       f"exponent = {v['exponent']!r}", f'viscous = "{v["viscous"]!r} s/m"']
         elif self.law == "table":
-            lines.append(f'table = "{table_file}"')
+            lines.append(f"table = {_toml_string(table_file)}")
         return "\n".join(lines) + "\n"
 
     def _table_rows(self) -> list[int]:
@@ -333,6 +346,9 @@ class IdentificationResult:
         for law, ic in self.criteria.items():
             mark = "  <- chosen" if law == self.law and len(self.criteria) > 1 else ""
             lines.append(f"    {law:<9} AIC = {ic['aic']:.6g}, BIC = {ic['bic']:.6g}{mark}")
+        if self.warnings:
+            lines.append("[[Warnings]]")
+            lines += [f"    {w}" for w in self.warnings]
         lines.append("[[Variables]]")
         for n, p in self.parameters.items():
             unit = f" {p.unit}" if p.unit else ""

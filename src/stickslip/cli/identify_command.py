@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import math
 from pathlib import Path
 from typing import Annotated
 
@@ -24,11 +25,15 @@ def _parse_fixed(items: list[str]) -> dict[str, float]:
         if not eq or name not in (*_FIXABLE, "force_offset", "force_drift"):
             raise BadInput(f"--fix {item!r} must be NAME=VALUE with NAME one of "
                            f"{', '.join((*_FIXABLE, 'force_offset', 'force_drift'))}")
+        if name in out:
+            raise BadInput(f"--fix {name} is given twice; give each parameter once")
         if name in ("force_offset", "force_drift"):
             try:
                 out[name] = float(value)
             except ValueError:
                 raise BadInput(f"--fix {item!r}: {value!r} is not a number (SI: N or N/s)") from None
+            if not math.isfinite(out[name]):
+                raise BadInput(f"--fix {item!r}: {name} must be finite")
         else:
             out[name] = to_si(name, value.strip(), source=f"--fix {name} =")
     return out
@@ -84,7 +89,7 @@ def identify(
 
     Then: stickslip identify ... --write-config machine.toml; stickslip design --config machine.toml
     """
-    from stickslip.analysis.identification import LAWS
+    from stickslip.analysis.identification import LAWS, check_known
     from stickslip.analysis.identification import identify as run_identify
     from stickslip.io.atomic import atomic_write_text
     from stickslip.io.record import parse_columns, read_columns_toml, read_record
@@ -102,7 +107,12 @@ def identify(
         raise BadInput(f"--offset {offset!r} is not one of auto, fit, zero")
     if bootstrap < 0 or bootstrap > 10_000:
         raise BadInput(f"--bootstrap {bootstrap} must lie between 0 and 10000")
-    known.update(_parse_fixed(fix or []))
+    fixed = _parse_fixed(fix or [])
+    try:
+        check_known(fixed, law)
+    except ValueError as exc:
+        raise BadInput(f"--fix {exc}") from None
+    known.update(fixed)
     knots = None
     if table_speeds is not None:
         if law != "table":
@@ -112,6 +122,9 @@ def identify(
         check_output_path(write_config, overwrite=overwrite, option="--write-config")
         if write_config.suffix.lower() != ".toml":
             raise BadInput(f"--write-config {str(write_config)!r} must end in .toml")
+        if law == "table":  # the table law's CSV is written beside it
+            check_output_path(write_config.with_suffix(".friction.csv"), overwrite=overwrite,
+                              option="--write-config (its table law file)")
     if plot is not None:
         check_figure_path(plot, overwrite=overwrite)
     spec = None
@@ -123,6 +136,8 @@ def identify(
     result = run_identify(data, known, law=law, bootstrap=bootstrap, fit_offset=fit_offset,
                           table_speeds=knots)
     payload = result.to_dict()
+    for warning in result.warnings:
+        typer.echo(f"stickslip: warning: {warning}", err=True)
     if write_config is not None:
         table_name = write_config.with_suffix(".friction.csv").name
         text = result.to_config(table_file=table_name)

@@ -107,6 +107,8 @@ def parse_columns(text: str) -> list[ColumnSpec]:
 def read_columns_toml(path: str | Path) -> list[ColumnSpec]:
     """A column specification from a TOML file with ``[columns.ROLE]`` tables (name, unit, sign)."""
     p = Path(path)
+    if p.exists() and not p.is_file():
+        raise RecordError(f"--columns {str(p)!r} is not a regular file (a folder, FIFO or device)")
     try:
         data = read_toml_file(p, f"--columns {str(p)!r}")
     except ValueError as exc:
@@ -117,24 +119,65 @@ def read_columns_toml(path: str | Path) -> list[ColumnSpec]:
     specs = []
     for role_text, entry in table.items():
         role = ALIASES.get(role_text.lower(), role_text)
+        where = f"--columns {str(p)!r}: [columns.{role_text}]"
         if role not in ROLES or not isinstance(entry, dict):
-            raise RecordError(f"--columns {str(p)!r}: [columns.{role_text}] is not a role t, x, v or F")
+            raise RecordError(f"{where} is not a role t, x, v or F")
+        unknown = sorted(set(entry) - {"name", "unit", "sign"})
+        if unknown:
+            raise RecordError(f"{where}: unknown keys {', '.join(unknown)} (allowed: name, unit, sign)")
         sign = entry.get("sign", 1)
-        if sign not in (1, -1):
-            raise RecordError(f"--columns {str(p)!r}: [columns.{role_text}] sign = {sign!r} must be 1 or -1")
-        specs.append(ColumnSpec(role, str(entry.get("name", role_text)), entry.get("unit"), float(sign)))
+        if isinstance(sign, bool) or sign not in (1, -1):
+            raise RecordError(f"{where} sign = {sign!r} must be 1 or -1")
+        name = entry.get("name", role_text)
+        unit = entry.get("unit")
+        for key, value, example in (("name", name, '"load"'), ("unit", unit, '"kN"')):
+            if value is not None and (not isinstance(value, str) or not value.strip()):
+                raise RecordError(f"{where} {key} = {value!r} must be a text in quotes, e.g. "
+                                  f"{key} = {example}")
+        specs.append(ColumnSpec(role, str(name), unit, float(sign)))
+    roles = [s.role for s in specs]
+    if len(set(roles)) != len(roles):
+        raise RecordError(f"--columns {str(p)!r} gives a role twice")
     return specs
 
 
-def read_record(path: str | Path, columns: list[ColumnSpec] | None = None) -> MeasuredRecord:
-    """Read a record CSV into a :class:`MeasuredRecord` (SI units, the rig's signs)."""
-    p = Path(path)
+#: Largest record read, bytes: 1 GiB (about 3e7 rows of four numbers). A larger file, or
+#: anything that is not a regular file (a FIFO, ``/dev/zero``), is refused before it is read.
+MAX_RECORD_BYTES = 1024**3
+
+
+def _record_text(p: Path) -> str:
+    """The text of the record file ``p`` (UTF-8, a byte-order mark dropped), checked first."""
+    import stat
+
     try:
-        text = p.read_text(encoding="utf-8")
+        mode = p.stat().st_mode
+        if not stat.S_ISREG(mode):
+            raise RecordError(f"record {str(p)!r} is not a regular file (a folder, FIFO or device); "
+                              "give the CSV file itself")
+        with p.open("rb") as handle:
+            raw = handle.read(MAX_RECORD_BYTES + 1)
     except FileNotFoundError:
         raise RecordError(f"record {str(p)!r} does not exist") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise RecordError(f"cannot read record {str(p)!r}: {exc}") from None
+    except OSError as exc:
+        raise RecordError(f"cannot read record {str(p)!r}: {exc.strerror or exc}") from None
+    if len(raw) > MAX_RECORD_BYTES:
+        raise RecordError(f"record {str(p)!r} is larger than {MAX_RECORD_BYTES} bytes (1 GiB), the "
+                          "most read")
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise RecordError(f"cannot read record {str(p)!r}: it is not UTF-8 text ({exc.reason} at "
+                          f"byte {exc.start})") from None
+
+
+def read_record(path: str | Path, columns: list[ColumnSpec] | None = None) -> MeasuredRecord:
+    """Read a record CSV into a :class:`MeasuredRecord` (SI units, the rig's signs).
+
+    UTF-8 with or without a byte-order mark; at most :data:`MAX_RECORD_BYTES`; a regular file.
+    """
+    p = Path(path)
+    text = _record_text(p)
     lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
     if len(lines) < 2:
         raise RecordError(f"record {str(p)!r} needs a header row and data rows")

@@ -1,0 +1,174 @@
+"""Issue 32 item 3: hostile input to ``stickslip identify`` gets one line, or is read right.
+
+The contract is that of ``tests/test_bad_input.py``: exit code 2, exactly one
+``stickslip: error:`` line naming the value and why, no traceback, nothing written. The record
+is the shipped example ``examples/rig_record.csv`` (made by ``tests/make_identify_example.py``
+from the independent simulator ``tests/record_oracle.py``: m 1 kg, k 10 kN/m, c 5 N s/m,
+mu_s 0.6, mu_k 0.4, W 100 N, V 5 cm/s, 0.5 % noise).
+"""
+
+from __future__ import annotations
+
+import os
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from stickslip.analysis.identification import REFUSE_CHI2, RecordError, identify
+from stickslip.analysis.identification_estimates import MeasuredRecord
+from stickslip.io.record import read_columns_toml, read_record
+from tests.cli_helpers import run_cli
+
+EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "rig_record.csv"
+KNOWN = ["--mass", "1 kg", "--load", "100 N", "--speed", "5 cm/s"]
+
+
+def _error(args: list[str], capsys: pytest.CaptureFixture[str], folder: Path | None = None) -> str:
+    before = sorted(p.name for p in folder.iterdir()) if folder is not None else None
+    code, out, err = run_cli(["identify", *args], capsys)
+    lines = err.strip().splitlines()
+    assert code == 2 and out == "" and len(lines) == 1, (code, out, err)
+    assert lines[0].startswith("stickslip: error:") and "Traceback" not in err
+    if folder is not None:
+        assert sorted(p.name for p in folder.iterdir()) == before
+    return lines[0]
+
+
+def test_a_utf8_byte_order_mark_before_the_header_is_read(tmp_path: Path) -> None:
+    # before: "no time column (header \ufefft [s], ...)"
+    bom = tmp_path / "bom.csv"
+    bom.write_bytes(b"\xef\xbb\xbf" + EXAMPLE.read_bytes())
+    plain, marked = read_record(EXAMPLE), read_record(bom)
+    assert marked.channels == plain.channels
+    for name in ("t", *plain.channels):
+        np.testing.assert_array_equal(getattr(marked, name), getattr(plain, name))
+
+
+@pytest.mark.parametrize(("fix", "needle"), [
+    (["k=0"], "k = 0.0 held fixed must be positive"),
+    (["force_offset=inf"], "force_offset must be finite"),
+    (["slope=0.1 s/m"], "slope held fixed does not belong to the coulomb law"),
+    (["c=1", "c=2"], "--fix c is given twice"),
+    (["mu_s=0.3", "mu_k=0.4"], "must exceed mu_k"),
+])
+def test_bad_fixed_values_are_refused_in_one_line(fix: list[str], needle: str, tmp_path: Path,
+                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    args = [str(EXAMPLE), *KNOWN, "--law", "coulomb"]
+    for item in fix:
+        args += ["--fix", item]
+    line = _error(args, capsys, tmp_path)
+    assert needle in line, line
+
+
+def test_fixed_values_are_checked_by_the_python_api_too() -> None:
+    record = read_record(EXAMPLE)
+    with pytest.raises(ValueError, match="k = 0 held fixed must be positive"):
+        identify(record, {"m": 1.0, "load": 100.0, "speed": 0.05, "k": 0})
+    with pytest.raises(ValueError, match="slope held fixed does not belong to the coulomb law"):
+        identify(record, {"m": 1.0, "load": 100.0, "speed": 0.05, "slope": 0.1})
+
+
+@pytest.mark.parametrize(("entry", "needle"), [
+    ('name = 3', "name = 3 must be a text in quotes"),
+    ('name = "F [N]"\nunit = 5', "unit = 5 must be a text in quotes"),
+    ('name = "F [N]"\nsign = true', "sign = True must be 1 or -1"),
+    ('name = "F [N]"\nscale = 2', "unknown keys scale"),
+])
+def test_columns_toml_values_of_the_wrong_type_are_refused(entry: str, needle: str, tmp_path: Path,
+                                                           capsys: pytest.CaptureFixture[str]) -> None:
+    spec = tmp_path / "columns.toml"
+    spec.write_text(f'[columns.t]\nname = "t [s]"\n[columns.F]\n{entry}\n')
+    with pytest.raises(RecordError, match=needle.replace("[", r"\[")):
+        read_columns_toml(spec)
+    line = _error([str(EXAMPLE), *KNOWN, "--columns", str(spec)], capsys)
+    assert needle in line
+
+
+@pytest.mark.parametrize("kind", ["fifo", "device"])
+def test_a_fifo_or_a_device_as_the_record_is_refused_without_reading(
+        kind: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # before: a FIFO hung the command; /dev/zero was read until memory ran out
+    path = tmp_path / "record.csv"
+    if kind == "fifo":
+        os.mkfifo(path)
+    else:
+        path = Path("/dev/zero")
+    line = _error([str(path), *KNOWN], capsys)
+    assert "is not a regular file" in line
+
+
+def test_a_record_with_no_stick_phase_is_refused(capsys: pytest.CaptureFixture[str]) -> None:
+    # a smooth sine in x and F: its rising phases move at 0.86 V (2 pi f A cos(...) averaged over
+    # the rising window the estimator finds), a slider stuck to the belt moves at V
+    t = np.arange(0.0, 2.0, 1 / 2000)
+    rng = np.random.default_rng(1)
+    force = 60.0 + 10.0 * np.sin(2 * np.pi * 7.0 * t) + rng.normal(0.0, 0.05, t.size)
+    record = MeasuredRecord(t, F=force, x=force / 1e4)
+    with pytest.raises(RecordError, match=r"no stick phase: its rising phases move at .* times the drive"):
+        identify(record, {"m": 1.0, "load": 100.0, "speed": 0.05})
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("mass", ["1000 kg", "1 mg"])
+def test_a_mass_wrong_by_orders_of_magnitude_is_flagged(mass: str,
+                                                        capsys: pytest.CaptureFixture[str]) -> None:
+    # before: k, c, mu with small standard errors and a reduced chi-square of 7e3, no warning
+    line = _error([str(EXAMPLE), "--mass", mass, "--load", "100 N", "--speed", "5 cm/s", "--json"], capsys)
+    assert "the model does not describe the record" in line
+    assert "times the 0.865 kg that the record's slip phases imply" in line
+
+
+@pytest.mark.slow
+def test_a_force_only_sine_is_refused_by_its_residuals(capsys: pytest.CaptureFixture[str]) -> None:
+    # no displacement to show the slider's speed: the best stick-slip model leaves residuals
+    # 24 times the record's noise (reduced chi-square 581 > REFUSE_CHI2)
+    t = np.arange(0.0, 2.0, 1 / 2000)
+    rng = np.random.default_rng(1)
+    record = MeasuredRecord(t, F=60.0 + 10.0 * np.sin(2 * np.pi * 7.0 * t) + rng.normal(0.0, 0.05, t.size))
+    with pytest.raises(RecordError, match="the model does not describe the record") as info:
+        identify(record, {"m": 1.0, "load": 100.0, "speed": 0.05})
+    assert f"beyond {REFUSE_CHI2 ** 0.5:g} times" in str(info.value)
+
+
+def test_residuals_above_twice_the_noise_and_a_mass_off_by_10_give_warnings() -> None:
+    # the rule of MISMATCH_CHI2 and MASS_FACTOR, at chosen chi-squares; the implied mass of
+    # the example record is 0.865 kg (k / omega^2 of its slip phases; the truth is 1 kg)
+    from stickslip.analysis.identification import MASS_FACTOR, MISMATCH_CHI2, _judge
+    from stickslip.analysis.identification_estimates import estimate
+
+    record = read_record(EXAMPLE)
+    est = estimate(record, mass=1.0, load=100.0, speed=0.05)
+    assert est.implied_mass == pytest.approx(0.865, rel=1e-3)
+    dof = 4000
+    assert _judge(record, est, 1.1 * dof, dof, mass=1.0) == ()
+    (warning,) = _judge(record, est, 1.01 * MISMATCH_CHI2 * dof, dof, mass=1.0)
+    assert warning.startswith("the model does not describe the record: its residuals are 2.01 times")
+    (warning,) = _judge(record, est, dof, dof, mass=1.01 * MASS_FACTOR * est.implied_mass)
+    assert "times the 0.865 kg that the record's slip phases imply" in warning
+    with pytest.raises(RecordError, match="beyond 10 times"):
+        _judge(record, est, 1.01 * REFUSE_CHI2 * dof, dof, mass=1.0)
+
+
+def test_a_record_name_with_a_newline_is_quoted_in_the_written_config(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    record = tmp_path / "rig\n[friction]\nlaw = \"x\".csv"
+    record.write_bytes(EXAMPLE.read_bytes())
+    config = tmp_path / "machine.toml"
+    code, _out, err = run_cli(["identify", str(record), *KNOWN, "--write-config", str(config)], capsys)
+    assert code == 0, err
+    document = tomllib.loads(config.read_text())
+    assert set(document) == {"system", "friction"} and document["friction"] == {"law": "coulomb"}
+    assert '"rig\\n[friction]\\nlaw = \\"x\\".csv"' in config.read_text().splitlines()[0]
+    assert document["system"]["k"].endswith("N/m")
+
+
+def test_table_law_does_not_overwrite_its_friction_csv_without_overwrite(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    table = tmp_path / "machine.friction.csv"
+    table.write_text("v,mu\n0,0.5\n")
+    line = _error([str(EXAMPLE), *KNOWN, "--law", "table", "--write-config", str(tmp_path / "machine.toml")],
+                  capsys, tmp_path)
+    assert "machine.friction.csv" in line and "--overwrite" in line
+    assert table.read_text() == "v,mu\n0,0.5\n"
