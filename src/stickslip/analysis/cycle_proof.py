@@ -59,7 +59,7 @@ from numpy.typing import NDArray
 
 from stickslip.analysis.cycles import _newton, _ReturnMap
 from stickslip.analysis.simulation import EngineOptions
-from stickslip.kernel.system import SLIP_I, SLIP_II, STICK, mode_kind_band
+from stickslip.kernel.system import SLIP_I, STICK, mode_kind_band
 from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
 
@@ -180,6 +180,16 @@ class _Phase:
     belt_decision: bool  # ends at the belt speed: the next mode is chosen by the stick force
     e_nominal: FloatArray  # expm(A t)
     breakaway: bool  # ends with a breakaway (counted for the minimal-period check)
+    salt: FloatArray = field(init=False)  # the nominal saltation matrix at the end
+    salt_norm: float = field(init=False)
+    e_norm: float = field(init=False)
+
+    def __post_init__(self) -> None:
+        nv = self.functions[self.ending][0]
+        self.salt = (np.eye(self.f_minus.size)
+                     + np.outer(self.f_plus - self.f_minus, nv) / float(nv @ self.f_minus))
+        self.salt_norm = float(np.linalg.norm(self.salt, 2))
+        self.e_norm = float(np.linalg.norm(self.e_nominal, 2))
 
 
 def _functions(pmap: _ReturnMap, mode: int) -> list[tuple[FloatArray, float]]:
@@ -285,9 +295,8 @@ def _clear(g: FloatArray, lip: FloatArray, eps: FloatArray) -> NDArray[np.bool_]
     return same & (low > eps)
 
 
-def _tube(phases: list[_Phase], lift_norm: float, reduce_norm: float, stick_normal: FloatArray,
-          lam: float, gamma: float, radius: float, scale: float,
-          jac_factors: list[FloatArray]) -> _Tube:
+def _tube(phases: list[_Phase], norms: _ProductNorms, stick_normal: FloatArray,
+          lam: float, gamma: float, radius: float, scale: float) -> _Tube:
     """Bounds over every trajectory started in the ball ``||b - b_hat||_2 <= radius``.
 
     Derivation. In a phase of mode ``(A, c)`` two motions started at ``z*`` and ``z* + delta``
@@ -312,18 +321,30 @@ def _tube(phases: list[_Phase], lift_norm: float, reduce_norm: float, stick_norm
 
     Jacobian. ``D P^q = R X_N ... X_1 L`` with ``X_i = S_i expm(A_i t_i)`` (saltation
     ``S = I + (f^+ - f^-) n^T / (n . f^-)`` at the event state, the final one with
-    ``f^+ = 0``). Over the tube ``||expm(A t) - expm(A t*)|| <= ||A|| T M(t*) e^{||A|| T}``;
-    ``f^+ - f^-`` moves by ``||A^+ - A^-|| Z_e`` and ``n . f^-`` by ``||n^T A^-|| Z_e``,
-    which bounds ``||S - S*||``. With ``Delta_i >= ||X_i - X_i*||`` the suffix products
-    ``Q_i = R X_N ... X_{i+1}`` satisfy ``||Q_{i-1} - Q*_{i-1}|| <= (||Q*_i|| + D_i) Delta_i +
-    D_i ||X*_i||`` (telescoping), so ``E(r) = D_0 ||L||`` bounds ``||D P^q - J||``.
+    ``f^+ = 0``): ``X_i`` is the derivative of the map ``F_i`` from the start of phase ``i``
+    to the start of the next. Over the tube ``||expm(A t) - expm(A t*)|| <= ||A|| T M(t*)
+    e^{||A|| T}``; ``f^+ - f^-`` moves by ``||A^+ - A^-|| Z_e`` and ``n . f^-`` by
+    ``||n^T A^-|| Z_e``, which bounds ``||S - S*||``: ``Delta_i >= ||X_i - X_i*||``.
+
+    Tight deviations. The phase starts lie on hyperplanes (the event surfaces), so the
+    segment between two of them does too, and the mean value inequality gives
+    ``F_i(z) - F_i(z*) = X_i* (z - z*) + rho_i`` with ``||rho_i|| <= Delta_i Z_i``. Hence
+    ``z_i - z_i* = G(0, i) L delta_b + sum_{j<i} G(j+1, i) rho_j`` with the nominal products
+    ``G(j, i) = X*_{i-1} ... X*_j``, and ``Z_i <= ||G(0, i) L|| r + sum_{j<i} ||G(j+1, i)||
+    Delta_j Z_j``: norms of products, not products of norms (the per-phase bound above is
+    kept when smaller). Likewise ``prod X - prod X* = sum_i Q_i (X_i - X_i*) G(0, i)`` with
+    the perturbed suffix ``Q_i = R X_N ... X_{i+1}``, ``||Q_i - Q_i*|| <= D_i = sum_{j>i}
+    (||Q_j*|| + D_j) Delta_j ||G(i+1, j)||``, so ``E(r) = sum_i (||Q_i*|| + D_i) Delta_i
+    ||G(0, i) L||`` bounds ``||D P^q - J||``.
     """
-    z_dev = lift_norm * radius + ROUNDING * scale
+    z_dev = norms.prefix[0] * radius + ROUNDING * scale
+    z_devs: list[float] = []
     stick_norm = float(np.linalg.norm(stick_normal))
     deltas: list[float] = []
     breakaway_dev: list[float] = []
     low_level = -lam * (1.0 + 2.0 * gamma)
-    for ph in phases:
+    for i, ph in enumerate(phases):
+        z_devs.append(z_dev)
         grow = math.exp(ph.norm_a * ph.h)
         m_int = np.maximum(ph.m_norm[:-1], ph.m_norm[1:]) * grow
         f_int = np.maximum(ph.flow_norm[:-1], ph.flow_norm[1:]) * grow
@@ -359,6 +380,8 @@ def _tube(phases: list[_Phase], lift_norm: float, reduce_norm: float, stick_norm
                 if window[0] == hi and e == ph.ending:
                     eps_end = n_norm * float(ph.m_norm[-1]) * z_dev
                     t_dev = eps_end / rho
+                    if not t_dev * ph.norm_a < 1.0:
+                        return _Tube(False)  # the end moves by a phase's worth: no bound
                     ext = math.exp(ph.norm_a * t_dev)
                     rate_end = abs(float(ph.rate[-1, e]))
                     if rate_end - na_norm * (float(ph.flow_norm[-1]) * ext * t_dev
@@ -392,23 +415,56 @@ def _tube(phases: list[_Phase], lift_norm: float, reduce_norm: float, stick_norm
         du = float(np.linalg.norm(ph.a_plus - ph.a)) * z_event
         d_salt = n_norm * (du / (abs(p_star) - dp)
                            + float(np.linalg.norm(u_star)) * dp / ((abs(p_star) - dp) * abs(p_star)))
-        salt = np.eye(u_star.size) + np.outer(u_star, nv) / p_star
         d_exp = ph.norm_a * t_dev * float(ph.m_norm[-1]) * ext
-        deltas.append((float(np.linalg.norm(salt, 2)) + d_salt) * d_exp
-                      + d_salt * float(np.linalg.norm(ph.e_nominal, 2)))
-        jac_factors.append(salt @ ph.e_nominal)
-        z_dev = z_event
+        deltas.append((ph.salt_norm + d_salt) * d_exp + d_salt * ph.e_norm)
+        tight = norms.prefix[i + 1] * radius + sum(
+            norms.between[j + 1][i + 1] * deltas[j] * z_devs[j] for j in range(i + 1))
+        z_dev = min(z_event, tight + ROUNDING * scale)
         if ph.breakaway:
             breakaway_dev.append(z_dev)
-    # suffix products Q_i = R X_N ... X_{i+1}: ||Q - Q*|| by the telescoping recursion
-    d_suffix = 0.0
-    q_norm = reduce_norm
-    suffix = np.eye(jac_factors[0].shape[0])
-    for x, delta in zip(reversed(jac_factors), reversed(deltas), strict=True):
-        d_suffix = (q_norm + d_suffix) * delta + d_suffix * float(np.linalg.norm(x, 2))
-        suffix = suffix @ x
-        q_norm = reduce_norm * float(np.linalg.norm(suffix, 2))
-    return _Tube(True, d_suffix * lift_norm, breakaway_dev)
+    n_ph = len(phases)
+    d_suffix = [0.0] * (n_ph + 1)
+    for i in range(n_ph - 1, -1, -1):
+        d_suffix[i] = sum((norms.suffix[j] + d_suffix[j]) * deltas[j] * norms.between[i + 1][j]
+                          for j in range(i + 1, n_ph))
+    bound = sum((norms.suffix[i] + d_suffix[i]) * deltas[i] * norms.prefix[i] for i in range(n_ph))
+    return _Tube(True, bound, breakaway_dev)
+
+
+@dataclass
+class _ProductNorms:
+    """Norms of the nominal products of :func:`_tube` (independent of the radius).
+
+    ``prefix[i] = ||G(0, i) L||`` (``i = 0..N``), ``suffix[i] = ||R G(i + 1, N)||`` and
+    ``between[j][i] = ||G(j, i)||`` (``G(j, i) = X*_{i-1} ... X*_j``, the identity for
+    ``j >= i``), 2-norms.
+    """
+
+    prefix: list[float]
+    suffix: list[float]
+    between: list[list[float]]
+
+    @classmethod
+    def of(cls, phases: list[_Phase], lift: FloatArray, reduce_rows: FloatArray) -> _ProductNorms:
+        n_ph = len(phases)
+        factors = [ph.salt @ ph.e_nominal for ph in phases]
+        dim = lift.shape[0]
+        between = [[1.0] * (n_ph + 1) for _ in range(n_ph + 1)]
+        for j in range(n_ph):
+            product = np.eye(dim)
+            for i in range(j + 1, n_ph + 1):
+                product = factors[i - 1] @ product
+                between[j][i] = float(np.linalg.norm(product, 2))
+        prefix, product = [], lift.copy()
+        for i in range(n_ph + 1):
+            prefix.append(float(np.linalg.norm(product, 2)))
+            if i < n_ph:
+                product = factors[i] @ product
+        suffix, product = [0.0] * n_ph, reduce_rows.copy()
+        for i in range(n_ph - 1, -1, -1):
+            suffix[i] = float(np.linalg.norm(product, 2))
+            product = product @ factors[i]
+        return cls(prefix, suffix, between)
 
 
 def _adapted_norm(jac: FloatArray) -> tuple[FloatArray, float, float] | None:
@@ -462,14 +518,14 @@ def _candidate(pmap: _ReturnMap, b0: FloatArray, q: int) -> _Candidate | None:
 
 def _ball(pmap: _ReturnMap, cand: _Candidate, accept: Any) -> tuple[float, _Tube] | None:
     """The largest radius of the ladder whose tube passes ``accept(radius, tube)``."""
-    lift_norm = float(np.linalg.norm(pmap.lift, 2))
-    reduce_norm = 1.0  # R selects coordinates
+    n2 = 2 * pmap.n
+    reduce_rows = np.delete(np.eye(n2), [0, pmap.n], axis=0)  # R: the foundation coordinates
+    norms = _ProductNorms.of(cand.phases, pmap.lift, reduce_rows)
     scale = max(1.0, float(np.max(np.abs(pmap.state(cand.b_hat)))))
     lam, gamma = float(pmap.slider.lam), float(pmap.slider.gamma)
     for i in range(RADIUS_TRIES):
         radius = scale * RADIUS_START * RADIUS_FACTOR ** (-i)
-        tube = _tube(cand.phases, lift_norm, reduce_norm, pmap.stick_normal, lam, gamma, radius,
-                     scale, [])
+        tube = _tube(cand.phases, norms, pmap.stick_normal, lam, gamma, radius, scale)
         if tube.ok and accept(radius, tube):
             return radius, tube
     return None
