@@ -172,3 +172,35 @@ def test_table_law_does_not_overwrite_its_friction_csv_without_overwrite(
                   capsys, tmp_path)
     assert "machine.friction.csv" in line and "--overwrite" in line
     assert table.read_text() == "v,mu\n0,0.5\n"
+
+
+def test_a_long_record_is_fitted_on_a_window_by_the_stated_rule() -> None:
+    # before: the dense Jacobian grew with samples x periods (1e5 rows: 272 s and 4.9 GB);
+    # benchmarks/bench_identify_long.py measures 1e6 rows (34 s, 880 MiB on 2 cores)
+    from stickslip.analysis.identification import (
+        MAX_FIT_PERIODS,
+        MAX_FIT_SAMPLES,
+        MIN_KEPT_PER_PERIOD,
+        fit_window,
+    )
+    from stickslip.analysis.identification_estimates import estimate
+    from tests.record_oracle import coulomb, simulate_rig
+
+    # the rig repeats itself exactly from its second breakaway (same state at each breakaway)
+    rig = simulate_rig(m=1.0, k=1e4, c=5.0, mu_s=0.6, mu=coulomb(0.4), load=100.0, speed=0.05,
+                       t_end=0.5, fs=2e5, t_start=0.0)
+    first, period = float(rig.breakaways[1]), float(rig.breakaways[2] - rig.breakaways[1])
+    t = 0.23 + np.arange(200_000) / 10_000.0
+    phase = np.where(t < first, t, first + np.mod(t - first, period))
+    rng = np.random.default_rng(2)
+    force = np.interp(phase, rig.t, rig.F)
+    record = MeasuredRecord(t, F=force + rng.normal(0.0, 0.005 * np.ptp(force), t.size))
+    est = estimate(record, mass=1.0, load=100.0, speed=0.05)
+    used, window = fit_window(record, est)
+    step = int(window.split("every ")[1].split()[0])
+    per_period = period * 10_000.0 / step
+    assert used.t.size <= MAX_FIT_SAMPLES and per_period >= MIN_KEPT_PER_PERIOD
+    assert used.t[-1] == pytest.approx(MAX_FIT_PERIODS * period, rel=0.02)
+    assert f"of {len(est.stick_phases)}" in window and f"fitted on {used.t.size} of 200000" in window
+    small = read_record(EXAMPLE)
+    assert fit_window(small, estimate(small, mass=1.0, load=100.0, speed=0.05)) == (small, "")

@@ -95,6 +95,18 @@ SLIP_FRACTION = 1e-3
 BLAS_THREADS = 1
 #: Iteration budget of each trial start of a Stribeck fit.
 MULTISTART_EVALUATIONS = 12
+#: The stated rule for long records (:func:`fit_window`): the fit uses at most this many
+#: stick-slip periods, the middle ones of the record, ...
+MAX_FIT_PERIODS = 30
+#: ... and at most about this many samples per channel, taking every d-th sample of that
+#: window, while keeping at least :data:`MIN_KEPT_PER_PERIOD` samples per period (the
+#: estimates need 40). The cost of a fit grows with samples times periods (each period is a
+#: segment of the multiple shooting, with a column of the Jacobian): a 1e6-row record of 380
+#: periods would need a 1e6 x 400 Jacobian; the window keeps it below 20,000 x 40. The noise
+#: stays white and of the same level under decimation, so the weights and the standard errors
+#: are those of the samples used (larger than all samples would give, never smaller).
+MAX_FIT_SAMPLES = 20_000
+MIN_KEPT_PER_PERIOD = 200
 #: The residuals are judged against the record's own noise (the weights are one over each
 #: channel's white-noise level, :func:`~stickslip.analysis.identification_estimates.noise_level`),
 #: so a model that describes the record has a reduced chi-square near 1. Above this one (the
@@ -285,8 +297,51 @@ def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulo
     if fit_offset is None:
         fit_offset = record.x is not None and record.F is not None
     with _blas_limited(blas_threads):
-        return _identify(record, known, law, mass=mass, load=load, speed=speed, bootstrap=bootstrap,
-                         seed=seed, fit_offset=fit_offset, knots=knots)
+        used, window = fit_window(record, estimate(record, mass=mass, load=load, speed=speed))
+        return _identify(used, known, law, mass=mass, load=load, speed=speed, bootstrap=bootstrap,
+                         seed=seed, fit_offset=fit_offset, knots=knots, window=window)
+
+
+def fit_window(record: MeasuredRecord, est: RecordEstimates) -> tuple[MeasuredRecord, str]:
+    """The part of a long record the fit uses, by the stated rule, and a sentence saying so.
+
+    At most :data:`MAX_FIT_PERIODS` stick-slip periods (the middle ones: from the onset of one
+    stick phase to the onset of the stick phase that many later) and, within them, every
+    ``d``-th sample, ``d`` the smallest whole number that leaves at most
+    :data:`MAX_FIT_SAMPLES` samples, but no larger than keeps :data:`MIN_KEPT_PER_PERIOD`
+    samples per period. A record within both limits is used whole.
+
+    Parameters
+    ----------
+    record : MeasuredRecord
+        The whole record.
+    est : RecordEstimates
+        Its estimates (period and stick phases).
+
+    Returns
+    -------
+    record : MeasuredRecord
+        The samples used (times from 0 at the first one), or ``record`` itself.
+    window : str
+        What was used, in words ("" for the whole record).
+    """
+    n = record.t.size
+    phases = est.stick_phases
+    lo, hi, first = 0, n, 0
+    if len(phases) > MAX_FIT_PERIODS + 1:
+        first = (len(phases) - MAX_FIT_PERIODS - 1) // 2
+        lo, hi = phases[first].start, phases[first + MAX_FIT_PERIODS].start
+    per_period = est.period / (record.t[-1] / (n - 1))
+    step = max(1, min(math.ceil((hi - lo) / MAX_FIT_SAMPLES), int(per_period // MIN_KEPT_PER_PERIOD)))
+    if (lo, hi, step) == (0, n, 1):
+        return record, ""
+    index = np.arange(lo, hi, step)
+    periods = (f"stick-slip periods {first + 1} to {first + MAX_FIT_PERIODS} of {len(phases)}"
+               if hi - lo < n else f"all {len(phases)} stick-slip periods")
+    return record.subset(index), (
+        f"fitted on {index.size} of {n} samples: {periods}, every {step} sample(s) (at most "
+        f"{MAX_FIT_PERIODS} periods and {MAX_FIT_SAMPLES} samples, at least {MIN_KEPT_PER_PERIOD} "
+        "per period; times from the first sample used)")
 
 
 #: What a value held fixed must be: positive, non-negative or just finite (any sign).
@@ -373,7 +428,7 @@ def _blas_limited(threads: int | None) -> Iterator[None]:
 
 def _identify(record: MeasuredRecord, known: Mapping[str, float], law: str, *, mass: float, load: float,
               speed: float, bootstrap: int, seed: int, fit_offset: bool,
-              knots: tuple[float, ...] | None) -> IdentificationResult:
+              knots: tuple[float, ...] | None, window: str = "") -> IdentificationResult:
     """:func:`identify` after its arguments are checked: the Coulomb fit that starts the others,
     the law(s) asked for, the result."""
     est = estimate(record, mass=mass, load=load, speed=speed)
@@ -411,7 +466,7 @@ def _identify(record: MeasuredRecord, known: Mapping[str, float], law: str, *, m
         fits[name] = (problem, res)
     return _result(record, est, fits, chosen=min(fits, key=lambda n: _bic(*fits[n])) if law == "auto"
                    else law, bootstrap=bootstrap, seed=seed, known=known, mass=mass, load=load,
-                   speed=speed, fit_offset=fit_offset)
+                   speed=speed, fit_offset=fit_offset, window=window)
 
 
 def _n_params(problem: FitProblem) -> int:
@@ -463,7 +518,7 @@ def _bootstrap(problem: FitProblem, res: Any, n_boot: int, seed: int) -> dict[st
 
 def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tuple[FitProblem, Any]],
             *, chosen: str, bootstrap: int, seed: int, known: Mapping[str, Any], mass: float,
-            load: float, speed: float, fit_offset: bool) -> IdentificationResult:
+            load: float, speed: float, fit_offset: bool, window: str = "") -> IdentificationResult:
     problem, res = fits[chosen]
     values = problem.values(res.x)
     jac = two_sided_jacobian(problem, res)
@@ -520,7 +575,7 @@ def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tup
         success=bool(res.success), message=str(res.message), source=record.source,
         fit_offset=fit_offset, condition=float(singular[0] / singular[-1]) if singular[-1] > 0 else math.inf,
         covariance=cov, covariance_names=tuple(reported), bootstrap=bootstrap, table_visited=tuple(visited),
-        warnings=warnings,
+        warnings=warnings, window=window,
     )
 
 

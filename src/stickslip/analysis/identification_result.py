@@ -184,6 +184,7 @@ class IdentificationResult:
     bootstrap: int = 0
     table_visited: tuple[bool, ...] = ()
     warnings: tuple[str, ...] = ()
+    window: str = ""  # the part of a long record fitted (analysis.identification.fit_window)
 
     # ------------------------------------------------------------------ values
     def values(self) -> dict[str, float]:
@@ -233,6 +234,7 @@ class IdentificationResult:
             "n_free": self.n_free,
             "reduced_chi2": self.chi2 / max(self.n_samples * len(self.measured) - self.n_free, 1),
             "warnings": list(self.warnings),
+            "window": self.window or None,
             "correlations": {f"{a},{b}": v for (a, b), v in self.correlations.items()},
             "information_criteria": self.criteria,
             "known": {"m": self.mass, "load": self.load, "speed": self.speed},
@@ -337,6 +339,7 @@ class IdentificationResult:
                  f"    friction law       = {self.law}",
                  f"    record             = {self.source}",
                  f"    # data points      = {self.n_samples} x {len(self.measured)} channel(s)",
+                 *([f"    window             = {self.window}"] if self.window else []),
                  f"    # variables        = {self.n_free} ({self.segments} segment states)",
                  f"    stick phases used  = {self.cycles_used}",
                  f"    reduced chi-square = {self.to_dict()['reduced_chi2']:.4g}",
