@@ -134,3 +134,25 @@ def test_one_dof_needs_no_proof() -> None:
     run = simulate(rigid_base(0.1), Slider(3.0))
     assert run.verdict is Verdict.STICK_SLIP and run.cycle_length == 1
     assert run.cycle_proof is None
+
+
+def test_operating_map_cells_report_the_proven_cycle() -> None:
+    """``map --config``'s cells: the period of simulate's proven cycle (19.25 ms at 0.7333 mm/s
+    and 2000 N, where the run's repeat test saw three stick phases, 57.8 ms)."""
+    from stickslip.sweep.grid import Axis
+    from stickslip.sweep.operating_map import operating_map
+
+    machine_file = read_machine_file(SLIDEWAY)
+    machine, _ = machine_from_file(machine_file, {"mu_s": 0.15, "mu_k": 0.10, "load": 2000.0,
+                                                   "speed": 0.7333e-3})
+    speeds, loads = [0.2e-3, 0.7333e-3], [2000.0]
+    result = operating_map(machine, Axis("speed", np.array(speeds), "list"),
+                           Axis("load", np.array(loads), "list"))
+    for i, speed in enumerate(speeds):
+        point = machine.with_operating_point(speed=speed, load=loads[0])
+        structure, slider = point.to_dimensionless()
+        run = simulate(structure, slider, record=False)
+        assert run.verdict is Verdict.STICK_SLIP and run.cycle_length == 1
+        seconds = run.period * point.reference_system().time_scale
+        assert result.period_s[i, 0] == seconds
+    assert result.period_s[1, 0] == pytest.approx(19.25e-3, abs=0.01e-3)

@@ -45,6 +45,7 @@ from stickslip.io.provenance import package_version
 from stickslip.kernel import engine
 from stickslip.model.friction import CoulombFriction, FrictionLaw
 from stickslip.model.initial import STARTUP_DESCRIPTION
+from stickslip.sweep.cycle_check import prove_map_cycles
 from stickslip.sweep.execution import ExecutionOptions
 from stickslip.sweep.executors import (
     CellBatch,
@@ -358,6 +359,8 @@ def operating_map(machine: Machine, speeds: Axis, loads: Axis, *,
             run.progress(done, n_cells)
     if chunk_store is not None:
         chunk_store.record_run(len(chunks) - len(missing), len(missing), run.backend)
+    # multi-phase candidates: the minimal, proven cycle that simulate reports
+    prove_map_cycles(cells.structures, cells.batch(Chunk(0, 0, n_cells)), fsum, isum, opts)
     verdicts = {code: RunStatus.from_code(int(code)).verdict.value
                 for code in np.unique(isum[:, engine.I_STATUS])}
     shape = (v.size, w.size)

@@ -1,0 +1,79 @@
+"""The map's cells get the same minimal, proven cycle as :func:`stickslip.simulate`.
+
+The map kernel certifies a stick-slip candidate when a breakaway state repeats to
+``cycle_tol`` after ``k`` stick phases. With one stick phase (``k = 1``) that is the minimal
+period; with ``k >= 2`` on a structure of two or more degrees of freedom, ``k`` may be a
+multiple of the true period (the return map's multipliers complex or near -1: states two
+phases apart agree before neighbours do). Such cells are run again through
+:func:`stickslip.simulate`, which proves the minimal cycle
+(:mod:`stickslip.analysis.cycle_proof`) or says ``undetermined``; their summaries are
+replaced by its answer. Cells of one degree of freedom never need it (the breakaway state is
+unique), and the paper's 2-DOF maps have no such cell, so their answers stay bit for bit.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+from numpy.typing import NDArray
+
+from stickslip.analysis.simulation import EngineOptions, simulate
+from stickslip.kernel import engine
+from stickslip.model.parameters import Slider
+from stickslip.model.structure import Structure
+from stickslip.sweep.executors import CellBatch, StructureSet
+
+
+def cells_to_prove(structures: StructureSet, int_summary: NDArray[np.int64]) -> NDArray[np.int64]:
+    """Flat indices of the cells whose candidate spans two or more stick phases on N DOF."""
+    if structures.masses.shape[1] < 2:
+        return np.zeros(0, dtype=np.int64)
+    candidate = ((int_summary[:, engine.I_STATUS] == engine.STATUS_CYCLE)
+                 & (int_summary[:, engine.I_CYCLE_K] >= 2))
+    return np.flatnonzero(candidate).astype(np.int64)
+
+
+def prove_map_cycles(structures: StructureSet, batch: CellBatch,
+                     float_summary: NDArray[np.float64], int_summary: NDArray[np.int64],
+                     options: EngineOptions,
+                     progress: Callable[[int, int], None] | None = None) -> int:
+    """Replace every multi-phase candidate of a map by :func:`simulate`'s proven cycle, in place.
+
+    Parameters
+    ----------
+    structures : StructureSet
+        The map's structures (contact first).
+    batch : CellBatch
+        Every cell of the map (``structure_index``, ``lams``, ``gamma``, the law or laws).
+    float_summary, int_summary : ndarray
+        The kernel's per-cell summaries, changed in place for the cells proven or refused.
+    options : EngineOptions
+        The map's engine options (the same runs as the map's).
+    progress : callable, optional
+        ``progress(done, total)`` over the cells checked.
+
+    Returns
+    -------
+    int
+        The number of cells checked.
+    """
+    cells = cells_to_prove(structures, int_summary)
+    for done, c in enumerate(cells.tolist()):
+        j = int(batch.structure_index[c])
+        structure = Structure(structures.masses[j], structures.dampings[j],
+                              structures.stiffnesses[j], name="map cell")
+        law = batch.laws[c] if batch.laws is not None else batch.friction
+        slider = Slider(float(batch.lams[c]), gamma=float(batch.gamma), friction=law)
+        result = simulate(structure, slider, options=options, record=False)
+        int_summary[c, engine.I_STATUS] = result.status.code
+        int_summary[c, engine.I_CYCLE_K] = result.cycle_length
+        float_summary[c, engine.F_PERIOD] = result.period
+        float_summary[c, engine.F_AMPLITUDE] = result.amplitude
+        float_summary[c, engine.F_XI_MIN], float_summary[c, engine.F_XI_MAX] = result.xi_range
+        float_summary[c, engine.F_STICK_RATIO] = result.stick_ratio
+        float_summary[c, engine.F_CYCLE_MAX_VELOCITY] = result.cycle_max_velocity
+        float_summary[c, engine.F_CYCLE_MISMATCH] = result.cycle_mismatch
+        if progress is not None:
+            progress(done + 1, cells.size)
+    return int(cells.size)
