@@ -23,7 +23,8 @@ Steps of :func:`prove_cycle`, for every divisor ``q`` of ``k`` in increasing ord
    ``sup_B ||D P^q(b) - J||_2 <= E(r)``. See :func:`_tube` for the derivation.
 3. Contraction in the norm adapted to ``J`` (``||x||_W = ||C x||_2`` with ``C^T C = W``,
    ``(J/s)^T W (J/s) - W = -I`` with ``s = (1 + rho(J))/2``, so ``||J||_W = s sqrt(1 -
-   1/lambda_max(W)) < s < 1`` when the spectral radius ``rho(J)`` of ``J`` is below 1): with ``kappa = ||C||_2 ||C^-1||_2``,
+   1/lambda_max(W)) < s < 1`` when the spectral radius ``rho(J)`` of ``J`` is below 1):
+   with ``kappa = ||C||_2 ||C^-1||_2``,
    ``theta = ||J||_W + kappa E(r) < 1`` bounds ``||D P^q||_W`` on the ball. If also the
    residual ``||P^q(b_hat) - b_hat||_W <= (1 - theta) rho`` for the W-ball of radius
    ``rho = r / ||C^-1||_2`` (inside the Euclidean one), ``P^q`` maps that closed ball into
@@ -505,6 +506,7 @@ class _Candidate:
     phases: list[_Phase]
     z_hit: FloatArray
     breakaway_states: list[FloatArray]
+    value: FloatArray  # P^q(b_hat)
 
 
 def _candidate(pmap: _ReturnMap, b0: FloatArray, q: int) -> _Candidate | None:
@@ -520,7 +522,8 @@ def _candidate(pmap: _ReturnMap, b0: FloatArray, q: int) -> _Candidate | None:
         return None
     phases, z_hit = sampled
     states = pmap.next_breakaways(pmap.state(b_hat), q)
-    return _Candidate(q, b_hat, jac, float(np.linalg.norm(value - b_hat)), phases, z_hit, states)
+    return _Candidate(q, b_hat, jac, float(np.linalg.norm(value - b_hat)), phases, z_hit, states,
+                      value)
 
 
 def _ball(pmap: _ReturnMap, cand: _Candidate, accept: Any) -> tuple[float, _Tube] | None:
@@ -559,7 +562,7 @@ def _contraction_ball(pmap: _ReturnMap, cand: _Candidate) -> tuple[float, float,
         return None
     chol, norm_w, kappa = adapted
     c_inv_norm = float(np.linalg.norm(np.linalg.inv(chol), 2)) if chol.size else 1.0
-    residual_w = float(np.linalg.norm(chol @ (pmap(cand.b_hat, cand.q) - cand.b_hat)))
+    residual_w = float(np.linalg.norm(chol @ (cand.value - cand.b_hat)))
     thetas: dict[float, float] = {}
 
     def accept(radius: float, tube: _Tube) -> bool:
