@@ -9,6 +9,7 @@ static flexibility ``sum phi_i^2 / w_i^2``, written out here.
 
 from __future__ import annotations
 
+import io
 import math
 from pathlib import Path
 
@@ -84,3 +85,50 @@ def test_the_app_page_of_typed_modes_runs() -> None:
     at.text_input(key="machine_shapes").set_value("0.07, 0").run()
     assert not at.exception
     assert any("non\\-zero" in str(e.value) for e in at.error)  # escaped Markdown: read "non-zero"
+
+
+def _chain_upload(n: int, contact: int) -> dict[str, bytes]:
+    """A fixed-free chain of ``n`` unit masses and 1e4 N/m springs, as uploaded .npy files."""
+    stiffness = 2e4 * np.eye(n) - 1e4 * (np.eye(n, k=1) + np.eye(n, k=-1))
+    stiffness[-1, -1] = 1e4
+    files = {}
+    for name, matrix in (("M.npy", np.eye(n)), ("K.npy", stiffness)):
+        buffer = io.BytesIO()
+        np.save(buffer, matrix)
+        files[name] = buffer.getvalue()
+    files["m.toml"] = (f'mu_s = 0.5\nmu_k = 0.3\nload = "100 N"\nspeed = "1 cm/s"\n[structure]\n'
+                       f'mass = "M.npy"\nstiffness = "K.npy"\nmodal_damping = 0.02\n'
+                       f'contact_dof = {contact}\n').encode()
+    return files
+
+
+def test_the_modes_of_a_reduced_model_are_drawn_over_the_files_dofs() -> None:
+    """Issue 31: the contact is the file's DOF, ticks do not smear, the y axis is labelled.
+
+    Reference for the shape: the lowest mode of the full chain (``scipy.linalg.eigh``); the
+    reduction keeps the fixed-interface modes below its cut-off, so its lowest mode matches.
+    """
+    import scipy.linalg
+
+    from stickslip.plot.operating import machine_modes_plot
+
+    n, contact = 80, 50
+    files = _chain_upload(n, contact)
+    machine, _, reduction = machine_from_files(files)
+    assert reduction is not None and machine.contact_dof == 0 and machine.n_dof < n
+    result = machine_modes_plot(machine, reduction=reduction)
+    title = result.figure.get_suptitle()
+    assert f"contact on DOF {contact} ({n}-DOF model, reduced to {machine.n_dof})" in title
+    first = result.axes[0]
+    assert first.get_ylabel() == "mode shape (largest = 1)"
+    assert len(first.get_xticks()) <= 8
+    (span,) = first.patches
+    assert span.get_x() == pytest.approx(contact - 0.4)
+    full_k = np.load(io.BytesIO(files["K.npy"]))
+    _, full_modes = scipy.linalg.eigh(full_k, np.eye(n))
+    expected = full_modes[:, 0] / np.max(np.abs(full_modes[:, 0]))
+    drawn = np.asarray(result.artists[0].get_ydata())
+    assert drawn.shape == (n,)
+    # the Ritz approximation's error (modes above the cut-off left out) is 6e-6 here; a shape
+    # drawn over the wrong DOFs would be off by order 1
+    np.testing.assert_allclose(drawn * np.sign(drawn[-1] * expected[-1]), expected, atol=1e-4)

@@ -160,7 +160,7 @@ def show_machine_page() -> None:
     st.text(report.summary())
     if reduction is not None:
         st.caption(reduction.summary())
-    st.pyplot(machine_modes_plot(machine).figure)
+    st.pyplot(machine_modes_plot(machine, reduction=reduction).figure)
     st.download_button("Design report (JSON)", __import__("json").dumps(payload, indent=2, default=str),
                        file_name="stickslip-machine.json", mime="application/json",
                        key="download_machine_json")

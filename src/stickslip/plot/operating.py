@@ -17,6 +17,7 @@ from stickslip.plot.maps import COLORS
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
+    from stickslip.analysis.reduction import ReducedStructure
     from stickslip.model.machine import Machine
     from stickslip.sweep.operating_map import OperatingMap
 
@@ -85,14 +86,20 @@ def operating_map_plot(data: OperatingMap, *, ax: Axes | None = None, legend: bo
     return PlotResult(fig, [ax], artists)
 
 
+#: Above this many DOF the shapes are drawn as lines without markers, with a few ticks.
+MARKED_DOF = 24
+
+
 def machine_modes_plot(machine: Machine, *, n_modes: int | None = None, ax: Any = None,
-                       title: str | None = None) -> PlotResult:
+                       title: str | None = None,
+                       reduction: ReducedStructure | None = None) -> PlotResult:
     """The undamped mode shapes of a machine, with the contact DOF marked.
 
     Each mode ``phi_i`` (``K phi = w_i^2 M phi``, mass-normalised, scaled to a largest entry
     of 1) is drawn over the DOF index; the contact DOF is a shaded column, and the title of
     each panel gives the frequency [Hz] and ``|phi_i[c]|`` (mass-normalised, 1/sqrt(kg)),
-    how strongly the contact takes part in the mode.
+    how strongly the contact takes part in the mode. A reduced machine (``reduction``) is
+    drawn over the full model's DOFs (``x = T q``), its contact at the file's DOF.
 
     Parameters
     ----------
@@ -104,37 +111,55 @@ def machine_modes_plot(machine: Machine, *, n_modes: int | None = None, ax: Any 
         One axes per mode; a new figure is made when omitted.
     title : str, optional
         Figure title; by default the machine's name and contact DOF.
+    reduction : ReducedStructure, optional
+        The reduction that made ``machine`` (:func:`~stickslip.analysis.reduction.reduce_structure`).
 
     Returns
     -------
     PlotResult
         One axes per mode; the artists are the mode-shape lines.
     """
+    from matplotlib.ticker import MaxNLocator
     from scipy.linalg import eigh
 
     w2, phi = eigh(machine.stiffness, machine.mass)
-    n = machine.n_dof
-    count = min(n, 6) if n_modes is None else max(1, min(int(n_modes), n))
+    count = min(machine.n_dof, 6) if n_modes is None else max(1, min(int(n_modes), machine.n_dof))
+    at_contact = phi[machine.contact_dof, :]
+    if reduction is not None:
+        shapes, c = reduction.basis @ phi, reduction.kept_dofs[machine.contact_dof]
+    else:
+        shapes, c = phi, machine.contact_dof
+    n = shapes.shape[0]
     cols = min(count, 3)
     rows = math.ceil(count / cols)
     fig, axes_list = new_grid(rows, cols, axes=None if ax is None else list(np.ravel(ax)),
                               figsize=(3.2 * cols, 2.6 * rows))
-    c = machine.contact_dof
     dofs = np.arange(n)
     artists = []
     for i in range(count):
         a = axes_list[i]
-        shape = phi[:, i] / np.max(np.abs(phi[:, i]))
+        shape = shapes[:, i] / np.max(np.abs(shapes[:, i]))
         a.axvspan(c - 0.4, c + 0.4, color="#f2c14e", alpha=0.5, lw=0)
         a.axhline(0.0, color="0.7", lw=0.8)
-        line, = a.plot(dofs, shape, "o-", color="black", ms=4)
+        line, = a.plot(dofs, shape, "o-" if n <= MARKED_DOF else "-", color="black", ms=4)
         artists.append(line)
         freq = math.sqrt(max(float(w2[i]), 0.0)) / (2.0 * math.pi)
-        a.set_title(f"mode {i + 1}: {freq:.4g} Hz, |phi[c]| = {abs(phi[c, i]):.3g}", fontsize="small")
-        a.set_xticks(dofs)
+        a.set_title(f"mode {i + 1}: {freq:.4g} Hz, |phi[c]| = {abs(at_contact[i]):.3g}",
+                    fontsize="small")
+        if n <= MARKED_DOF:
+            a.set_xticks(dofs)
+        else:  # one tick per DOF would smear into a black band
+            a.xaxis.set_major_locator(MaxNLocator(nbins=5, integer=True))
         a.set_ylim(-1.15, 1.15)
         a.set_xlabel("DOF (contact shaded)")
+        if i % cols == 0:
+            a.set_ylabel("mode shape (largest = 1)")
     for a in axes_list[count:]:
         a.set_visible(False)
-    fig.suptitle(title if title is not None else f"{machine.name}: modes, contact on DOF {c}")
+    if title is None:
+        name = machine.name.replace("$", r"\$")  # a user's name is not mathtext
+        title = f"{name}: modes, contact on DOF {c}"
+        if reduction is not None:
+            title += f" ({reduction.n_full}-DOF model, reduced to {machine.n_dof})"
+    fig.suptitle(title)
     return PlotResult(fig, axes_list[:count], artists)
