@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from stickslip.analysis.critical import Onset, SpeedLoadOnsets, speed_and_load_onsets
-from stickslip.analysis.simulation import EngineOptions, simulate
+from stickslip.analysis.simulation import EngineOptions, SimulationResult, simulate
 from stickslip.analysis.theory import (
     FITTED_ZETA_RANGE,
     MAX_DESIGN_ZETA,
@@ -266,6 +266,51 @@ def _status_warning(where: str, status: RunStatus, options: EngineOptions) -> st
     return f"the verdict {where} is undetermined: {why}; {how}"
 
 
+def _assessed_foundation(system: PhysicalSystem) -> tuple[PhysicalFoundation, Foundation, str, float, str]:
+    """The foundation to assess, its dimensionless groups, source, ``zeta_eq`` and that one's source.
+
+    The given foundation with its Eq. (32) ``zeta_eq``, else the recommended one of
+    Eqs. (28)-(30) with Eq. (33).
+    """
+    zeta = system.zeta
+    if system.foundation is not None:
+        from stickslip.analysis.frequency_response import equivalent_damping
+
+        dimensionless = foundation_to_dimensionless(system.foundation, system.mass, system.stiffness)
+        return (system.foundation, dimensionless, "existing foundation (given)",
+                equivalent_damping(elastic_foundation(zeta, dimensionless)),
+                "Eq. (32): 1 / (2 H_max) of this foundation")
+    dimensionless = optimal_foundation_fit(zeta)
+    return (foundation_to_physical(dimensionless, system.mass, system.stiffness), dimensionless,
+            "recommended: Fig. 16 procedure, Eqs. (28)-(30)", equivalent_damping_fit(zeta), "Eq. (33)")
+
+
+def _warnings(system: PhysicalSystem, runs: dict[str, SimulationResult], options: EngineOptions
+              ) -> list[str]:
+    """What the reader of a design report must know: undamped, outside the fit, law, undecided runs."""
+    zeta, law = system.zeta, system.slider().friction
+    warnings = []
+    if zeta == 0.0:
+        warnings.append("c = 0 (undamped slider, zeta = 0): on a rigid base it stick-slips at every "
+                        "speed and load (Eq. 36); give the slider's damping c if it has any")
+    if zeta > FITTED_ZETA_RANGE:
+        warnings.append(
+            f"zeta={zeta:.3g} is outside the range 0 <= zeta <= 0.4 on which Eqs. (28)-(33) are "
+            "fitted: trust the simulated verdicts, not the theory column"
+        )
+    if not isinstance(law, CoulombFriction):
+        warnings.append(
+            "the theory and Eq. 36 rows are the paper's procedure for its Coulomb law (mu = mu_k "
+            "while sliding); the simulation rows and verdicts use the machine's friction law "
+            f"({law.describe()}), whose critical speed and load are searched separately "
+            "(the law moves with the belt speed and the load)"
+        )
+    for where, result in runs.items():
+        if result.verdict is Verdict.UNDETERMINED:
+            warnings.append(_status_warning(where, result.status, options))
+    return warnings
+
+
 def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
                       rtol: float = 1e-6, stick_slip_optimum: bool = False,
                       max_foundation_deflection: float | None = None,
@@ -330,21 +375,8 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
         if progress is not None:
             progress(stage, runs)
 
-    recommended_dimless = optimal_foundation_fit(zeta)
-    recommended = foundation_to_physical(recommended_dimless, system.mass, system.stiffness)
-    if system.foundation is not None:
-        foundation = system.foundation
-        dimensionless = foundation_to_dimensionless(foundation, system.mass, system.stiffness)
-        source = "existing foundation (given)"
-        from stickslip.analysis.frequency_response import equivalent_damping
-
-        zeta_eq = equivalent_damping(elastic_foundation(zeta, dimensionless))
-        zeta_eq_source = "Eq. (32): 1 / (2 H_max) of this foundation"
-    else:
-        foundation, dimensionless = recommended, recommended_dimless
-        source = "recommended: Fig. 16 procedure, Eqs. (28)-(30)"
-        zeta_eq = equivalent_damping_fit(zeta)
-        zeta_eq_source = "Eq. (33)"
+    recommended = foundation_to_physical(optimal_foundation_fit(zeta), system.mass, system.stiffness)
+    foundation, dimensionless, source, zeta_eq, zeta_eq_source = _assessed_foundation(system)
     rigid = rigid_base(zeta)
     with_foundation = elastic_foundation(zeta, dimensionless)
     lam_hi = max(lam_max, 4.0 * lam)
@@ -384,25 +416,7 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
         },
     }
     status = {"rigid": run_rigid.status, "foundation": run_found.status}
-    warnings = []
-    if zeta == 0.0:
-        warnings.append("c = 0 (undamped slider, zeta = 0): on a rigid base it stick-slips at every "
-                        "speed and load (Eq. 36); give the slider's damping c if it has any")
-    if zeta > FITTED_ZETA_RANGE:
-        warnings.append(
-            f"zeta={zeta:.3g} is outside the range 0 <= zeta <= 0.4 on which Eqs. (28)-(33) are "
-            "fitted: trust the simulated verdicts, not the theory column"
-        )
-    if own:
-        warnings.append(
-            "the theory and Eq. 36 rows are the paper's procedure for its Coulomb law (mu = mu_k "
-            "while sliding); the simulation rows and verdicts use the machine's friction law "
-            f"({slider.friction.describe()}), whose critical speed and load are searched separately "
-            "(the law moves with the belt speed and the load)"
-        )
-    for where, result in (("on the rigid base", run_rigid), ("with the foundation", run_found)):
-        if result.verdict is Verdict.UNDETERMINED:
-            warnings.append(_status_warning(where, result.status, opts))
+    warnings = _warnings(system, {"on the rigid base": run_rigid, "with the foundation": run_found}, opts)
     optimum = None
     if stick_slip_optimum:
         start("stick-slip-optimal foundation (Coulomb law)")
