@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis._periodic_sections import ContinuationSystem, SlipSection, StickSlipSection
+from stickslip.analysis._periodic_sections import AnySystem, SlipSection, StickSlipSection
 
 FloatArray = NDArray[np.float64]
 
@@ -39,6 +39,8 @@ FAST_NEWTON = 3
 MAX_TURN = 0.3
 #: Tolerance of event locations (arclength, hence the parameter).
 EVENT_TOL = 1e-10
+#: Largest ratio of a step's arclength to its parameter advance cap (see :func:`step_cap`).
+MAX_STRETCH = 1000.0
 #: Relative finite-difference step in the parameter (central differences).
 PARAM_STEP = 1e-7
 
@@ -55,8 +57,8 @@ class BranchState:
 class ArclengthTracer:
     """Pseudo-arclength continuation of one branch of one section kind."""
 
-    def __init__(self, system: ContinuationSystem, name: str,
-                 make: Callable[[ContinuationSystem], StickSlipSection | SlipSection]) -> None:
+    def __init__(self, system: AnySystem, name: str,
+                 make: Callable[[AnySystem], StickSlipSection | SlipSection]) -> None:
         self.system, self.name, self.make = system, name, make
         #: the range continued over (points outside it are not reported)
         self.bounds = (-math.inf, math.inf)
@@ -158,6 +160,10 @@ def trace_branch(tracer: ArclengthTracer, start: BranchState, lo: float, hi: flo
            max_steps: int) -> TracedRun:
     """Continue from ``start`` along ``start.tangent`` until the range ends or the branch does.
 
+    Steps adapt: they grow by 1.5 after a fast corrector, up to a parameter advance of
+    ``h_max`` (:func:`step_cap`), and a branch that leaves the range ends on its end
+    (:func:`land_on_bound`).
+
     A failed step (no convergence, a changed phase signature or too sharp a turn) is halved;
     once it is below ``1e-4`` of the range and still fails, the end of the branch is located by
     bisection on the step length (every success a converged point) to :data:`EVENT_TOL` and the
@@ -192,7 +198,7 @@ def trace_branch(tracer: ArclengthTracer, start: BranchState, lo: float, hi: flo
             events += located_events(tracer, at, new)
             points.append(new)
             if its <= FAST_NEWTON and grow:
-                h = min(h_max, 1.5 * h)
+                h = min(step_cap(new, h_max), 1.5 * h)
             grow = True
             continue
         grow = False
@@ -220,6 +226,15 @@ def trace_branch(tracer: ArclengthTracer, start: BranchState, lo: float, hi: flo
             stop = "step-too-small"
         break
     return TracedRun(points, events, stop)
+
+
+def step_cap(at: BranchState, h_max: float) -> float:
+    """Largest step from ``at``: ``h_max`` of parameter advance, i.e. ``h_max / |t_p|`` of
+    arclength (at most :data:`MAX_STRETCH` times ``h_max``). Where the branch's coordinates
+    move much faster than the parameter (a machine continued in m/s, a steep branch) a cap on
+    the arclength alone would make hundreds of tiny steps; the turn and Newton checks still
+    halve any step that goes too far."""
+    return h_max / max(abs(float(at.tangent[-1])), 1.0 / MAX_STRETCH)
 
 
 def land_on_bound(tracer: ArclengthTracer, at: BranchState, beyond: BranchState, bound: float

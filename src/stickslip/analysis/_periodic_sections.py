@@ -34,6 +34,7 @@ from stickslip.analysis.verdict import Verdict
 from stickslip.kernel.system import SLIP_I, STICK, mode_kind_band
 from stickslip.model.friction import CoulombFriction, FrictionLaw, LinearFriction, evaluate_bands
 from stickslip.model.initial import InitialState
+from stickslip.model.machine import Machine
 from stickslip.model.parameters import Foundation, Slider
 from stickslip.model.structure import Structure, chain_structure
 
@@ -100,6 +101,81 @@ class ContinuationSystem:
         structure = chain_structure(self.zeta, () if self.foundation is None else (self.foundation,))
         return structure, Slider(self.lam, gamma=self.gamma, friction=self.friction)
 
+    def check(self, name: str) -> None:
+        """Refuse a parameter this system cannot be continued in (:func:`check_parameter`)."""
+        check_parameter(self, name)
+
+    def si_scales(self) -> tuple[float, float] | None:
+        """None: the system is dimensionless (no seconds or metres)."""
+        return None
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready: the dimensionless groups, the foundation and the law."""
+        f = self.foundation
+        return {"lam": self.lam, "zeta": self.zeta, "gamma": self.gamma,
+                "foundation": None if f is None else {
+                    "M": f.mass_ratio, "K": f.stiffness_ratio, "zeta_a": f.damping_ratio},
+                "friction": self.friction.describe()}
+
+
+#: Parameters a machine (``--config``) can be continued in, with their SI units.
+MACHINE_PARAMETERS = {"speed": "m/s", "load": "N", "mu_s": "1", "mu_k": "1"}
+
+
+@dataclass(frozen=True)
+class MachineSystem:
+    """A machine in SI (any linear structure, contact on any DOF) continued in one of
+    :data:`MACHINE_PARAMETERS`: belt speed (m/s), normal load (N) or a friction coefficient.
+
+    The engine runs the contact-first twin of its dimensionless structure (the contact's own
+    ``m_ref``, ``k_ref`` as the reference, :meth:`stickslip.model.machine.Machine.to_dimensionless`),
+    so the dimensionless answers are converted with the scales of the machine at each
+    parameter value (the length scale ``V / omega_n`` moves with the speed).
+    """
+
+    machine: Machine
+
+    def check(self, name: str) -> None:
+        """Refuse a parameter that is not one of :data:`MACHINE_PARAMETERS` (``ValueError``)."""
+        if name not in MACHINE_PARAMETERS:
+            raise ValueError(f"parameter {name!r} of a machine is not one of {', '.join(MACHINE_PARAMETERS)}")
+
+    def value(self, name: str) -> float:
+        """The machine's value of parameter ``name`` (SI)."""
+        self.check(name)
+        return float(getattr(self.machine, name))
+
+    def with_value(self, name: str, value: float) -> MachineSystem:
+        """The machine with parameter ``name`` set to ``value`` (SI; ``ValueError`` if invalid)."""
+        self.check(name)
+        m, v = self.machine, float(value)
+        if name in ("speed", "load"):
+            return MachineSystem(m.with_operating_point(**{name: v}))
+        return MachineSystem(replace(m, mu_s=v) if name == "mu_s" else replace(m, mu_k=v))
+
+    def build(self) -> tuple[Structure, Slider]:
+        """The contact-first dimensionless structure and the slider of the contact."""
+        structure, slider = self.machine.to_dimensionless()
+        return structure.contact_first()[0], slider
+
+    @property
+    def friction(self) -> FrictionLaw:
+        """The dimensionless friction law at the machine's operating point."""
+        return self.machine.slider().friction
+
+    def si_scales(self) -> tuple[float, float]:
+        """``(time_scale_s, length_scale_m)``: ``1/omega_n`` and ``V/omega_n`` of the contact."""
+        ref = self.machine.reference_system()
+        return float(ref.time_scale), float(ref.length_scale)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready: the machine in SI."""
+        return {"machine": self.machine.to_dict()}
+
+
+#: Either kind of continued system.
+AnySystem = ContinuationSystem | MachineSystem
+
 
 def check_parameter(system: ContinuationSystem, name: str) -> None:
     """Refuse a parameter the system cannot be continued in (``ValueError``, one line)."""
@@ -116,7 +192,7 @@ class StickSlipSection:
 
     kind = "stick-slip"
 
-    def __init__(self, system: ContinuationSystem, k: int, options: EngineOptions,
+    def __init__(self, system: AnySystem, k: int, options: EngineOptions,
                  direction: int = SLIP_I) -> None:
         self.structure, self.slider = system.build()
         self.k = k
@@ -176,7 +252,7 @@ class SlipSection:
 
     kind = "slip-oscillation"
 
-    def __init__(self, system: ContinuationSystem, options: EngineOptions) -> None:
+    def __init__(self, system: AnySystem, options: EngineOptions) -> None:
         self.structure, self.slider = system.build()
         st = self.structure
         self.n = st.n_dof

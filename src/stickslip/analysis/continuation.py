@@ -39,11 +39,13 @@ from stickslip.analysis._arclength import (
     unit_tangent,
 )
 from stickslip.analysis._periodic_sections import (
+    MACHINE_PARAMETERS,
     PARAMETERS,
+    AnySystem,
     ContinuationSystem,
+    MachineSystem,
     SlipSection,
     StickSlipSection,
-    check_parameter,
     refined_root,
 )
 from stickslip.analysis.cycles import find_cycles
@@ -55,7 +57,8 @@ from stickslip.model.friction import CoulombFriction, LinearFriction
 
 FloatArray = NDArray[np.float64]
 
-__all__ = ["PARAMETERS", "Branch", "BranchPoint", "ContinuationResult", "ContinuationSystem", "Event",
+__all__ = ["MACHINE_PARAMETERS", "PARAMETERS", "Branch", "BranchPoint", "ContinuationResult",
+           "ContinuationSystem", "Event", "MachineSystem",
            "continue_cycles", "slip_oscillation", "steady_sliding_along"]
 
 #: Peak velocity of the first slip oscillation computed next to a Hopf point.
@@ -85,7 +88,9 @@ class BranchPoint:
 
     def to_dict(self, name: str) -> dict[str, Any]:
         return {name: self.param, "period": self.period, "amplitude": self.amplitude,
-                "stick_ratio": self.stick_ratio, "multiplier": self.multiplier, "stable": self.stable}
+                "stick_ratio": self.stick_ratio, "multiplier": self.multiplier, "stable": self.stable,
+                "multipliers": [{"re": float(m.real), "im": float(m.imag), "abs": float(abs(m))}
+                                for m in self.multipliers]}
 
 
 @dataclass(frozen=True)
@@ -121,7 +126,7 @@ class Event:
 class ContinuationResult:
     """Outcome of :func:`continue_cycles`: branches, steady sliding along the range, events."""
 
-    system: ContinuationSystem
+    system: AnySystem
     param: str
     param_range: tuple[float, float]
     branches: tuple[Branch, ...]
@@ -136,20 +141,30 @@ class ContinuationResult:
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready, the keys of ``stickslip continue --json``."""
         name = self.param
-        s = self.system
+        branches = [b.to_dict(name) for b in self.branches]
+        units = MACHINE_PARAMETERS.get(name) if isinstance(self.system, MachineSystem) else None
+        if units is not None:  # seconds and metres at each point's own scales
+            for branch in branches:
+                for point in branch["points"]:
+                    time_s, length_m = self.si_scales(point[name])
+                    point["period_s"] = point["period"] * time_s
+                    point["amplitude_m"] = point["amplitude"] * length_m
         return {
             "param": name,
+            "param_units": units,
             "range": list(self.param_range),
-            "system": {"lam": s.lam, "zeta": s.zeta, "gamma": s.gamma,
-                       "foundation": None if s.foundation is None else {
-                           "M": s.foundation.mass_ratio, "K": s.foundation.stiffness_ratio,
-                           "zeta_a": s.foundation.damping_ratio},
-                       "friction": s.friction.describe()},
-            "branches": [b.to_dict(name) for b in self.branches],
+            "system": self.system.to_dict(),
+            "branches": branches,
             "steady": [{name: float(p), "growth_rate": float(g), "stable": bool(g < 0.0)}
                        for p, g in zip(self.steady_param, self.steady_growth, strict=True)],
             "events": [e.to_dict(name) for e in self.events],
         }
+
+    def si_scales(self, value: float) -> tuple[float, float]:
+        """``(time_scale_s, length_scale_m)`` at parameter ``value``; ``(1, 1)`` for a
+        dimensionless system (its answers stay in ``tau`` and ``V/omega_n``)."""
+        scales = self.system.with_value(self.param, value).si_scales()
+        return (1.0, 1.0) if scales is None else scales
 
     def summary(self) -> str:
         """A few lines: the branches, their ranges and the events."""
@@ -199,7 +214,7 @@ class ContinuationResult:
         return continuation_plot(self, **kwargs)
 
 
-def _rigid_stick_slip(system: ContinuationSystem, name: str, lo: float, hi: float, n_points: int,
+def _rigid_stick_slip(system: AnySystem, name: str, lo: float, hi: float, n_points: int,
                       options: EngineOptions) -> tuple[list[tuple[float, StickSlipSection]], list[float]]:
     """Rigid base: where the cycle exists on a grid, and its ends located by bisection."""
 
@@ -231,13 +246,13 @@ def _rigid_stick_slip(system: ContinuationSystem, name: str, lo: float, hi: floa
     return points, ends
 
 
-def _local_slope(system: ContinuationSystem, name: str, p: float) -> float:
+def _local_slope(system: AnySystem, name: str, p: float) -> float:
     """The friction slope ``dF/du`` at the belt speed (the worse side at a kink)."""
     left, right = one_sided_slopes(system.with_value(name, p).build()[1])
     return min(left, right)
 
 
-def steady_sliding_along(system: ContinuationSystem, name: str, lo: float, hi: float,
+def steady_sliding_along(system: AnySystem, name: str, lo: float, hi: float,
                          n_points: int = 101) -> tuple[FloatArray, FloatArray, list[float]]:
     """Growth rate of steady sliding on a grid of the range, and its Hopf points.
 
@@ -283,7 +298,7 @@ def steady_sliding_along(system: ContinuationSystem, name: str, lo: float, hi: f
 
 
 def continue_cycles(
-    system: ContinuationSystem,
+    system: AnySystem,
     param: str,
     param_range: tuple[float, float],
     *,
@@ -320,7 +335,7 @@ def continue_cycles(
     -------
     ContinuationResult
     """
-    check_parameter(system, param)
+    system.check(param)
     lo, hi = float(param_range[0]), float(param_range[1])
     if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
         raise ValueError(f"range {lo!r}:{hi!r} must be finite and increasing")
@@ -414,14 +429,14 @@ def _on_branch(branches: list[Branch], p: float, amplitude: float, kind: str) ->
 
 
 def _stick_slip_factory(k: int, opts: EngineOptions, direction: int
-                        ) -> Callable[[ContinuationSystem], StickSlipSection]:
-    def make(s: ContinuationSystem) -> StickSlipSection:
+                        ) -> Callable[[AnySystem], StickSlipSection]:
+    def make(s: AnySystem) -> StickSlipSection:
         return StickSlipSection(s, k, opts, direction)
 
     return make
 
 
-def _foundation_branches(system: ContinuationSystem, name: str, lo: float, hi: float, max_period: int,
+def _foundation_branches(system: AnySystem, name: str, lo: float, hi: float, max_period: int,
                          seeds: int, max_steps: int, opts: EngineOptions, branches: list[Branch],
                          events: list[Event]) -> None:
     """Stick-slip branches with a foundation, seeded by :func:`find_cycles` at
@@ -458,7 +473,7 @@ def _foundation_branches(system: ContinuationSystem, name: str, lo: float, hi: f
                 events += [replace(e, branch=index) for e in evs]
 
 
-def _slip_branches(system: ContinuationSystem, name: str, lo: float, hi: float, hopf: list[float],
+def _slip_branches(system: AnySystem, name: str, lo: float, hi: float, hopf: list[float],
                    max_steps: int, opts: EngineOptions, branches: list[Branch], events: list[Event]) -> None:
     """Slip oscillations born at every Hopf point of steady sliding in the range."""
     h_max = 0.05 * (hi - lo)
@@ -492,7 +507,7 @@ def _slip_branches(system: ContinuationSystem, name: str, lo: float, hi: float, 
             events += [replace(e, branch=index) for e in evs]
 
 
-def _searched_slip_branches(system: ContinuationSystem, name: str, lo: float, hi: float, seeds: int,
+def _searched_slip_branches(system: AnySystem, name: str, lo: float, hi: float, seeds: int,
                             max_steps: int, opts: EngineOptions, branches: list[Branch],
                             events: list[Event]) -> None:
     """Slip oscillations found by :func:`find_slip_oscillations` at :data:`SEARCH_POINTS`

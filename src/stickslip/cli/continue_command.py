@@ -12,8 +12,15 @@ from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE, OVERWRITE
 
 
 def continue_branches(
-    param: Annotated[str, typer.Option("--param", help="lam, zeta, gamma, delta, K, M or zeta_a")],
-    range_: Annotated[str, typer.Option("--range", help="A:B, the parameter's interval")],
+    ctx: typer.Context,
+    param: Annotated[str, typer.Option("--param", help="lam, zeta, gamma, delta, K, M or zeta_a; with "
+                                       "--config: speed, load, mu_s or mu_k")],
+    range_: Annotated[str, typer.Option("--range", help="A:B, the parameter's interval (with --config "
+                                        "in units, e.g. '2 mm/s:20 mm/s' or '1 kN:3 kN'; SI if bare)")],
+    config: Annotated[Path | None, typer.Option(
+        "--config", help="machine.toml in SI (m, k, c or a [structure], [friction]): that machine's "
+        "diagram, the axis in m/s or N, periods in s and amplitudes in m; not with --lam, --zeta, "
+        "--gamma, --dva, --k-scale, --friction")] = None,
     lam: Annotated[float, typer.Option("--lam", help="lambda > 0 (unless continued)")] = 10.0,
     zeta: Annotated[float, typer.Option("--zeta", help="damping ratio >= 0 (unless continued)")] = 0.1,
     gamma: GAMMA = 2.0,
@@ -31,19 +38,26 @@ def continue_branches(
     """Bifurcation diagram: stick-slip cycles and slip oscillations, stable and unstable.
 
     Example: stickslip continue --param lam --range 0.5:5 --zeta 0.1 --dva none --json
+
+    Your machine: stickslip continue --config machine.toml --param speed --range '1 mm/s:20 mm/s'
     """
-    from stickslip.analysis.continuation import PARAMETERS, ContinuationSystem, continue_cycles
+    from stickslip.analysis.continuation import (
+        MACHINE_PARAMETERS,
+        PARAMETERS,
+        AnySystem,
+        ContinuationSystem,
+        MachineSystem,
+        continue_cycles,
+    )
+    from stickslip.cli.machine_config import configured_machine, refuse_mix
     from stickslip.model.friction_input import parse_friction
 
-    if param not in PARAMETERS:
-        raise BadInput(f"--param {param!r} is not one of {', '.join(PARAMETERS)}")
-    lo_text, sep, hi_text = range_.partition(":")
-    try:
-        lo, hi = float(lo_text), float(hi_text)
-    except ValueError:
-        raise BadInput(f"--range {range_!r} must be A:B with two numbers") from None
-    if not sep or not lo < hi:
-        raise BadInput(f"--range {range_!r} must be A:B with A < B")
+    refuse_mix(ctx, config)
+    allowed = PARAMETERS if config is None else tuple(MACHINE_PARAMETERS)
+    if param not in allowed:
+        raise BadInput(f"--param {param!r} is not one of {', '.join(allowed)}"
+                       + ("" if config is None else " (a machine file's parameters)"))
+    lo, hi = _parse_range(range_, param if config is not None else None)
     if not 1 <= seeds <= 10_000:
         raise BadInput(f"--seeds {seeds} must be from 1 to 10000")
     if not 1 <= max_period <= 8:
@@ -54,11 +68,17 @@ def continue_branches(
         check_output_path(out, overwrite=overwrite, option="--out")
     if plot is not None:
         check_figure_path(plot, overwrite=overwrite)
-    law = parse_friction(friction)
-    foundation = parse_dva(dva, zeta, k_scale)
-    system = ContinuationSystem(lam, zeta, gamma, foundation, law)
+    system: AnySystem
+    if config is not None:
+        run = configured_machine(config)
+        system = MachineSystem(run.machine)
+    else:
+        system = ContinuationSystem(lam, zeta, gamma, parse_dva(dva, zeta, k_scale), parse_friction(friction))
     for bound in (lo, hi):  # every value of the range must make a valid system
-        system.with_value(param, bound).build()
+        try:
+            system.with_value(param, bound).build()
+        except ValueError as exc:
+            raise BadInput(f"--range {range_!r}: {param} = {bound:g} makes no valid system: {exc}") from None
     result = continue_cycles(system, param, (lo, hi), max_period=max_period, seeds=seeds,
                              max_steps=max_steps)
     payload = result.to_dict()
@@ -68,8 +88,8 @@ def continue_branches(
         from stickslip.io.provenance import provenance_attributes
 
         ds = result.to_xarray()
-        config = {k: v for k, v in payload.items() if k in ("param", "range", "system")}
-        ds.attrs.update(provenance_attributes(f"continuation in {param}", config))
+        resolved = {k: v for k, v in payload.items() if k in ("param", "range", "system")}
+        ds.attrs.update(provenance_attributes(f"continuation in {param}", resolved))
         payload["dataset"] = str(write_dataset(ds, out, overwrite=True))
     if plot is not None:
         payload["plot"] = str(result.plot().savefig(plot))
@@ -77,6 +97,25 @@ def continue_branches(
         print_json(payload)
         return
     _print(result.summary(), payload)
+
+
+def _parse_range(text: str, quantity: str | None) -> tuple[float, float]:
+    """``A:B`` as two floats, ``A < B``; with a machine quantity each end may carry a unit
+    (converted to SI, its dimension checked)."""
+    from stickslip.model.units import to_si
+
+    lo_text, sep, hi_text = text.partition(":")
+    try:
+        if quantity is None:
+            lo, hi = float(lo_text), float(hi_text)
+        else:
+            lo, hi = (to_si(quantity, part.strip(), source="--range") for part in (lo_text, hi_text))
+    except ValueError as exc:
+        detail = "two numbers" if quantity is None else f"two values of {quantity} ({exc})"
+        raise BadInput(f"--range {text!r} must be A:B with {detail}") from None
+    if not sep or not lo < hi:
+        raise BadInput(f"--range {text!r} must be A:B with A < B")
+    return lo, hi
 
 
 def _print(summary: str, payload: dict[str, Any]) -> None:

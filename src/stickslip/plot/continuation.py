@@ -22,6 +22,39 @@ EVENT_MARKERS = {"fold": ("s", "tab:red"), "period-doubling": ("D", "tab:purple"
                  "torus": ("^", "tab:green"), "grazing": ("o", "tab:orange"), "hopf": ("*", "tab:blue")}
 
 
+#: Axis label of each parameter: its symbol (mathtext) and unit.
+PARAM_LABELS = {
+    "lam": r"friction ratio $\lambda = (\mu_s - \mu_k) W / (V \sqrt{mk})$",
+    "zeta": r"damping ratio $\zeta$",
+    "gamma": r"$\gamma = \mu_k / (\mu_s - \mu_k)$",
+    "delta": r"friction slope $\delta$",
+    "K": r"foundation stiffness ratio $K$",
+    "M": r"foundation mass ratio $M$",
+    "zeta_a": r"foundation damping $\zeta_a$",
+    "speed": r"belt speed $V$ (m/s)",
+    "load": r"normal load $W$ (N)",
+    "mu_s": r"static friction coefficient $\mu_s$",
+    "mu_k": r"kinetic friction coefficient $\mu_k$",
+}
+
+
+def system_title(data: ContinuationResult) -> str:
+    """The system the diagram is of, in one line (mathtext)."""
+    d = data.system.to_dict()
+    if "machine" in d:
+        m = d["machine"]
+        name = m.get("name", "machine") if isinstance(m, dict) else "machine"
+        return f"{name}: periodic motions against {data.param}"
+    base = "rigid base" if d["foundation"] is None else (
+        f"foundation $M$ = {d['foundation']['M']:.4g}, $K$ = {d['foundation']['K']:.4g}, "
+        rf"$\zeta_a$ = {d['foundation']['zeta_a']:.4g}")
+    groups = ", ".join(f"{symbol} = {d[key]:.4g}" for key, symbol in
+                       (("lam", r"$\lambda$"), ("zeta", r"$\zeta$"), ("gamma", r"$\gamma$"))
+                       if key != data.param)
+    law = str(d["friction"]).split(";")[0]
+    return f"Slider on a moving belt, {base}, {groups}\nfriction: {law}"
+
+
 def _runs(stable: np.ndarray) -> list[tuple[int, int, bool]]:
     """Maximal runs ``(start, stop, stable)`` of equal stability (``stop`` inclusive, shared)."""
     out: list[tuple[int, int, bool]] = []
@@ -59,8 +92,9 @@ def continuation_plot(
     PlotResult
         One axes: the diagram (amplitude in ``V/omega_n`` against the parameter).
     """
-    fig, ax = new_axes(ax)
+    fig, ax = new_axes(ax, figsize=(8.0, 4.8))
     artists: list[Any] = []
+    machine = data.system.si_scales() is not None
     labelled: set[str] = set()
 
     def label(text: str) -> str | None:
@@ -69,9 +103,12 @@ def continuation_plot(
         labelled.add(text)
         return text
 
+    def scaled(p: float, amplitude: float) -> float:  # metres for a machine
+        return amplitude * data.si_scales(p)[1] if machine else amplitude
+
     for branch in data.branches:
         p = np.array([q.param for q in branch.points])
-        a = np.array([q.amplitude for q in branch.points])
+        a = np.array([scaled(q.param, q.amplitude) for q in branch.points])
         st = np.array([q.stable for q in branch.points], dtype=bool)
         color = KIND_COLORS.get(branch.kind, "0.3")
         for i, j, stable in _runs(st):
@@ -88,12 +125,21 @@ def continuation_plot(
             artists.append(line)
     if show_events:
         for e in data.events:
+            if not np.isfinite(e.amplitude):
+                continue
             marker, color = EVENT_MARKERS.get(e.type, ("x", "k"))
-            artists.append(ax.plot([e.param], [e.amplitude], marker=marker, color=color, ls="none",
-                                   ms=7, label=label(e.type))[0])
-    ax.set_xlabel(data.param)
-    ax.set_ylabel("amplitude  (V / omega_n)")
+            y = scaled(e.param, e.amplitude)
+            artists.append(ax.plot([e.param], [y], marker=marker, color=color, ls="none",
+                                   ms=7, label=label(e.type), zorder=5)[0])
+            artists.append(ax.annotate(f"{e.type}\n{e.param:.5g}", (e.param, y), xytext=(6, 8),
+                                       textcoords="offset points", fontsize="x-small", color=color))
+    ax.set_xlabel(PARAM_LABELS.get(data.param, data.param))
+    ax.set_ylabel(r"amplitude of $x$, $\frac{1}{2}$ peak to peak (m)" if machine else
+                  r"amplitude of $\xi$, $\frac{1}{2}$ peak to peak ($V/\omega_n$)")
+    ax.set_title(system_title(data), fontsize="medium")
     ax.set_xlim(*data.param_range)
-    ax.set_ylim(bottom=-0.02 * max([1.0] + [q.amplitude for b in data.branches for q in b.points]))
-    ax.legend(loc="best", fontsize="small")
+    top = max([1e-12] + [scaled(q.param, q.amplitude) for b in data.branches for q in b.points])
+    ax.set_ylim(-0.02 * top, 1.12 * top)
+    # outside the axes: the legend never covers a branch
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small", frameon=False)
     return PlotResult(fig, [ax], artists)
