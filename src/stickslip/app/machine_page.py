@@ -111,8 +111,14 @@ def machine_from_files(files: Mapping[str, bytes], toml_name: str | None = None)
     return machine, absorber, reduction
 
 
-def machine_design(machine: Any, absorber: Any, reduction: Any, *, stick_slip: bool = False) -> Any:
-    """The design report of the machine (:func:`~stickslip.analysis.machine_absorber.design_machine`)."""
+def machine_design(machine: Any, absorber: Any, reduction: Any, *, stick_slip: bool = False,
+                   progress: Any = None) -> Any:
+    """The design report of the machine (:func:`~stickslip.analysis.machine_absorber.design_machine`).
+
+    ``stick_slip`` also finds the absorber that maximises the simulated stick-slip onset
+    (many simulations: minutes on a 2-core machine); ``progress(stage, runs)`` is called as
+    the work goes on.
+    """
     from stickslip.analysis.machine_absorber import design_machine
 
     attach = None
@@ -120,14 +126,51 @@ def machine_design(machine: Any, absorber: Any, reduction: Any, *, stick_slip: b
         attach = (absorber.attach_dof if reduction is None
                   else reduction.kept_dofs.index(absorber.attach_dof))
     return design_machine(machine, None if absorber is None else absorber.mass, attach,
-                          stick_slip=stick_slip)
+                          stick_slip=stick_slip, progress=progress)
+
+
+def design_in_worker(machine: Any, absorber: Any, reduction: Any, stick_slip: bool) -> Any:
+    """:func:`machine_design` run by a worker process of :mod:`stickslip.app.workers`."""
+    from stickslip.app.workers import report
+
+    return machine_design(machine, absorber, reduction, stick_slip=stick_slip, progress=report)
+
+
+def files_digest(files: Mapping[str, bytes]) -> str:
+    """A fingerprint of uploaded files (names and contents): the key of their results."""
+    import hashlib
+
+    digest = hashlib.sha256()
+    for name in sorted(files):
+        for part in (name.encode("utf-8"), files[name]):
+            digest.update(len(part).to_bytes(8, "little"))
+            digest.update(part)
+    return digest.hexdigest()
+
+
+def _absorber_table(report: Any) -> Any:
+    """The tuned absorbers side by side (SI), one row per objective."""
+    import pandas as pd
+
+    from stickslip.app.figures import fmt
+
+    names = {"hinf": "H-infinity (smallest receptance peak)",
+             "stick-slip": "stick-slip (largest stick-slip-free range)"}
+    return pd.DataFrame({
+        "k [N/m]": [fmt(a.stiffness) for a in report.absorbers],
+        "c [N s/m]": [fmt(a.damping) for a in report.absorbers],
+        "critical speed V_c [m/s]": [fmt(a.critical.speed) for a in report.absorbers],
+        "critical load W_c [N]": [fmt(a.critical.load) for a in report.absorbers],
+        "peak receptance [m/N]": [fmt(a.peak_receptance) for a in report.absorbers],
+    }, index=[names.get(a.objective, a.objective) for a in report.absorbers])
 
 
 def show_machine_page() -> None:
     """Lay out the "your machine" page (Streamlit)."""
     import streamlit as st
 
-    from stickslip.app.messages import show_error
+    from stickslip.app.messages import show_error, show_warning
+    from stickslip.app.workers import Busy, wait_for
     from stickslip.plot.operating import machine_modes_plot
 
     st.title("Your machine: any linear structure, the contact on any DOF")
@@ -144,22 +187,49 @@ def show_machine_page() -> None:
             if not uploads:
                 st.info("Nothing is computed until the machine .toml and its files are uploaded.")
                 return
-            machine, absorber, reduction = machine_from_files(
-                {str(u.name): u.getvalue() for u in uploads})
+            files = {str(u.name): u.getvalue() for u in uploads}
         else:
             raw = {key: st.text_input(label, value=default, key=f"machine_{key}")
                    for key, (label, default) in MODE_INPUTS.items()}
-            machine, absorber, reduction = machine_from_files(
-                {"modes.toml": modes_machine_toml(raw).encode("utf-8")})
-        report = machine_design(machine, absorber, reduction)
-    except ValueError as exc:
+            files = {"modes.toml": modes_machine_toml(raw).encode("utf-8")}
+        machine, absorber, reduction = machine_from_files(files)
+        digest = files_digest(files)
+        report = wait_for(("machine", digest, False), design_in_worker, machine, absorber,
+                          reduction, False, what="Designing the machine")
+    except Busy as exc:
+        show_warning(str(exc))
+        return
+    except (ValueError, TimeoutError) as exc:
         show_error(str(exc))
         return
-    payload = report.to_dict()
     st.subheader("Verdict at the operating point")
     st.text(report.summary())
     if reduction is not None:
         st.caption(reduction.summary())
+    if report.absorbers:
+        st.subheader("Absorbers")
+        asked = st.session_state.get("stick_slip_absorber") == digest
+        if not asked and st.button("Find the stick-slip absorber too (many simulations: "
+                                   "minutes)", key="find_stick_slip_absorber"):
+            st.session_state["stick_slip_absorber"] = digest
+            asked = True
+        if asked:
+            try:
+                report = wait_for(("machine", digest, True), design_in_worker, machine,
+                                  absorber, reduction, True, what="Searching the stick-slip absorber")
+            except Busy as exc:
+                show_warning(str(exc))
+            except (ValueError, TimeoutError) as exc:
+                show_error(str(exc))
+        st.dataframe(_absorber_table(report), key="absorber_table")
+        st.caption(f"Absorber mass {report.absorbers[0].mass:.4g} kg on "
+                   + ("the foundation (the machine mounted on it)"
+                      if report.absorbers[0].attach_dof is None
+                      else f"DOF {absorber.attach_dof} of the file")
+                   + ". H-infinity: the smallest peak of the receptance at the contact; "
+                   "stick-slip: the largest range of belt speeds and loads without stick-slip "
+                   "(simulated onset, the machine's friction law).")
+    payload = report.to_dict()
     st.pyplot(machine_modes_plot(machine, reduction=reduction).figure)
     st.download_button("Design report (JSON)", __import__("json").dumps(payload, indent=2, default=str),
                        file_name="stickslip-machine.json", mime="application/json",
