@@ -428,6 +428,21 @@ def _on_branch(branches: list[Branch], p: float, amplitude: float, kind: str) ->
     return False
 
 
+def _duplicate(branches: list[Branch], new: Branch) -> bool:
+    """Whether ``new`` retraces a branch already computed: the same kind and a point at the
+    same parameter value (the ends of the range, where every branch that reaches them lands
+    exactly) with the same amplitude to 1e-7."""
+    for b in branches:
+        if b.kind != new.kind or b.stick_phases != new.stick_phases:
+            continue
+        for q in new.points:
+            for r in b.points:
+                if (abs(q.param - r.param) <= 1e-12 * max(1.0, abs(q.param))
+                        and abs(q.amplitude - r.amplitude) <= 1e-7 * max(1e-9, abs(q.amplitude))):
+                    return True
+    return False
+
+
 def _stick_slip_factory(k: int, opts: EngineOptions, direction: int
                         ) -> Callable[[AnySystem], StickSlipSection]:
     def make(s: AnySystem) -> StickSlipSection:
@@ -467,7 +482,7 @@ def _foundation_branches(system: AnySystem, name: str, lo: float, hi: float, max
             runs = [trace_branch(tracer, back_start, lo, hi, 0.2 * h_max, h_max, max_steps),
                     trace_branch(tracer, start, lo, hi, 0.2 * h_max, h_max, max_steps)]
             branch, evs = _to_branch(tracer, runs, "stick-slip", k)
-            if branch.points:
+            if branch.points and not _duplicate(branches, branch):
                 index = len(branches)
                 branches.append(branch)
                 events += [replace(e, branch=index) for e in evs]
@@ -534,7 +549,7 @@ def _searched_slip_branches(system: AnySystem, name: str, lo: float, hi: float, 
                     trace_branch(tracer, BranchState(float(p0), y0, ev[2], t0, sig), lo, hi,
                                  0.2 * h_max, h_max, max_steps)]
             branch, evs = _to_branch(tracer, runs, "slip-oscillation", 0)
-            if branch.points:
+            if branch.points and not _duplicate(branches, branch):
                 index = len(branches)
                 branches.append(branch)
                 events += [replace(e, branch=index) for e in evs]
