@@ -337,14 +337,14 @@ def test_return_map_on_the_slip_ii_piece_has_its_exact_jacobian() -> None:
     # random starts break away onto slip-II (S = -lambda (1 + 2 gamma), Eq. 20). On that piece
     # of the section the map's Jacobian (saltation matrices) must match central differences of
     # the map itself (error O(h^2) + rounding / h, about 1e-7 here)
-    from stickslip.analysis.cycles import _ReturnMap
+    from stickslip.analysis.return_map import ReturnMap
     from stickslip.analysis.simulation import EngineOptions
     from stickslip.kernel.system import SLIP_II
     from stickslip.model.parameters import Slider
 
     structure = elastic_foundation(0.0527218, Foundation(3.53655, 0.261100, 0.0174248))
     slider = Slider(3.6779, gamma=0.0438475)
-    pmap = _ReturnMap(structure, slider, EngineOptions(), SLIP_II)
+    pmap = ReturnMap(structure, slider, EngineOptions(), SLIP_II)
     rng = np.random.default_rng(2)
     checked = 0
     for _ in range(40):
@@ -475,3 +475,34 @@ def test_hopf_weakenings_do_not_depend_on_where_the_contact_sits() -> None:
     moved = Structure(base.mass[inv][:, inv], base.damping[inv][:, inv], base.stiffness[inv][:, inv],
                       contact_dof=int(perm[0]))
     np.testing.assert_allclose(hopf_weakenings(moved), hopf_weakenings(base), rtol=1e-10)
+
+
+def test_diagram_reads_like_a_papers() -> None:
+    # issue 30.4: a title naming the system, mathtext axis labels, stable solid and unstable
+    # dashed, events named, and a legend that covers no data (outside the axes)
+    from stickslip.analysis.continuation import Branch, BranchPoint, ContinuationResult, Event
+
+    def points(amps: list[float], stable: bool) -> tuple[BranchPoint, ...]:
+        return tuple(BranchPoint(0.3 + 0.01 * i, 6.3, a, 0.0, np.zeros(0, dtype=np.complex128), stable,
+                                 np.zeros(2)) for i, a in enumerate(amps))
+
+    system = ContinuationSystem(1.0 / 3.0, 0.05, 1.0, None, StribeckFriction(0.3333))
+    result = ContinuationResult(system, "lam", (0.3, 0.34),
+                                (Branch("stick-slip", 1, points([1.0, 1.01, 1.02, 1.03], True), "range-end"),
+                                 Branch("slip-oscillation", 0, points([0.9, 0.88, 0.86, 0.84], False),
+                                        "range-end")),
+                                np.array([0.3, 0.34]), np.array([-0.01, -0.01]),
+                                (Event("grazing", 0.31, 1.01, 0),))
+    plotted = result.plot()
+    ax = plotted.axes[0]
+    assert "rigid base" in ax.get_title() and "stribeck" in ax.get_title()
+    assert r"$\lambda" in ax.get_xlabel() and r"$\xi$" in ax.get_ylabel()
+    styles = {line.get_label(): line.get_linestyle() for line in ax.get_lines()}
+    assert styles["stick-slip, stable"] == "-" and styles["slip-oscillation, unstable"] == "--"
+    assert any("grazing 0.31" in t.get_text() for t in ax.texts)
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    renderer = FigureCanvasAgg(plotted.figure).get_renderer()
+    plotted.figure.draw(renderer)  # the constrained layout places the legend
+    legend = ax.get_legend().get_window_extent(renderer)
+    assert not legend.overlaps(ax.get_window_extent(renderer))

@@ -124,15 +124,23 @@ def continuation_plot(
                               ls="-" if stable else ":", label=label(text))
             artists.append(line)
     if show_events:
-        for e in data.events:
+        named: list[tuple[float, str]] = []
+        width = data.param_range[1] - data.param_range[0]
+        for e in sorted(data.events, key=lambda e: e.param):
             if not np.isfinite(e.amplitude):
                 continue
             marker, color = EVENT_MARKERS.get(e.type, ("x", "k"))
             y = scaled(e.param, e.amplitude)
             artists.append(ax.plot([e.param], [y], marker=marker, color=color, ls="none",
                                    ms=7, label=label(e.type), zorder=5)[0])
-            artists.append(ax.annotate(f"{e.type}\n{e.param:.5g}", (e.param, y), xytext=(6, 8),
-                                       textcoords="offset points", fontsize="x-small", color=color))
+            if any(t == e.type and abs(p - e.param) <= 1e-6 * width for p, t in named):
+                continue  # the same event found from two branches: named once
+            # names of events close together are stacked, not printed over each other
+            near = sum(1 for p, _ in named if abs(p - e.param) <= 0.06 * width)
+            named.append((e.param, e.type))
+            artists.append(ax.annotate(f"{e.type} {e.param:.5g}", (e.param, y), xytext=(-4, 10 + 11 * near),
+                                       textcoords="offset points", fontsize="x-small", color=color,
+                                       ha="right" if e.param > data.param_range[0] + 0.5 * width else "left"))
     ax.set_xlabel(PARAM_LABELS.get(data.param, data.param))
     ax.set_ylabel(r"amplitude of $x$, $\frac{1}{2}$ peak to peak (m)" if machine else
                   r"amplitude of $\xi$, $\frac{1}{2}$ peak to peak ($V/\omega_n$)")
