@@ -43,14 +43,23 @@ if TYPE_CHECKING:
 DIMENSIONLESS_OPTIONS = ("lam", "zeta", "gamma", "dva", "k_scale", "friction", "delta")
 
 
-def load_machine_file(config: Path) -> MachineFile:
-    """The machine file, read and checked; a bad file is one :class:`BadInput` line naming it."""
+def load_machine_file(config: Path, *, normal_coupling: bool = False) -> MachineFile:
+    """The machine file, read and checked; a bad file is one :class:`BadInput` line naming it.
+
+    Every ``--config`` command passes here, so here a ``[contact]`` table or a ``[structure]
+    normal_dof`` is refused (:data:`stickslip.model.contact.NOT_SUPPORTED`) unless the command
+    says it uses them (``normal_coupling=True``: ``stickslip stability``), rather than ignored.
+    """
     from stickslip.io.machine_file import read_machine_file
+    from stickslip.model.contact import NOT_SUPPORTED
 
     try:
-        return read_machine_file(Path(config))
+        machine_file = read_machine_file(Path(config))
     except ValueError as exc:
         raise BadInput(str(exc)) from None
+    if machine_file.has_contact and not normal_coupling:
+        raise BadInput(f"{machine_file.label}: {NOT_SUPPORTED}")
+    return machine_file
 
 
 def refuse_mix(ctx: typer.Context, config: Path | None,
@@ -89,13 +98,14 @@ def require_dimensionless(**given: object) -> None:
                            "--config machine.toml)")
 
 
-def collect_inputs(flags: Mapping[str, Any], config: Path | None) -> dict[str, float]:
+def collect_inputs(flags: Mapping[str, Any], config: Path | None, *,
+                   normal_coupling: bool = False) -> dict[str, float]:
     """Merge the machine file (if any) and the flags (flags win), convert to SI, check presence.
 
     The rules are :mod:`stickslip.model.inputs`' (the web app's too); a value from the file is
     named ``--config 'FILE': KEY =`` in messages, a flag by its name. With a ``[structure]``
     in the file the slider and foundation keys are not needed, and giving them as flags too is
-    refused (one structure per run).
+    refused (one structure per run). ``normal_coupling`` as :func:`load_machine_file`'s.
     """
     from stickslip.io.machine_file import PAPER_STRUCTURE_KEYS
     from stickslip.model.inputs import (
@@ -105,7 +115,8 @@ def collect_inputs(flags: Mapping[str, Any], config: Path | None) -> dict[str, f
         quantities_to_si,
     )
 
-    machine_file = load_machine_file(config) if config is not None else None
+    machine_file = (load_machine_file(config, normal_coupling=normal_coupling)
+                    if config is not None else None)
     merged: dict[str, Any] = dict(machine_file.raw) if machine_file is not None else {}
     given_flags = {key: value for key, value in flags.items() if is_given(value)}
     from_file = set(merged) - set(given_flags)

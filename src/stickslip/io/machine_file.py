@@ -14,6 +14,7 @@ Layout::
     damping = "C.mtx"     # or rayleigh = [alpha, beta], or modal_damping = 0.02 (or a list)
     mass_unit = "kg"      # stiffness_unit = "N/m", damping_unit = "N*s/m" (SI by default)
     contact_dof = 2       # 0-based DOF the belt rubs
+    # normal_dof = 3      # 0-based DOF normal to the belt, positive away from it ([contact])
     # or modes from a modal test, the structure seen from the contact:
     # modes = {frequencies = [12.0, 40.0], damping_ratios = [0.02, 0.03], shapes = [0.5, 0.2]}
     # (Hz, -, mass-normalised values at the contact in 1/sqrt(kg))
@@ -24,6 +25,9 @@ Layout::
     attach_dof = 2        # or attach = "foundation": the whole machine mounted on it
 
     [friction]            # as DESIGN.md section 8
+
+    [contact]             # the contact spring(s): stickslip.model.contact
+    normal_stiffness = "4e7 N/m"
 
 Every problem is one ``ValueError`` line naming the file, the key, the value and why. This
 module reads; the flat quantities and the ``[friction]`` table are parsed by
@@ -50,7 +54,7 @@ PAPER_STRUCTURE_KEYS = ("m", "k", "c", "m_a", "k_a", "c_a")
 #: Keys of the ``[structure]`` table.
 STRUCTURE_KEYS = frozenset({"mass", "stiffness", "damping", "rayleigh", "modal_damping", "mass_unit",
                             "stiffness_unit", "damping_unit", "contact_dof", "modes", "name",
-                            "cutoff"})
+                            "cutoff", "normal_dof"})
 MODE_KEYS = frozenset({"frequencies", "damping_ratios", "shapes"})
 ABSORBER_KEYS = frozenset({"mass", "attach_dof", "attach"})
 #: Limits of a machine file read from uploads (``files=``, the web app): all its files
@@ -83,8 +87,8 @@ class MachineFile:
     raw : dict
         The flat quantities as written (``mu_s``, ``load``, ``m``, ...), converted later by
         the caller (flags may override them).
-    friction_table, structure_table, absorber_table : dict or None
-        The ``[friction]``, ``[structure]`` and ``[absorber]`` tables.
+    friction_table, structure_table, absorber_table, contact_table : dict or None
+        The ``[friction]``, ``[structure]``, ``[absorber]`` and ``[contact]`` tables.
     files : mapping or None
         Uploaded files by base name (the web app): the only files this one may name
         (:func:`uploaded_file`); None reads the files it names from disk, relative to ``path``.
@@ -97,6 +101,7 @@ class MachineFile:
     friction_table: dict[str, Any] | None = None
     structure_table: dict[str, Any] | None = field(default=None)
     absorber_table: dict[str, Any] | None = None
+    contact_table: dict[str, Any] | None = None
     shown_as: str | None = field(default=None, compare=False)
     files: Mapping[str, bytes] | None = field(default=None, compare=False, repr=False)
     max_dof: int | None = field(default=None, compare=False)
@@ -110,6 +115,18 @@ class MachineFile:
     def has_structure(self) -> bool:
         """True when the file gives a ``[structure]`` table."""
         return self.structure_table is not None
+
+    @property
+    def has_contact(self) -> bool:
+        """True when the file gives a ``[contact]`` table or ``[structure] normal_dof``."""
+        return self.contact_table is not None or "normal_dof" in (self.structure_table or {})
+
+    def contact(self) -> Any:
+        """The :class:`~stickslip.model.contact.Contact` of ``[contact]`` and ``normal_dof``, or None."""
+        from stickslip.model.contact import contact_from_table
+
+        return contact_from_table(self.contact_table,
+                                  (self.structure_table or {}).get("normal_dof"), source=self.label)
 
     def friction(self) -> Any:
         """The ``[friction]`` table as :class:`PhysicalFriction` (Coulomb without one)."""
@@ -254,7 +271,7 @@ def read_machine_file(path: Path, *, label: str | None = None,
         max_dof = UPLOAD_MAX_DOF if max_dof is None else max_dof
         content = uploaded_file(path.name, files, f"{label}: the file")
     data = read_toml_file(path, label, content)
-    tables = {name: data.get(name) for name in ("friction", "structure", "absorber")}
+    tables = {name: data.get(name) for name in ("friction", "structure", "absorber", "contact")}
     for name, table in tables.items():
         if table is not None and not isinstance(table, dict):
             raise ValueError(f"{label}: {name} = {table!r} must be a table ([{name}])")
@@ -277,7 +294,8 @@ def read_machine_file(path: Path, *, label: str | None = None,
         raise ValueError(f"{label}: [absorber] needs a [structure] (for the paper's slider, the "
                          "foundation is m_a, k_a, c_a)")
     return MachineFile(path, dict(section), tables["friction"], tables["structure"],
-                       tables["absorber"], shown_as=label, files=files, max_dof=max_dof)
+                       tables["absorber"], tables["contact"], shown_as=label, files=files,
+                       max_dof=max_dof)
 
 
 def _modal_table(table: dict[str, Any], source: str) -> tuple[Any, Any, Any]:
@@ -381,6 +399,8 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
     if "contact_dof" not in table:
         raise ValueError(f"{source}: contact_dof is missing (the 0-based DOF the belt rubs)")
     contact = _whole(table["contact_dof"], f"{source} contact_dof")
+    normal = (_whole(table["normal_dof"], f"{source} normal_dof") if "normal_dof" in table
+              else None)
     mats = {key: read_matrix(table[key], quantity=key, unit=table.get(f"{key}_unit"),
                              base_dir=base_dir, source=f"{source} {key}",
                              content=None if files is None or not isinstance(table[key], str)
@@ -399,6 +419,10 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
     if contact >= n:
         raise ValueError(f"{source} contact_dof = {contact} is beyond the {n} DOF of the matrices "
                          f"(0 to {n - 1})")
+    if normal is not None and (normal >= n or normal == contact):
+        raise ValueError(f"{source} normal_dof = {normal} " + (
+            f"is beyond the {n} DOF of the matrices (0 to {n - 1})" if normal >= n else
+            "is the contact_dof: the normal DOF moves across the belt, the contact DOF along it"))
     if absorber is not None and absorber.attach_dof is not None and absorber.attach_dof >= n:
         raise ValueError(f"{source.replace('[structure]', '[absorber]')} attach_dof = "
                          f"{absorber.attach_dof} is beyond the {n} DOF of the structure")
@@ -413,6 +437,7 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
         check_large_matrices(mats["mass"], mats.get("damping"), mats["stiffness"], names=names)
         kept = [contact] + ([absorber.attach_dof] if absorber is not None
                             and absorber.attach_dof is not None else [])
+        kept += [normal] if normal is not None and normal not in kept else []
         if "cutoff" in table:
             cutoff = check_cutoff(to_si("frequency", table["cutoff"], source=f"{source} cutoff ="),
                                   source=f"{source} cutoff = {table['cutoff']!r}")
@@ -442,14 +467,20 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
     return m, c, k, contact, name, reduction
 
 
-def machine_from_file(machine_file: MachineFile, values: dict[str, float]) -> Any:
+def machine_from_file(machine_file: MachineFile, values: dict[str, float], *,
+                      normal_coupling: bool = False) -> Any:
     """The :class:`~stickslip.model.machine.Machine` of a file with a ``[structure]``.
 
     ``values`` are the flat quantities in SI (``mu_s``, ``mu_k``, ``load``, ``speed``),
-    after flags and file are merged. Returns ``(machine, reduction)``.
+    after flags and file are merged. Returns ``(machine, reduction)``. A file with a
+    ``[contact]`` or ``normal_dof`` is refused in one line unless ``normal_coupling`` (the
+    caller reads :meth:`MachineFile.contact` itself: ``stickslip stability``).
     """
+    from stickslip.model.contact import NOT_SUPPORTED
     from stickslip.model.machine import Machine
 
+    if machine_file.has_contact and not normal_coupling:
+        raise ValueError(f"{machine_file.label}: {NOT_SUPPORTED}")
     op = (values["speed"], values["load"], values["mu_s"], values["mu_k"])
     m, c, k, contact, name, reduction = machine_file.structure_matrices(
         speed=op[0], load=op[1], mu_s=op[2], mu_k=op[3])
