@@ -16,8 +16,9 @@ import pytest
 
 from stickslip import simulate
 from stickslip.analysis.cycle_proof import divisors
-from stickslip.analysis.cycles import _ReturnMap, find_cycles
-from stickslip.analysis.simulation import EngineOptions
+from stickslip.analysis.cycles import find_cycles
+from stickslip.analysis.engine_run import EngineOptions
+from stickslip.analysis.return_map import ReturnMap
 from stickslip.analysis.verdict import RunStatus, Verdict
 from stickslip.io.machine_file import machine_from_file, read_machine_file
 from stickslip.model.parameters import Slider
@@ -77,7 +78,7 @@ def _check_ball(structure: Structure, slider: Slider, run, rng: np.random.Genera
     proof = run.cycle_proof
     inner, _ = structure.contact_first()
     onto = 0 if proof.breakaway_onto == "slip-I" else 1
-    pmap = _ReturnMap(inner, slider, EngineOptions(), onto)
+    pmap = ReturnMap(inner, slider, EngineOptions(), onto)
     b_hat = pmap.reduce(proof.fixed_point)
     chol = proof.norm_matrix
     rho = proof.radius / np.linalg.norm(np.linalg.inv(chol), 2)

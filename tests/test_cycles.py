@@ -32,7 +32,8 @@ from stickslip import (
     rigid_base,
     simulate,
 )
-from stickslip.analysis.cycles import Cycle, _newton, _ReturnMap, find_cycles
+from stickslip.analysis.cycles import Cycle, find_cycles
+from stickslip.analysis.return_map import ReturnMap, newton_fixed_point
 from stickslip.analysis.simulation import EngineOptions
 from stickslip.kernel.system import mode_kind_band
 from stickslip.model.friction import LinearFriction, StribeckFriction
@@ -58,7 +59,7 @@ def test_foundation_cycle_is_reproduced_and_attracts_nearby_states() -> None:
     # the start-up run lands on the same cycle (README: period 33.9767)
     assert simulate(structure, slider, record=False).period == pytest.approx(cycle.period, rel=1e-8)
     assert cycle.stable
-    pmap = _ReturnMap(structure, slider, EngineOptions())
+    pmap = ReturnMap(structure, slider, EngineOptions())
     fixed = pmap.reduce(b)
     x = fixed + np.array([1e-3, -1e-3])
     errors = []
@@ -99,7 +100,7 @@ RTOL, ATOL = 1e-5, 1e-8
 FloatArray = NDArray[np.float64]
 
 
-def _fd_jacobian(pmap: _ReturnMap, b: FloatArray, k: int, rel: float = FD_STEP) -> FloatArray:
+def _fd_jacobian(pmap: ReturnMap, b: FloatArray, k: int, rel: float = FD_STEP) -> FloatArray:
     """Central differences of the exact map ``P^k`` (step ``rel * max(1, |b_j|)``): the oracle."""
     jac = np.empty((b.size, b.size))
     for j in range(b.size):
@@ -159,13 +160,13 @@ _CASES = {
 
 
 @functools.cache
-def _cycle(case: str) -> tuple[_ReturnMap, Cycle]:
+def _cycle(case: str) -> tuple[ReturnMap, Cycle]:
     """The (unique, period-1) cycle of a case, found by the search, and its return map."""
     structure_name, make_slider = _CASES[case]
     structure, slider = _STRUCTURES[structure_name](), make_slider()
     search = find_cycles(structure, slider, seeds=2, max_period=1)
     assert len(search.cycles) == 1
-    return _ReturnMap(structure, slider, EngineOptions()), search.cycles[0]
+    return ReturnMap(structure, slider, EngineOptions()), search.cycles[0]
 
 
 @pytest.mark.parametrize("case", list(_CASES))
@@ -206,7 +207,7 @@ def test_newton_converges_quadratically_with_the_exact_jacobian(case: str) -> No
     pmap, cycle = _cycle(case)
     fixed = pmap.reduce(cycle.breakaway_state)
     residuals: list[float] = []
-    solution = _newton(pmap, fixed + np.array([1e-2, 1e-2]), 1, residuals=residuals)
+    solution = newton_fixed_point(pmap, fixed + np.array([1e-2, 1e-2]), 1, residuals=residuals)
     assert solution is not None
     np.testing.assert_allclose(solution[0], fixed, rtol=0.0, atol=1e-10)
     # Newton: r_{i+1} <= C r_i^2 while above the rounding floor (~1e-14 of states ~ 10);

@@ -3,7 +3,7 @@
 * **Stick-slip cycles** on the breakaway section of :mod:`stickslip.analysis.cycles`
   (``xi' = 1``, ``S`` at the level of a breakaway onto slip-I or onto slip-II; unknowns ``b``,
   the foundation's coordinates, ``2 n - 2`` of them): ``G(b) = P^k(b) - b`` with the exact
-  Jacobian of saltation matrices (:meth:`stickslip.analysis.cycles._ReturnMap.linearise`).
+  Jacobian of saltation matrices (:meth:`stickslip.analysis.return_map.ReturnMap.linearise`).
 * **Slip oscillations** (never sticking, velocity-dependent friction) on the section of a
   velocity maximum of the slider, ``xi'' = 0`` with ``xi''' < 0``: the unknowns are the
   slider's peak velocity ``xi'`` and the foundation's coordinates (``2 n - 1``), ``xi`` follows
@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.cycles import _ReturnMap
+from stickslip.analysis.return_map import ReturnMap
 from stickslip.analysis.simulation import EngineOptions, simulate
 from stickslip.analysis.stability import slip_matrix
 from stickslip.analysis.verdict import Verdict
@@ -196,7 +196,7 @@ class StickSlipSection:
                  direction: int = SLIP_I) -> None:
         self.structure, self.slider = system.build()
         self.k = k
-        self.pmap = _ReturnMap(self.structure, self.slider, options, direction)
+        self.pmap = ReturnMap(self.structure, self.slider, options, direction)
         self.dim = 2 * self.structure.n_dof - 2
 
     def residual(self, y: FloatArray) -> tuple[FloatArray, FloatArray] | None:
