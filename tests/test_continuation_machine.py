@@ -85,3 +85,30 @@ def test_machine_bad_input_is_one_line_and_exit_2(args: list[str], needle: str, 
     code, text, err = run_cli(["continue", "--config", str(_machine_file(tmp_path)), *args, "--json"], capsys)
     assert code == 2 and text == "" and len(err.strip().splitlines()) == 1
     assert needle in err
+
+
+def test_paper_slider_in_load_is_born_at_eq36_in_newtons(tmp_path: Path,
+                                                         capsys: pytest.CaptureFixture[str]) -> None:
+    # m = 2 kg, k = 8 N/m, c = 0.4 N s/m: zeta = c / (2 sqrt(mk)) = 0.05; lambda =
+    # (mu_s - mu_k) W / (V sqrt(mk)), so the branch is born where lambda is Eq. (36)'s
+    from stickslip.analysis.theory import critical_lambda_exact
+
+    path = tmp_path / "slider.toml"
+    path.write_text("m = 2.0\nk = 8.0\nc = 0.4\nmu_s = 0.5\nmu_k = 0.3\nload = 30.0\nspeed = 1.0\n",
+                    encoding="utf-8")
+    figure = tmp_path / "d.png"
+    code, text, err = run_cli(["continue", "--config", str(path), "--param", "load",
+                               "--range", "10 N:0.06 kN", "--json", "--plot", str(figure)], capsys)
+    assert code == 0, err
+    payload = json.loads(text)
+    assert payload["range"] == [10.0, 60.0] and payload["param_units"] == "N"
+    (graze,) = [e for e in payload["events"] if e["type"] == "grazing"]
+    w_c = critical_lambda_exact(0.05) * 1.0 * math.sqrt(2.0 * 8.0) / (0.5 - 0.3)
+    assert graze["load"] == pytest.approx(w_c, abs=1e-7)
+    (branch,) = payload["branches"]
+    assert max(p["load"] for p in branch["points"]) == 60.0
+    omega_n = math.sqrt(8.0 / 2.0)
+    for p in branch["points"]:  # V / omega_n and 1 / omega_n of the slider itself
+        assert p["amplitude_m"] == pytest.approx(p["amplitude"] * 1.0 / omega_n, rel=1e-12)
+        assert p["period_s"] == pytest.approx(p["period"] / omega_n, rel=1e-12)
+    assert figure.stat().st_size > 10_000

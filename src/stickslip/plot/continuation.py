@@ -43,8 +43,13 @@ def system_title(data: ContinuationResult) -> str:
     d = data.system.to_dict()
     if "machine" in d:
         m = d["machine"]
-        name = m.get("name", "machine") if isinstance(m, dict) else "machine"
-        return f"{name}: periodic motions against {data.param}"
+        values = ", ".join(text for key, text in (
+            ("mu_s", rf"$\mu_s$ = {m['mu_s']:.4g}"), ("mu_k", rf"$\mu_k$ = {m['mu_k']:.4g}"),
+            ("load", f"$W$ = {m['load_N']:.4g} N"), ("speed", f"$V$ = {m['speed_m_per_s']:.4g} m/s"))
+            if key != data.param)
+        law = data.system.friction.describe().split(";")[0]
+        return (f"Machine '{m['name']}': {m['n_dof']} DOF, contact on DOF {m['contact_dof']}, {values}"
+                f"\nfriction: {law}")
     base = "rigid base" if d["foundation"] is None else (
         f"foundation $M$ = {d['foundation']['M']:.4g}, $K$ = {d['foundation']['K']:.4g}, "
         rf"$\zeta_a$ = {d['foundation']['zeta_a']:.4g}")
