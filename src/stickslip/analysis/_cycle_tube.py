@@ -45,8 +45,10 @@ class Phase:
     functions: list[tuple[FloatArray, float]]  # (normal n, level g0): g = n.z - g0
     ending: int  # index into functions of the event that ends the phase
     start_zero: list[bool]  # functions that vanish at the start (left from their surface)
+    tangential: list[bool]  # ... and leave it tangentially: rate 0 on the whole start section
     g: FloatArray  # (samples, functions) nominal g at the samples
     rate: FloatArray  # (samples, functions) nominal n.f
+    curv: FloatArray  # (samples, functions) nominal n.A f, the second derivative of g
     flow_norm: FloatArray  # ||f(z*(s_j))||_2 at the samples
     m_norm: FloatArray  # ||expm(A s_j)||_F at the samples
     h: float  # sample spacing
@@ -137,6 +139,17 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int) -> tuple[list[Phase], FloatAr
         g = zs @ normals.T - levels
         g[-1] = normals @ z_end - levels  # the recorded end (the event's exact state)
         rate = fields @ normals.T
+        curv = fields @ (normals @ a).T
+        # a tangential departure (a law continuous at the static limit: F(0+) = the stick
+        # bound): the rate vanishes at the start, and on the whole breakaway section (the
+        # lifted states of every b), so every perturbed motion leaves at second order
+        at_breakaway = i == first or int(seg_mode[i - 1]) == STICK
+        rate_scale = float(np.max(np.abs(rate))) + 1e-300
+        tangential = [
+            zero and at_breakaway and abs(float(rate[0, e])) <= 1e-12 * rate_scale
+            and float(np.linalg.norm((normals[e] @ a) @ pmap.lift))
+            <= 1e-12 * float(np.linalg.norm(normals[e] @ a)) * float(np.linalg.norm(pmap.lift))
+            for e, zero in enumerate(start_zero)]
         if i == last:
             f_plus, a_plus, belt, bk = np.zeros(n2), np.zeros((n2, n2)), False, True
         else:
@@ -145,7 +158,8 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int) -> tuple[list[Phase], FloatAr
             a_plus = pmap.flow_matrix[nxt]
             belt = mode != STICK and abs(float(z_end[pmap.n]) - 1.0) <= 1e-12
             bk = mode == STICK
-        phases.append(Phase(mode, duration, a, c, norm_a, functions, ending, start_zero, g, rate,
+        phases.append(Phase(mode, duration, a, c, norm_a, functions, ending, start_zero,
+                            tangential, g, rate, curv,
                              np.linalg.norm(fields, axis=1), m_norm, h, z_end,
                              a @ z_end + c, f_plus, a_plus, belt, scipy.linalg.expm(a * duration),
                              bk))
@@ -204,6 +218,15 @@ def _end_time_deviation(ph: Phase, z_dev: float) -> float | None:
             a_idx, b_idx = window
             if b_idx <= a_idx:
                 continue
+            if a_idx == 0 and ph.tangential[e]:
+                # g = g' = 0 at the start for every perturbed motion: g'' keeps its sign
+                curvs = ph.curv[0:b_idx + 1, e]
+                naa_norm = float(np.linalg.norm(nv @ ph.a @ ph.a))
+                rho2 = float(np.min(np.abs(curvs))) - naa_norm * (
+                    0.5 * f_max * ph.h + float(np.max(m_int[a_idx:b_idx])) * z_dev)
+                if not (np.all(curvs > 0) or np.all(curvs < 0)) or rho2 <= 0.0:
+                    return None
+                continue
             rates = ph.rate[a_idx:b_idx + 1, e]
             if not (np.all(rates > 0) or np.all(rates < 0)):
                 return None
@@ -255,6 +278,11 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
       ``rho = min |n . f*| - ||n^T A|| (F h / 2 + M Z) > 0``. The start window is then left
       without a zero; at the end, ``|g(t*)| <= eps(t*)`` and monotonicity put the one zero
       within ``T = eps(t*) / rho`` of ``t*`` (checked again past ``t*`` with ``exp(||A|| T)``).
+    * a tangential departure at a breakaway (a law continuous at the static limit, so the
+      slider's acceleration is zero there: ``g = g' = 0`` at the start of every perturbed
+      motion, the rate vanishing on the whole breakaway section, ``||(n^T A) L|| = 0`` to
+      rounding): on the first window ``g'' = n . A f`` keeps its sign with modulus at least
+      ``min |n . A f*| - ||n^T A^2|| (F h / 2 + M Z) > 0``, so the motion leaves the surface.
     * the event state moves by at most ``Z_e = M(t*) e^{||A|| T} Z + F_end e^{||A|| T} T``;
       at the belt speed the next mode (stick or slip through) is chosen by the stick force
       ``S = s . z``, kept by ``min |S* - level| > ||s|| Z_e``; ``Z_e`` starts the next phase.
