@@ -4,19 +4,39 @@ from __future__ import annotations
 
 import functools
 import os
+import signal
 import sys
+import threading
 import time
 import warnings
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from importlib import import_module
+from types import FrameType
 from typing import Annotated, Any, NoReturn
 
-import typer
+#: Exit code after Ctrl-C: 128 + SIGINT, as a shell reports a process that SIGINT ended.
+EXIT_INTERRUPTED = 130
 
-# typer is held below 0.25 (pyproject.toml: start-up time), which parses with click itself
-from click import exceptions as click_exceptions
+#: The one line a Ctrl-C prints on stderr, whatever the command was doing.
+ABORTED = "stickslip: aborted (Ctrl-C)"
 
-from stickslip.cli.console import BadInput, fail
+
+def _aborted() -> NoReturn:
+    """Ctrl-C: one line on stderr, exit code 130; finished work stays on disk for resume."""
+    print(ABORTED, file=sys.stderr, flush=True)
+    raise SystemExit(EXIT_INTERRUPTED) from None
+
+
+try:  # Ctrl-C while the command line starts (these imports are most of its 0.1 s): one line
+    import typer
+
+    # typer is held below 0.25 (pyproject.toml: start-up time), which parses with click itself
+    from click import exceptions as click_exceptions
+
+    from stickslip.cli.console import BadInput, fail
+except KeyboardInterrupt:
+    _aborted()
 
 #: Shown by ``stickslip --help``; every command's own ``--help`` has an example too.
 HELP = """Predict and suppress stick-slip in sliding systems on elastic foundations.
@@ -38,6 +58,7 @@ COMMAND_MODULES: dict[str, str] = {
     "basin-map": "basin_map_command",
     "cycles": "cycles_command",
     "continue": "continue_command",
+    "stability": "stability_command",
     "identify": "identify_command",
     "reproduce": "reproduce_command",
     "app": "app_command",
@@ -46,7 +67,7 @@ COMMAND_MODULES: dict[str, str] = {
 
 
 #: Commands that run no compiled kernel (so their start-up never imports numba).
-NUMBA_FREE_COMMANDS = frozenset({"frf", "app", "compile"})  # compile: its children compile
+NUMBA_FREE_COMMANDS = frozenset({"frf", "app", "compile", "stability"})  # compile: its children compile
 
 
 def _version(value: bool) -> None:
@@ -119,16 +140,6 @@ def _show_warning(message: Warning | str, category: type[Warning], filename: str
     """Warnings as one line on stderr, ``stickslip: warning: ...`` (no source line)."""
     text = " ".join(str(message).split())
     print(f"stickslip: warning: {text}", file=sys.stderr)
-
-
-#: Exit code after Ctrl-C: 128 + SIGINT, as a shell reports a process that SIGINT ended.
-EXIT_INTERRUPTED = 130
-
-
-def _aborted() -> NoReturn:
-    """Ctrl-C: one line on stderr, exit code 130; finished work stays on disk for resume."""
-    print("stickslip: aborted (Ctrl-C)", file=sys.stderr)
-    raise SystemExit(EXIT_INTERRUPTED) from None
 
 
 #: Commands that run the compiled engine; the first of them after an install compiles it.
@@ -271,31 +282,103 @@ def watching_compiles(command: Callable[..., Any], announced: bool) -> Callable[
     return watched
 
 
-def run(argv: list[str] | None = None) -> None:
-    """Console entry point: one line on stderr and exit code 2 for any bad input."""
-    args = sys.argv[1:] if argv is None else list(argv)
-    announced = _announce_compilation(args)
-    with warnings.catch_warnings():
-        warnings.showwarning = _show_warning
-        _run(argv, build_app(invoked_command(args), announced=announced))
+class SigintNote:
+    """Whether SIGINT arrived during a command (set by :func:`noting_sigint`'s handler)."""
+
+    def __init__(self) -> None:
+        self.caught = False
+
+    def __call__(self, signum: int, frame: FrameType | None) -> None:
+        self.caught = True
+        raise KeyboardInterrupt
 
 
-def _run(argv: list[str] | None, app: typer.Typer) -> None:
+@contextmanager
+def noting_sigint() -> Iterator[SigintNote]:
+    """Python's SIGINT handler, which also notes that the signal came; restored on exit.
+
+    Library code may turn the ``KeyboardInterrupt`` into another exception (numba's
+    dispatcher raises ``SystemError``, a worker pool its own error, a cleanup handler a
+    ``ValueError``): once the note is set, whatever ends the command is reported as Ctrl-C.
+    Only where Python handles SIGINT itself, in the main thread (a background job that
+    inherits SIGINT ignored keeps it ignored); elsewhere nothing changes.
+    """
+    note = SigintNote()
+    main = threading.current_thread() is threading.main_thread()
+    if not main or signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
+        yield note
+        return
+    signal.signal(signal.SIGINT, note)
     try:
-        # the program name is fixed, so completion uses _STICKSLIP_COMPLETE however it is started
-        result = app(args=argv, prog_name="stickslip", standalone_mode=False)
+        yield note
+    finally:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+
+
+#: How far :func:`interrupted` follows an exception's causes (chains are a few links long).
+_CHAIN_LIMIT = 32
+
+
+def interrupted(exc: BaseException, note: SigintNote | None = None) -> bool:
+    """True when ``exc`` comes from Ctrl-C: SIGINT was noted, or a ``KeyboardInterrupt`` is
+    ``exc`` or one of its causes or contexts (numba's ``SystemError``, click's ``Abort``)."""
+    if note is not None and note.caught:
+        return True
+    seen: set[int] = set()
+    pending: list[BaseException] = [exc]
+    while pending and len(seen) < _CHAIN_LIMIT:
+        current = pending.pop()
+        if id(current) in seen:
+            continue
+        seen.add(id(current))
+        if isinstance(current, KeyboardInterrupt):
+            return True
+        pending += [e for e in (current.__cause__, current.__context__) if e is not None]
+    return False
+
+
+def run(argv: list[str] | None = None) -> None:
+    """Console entry point: one line on stderr and exit code 2 for any bad input.
+
+    Ctrl-C at any moment (while the command starts, parses, compiles or runs a kernel, a
+    solver or a worker pool) prints one line on stderr and exits with code 130.
+    """
+    note: SigintNote | None = None
+    try:
+        with noting_sigint() as note:
+            args = sys.argv[1:] if argv is None else list(argv)
+            announced = _announce_compilation(args)
+            with warnings.catch_warnings():
+                warnings.showwarning = _show_warning
+                _run(argv, build_app(invoked_command(args), announced=announced), note)
+    except SystemExit as exc:
+        if note is not None and note.caught and exc.code not in (0, None, EXIT_INTERRUPTED):
+            _aborted()  # a command that turned Ctrl-C into an error exit of its own
+        raise
+    except BaseException as exc:
+        if interrupted(exc, note):
+            _aborted()
+        raise
+
+
+def _run(argv: list[str] | None, app: typer.Typer, note: SigintNote | None = None) -> None:
+    try:
+        try:
+            # the program name is fixed, so completion uses _STICKSLIP_COMPLETE however it is
+            # started
+            result = app(args=argv, prog_name="stickslip", standalone_mode=False)
+        except SystemExit:
+            raise
+        except BaseException as exc:
+            if interrupted(exc, note):
+                _aborted()
+            raise
     except click_exceptions.NoArgsIsHelpError:
         raise SystemExit(0) from None
     except click_exceptions.UsageError as exc:
         fail(exc.format_message())
-    except typer.Abort:
+    except typer.Abort:  # click's answer to Ctrl-C or end of input at a prompt
         _aborted()
-    except SystemError as exc:
-        # Ctrl-C inside a compiled kernel outside the chunk loops: numba's dispatcher reports
-        # the KeyboardInterrupt as "returned a result with an exception set"
-        if isinstance(exc.__cause__ or exc.__context__, KeyboardInterrupt):
-            _aborted()
-        raise
     except (BadInput, ValueError) as exc:
         fail(str(exc))
     except OSError as exc:
