@@ -126,6 +126,44 @@ def test_the_time_plots_are_in_si() -> None:
     assert si.axes[1].get_ylabel() == "slider v [m/s]" and PLOT_POINTS > 0
 
 
+def test_figures_are_drawn_once_per_input(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Issue 31: a rerun of inputs drawn before draws nothing (the PNGs are cached) and the
+    images need no resizing by Streamlit (at most its 1460 px content width)."""
+    from PIL import Image
+
+    from stickslip.app import figures
+
+    drawn: list[str] = []
+    real = figures.figure_of_run
+
+    def counted(result: Any, title: str, si: Any = None) -> Any:
+        drawn.append(title)
+        return real(result, title, si)
+
+    monkeypatch.setattr(figures, "figure_of_run", counted)
+    figures.run_figures_png.clear()
+    figures.occurrence_png.clear()
+    at = _started()
+    assert not at.exception and len(drawn) == 2
+    at.text_input(key="speed").set_value("10 cm/s").run()
+    assert not at.exception and len(drawn) == 4
+    at.text_input(key="speed").set_value("5 cm/s").run()
+    assert not at.exception and len(drawn) == 4  # back to the defaults: nothing redrawn
+    png = figures.occurrence_png(*_default_occurrence_args())
+    assert Image.open(io.BytesIO(png)).width == figures.PNG_MAX_WIDTH
+
+
+def _default_occurrence_args() -> tuple[Any, ...]:
+    from stickslip.app import streamlit_app as web
+    from stickslip.model.friction import CoulombFriction
+
+    system, errors = web.parse_inputs(dict(web.DEFAULTS))
+    assert system is not None and not errors
+    report = web.design_report(web.si_key(system))
+    return (report["lambda"], report["zeta"], report["gamma"], None, CoulombFriction(),
+            web.si_key(system))
+
+
 @pytest.mark.slow  # heavy (10-30 s cold); the default run keeps the cheaper app tests
 def test_changing_the_speed_changes_the_verdict() -> None:
     at = _started()

@@ -1,20 +1,35 @@
-"""The web app's figures and number formatting (Matplotlib, through :mod:`stickslip.plot`)."""
+"""The web app's figures and number formatting (Matplotlib, through :mod:`stickslip.plot`).
+
+The page's standing figures are cached as PNG images keyed on their inputs
+(:func:`run_figures_png`, :func:`occurrence_png`): drawing and rendering them took 2.3-2.7 s
+of every rerun, also for inputs computed before (issue 31).
+"""
 
 from __future__ import annotations
 
+import io
 import math
 from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
 import pandas as pd
+import streamlit as st
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter, NullLocator
 
 from stickslip.analysis.continuation import ContinuationResult
 from stickslip.analysis.simulation import SimulationResult
-from stickslip.app.computations import LambdaAxis, length_scale_at, si_of_lambda
+from stickslip.app.computations import (
+    LambdaAxis,
+    length_scale_at,
+    occurrence_maps,
+    operating_point_runs,
+    si_of_lambda,
+)
+from stickslip.app.inputs import FoundationKey, SiKey, system_from_key
+from stickslip.model.friction import FrictionLaw
 from stickslip.model.physical import PhysicalSystem
 from stickslip.plot.figure import new_grid
 from stickslip.plot.simulation import phase_portrait_plot, time_history_plot
@@ -22,6 +37,45 @@ from stickslip.sweep.occurrence import OccurrenceMap
 
 #: Samples of the exact trajectory per figure (every mode switch is added to them).
 PLOT_POINTS = 1500
+#: Resolution of the page's images (Streamlit's own for ``st.pyplot``), dots per inch.
+PNG_DPI = 200
+#: Widest image Streamlit shows unchanged, px (its ``MAXIMUM_CONTENT_WIDTH``): a wider one is
+#: decoded, shrunk and encoded again at every rerun (0.2 s per figure), so it is shrunk once.
+PNG_MAX_WIDTH = 2 * 730
+
+
+def png(fig: Figure) -> bytes:
+    """``fig`` as a PNG image, as ``st.pyplot`` shows it (:data:`PNG_DPI`, tight box, at most
+    :data:`PNG_MAX_WIDTH` wide)."""
+    from PIL import Image
+
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=PNG_DPI, bbox_inches="tight")
+    image = Image.open(io.BytesIO(buffer.getvalue()))
+    if image.width <= PNG_MAX_WIDTH:
+        return buffer.getvalue()
+    height = int(1.0 * image.height * PNG_MAX_WIDTH / image.width)
+    out = io.BytesIO()
+    image.resize((PNG_MAX_WIDTH, height), resample=Image.Resampling.BILINEAR).save(out, format="PNG")
+    return out.getvalue()
+
+
+@st.cache_data(show_spinner="Drawing the time histories...", max_entries=128)
+def run_figures_png(lam: float, zeta: float, gamma: float, foundation: FoundationKey,
+                    law: FrictionLaw, titles: tuple[str, ...],
+                    si: tuple[float, float, float]) -> tuple[bytes, ...]:
+    """:func:`figure_of_run` of each run of :func:`operating_point_runs`, as PNG images."""
+    runs = operating_point_runs(lam, zeta, gamma, foundation, law)
+    return tuple(png(figure_of_run(result, title, si))
+                 for result, title in zip(runs.values(), titles, strict=True))
+
+
+@st.cache_data(show_spinner="Drawing the occurrence maps...", max_entries=64)
+def occurrence_png(lam: float, zeta: float, gamma: float, foundation: FoundationKey | None,
+                   law: FrictionLaw, key: SiKey) -> bytes:
+    """:func:`occurrence_figure` of :func:`occurrence_maps` as a PNG image (``key``: the system)."""
+    maps = occurrence_maps(lam, zeta, gamma, foundation, law)
+    return png(occurrence_figure(maps, system_from_key(key), lam, zeta))
 
 
 def fmt(x: float | None, unit: str = "") -> str:

@@ -38,7 +38,6 @@ from stickslip.app.computations import (
     bifurcation_range,
     design_report,
     lambda_axis,
-    occurrence_maps,
     operating_point_runs,
     stick_slip_optimum,
 )
@@ -46,9 +45,9 @@ from stickslip.app.exports import bifurcation_csv, bifurcation_netcdf, history_c
 from stickslip.app.figures import (
     bifurcation_events_table,
     bifurcation_figure,
-    figure_of_run,
     fmt,
-    occurrence_figure,
+    occurrence_png,
+    run_figures_png,
 )
 from stickslip.app.inputs import (
     DEFAULTS,
@@ -386,6 +385,11 @@ def main() -> None:
         show_error("Cannot analyse these inputs: " + str(exc))
 
 
+def _side(name: str) -> str:
+    """The design report's key of a run's structure."""
+    return "rigid" if name == "rigid base" else "foundation"
+
+
 def _show_cycle(name: str, result: Any, system: PhysicalSystem) -> None:
     """The certified cycle's period and amplitude in s and m (and dimensionless)."""
     if not result.cycle_length:
@@ -431,15 +435,15 @@ def _show_results(raw: Mapping[str, str], system: PhysicalSystem) -> None:
     law = system.slider().friction
     runs = operating_point_runs(lam, zeta, gamma, assessed, law)
     si = (system.time_scale, system.length_scale, system.speed)
-    for name, result in runs.items():
-        side = "rigid" if name == "rigid base" else "foundation"
-        st.pyplot(figure_of_run(result, f"{name}: {report['verdict'][side]['simulation']}", si))
+    titles = tuple(f"{name}: {report['verdict'][_side(name)]['simulation']}" for name in runs)
+    images = run_figures_png(lam, zeta, gamma, assessed, law, titles, si)
+    for (name, result), image in zip(runs.items(), images, strict=True):
+        st.image(image)
         _show_cycle(name, result, system)
 
     st.subheader("Occurrence map around the operating point")
     given = assessed if system.foundation is not None else None
-    maps = occurrence_maps(lam, zeta, gamma, given, law)
-    st.pyplot(occurrence_figure(maps, system, lam, zeta))
+    st.image(occurrence_png(lam, zeta, gamma, given, law, si_key(system)))
     st.caption("Each cell is a certified simulation from the startup state at this γ. "
                + ("Right: the given foundation (fixed in SI units)." if given else
                   "Right: the foundation of Eqs. (28)-(30) tuned at each ζ of the grid."))

@@ -1,0 +1,150 @@
+"""How long the web app takes to answer an input change, measured in a real browser.
+
+Issue 31 asks for a rerun of inputs computed before in under 0.5 s and a new point in under
+1.5 s, on a 2-core machine. This starts the app as ``stickslip app`` does (127.0.0.1, a free
+port), opens it in headless Chromium through Playwright (``/usr/bin/chromium``; ``make
+browser`` installs it), waits for the first page (which may load the engine's cache), and
+then, ``--repeats`` times each:
+
+* **new point**: a belt speed not computed before is typed (a different one each time);
+* **cached**: the belt speed goes back to one computed before.
+
+Each time is from the Enter key to the end of the page's run, seen in the browser: the
+λ metric shows the new value, Streamlit's "running" indicator is gone and no element of the
+previous run is left (``data-stale``). The median and the best are printed with the goals.
+
+    python benchmarks/bench_app.py [--repeats 5]
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import socket
+import statistics
+import subprocess
+import sys
+import time
+import urllib.error
+import urllib.request
+from pathlib import Path
+from typing import Any
+
+CHROMIUM = "/usr/bin/chromium"
+CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+                 "--no-first-run", "--disable-background-networking"]
+#: Longest wait for the server and for the first page (the engine's cache may load), s.
+START_TIMEOUT = 120.0
+FIRST_PAGE_TIMEOUT_MS = 300_000
+#: Longest wait for one rerun, ms.
+RERUN_TIMEOUT_MS = 120_000
+#: Goals of issue 31, s.
+CACHED_GOAL = 0.5
+NEW_POINT_GOAL = 1.5
+#: The app's default slider (docs/app.md): lambda = (mu_s - mu_k) W / (V sqrt(m k)).
+DEFAULT_LAMBDA_NUMERATOR = 0.2 * 500.0 / math.sqrt(2.0 * 5e4)  # times 1/V [m/s]
+
+
+def _free_port() -> int:
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as sock:
+        sock.bind(("127.0.0.1", 0))
+        return int(sock.getsockname()[1])
+
+
+def _wait_healthy(url: str, process: subprocess.Popen[bytes]) -> None:
+    deadline = time.monotonic() + START_TIMEOUT
+    while time.monotonic() < deadline:
+        if process.poll() is not None:
+            sys.exit(f"bench_app: streamlit exited with code {process.returncode}")
+        try:
+            with urllib.request.urlopen(f"{url}/_stcore/health", timeout=2) as response:
+                if response.read().strip() == b"ok":
+                    return
+        except (urllib.error.URLError, OSError):
+            pass
+        time.sleep(0.3)
+    sys.exit(f"bench_app: streamlit did not answer within {START_TIMEOUT:.0f} s")
+
+
+def _lambda_text(speed_cm_s: float) -> str:
+    """The λ metric the page shows at a belt speed (4 significant digits, as the page)."""
+    return f"{DEFAULT_LAMBDA_NUMERATOR / (speed_cm_s / 100.0):.4g}"
+
+
+def _rerun(page: Any, expect: Any, speed_cm_s: float) -> float:
+    """Seconds from typing the belt speed (Enter) to the end of the page's run."""
+    box = page.get_by_role("textbox", name="Belt speed V", exact=True)
+    box.fill(f"{speed_cm_s:g} cm/s")
+    lam = (page.locator('[data-testid="stMetric"]').filter(has_text="λ")
+           .locator('[data-testid="stMetricValue"]').first)
+    start = time.perf_counter()
+    box.press("Enter")
+    expect(lam).to_have_text(_lambda_text(speed_cm_s), timeout=RERUN_TIMEOUT_MS)
+    _page_done(page, expect)
+    return time.perf_counter() - start
+
+
+def _page_done(page: Any, expect: Any) -> None:
+    """Wait until the script's run is over: no running indicator, nothing stale, images drawn."""
+    expect(page.locator('[data-testid="stStatusWidget"]')).to_have_count(0, timeout=RERUN_TIMEOUT_MS)
+    expect(page.locator('[data-stale="true"]')).to_have_count(0, timeout=RERUN_TIMEOUT_MS)
+    page.wait_for_function("Array.from(document.images).every(i => i.complete)",
+                           timeout=RERUN_TIMEOUT_MS)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=5, help="reruns of each kind (1 to 50)")
+    args = parser.parse_args(argv)
+    if not 1 <= args.repeats <= 50:
+        parser.error(f"--repeats {args.repeats} must be from 1 to 50")
+    if not Path(CHROMIUM).exists():
+        sys.exit(f"bench_app: no Chromium at {CHROMIUM}: run 'make browser'")
+    from playwright.sync_api import expect, sync_playwright
+
+    from stickslip.cli.app_command import streamlit_command
+
+    port = _free_port()
+    url = f"http://127.0.0.1:{port}"
+    command = [*streamlit_command(port, headless=True), "--server.fileWatcherType", "none"]
+    process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        _wait_healthy(url, process)
+        with sync_playwright() as playwright:
+            browser = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
+            try:
+                page = browser.new_page(viewport={"width": 1400, "height": 1000})
+                start = time.perf_counter()
+                page.goto(url, wait_until="domcontentloaded", timeout=FIRST_PAGE_TIMEOUT_MS)
+                verdict = page.locator('[data-testid="stMetric"]').filter(
+                    has_text="Verdict with foundation")
+                expect(verdict).to_have_count(1, timeout=FIRST_PAGE_TIMEOUT_MS)
+                _page_done(page, expect)
+                first = time.perf_counter() - start
+                new, cached = [], []
+                for i in range(args.repeats):
+                    new.append(_rerun(page, expect, 6.0 + i))  # 6, 7, ... cm/s: not seen before
+                    cached.append(_rerun(page, expect, 5.0))  # the default, computed at start
+            finally:
+                browser.close()
+    finally:
+        process.terminate()
+        try:
+            process.wait(timeout=15)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()
+    print(f"bench_app: the app in headless Chromium, {args.repeats} reruns of each kind "
+          f"(wall time from Enter to the end of the page's run)")
+    print(f"  first page (cold caches)   {first:7.2f} s")
+    for name, times, goal in (("new point", new, NEW_POINT_GOAL),
+                              ("cached (back to 5 cm/s)", cached, CACHED_GOAL)):
+        median = statistics.median(times)
+        verdict = "meets" if median < goal else "misses"
+        print(f"  {name:26s} median {median:6.2f} s, best {min(times):6.2f} s  "
+              f"(goal < {goal} s: {verdict} it)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
