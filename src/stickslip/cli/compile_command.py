@@ -56,31 +56,59 @@ def compile_kernels(jobs: int = 2) -> int:
     with tempfile.TemporaryDirectory(prefix="stickslip-compile-") as tmp:
         pending = list(WARM_UP_RUNS)
         running: list[tuple[tuple[str, ...], subprocess.Popen[str], float]] = []
-        while pending or running:  # bounded: each run ends or is killed after RUN_TIMEOUT
-            while pending and len(running) < jobs:
-                args = tuple(a.format(tmp=tmp) for a in pending.pop(0))
-                proc = subprocess.Popen([sys.executable, "-m", "stickslip.cli.main", *args], cwd=tmp,
-                                        stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-                running.append((args, proc, time.perf_counter()))
-            time.sleep(0.2)
-            for item in list(running):
-                args, proc, t0 = item
-                if proc.poll() is None and time.perf_counter() - t0 < RUN_TIMEOUT:
-                    continue
-                if proc.poll() is None:
-                    proc.kill()
-                running.remove(item)
-                err = proc.stderr.read() if proc.stderr else ""
-                if proc.wait() != 0:
-                    failed += 1
-                    print(f"stickslip compile: `stickslip {' '.join(args)}` failed: {err.strip()}",
-                          file=sys.stderr)
-                else:
-                    print(f"stickslip compile: {args[0]} kernels ready "
-                          f"({time.perf_counter() - t0:.0f} s)", file=sys.stderr)
+        try:
+            while pending or running:  # bounded: each run ends or is killed after RUN_TIMEOUT
+                while pending and len(running) < jobs:
+                    args = tuple(a.format(tmp=tmp) for a in pending.pop(0))
+                    proc = subprocess.Popen([sys.executable, "-m", "stickslip.cli.main", *args],
+                                            cwd=tmp, stdout=subprocess.DEVNULL,
+                                            stderr=subprocess.PIPE, text=True)
+                    running.append((args, proc, time.perf_counter()))
+                time.sleep(0.2)
+                for item in list(running):
+                    args, proc, t0 = item
+                    if proc.poll() is None and time.perf_counter() - t0 < RUN_TIMEOUT:
+                        continue
+                    if proc.poll() is None:
+                        proc.kill()
+                    running.remove(item)
+                    err = proc.stderr.read() if proc.stderr else ""
+                    if proc.wait() != 0:
+                        failed += 1
+                        print(f"stickslip compile: `stickslip {' '.join(args)}` failed: "
+                              f"{err.strip()}", file=sys.stderr)
+                    else:
+                        print(f"stickslip compile: {args[0]} kernels ready "
+                              f"({time.perf_counter() - t0:.0f} s)", file=sys.stderr)
+        finally:  # Ctrl-C or an error here: no warm-up process is left running
+            end_processes([proc for _, proc, _ in running])
     print(f"stickslip compile: done in {time.perf_counter() - start:.0f} s"
           + (f", {failed} failed" if failed else ""), file=sys.stderr)
     return failed
+
+
+#: Seconds a warm-up process gets to stop after SIGTERM before it is killed.
+STOP_TIMEOUT = 5.0
+
+
+def end_processes(processes: list[subprocess.Popen[str]]) -> None:
+    """Stop ``processes`` (SIGTERM, then SIGKILL after :data:`STOP_TIMEOUT`) and reap them.
+
+    A warm-up interrupted in the middle of a compile loses only that compile: numba writes a
+    cache entry only once it is complete.
+    """
+    for proc in processes:
+        if proc.poll() is None:
+            proc.terminate()
+    deadline = time.monotonic() + STOP_TIMEOUT
+    for proc in processes:
+        try:
+            proc.wait(timeout=max(0.0, deadline - time.monotonic()))
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+        if proc.stderr is not None:
+            proc.stderr.close()
 
 
 def compile_command(

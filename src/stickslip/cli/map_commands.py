@@ -541,7 +541,7 @@ def operating_map_command(config: Path, speed: str | None, load: str | None, *, 
             write_dataset(result.to_xarray(), out, overwrite=True)
             discard_store(store)
         if csv is not None:
-            result.to_xarray().to_dataframe().reset_index().to_csv(csv, index=False)
+            result.to_csv(csv)
         payload = result.to_dict()
         payload.update({"config": str(config), "dataset": str(out), "reused_output": reused,
                         "csv": None if csv is None else str(csv), "plot": None})

@@ -33,7 +33,8 @@ def atomic_output(target: str | os.PathLike[str]) -> Iterator[Path]:
 
     Missing parent folders are created. On an exception (a full disk, a failed plot) the
     temporary file is removed and ``target`` is untouched. The new file gets the mode of the
-    umask (``mkstemp`` alone would leave it readable by its owner only).
+    umask (``mkstemp`` alone would leave it readable by its owner only). An ``OSError`` of
+    the write that names no file, or the temporary one, is raised again naming ``target``.
     """
     target = Path(target)
     # missing folders are made here, when writing starts: a command rejected during its
@@ -47,6 +48,11 @@ def atomic_output(target: str | os.PathLike[str]) -> Iterator[Path]:
         yield tmp
         os.chmod(tmp, _umask_mode())
         os.replace(tmp, target)
+    except OSError as exc:
+        if exc.errno is None or exc.filename not in (None, name, tmp):
+            raise
+        # a failed write (a full disk) names no file or the temporary one: name the target
+        raise OSError(exc.errno, exc.strerror or str(exc), str(target)) from exc
     finally:
         tmp.unlink(missing_ok=True)
 

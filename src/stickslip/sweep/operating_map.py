@@ -33,6 +33,7 @@ import os
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -159,6 +160,20 @@ class OperatingMap:
     def from_netcdf(cls, path: str | os.PathLike[str]) -> OperatingMap:
         """Read a map written by ``map --config`` (:func:`stickslip.io.netcdf.write_dataset`)."""
         return cls.from_xarray(read_dataset(path))
+
+    def to_csv(self, path: str | os.PathLike[str]) -> Path:
+        """One row per operating point (speed [m/s], load [N] and each answer), atomically.
+
+        Written to a temporary file that replaces ``path`` once complete
+        (:func:`stickslip.io.atomic.atomic_output`): an interrupted or failed write leaves
+        the old file, or none.
+        """
+        from stickslip.io.atomic import atomic_output
+
+        target = Path(path)
+        with atomic_output(target) as tmp:
+            self.to_xarray().to_dataframe().reset_index().to_csv(tmp, index=False)
+        return target
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary: axes, fractions and the groups (no per-cell arrays)."""
