@@ -163,6 +163,7 @@ def test_an_error_without_ctrl_c_is_still_an_error(monkeypatch: pytest.MonkeyPat
     monkeypatch.setattr(simulation, "simulate", refused)
     code, out, err = run_cli(["simulate", "--lam", "1", "--zeta", "0.1", "--json"], capsys)
     assert code == 2 and err.strip() == "stickslip: error: the worker pool stopped", err
+    assert out == ""
 
 
 # -- identify --bootstrap ---------------------------------------------------------------------
