@@ -506,3 +506,16 @@ def test_diagram_reads_like_a_papers() -> None:
     plotted.figure.draw(renderer)  # the constrained layout places the legend
     legend = ax.get_legend().get_window_extent(renderer)
     assert not legend.overlaps(ax.get_window_extent(renderer))
+
+
+@pytest.mark.slow
+def test_issue_30_foundation_branch_reaches_25(capsys: pytest.CaptureFixture[str]) -> None:
+    # issue 30.2: this command stopped at lambda = 24.59 ("range-end"); the branch is born by
+    # grazing at 5.994754 (the docs' worked example) and now ends on 25 itself
+    code, text, _ = run_cli(["continue", "--param", "lam", "--range", "0.5:25", "--zeta", "0.1",
+                             "--dva", "optimal", "--json"], capsys)
+    assert code == 0
+    (branch,) = json.loads(text)["branches"]
+    lams = [p["lam"] for p in branch["points"]]
+    assert max(lams) == 25.0 and min(lams) == pytest.approx(5.994754, abs=1e-6)
+    assert branch["stop_reason"] == "backward: grazing; forward: range-end"
