@@ -379,7 +379,7 @@ def critical_friction(system: FrictionCoupledSystem, *, mu_max: float = MU_MAX,
             method = ("mode coalescence, g'(lambda*) = 0 (exact), inside the bisection bracket "
                       "whose upper end is proven unstable")
     return CriticalFriction(mu, (lo, hi), kind, abs(crossing.imag) / (2 * math.pi),
-                            tuple(m for m in dict.fromkeys(modes) if m > 0), mu_max, method)
+                            tuple(sorted({m for m in modes if m > 0})), mu_max, method)
 
 
 def _coalescence(system: FrictionCoupledSystem, mu_lo: float, crossing: complex) -> float | None:
