@@ -88,6 +88,8 @@ __all__ = [
 ]
 
 _fmt = fmt  # the page's short name
+#: The app's pages, in the sidebar.
+PAGES = ("paper's slider", "your machine (matrices or modes)", "identify from a record")
 
 
 def _input_widgets() -> dict[str, str]:
@@ -360,12 +362,16 @@ def _show_bifurcation(report: Mapping[str, Any], system: PhysicalSystem,
 def main() -> None:
     """Lay out the page; the script body that Streamlit runs on every interaction."""
     st.set_page_config(page_title="stickslip: stick-slip design", layout="wide")
-    page = st.sidebar.radio("Machine", ("paper's slider", "your machine (matrices or modes)"),
-                            key="page")
-    if page != "paper's slider":
+    page = st.sidebar.radio("Machine", PAGES, key="page")
+    if page == PAGES[1]:
         from stickslip.app.machine_page import show_machine_page
 
         show_machine_page()
+        return
+    if page == PAGES[2]:
+        from stickslip.app.identify_page import show_identify_page
+
+        show_identify_page()
         return
     st.title("Stick-slip on an elastic foundation")
     st.caption("Will this sliding system stick-slip, at which belt speed or load, and which "

@@ -177,10 +177,30 @@ def read_record(path: str | Path, columns: list[ColumnSpec] | None = None) -> Me
     UTF-8 with or without a byte-order mark; at most :data:`MAX_RECORD_BYTES`; a regular file.
     """
     p = Path(path)
-    text = _record_text(p)
+    return record_from_text(_record_text(p), str(p), columns)
+
+
+def record_from_text(text: str, name: str, columns: list[ColumnSpec] | None = None) -> MeasuredRecord:
+    """A record given as CSV text (an uploaded file), read as :func:`read_record` reads a file.
+
+    Parameters
+    ----------
+    text : str
+        The CSV text.
+    name : str
+        How messages name it (a file's path, an upload's name); the record's ``source`` is
+        its last path component.
+    columns : list of ColumnSpec, optional
+        The roles of the columns (default: from the header's names).
+
+    Returns
+    -------
+    MeasuredRecord
+        In SI units, with the rig's signs.
+    """
     lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
     if len(lines) < 2:
-        raise RecordError(f"record {str(p)!r} needs a header row and data rows")
+        raise RecordError(f"record {name!r} needs a header row and data rows")
     rows = list(csv.reader(lines))
     header_raw = [h.strip() for h in rows[0]]
     header: list[tuple[str, str | None]] = []
@@ -195,15 +215,15 @@ def read_record(path: str | Path, columns: list[ColumnSpec] | None = None) -> Me
             if role is not None and role not in [c.role for c in columns]:
                 columns.append(ColumnSpec(role, name, unit))
         if not any(c.role == "t" for c in columns):
-            raise RecordError(f"record {str(p)!r}: no time column (header {', '.join(header_raw)}); "
+            raise RecordError(f"record {name!r}: no time column (header {', '.join(header_raw)}); "
                               "name one t or give --columns")
     try:
         data = np.array([[float(v) for v in row] for row in rows[1:]], dtype=np.float64)
     except ValueError:
         bad = next(i for i, row in enumerate(rows[1:], start=2) if not _numeric(row))
-        raise RecordError(f"record {str(p)!r}, data row {bad}: not all numbers") from None
+        raise RecordError(f"record {name!r}, data row {bad}: not all numbers") from None
     if data.ndim != 2 or data.shape[1] != len(header):
-        raise RecordError(f"record {str(p)!r}: rows do not all have {len(header)} values")
+        raise RecordError(f"record {name!r}: rows do not all have {len(header)} values")
     arrays: dict[str, Any] = {}
     for spec in columns:
         if spec.name.startswith("#"):
@@ -211,15 +231,15 @@ def read_record(path: str | Path, columns: list[ColumnSpec] | None = None) -> Me
         elif spec.name in names:
             idx = names.index(spec.name)
         else:
-            raise RecordError(f"record {str(p)!r} has no column {spec.name!r} (columns: {', '.join(names)})")
+            raise RecordError(f"record {name!r} has no column {spec.name!r} (columns: {', '.join(names)})")
         if idx >= len(names):
-            raise RecordError(f"record {str(p)!r} has {len(names)} columns, fewer than --columns names")
+            raise RecordError(f"record {name!r} has {len(names)} columns, fewer than --columns names")
         unit = spec.unit if spec.unit is not None else header[idx][1]
-        factor = unit_factor(spec.role, unit, f"record {str(p)!r}, column {names[idx]!r}")
+        factor = unit_factor(spec.role, unit, f"record {name!r}, column {names[idx]!r}")
         arrays[spec.role] = spec.sign * factor * data[:, idx]
     if "t" not in arrays:
         raise RecordError("the column specification has no time column t")
-    return MeasuredRecord(arrays.pop("t"), source=p.name, **arrays)
+    return MeasuredRecord(arrays.pop("t"), source=Path(name).name, **arrays)
 
 
 def _numeric(row: list[str]) -> bool:
