@@ -1,0 +1,143 @@
+"""``stickslip stability`` and the machine-file contract of normal-load coupling (issue 34).
+
+The brake pad of examples/brake_pad is the minimal model of Hoffmann et al. (2002): its
+undamped flutter boundary is the closed form ((k11 - k22 - k_n)^2 + 4 k12^2) / (-4 k12 k_n)
+of stickslip.analysis.squeal_minimal_model, evaluated here from the file's own numbers.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+
+from stickslip.io.machine_file import read_machine_file
+from tests.cli_helpers import run_cli
+
+ROOT = Path(__file__).resolve().parents[1]
+BRAKE_PAD = ROOT / "examples" / "brake_pad"
+#: examples/brake_pad/K.csv and machine.toml: k11 = 8e7, k12 = -1.5e7, k22 = 2.5e7, k_n = 5e7 N/m
+K11, K12, K22, KN = 8.0e7, -1.5e7, 2.5e7, 5.0e7
+CLOSED_FORM = ((K11 - K22 - KN) ** 2 + 4 * K12**2) / (-4 * K12 * KN)
+
+
+def test_stability_json_gives_the_contract_keys(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, err = run_cli(["stability", "--config", str(BRAKE_PAD / "machine.toml"), "--json"],
+                             capsys)
+    assert code == 0, err
+    p = json.loads(out)
+    assert len(p["eigenvalues"]) == 4 and all(len(pair) == 2 for pair in p["eigenvalues"])
+    assert p["stable"] is False and p["verdict"] == "unstable"  # mu_k = 0.4 above both boundaries
+    assert p["critical_mu_undamped"] == pytest.approx(CLOSED_FORM, rel=1e-11)
+    # unequal damping (40 and 4 N s/m) lowers the boundary below the undamped one
+    assert p["critical_mu"] < p["critical_mu_undamped"]
+    assert p["critical"]["kind"] == "flutter" and p["critical_undamped"]["modes"] == [1, 2]
+    growing = [pair for pair in p["eigenvalues"] if pair[0] > 0]
+    assert len(growing) == 2 and growing[0][1] == pytest.approx(-growing[1][1])
+    # Coulomb law: speed and load do not change the eigenvalues, unstable over both grids
+    ranges = p["operating_ranges"]
+    assert ranges["unstable_speeds_m_per_s"] == [[0.5, 50.0]]
+    assert ranges["unstable_loads_N"] == [[pytest.approx(100.0), pytest.approx(10000.0)]]
+
+
+def test_stability_text_and_root_locus(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    locus = tmp_path / "locus.png"
+    code, out, err = run_cli(["stability", "--config", str(BRAKE_PAD / "machine.toml"),
+                              "--plot", str(locus)], capsys)
+    assert code == 0, err
+    assert "verdict     UNSTABLE" in out and "critical mu 0.3029" in out
+    assert f"undamped    {CLOSED_FORM:.8g}" in out and "modes 1 and 2" in out
+    assert f"figure      {locus}" in out and locus.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.mark.slow
+def test_stability_map_figure(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    grid = tmp_path / "map.png"
+    code, out, err = run_cli(["stability", "--config", str(BRAKE_PAD / "machine.toml"),
+                              "--map", str(grid)], capsys)
+    assert code == 0, err
+    assert f"figure      {grid}" in out and grid.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def _copy(tmp_path: Path, replace: dict[str, str] | None = None, extra: str = "") -> Path:
+    for name in ("M.csv", "K.csv", "C.csv"):
+        shutil.copy(BRAKE_PAD / name, tmp_path / name)
+    text = (BRAKE_PAD / "machine.toml").read_text()
+    for old, new in (replace or {}).items():
+        assert old in text
+        text = text.replace(old, new)
+    path = tmp_path / "machine.toml"
+    path.write_text(text + extra)
+    return path
+
+
+@pytest.mark.parametrize("replace, extra, why", [
+    ({"normal_dof = 1 ": "normal_dof = 0 "}, "", "normal_dof = 0 is the contact_dof"),
+    ({"normal_dof = 1 ": "normal_dof = 2 "}, "", "normal_dof = 2 is beyond the 2 DOF"),
+    ({"normal_dof = 1 ": "normal_dof = -1 "}, "", "normal_dof = -1 must be a whole number"),
+    ({'normal_stiffness = "5e7 N/m"': 'normal_stiffness = "-5e7 N/m"'}, "", "must be positive"),
+    ({'normal_stiffness = "5e7 N/m"': 'normal_stiffness = "5 kg"'}, "", "normal_stiffness"),
+    ({'normal_stiffness = "5e7 N/m"': 'normal_stiffnes = "5e7 N/m"'}, "", "unknown keys normal_stiffnes"),
+    ({'normal_stiffness = "5e7 N/m"': ""}, "", "normal_dof = 1 needs [contact] normal_stiffness"),
+    ({}, 'normal_damping = "-1 N*s/m"\n', "normal_damping = -1.0 must not be negative"),
+    ({}, 'tangential_stiffness = "1e8 N/m"\n', "tangential contact compliance is not in the"),
+])
+def test_bad_contact_is_refused_in_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                            replace: dict[str, str], extra: str, why: str) -> None:
+    path = _copy(tmp_path, replace, extra)
+    code, out, err = run_cli(["stability", "--config", str(path), "--json"], capsys)
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and why in err, err
+    assert str(path) in err
+
+
+@pytest.mark.parametrize("command", ["simulate", "cycles", "basin", "design", "continue"])
+def test_other_commands_refuse_normal_coupling(command: str, capsys: pytest.CaptureFixture[str]) -> None:
+    args = [command, "--config", str(BRAKE_PAD / "machine.toml")]
+    if command == "continue":
+        args += ["--param", "speed", "--range", "1:2"]
+    code, out, err = run_cli(args, capsys)
+    assert code == 2, (out, err)
+    assert err.count("\n") == 1
+    assert "normal-load coupling is supported by `stickslip stability` only in this version" in err
+
+
+def test_a_file_without_contact_reads_as_before_and_a_contact_table_alone_is_refused(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    slideway = read_machine_file(ROOT / "examples" / "slideway" / "machine.toml")
+    assert not slideway.has_contact and slideway.contact() is None and slideway.contact_table is None
+    flat = tmp_path / "flat.toml"
+    flat.write_text('mu_s = 0.5\nmu_k = 0.4\nload = "1 kN"\nspeed = "1 m/s"\nm = "1 kg"\n'
+                    'k = "1e6 N/m"\nc = "40 N*s/m"\n\n[contact]\ntangential_stiffness = "1e8 N/m"\n')
+    code, _, err = run_cli(["simulate", "--config", str(flat)], capsys)
+    assert code == 2 and "supported by `stickslip stability` only" in err
+
+
+def test_flat_machine_without_contact_has_no_coupling(tmp_path: Path,
+                                                      capsys: pytest.CaptureFixture[str]) -> None:
+    # the paper's slider, no normal DOF: mu enters nowhere (Coulomb), so no critical mu; the
+    # 1 DOF eigenvalues are -zeta w +- i w sqrt(1 - zeta^2) with w = 1000 rad/s, zeta = 0.02
+    flat = tmp_path / "flat.toml"
+    flat.write_text('mu_s = 0.5\nmu_k = 0.4\nload = "1 kN"\nspeed = "1 m/s"\nm = "1 kg"\n'
+                    'k = "1e6 N/m"\nc = "40 N*s/m"\n')
+    code, out, err = run_cli(["stability", "--config", str(flat), "--json"], capsys)
+    assert code == 0, err
+    p = json.loads(out)
+    assert p["stable"] is True and p["critical_mu"] is None and p["critical_mu_undamped"] is None
+    (re1, im1), (re2, im2) = p["eigenvalues"]
+    assert re1 == pytest.approx(-20.0, rel=1e-12) and re2 == pytest.approx(-20.0, rel=1e-12)
+    assert im2 == pytest.approx(1000.0 * (1 - 0.02**2) ** 0.5, rel=1e-12) and im1 == pytest.approx(-im2)
+
+
+def test_stability_refuses_bad_flags_before_work(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    config = str(BRAKE_PAD / "machine.toml")
+    code, _, err = run_cli(["stability", "--config", config, "--mu-max", "0"], capsys)
+    assert code == 2 and "--mu-max 0.0 must be above 0" in err
+    existing = tmp_path / "locus.png"
+    existing.write_bytes(b"keep")
+    code, _, err = run_cli(["stability", "--config", config, "--plot", str(existing)], capsys)
+    assert code == 2 and "exists" in err and existing.read_bytes() == b"keep"
+    code, _, err = run_cli(["stability", "--config", config, "--plot", str(tmp_path / "a.txt")], capsys)
+    assert code == 2 and "must end in one of" in err
