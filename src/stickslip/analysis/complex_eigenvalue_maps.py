@@ -28,7 +28,6 @@ from stickslip.analysis.friction_coupling import (
 if TYPE_CHECKING:
     from stickslip.model.contact import Contact
     from stickslip.model.machine import Machine
-    from stickslip.plot.figure import PlotResult
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -53,7 +52,7 @@ class RootLocus:
     critical_mu: float | None = None
     critical_mu_undamped: float | None = None
 
-    def plot(self, **kwargs: Any) -> PlotResult:
+    def plot(self, **kwargs: Any) -> Any:
         """Frequencies and real parts against mu (:func:`stickslip.plot.stability.root_locus_plot`)."""
         from stickslip.plot.stability import root_locus_plot
 
@@ -106,7 +105,7 @@ class StabilityMap:
     growth: FloatArray
     verdict: NDArray[np.int64]
 
-    def plot(self, **kwargs: Any) -> PlotResult:
+    def plot(self, **kwargs: Any) -> Any:
         """The map (:func:`stickslip.plot.stability.stability_map_plot`)."""
         from stickslip.plot.stability import stability_map_plot
 

@@ -34,7 +34,6 @@ if TYPE_CHECKING:
 
     from stickslip.model.contact import Contact
     from stickslip.model.machine import Machine
-    from stickslip.plot.figure import PlotResult
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -113,7 +112,7 @@ class StabilityResult:
         """Eigenvalues along ``mus`` (default 0 to ``1.5 x`` the largest critical value)."""
         return root_locus(self.system, mus if mus is not None else _locus_range(self))
 
-    def plot(self, **kwargs: Any) -> PlotResult:
+    def plot(self, **kwargs: Any) -> Any:
         """The root locus over mu (:func:`stickslip.plot.stability.root_locus_plot`)."""
         from stickslip.plot.stability import root_locus_plot
 

@@ -231,7 +231,20 @@ def _eigen(m: FloatArray, c: FloatArray, k: FloatArray) -> tuple[ComplexArray, F
 
 
 def verdict_of(values: ComplexArray, bounds: FloatArray) -> int:
-    """+1 proven unstable, -1 proven asymptotically stable, 0 undecided (neutral within bounds)."""
+    """Sign of the spectrum, read only beyond each eigenvalue's error bound.
+
+    Parameters
+    ----------
+    values : ndarray of complex
+        Eigenvalues, 1/s.
+    bounds : ndarray
+        Their error bounds, 1/s (:meth:`FrictionCoupledSystem.eigenvalues`).
+
+    Returns
+    -------
+    int
+        +1 proven unstable, -1 proven asymptotically stable, 0 undecided (neutral within bounds).
+    """
     if np.any(values.real - bounds > 0.0):
         return 1
     if np.all(values.real + bounds < 0.0):
@@ -281,7 +294,21 @@ class CriticalFriction:
 
 
 def track_branches(system: FrictionCoupledSystem, mus: FloatArray) -> ComplexArray:
-    """Eigenvalues along ``mus``, each column one branch followed by nearest matching."""
+    """Eigenvalues along ``mus``, each column one branch followed by nearest matching.
+
+    Parameters
+    ----------
+    system : FrictionCoupledSystem
+        The linearisation's data.
+    mus : ndarray
+        Increasing friction coefficients, dimensionless.
+
+    Returns
+    -------
+    ndarray of complex, shape (len(mus), 2n)
+        Row ``i`` the eigenvalues (1/s) at ``mus[i]``, matched to row ``i - 1`` by the least
+        total distance (an assignment problem).
+    """
     from scipy.optimize import linear_sum_assignment
 
     out = np.empty((len(mus), 2 * system.n_dof), dtype=complex)
