@@ -31,6 +31,8 @@ ROUNDING = 1e-13
 MAX_SAMPLES = 20_000
 #: ``||A||_F h`` of the sampling step: small, so the bounds between samples are tight.
 SAMPLE_STEP = 0.02
+#: Halvings of the first and last sample interval (down to ``h 2^-REFINE``).
+REFINE = 40
 
 
 @dataclass
@@ -51,7 +53,7 @@ class Phase:
     curv: FloatArray  # (samples, functions) nominal n.A f, the second derivative of g
     flow_norm: FloatArray  # ||f(z*(s_j))||_2 at the samples
     m_norm: FloatArray  # ||expm(A s_j)||_F at the samples
-    h: float  # sample spacing
+    hs: FloatArray  # the sample intervals' lengths
     z_end: FloatArray
     f_minus: FloatArray  # field of this mode at z_end
     f_plus: FloatArray  # field of the next mode at z_end (0 at the map's final section)
@@ -83,6 +85,32 @@ def _functions(pmap: ReturnMap, mode: int) -> list[tuple[FloatArray, float]]:
     if band + 1 < edges.size and math.isfinite(float(edges[band + 1])):
         out.append((pmap.slip_normal, 1.0 + sign * float(edges[band + 1])))
     return out
+
+
+def sample_times(duration: float, norm_a: float) -> FloatArray:
+    """Sample times of a phase: a uniform grid, refined geometrically towards both ends.
+
+    The uniform step keeps ``||A|| h <= SAMPLE_STEP`` (at most ``MAX_SAMPLES`` steps); the
+    refinement (``h 2^-k``, ``k = 1..REFINE``) resolves the windows next to the surfaces the
+    phase starts and ends on, where a slow (nearly grazing) crossing needs short intervals.
+
+    Parameters
+    ----------
+    duration : float
+        The phase's duration (``tau``).
+    norm_a : float
+        ``||A||_F`` of its mode.
+
+    Returns
+    -------
+    ndarray
+        Increasing times from 0 to ``duration``.
+    """
+    samples = int(min(MAX_SAMPLES, max(8, math.ceil(duration * norm_a / SAMPLE_STEP))))
+    h = duration / samples
+    fine = h * 2.0 ** -np.arange(1, REFINE + 1)
+    grid = np.concatenate([np.arange(samples) * h, [duration], fine, duration - fine])
+    return np.unique(grid)
 
 
 def phases(pmap: ReturnMap, b: FloatArray, q: int) -> tuple[list[Phase], FloatArray] | None:
@@ -119,20 +147,24 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int) -> tuple[list[Phase], FloatAr
         start_zero = [abs(float(nv @ z0) - g0) <= 1e-9 * scale for nv, g0 in functions]
         duration = t1 - t0
         norm_a = float(np.linalg.norm(a))
-        samples = int(min(MAX_SAMPLES, max(8, math.ceil(duration * norm_a / SAMPLE_STEP))))
-        h = duration / samples
+        times = sample_times(duration, norm_a)
         aug = np.zeros((n2 + 1, n2 + 1))
         aug[:n2, :n2], aug[:n2, n2] = a, c
-        step = scipy.linalg.expm(aug * h)
+        hs = np.diff(times)
+        uniform = float(np.max(hs))
+        step = scipy.linalg.expm(aug * uniform)
         w = np.concatenate([z0, [1.0]])
         e_power = np.eye(n2)
-        zs = np.empty((samples + 1, n2))
-        m_norm = np.empty(samples + 1)
-        for j in range(samples + 1):
+        zs = np.empty((times.size, n2))
+        m_norm = np.empty(times.size)
+        for j in range(times.size):
             zs[j] = w[:n2]
             m_norm[j] = float(np.linalg.norm(e_power))
-            w = step @ w
-            e_power = step[:n2, :n2] @ e_power
+            if j < hs.size:
+                here = (step if abs(hs[j] - uniform) <= 1e-12 * uniform
+                        else scipy.linalg.expm(aug * hs[j]))
+                w = here @ w
+                e_power = here[:n2, :n2] @ e_power
         fields = zs @ a.T + c
         normals = np.array([nv for nv, _ in functions])
         levels = np.array([g0 for _, g0 in functions])
@@ -160,7 +192,7 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int) -> tuple[list[Phase], FloatAr
             bk = mode == STICK
         phases.append(Phase(mode, duration, a, c, norm_a, functions, ending, start_zero,
                             tangential, g, rate, curv,
-                             np.linalg.norm(fields, axis=1), m_norm, h, z_end,
+                             np.linalg.norm(fields, axis=1), m_norm, hs, z_end,
                              a @ z_end + c, f_plus, a_plus, belt, scipy.linalg.expm(a * duration),
                              bk))
     return phases, z_hit
@@ -175,15 +207,21 @@ class Tube:
     breakaway_deviation: list[float] = field(default_factory=list)  # Z at each breakaway
 
 
-def clear_of_zero(g: FloatArray, lip: FloatArray, eps: FloatArray) -> NDArray[np.bool_]:
-    """Per sample interval: ``|g*| > eps`` on all of it (``g*`` Lipschitz ``lip`` there).
+def interval_floor(values: FloatArray, curvature: FloatArray) -> FloatArray:
+    """Per sample interval: a lower bound of ``|v|`` over it; negative where ``v`` may vanish.
 
-    On ``[s_j, s_j + h]`` a function with end values of one sign and Lipschitz constant ``L``
-    stays at least ``(|g_j| + |g_{j+1}| - L h) / 2`` from zero (``lip`` is ``L h``).
+    ``v`` is sampled at the interval's ends; ``curvature`` bounds ``|v''| h^2 / 8`` on each
+    interval, the error of the linear interpolant. With end values of one sign, ``|v| >=
+    min(|v_j|, |v_{j+1}|) - curvature`` there; an interval whose ends differ in sign gets -1.
     """
-    same = np.sign(g[:-1]) * np.sign(g[1:]) > 0
-    low = 0.5 * (np.abs(g[:-1]) + np.abs(g[1:]) - lip)
-    return same & (low > eps)
+    same = np.sign(values[:-1]) * np.sign(values[1:]) > 0
+    low = np.minimum(np.abs(values[:-1]), np.abs(values[1:])) - curvature
+    return np.where(same, low, -1.0)
+
+
+def clear_of_zero(g: FloatArray, curvature: FloatArray, eps: FloatArray) -> NDArray[np.bool_]:
+    """Per sample interval: ``|g*| > eps`` on all of it (see :func:`interval_floor`)."""
+    return interval_floor(g, curvature) > eps
 
 
 def _end_time_deviation(ph: Phase, z_dev: float) -> float | None:
@@ -193,16 +231,17 @@ def _end_time_deviation(ph: Phase, z_dev: float) -> float | None:
     perturbed motions except in the windows next to the surfaces the phase starts on and ends
     on, where the rate keeps its sign (see its docstring).
     """
-    grow = math.exp(ph.norm_a * ph.h)
+    grow = np.exp(ph.norm_a * ph.hs)
     m_int = np.maximum(ph.m_norm[:-1], ph.m_norm[1:]) * grow
     f_int = np.maximum(ph.flow_norm[:-1], ph.flow_norm[1:]) * grow
-    f_max = float(np.max(f_int))
+    # |d^k/ds^k (n . z*)| <= ||n A^k|| F: the linear interpolant's error is that times h^2 / 8
+    h2 = f_int * ph.hs ** 2 / 8.0
     t_dev = 0.0
     for e, (nv, _g0) in enumerate(ph.functions):
         n_norm = float(np.linalg.norm(nv))
         na_norm = float(np.linalg.norm(nv @ ph.a))
         eps = n_norm * m_int * z_dev
-        clear = clear_of_zero(ph.g[:, e], n_norm * f_int * ph.h, eps)
+        clear = clear_of_zero(ph.g[:, e], na_norm * h2, eps)
         n_int = clear.size
         lo = 0
         if ph.start_zero[e]:
@@ -221,17 +260,19 @@ def _end_time_deviation(ph: Phase, z_dev: float) -> float | None:
             if a_idx == 0 and ph.tangential[e]:
                 # g = g' = 0 at the start for every perturbed motion: g'' keeps its sign
                 curvs = ph.curv[0:b_idx + 1, e]
-                naa_norm = float(np.linalg.norm(nv @ ph.a @ ph.a))
-                rho2 = float(np.min(np.abs(curvs))) - naa_norm * (
-                    0.5 * f_max * ph.h + float(np.max(m_int[a_idx:b_idx])) * z_dev)
+                na2 = float(np.linalg.norm(nv @ ph.a @ ph.a))
+                na3 = float(np.linalg.norm(nv @ ph.a @ ph.a @ ph.a))
+                floor = interval_floor(curvs, na3 * h2[a_idx:b_idx])
+                rho2 = float(np.min(floor)) - na2 * float(np.max(m_int[a_idx:b_idx])) * z_dev
                 if not (np.all(curvs > 0) or np.all(curvs < 0)) or rho2 <= 0.0:
                     return None
                 continue
             rates = ph.rate[a_idx:b_idx + 1, e]
             if not (np.all(rates > 0) or np.all(rates < 0)):
                 return None
-            rho = float(np.min(np.abs(rates))) - na_norm * (
-                0.5 * f_max * ph.h + float(np.max(m_int[a_idx:b_idx])) * z_dev)
+            na2 = float(np.linalg.norm(nv @ ph.a @ ph.a))
+            floor = interval_floor(rates, na2 * h2[a_idx:b_idx])
+            rho = float(np.min(floor)) - na_norm * float(np.max(m_int[a_idx:b_idx])) * z_dev
             if rho <= 0.0:
                 return None
             if window[0] == hi and e == ph.ending:
@@ -267,22 +308,26 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
     ``eps(s) = ||n|| M(s) Z`` along any event function ``g = n . z - g0`` (``Z >= ||delta||``,
     ``M(s) >= ||expm(A s)||``, sampled, and ``M(s_j + u) <= M(s_j) exp(||A|| u)``). Along the
     nominal motion ``g*' = n . f`` with ``f = A z + c``, and ``f(z*(s_j + u)) =
-    expm(A u) f(z*(s_j))``, so ``g*`` is Lipschitz with ``||n|| F`` and ``n . f`` with
-    ``||n^T A|| F`` (``F`` the sampled ``||f||`` times ``exp(||A|| h)``). Hence:
+    expm(A u) f(z*(s_j))``, so the ``k``-th derivative of ``g*`` is ``n . A^(k-1) f``, bounded
+    by ``||n^T A^(k-1)|| F`` (``F`` the sampled ``||f||`` times ``exp(||A|| h)``): on a sample
+    interval of length ``h`` the linear interpolant of ``g*`` (of its rate, of its curvature)
+    is within ``||n^T A|| F h^2 / 8`` (``||n^T A^2|| ...``, ``||n^T A^3|| ...``) of it
+    (:func:`interval_floor`). Hence:
 
     * an interval where ``|g*| > eps`` (:func:`clear_of_zero`) holds no event of ``g``;
     * the other intervals must form, for the function that ends the phase, a final window
       and, for a function whose surface the phase starts on (after a breakaway or a band
       edge, where both motions start exactly on it), a first window; on each window the
       perturbed rate ``n . f`` keeps the nominal sign with modulus at least
-      ``rho = min |n . f*| - ||n^T A|| (F h / 2 + M Z) > 0``. The start window is then left
+      ``rho = min |n . f*| - ||n^T A|| M Z > 0`` (the minimum over the interpolant, less
+      its error). The start window is then left
       without a zero; at the end, ``|g(t*)| <= eps(t*)`` and monotonicity put the one zero
       within ``T = eps(t*) / rho`` of ``t*`` (checked again past ``t*`` with ``exp(||A|| T)``).
     * a tangential departure at a breakaway (a law continuous at the static limit, so the
       slider's acceleration is zero there: ``g = g' = 0`` at the start of every perturbed
       motion, the rate vanishing on the whole breakaway section, ``||(n^T A) L|| = 0`` to
       rounding): on the first window ``g'' = n . A f`` keeps its sign with modulus at least
-      ``min |n . A f*| - ||n^T A^2|| (F h / 2 + M Z) > 0``, so the motion leaves the surface.
+      ``min |n . A f*| - ||n^T A^2|| M Z > 0``, so the motion leaves the surface.
     * the event state moves by at most ``Z_e = M(t*) e^{||A|| T} Z + F_end e^{||A|| T} T``;
       at the belt speed the next mode (stick or slip through) is chosen by the stick force
       ``S = s . z``, kept by ``min |S* - level| > ||s|| Z_e``; ``Z_e`` starts the next phase.
