@@ -16,6 +16,9 @@ References:
 from __future__ import annotations
 
 import math
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -33,6 +36,7 @@ from stickslip.model.contact import Contact
 from stickslip.model.machine import Machine
 from stickslip.model.physical import PhysicalFriction
 
+ROOT = Path(__file__).resolve().parents[1]
 #: (m [kg], k1, k2, k3 [N/m], alpha [deg], k_n [N/m]): the docs' brake pad and variations of
 #: every parameter (detuned, stiffer contact, a steeper spring, another mass).
 HOFFMANN_SETS = [
@@ -274,3 +278,37 @@ def test_contact_refuses_bad_values_in_one_line() -> None:
         contact.check_dofs(2, 1)
     with pytest.raises(ValueError, match="beyond the 2 DOF"):
         Contact(normal_dof=2, normal_stiffness=1.0).check_dofs(2, 0)
+
+
+
+def test_steady_sliding_that_lifts_off_is_refused() -> None:
+    # K[n, t] > 0: past the divergence point (det K_eff < 0) the steady state's normal force
+    # N_0 = W - k_n q_0[n], q_0 = K_eff^-1 (mu W e_t), written out here for the 2x2, is negative
+    k = np.array([[1.0e6, 0.9e6], [0.9e6, 1.0e6]])
+    kn, w, mu = 1.0e6, 1000.0, 2.0
+    k_eff = k + np.array([[0.0, mu * kn], [0.0, kn]])
+    n0 = w - kn * np.linalg.solve(k_eff, [mu * w, 0.0])[1]
+    assert n0 < 0.0
+    machine = Machine(np.eye(2), np.zeros((2, 2)), k, 0, 2.5, mu, w, 1.0)
+    contact = Contact(normal_dof=1, normal_stiffness=kn)
+    system = FrictionCoupledSystem(machine.mass, machine.damping, k, 0, 1, normal_stiffness=kn,
+                                   load=w)
+    assert system.normal_force(mu) == pytest.approx(n0, rel=1e-12)
+    with pytest.raises(ValueError, match="has no contact: the normal force would be N = -"):
+        complex_eigenvalue_analysis(machine, contact)
+
+
+@pytest.mark.slow
+def test_brake_squeal_worked_example_prints_the_numbers_the_page_quotes(tmp_path: Path) -> None:
+    # docs/brake_squeal.md quotes these lines of docs/brake_squeal_example.py
+    proc = subprocess.run([sys.executable, str(ROOT / "docs" / "brake_squeal_example.py"), "--out",
+                           str(tmp_path)], capture_output=True, text=True, check=True, timeout=600)
+    out = proc.stdout
+    assert "critical mu 0.30291579; undamped 0.30833333 (closed form 0.30833333)" in out
+    assert "ratio 0: critical mu 0.3, 0.3, 0.3" in out
+    assert "ratio 1: critical mu 0.30833," in out and ", 0.56667 at c" in out
+    assert "ratio 0.1: critical mu 0.30275," in out and ", 0.32791 at c" in out
+    assert "ratio 10: critical mu 0.30276," in out and "nan at c" in out
+    assert "Stribeck, V = 0.1 m/s: slope -0.09048 s/m, critical mu 0.0" in out
+    for name in ("locus", "damping", "map"):
+        assert (tmp_path / f"brake_squeal_{name}.png").read_bytes()[:4] == b"\x89PNG"
