@@ -130,3 +130,36 @@ def test_continue_traces_the_unstable_slip_oscillation_over_the_published_range(
         period, amplitude = backward_cycle(lam)
         assert point["amplitude"] == pytest.approx(amplitude, rel=1e-4)
         assert point["period"] == pytest.approx(period, rel=1e-5)
+
+
+def test_two_dof_unstable_slip_oscillation_separates_the_basins() -> None:
+    # a foundation (M, K, zeta_a) = (1, 10, 0.5) under the published slider: the search's modal
+    # starts find the unstable cycle (no backward runs in 4 dimensions). Independent check by
+    # direct runs of the exact engine: the cycle returns to its state after its period, and
+    # starts just inside it slide steadily while starts just outside it stick-slip
+    from stickslip.analysis.simulation import EngineOptions, simulate
+    from stickslip.analysis.verdict import Verdict
+    from stickslip.model.initial import InitialState
+    from stickslip.model.parameters import Foundation
+    from stickslip.model.structure import elastic_foundation
+
+    structure = elastic_foundation(ZETA, Foundation(1.0, 10.0, 0.5))
+    slider = Slider(LAM, gamma=GAMMA, friction=StribeckFriction(US))
+    found = find_slip_oscillations(structure, slider)
+    unstable = [c for c in found if not c.stable]
+    assert len(unstable) == 1
+    osc = unstable[0]
+    assert osc.multipliers.size == 3 and osc.multiplier > 1.0  # 2 n - 1 of the section map
+    n = structure.n_dof
+    run = simulate(structure, slider, initial=InitialState(osc.state[:n], osc.state[n:]),
+                   options=EngineOptions(t_max=2.0 * osc.period), record=True, run_to_t_max=True)
+    q, v, _ = run.state_at([osc.period])
+    assert np.max(np.abs(np.concatenate([q[0], v[0]]) - osc.state)) < 1e-7
+    # steady sliding: K q = f with the law's force at the belt speed (shifted coordinates)
+    force = np.zeros(n)
+    force[0] = float(slider.friction.value(1.0, slider.lam, slider.gamma)) - slider.gamma * slider.lam
+    z_eq = np.concatenate([np.linalg.solve(structure.stiffness, force), np.zeros(n)])
+    for factor, verdict in ((0.97, Verdict.STEADY_SLIDING), (1.03, Verdict.STICK_SLIP)):
+        z = z_eq + factor * (osc.state - z_eq)
+        assert simulate(structure, slider, initial=InitialState(z[:n], z[n:]),
+                        record=False).verdict is verdict

@@ -26,9 +26,10 @@ decides *which* cycles are looked at, never what is reported):
   (:mod:`stickslip.kernel.certificate`) starts inside the unstable cycle and the slip escape
   region (:mod:`stickslip.kernel.outer_certificate`) just outside it, both on the ray
   ``xi' = 0, xi > xi_eq``; the midpoint, carried to its next velocity maximum, is a seed;
-* **modal starts** (any number of DOFs): the least-damped mode of the slip-I linearisation,
-  scaled to peak velocities spread over ``(0, 1)``, each a start of Newton's method (an
-  unstable cycle of several DOFs is a saddle: backward runs do not reach it).
+* **modal starts** (more than one DOF): the least-damped mode of the slip-I linearisation,
+  scaled to peak velocities spread over ``(0, 1)``; where the map's peak velocity changes
+  sign along that family a start of Newton's method (an unstable cycle of several DOFs is a
+  saddle: backward runs do not reach it).
 
 All quantities are dimensionless (``tau``, ``V/omega_n``, belt speed 1).
 """
@@ -57,8 +58,8 @@ FloatArray = NDArray[np.float64]
 SCAN_POINTS = 40
 #: Backward iterations of the map per bracket (each one a bisection of ``P``).
 BACKWARD_STEPS = 4
-#: Modal starts of Newton's method (more than one DOF).
-MODAL_STARTS = 6
+#: Peak velocities along the least-damped mode screened for a sign change (more than one DOF).
+MODAL_STARTS = 19
 #: Newton iterations of the refinement.
 NEWTON_STEPS = 20
 #: Peak velocities below this are steady sliding (the section's trivial fixed point).
@@ -259,7 +260,9 @@ def _forward_seeds(structure: Structure, slider: Slider, section: SlipSection, r
 
 
 def _modal_seeds(structure: Structure, section: SlipSection, count: int) -> list[FloatArray]:
-    """The least-damped slip-I mode scaled to peak velocities spread over ``(0, 1)``."""
+    """Seeds along the least-damped slip-I mode: the mode scaled to ``count`` peak velocities
+    across ``(0, 1)``, and the midpoints where the map's peak velocity ``P(y)_0 - y_0`` changes
+    sign along that family (as the section scan of one DOF does on the whole section)."""
     n = structure.n_dof
     values, vectors = np.linalg.eig(slip_matrix(structure, min(one_sided_slopes(section.slider))))
     oscillating = np.flatnonzero(values.imag > 1e-9)
@@ -268,11 +271,12 @@ def _modal_seeds(structure: Structure, section: SlipSection, count: int) -> list
     w = vectors[:, oscillating[np.argmax(values.real[oscillating])]]
     if abs(w[n]) == 0.0:
         return []
-    out = []
-    for peak in np.linspace(0.1, 0.9, max(2, count)):
-        z = np.real(peak / w[n] * w)  # slider velocity real and largest: a velocity maximum
-        out.append(section.reduce(z))
-    return out
+    peaks = np.linspace(0.05, 0.95, max(2, count))
+    # the slider velocity real and largest: a velocity maximum of the linear mode
+    family = [section.reduce(np.real(peak / w[n] * w)) for peak in peaks]
+    signs = [_gap_sign(section, y) for y in family]
+    return [0.5 * (family[i] + family[i + 1]) for i in range(len(family) - 1)
+            if signs[i] != signs[i + 1]]
 
 
 def find_slip_oscillations(
