@@ -141,3 +141,16 @@ def test_stability_refuses_bad_flags_before_work(tmp_path: Path, capsys: pytest.
     assert code == 2 and "exists" in err and existing.read_bytes() == b"keep"
     code, _, err = run_cli(["stability", "--config", config, "--plot", str(tmp_path / "a.txt")], capsys)
     assert code == 2 and "must end in one of" in err
+
+
+def test_the_apps_machine_builder_refuses_normal_coupling_too() -> None:
+    # the web app builds machines through machine_from_file, not through load_machine_file
+    from stickslip.io.machine_file import machine_from_file
+
+    machine_file = read_machine_file(BRAKE_PAD / "machine.toml")
+    values = {"mu_s": 0.5, "mu_k": 0.4, "load": 1000.0, "speed": 5.0}
+    with pytest.raises(ValueError, match="supported by `stickslip stability` only"):
+        machine_from_file(machine_file, values)
+    machine, reduction = machine_from_file(machine_file, values, normal_coupling=True)
+    assert machine.n_dof == 2 and reduction is None
+    assert machine_file.contact().normal_stiffness == 5e7 and machine_file.contact().normal_dof == 1
