@@ -96,9 +96,10 @@ def test_paper_slider_in_load_is_born_at_eq36_in_newtons(tmp_path: Path,
     path = tmp_path / "slider.toml"
     path.write_text("m = 2.0\nk = 8.0\nc = 0.4\nmu_s = 0.5\nmu_k = 0.3\nload = 30.0\nspeed = 1.0\n",
                     encoding="utf-8")
-    figure = tmp_path / "d.png"
+    figure, out = tmp_path / "d.png", tmp_path / "d.nc"
     code, text, err = run_cli(["continue", "--config", str(path), "--param", "load",
-                               "--range", "10 N:0.06 kN", "--json", "--plot", str(figure)], capsys)
+                               "--range", "10 N:0.06 kN", "--json", "--plot", str(figure),
+                               "--out", str(out)], capsys)
     assert code == 0, err
     payload = json.loads(text)
     assert payload["range"] == [10.0, 60.0] and payload["param_units"] == "N"
@@ -112,3 +113,9 @@ def test_paper_slider_in_load_is_born_at_eq36_in_newtons(tmp_path: Path,
         assert p["amplitude_m"] == pytest.approx(p["amplitude"] * 1.0 / omega_n, rel=1e-12)
         assert p["period_s"] == pytest.approx(p["period"] / omega_n, rel=1e-12)
     assert figure.stat().st_size > 10_000
+    import xarray as xr
+
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        assert ds["load"].attrs["units"] == "N" and ds["period_s"].attrs["units"] == "s"
+        np.testing.assert_allclose(ds["amplitude_m"].values, [p["amplitude_m"] for p in branch["points"]],
+                                   rtol=1e-12)

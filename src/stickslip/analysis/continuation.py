@@ -205,6 +205,11 @@ class ContinuationResult:
                    "branch_stop_reasons": "; ".join(b.stop_reason for b in self.branches),
                    "parameter": self.param},
         )
+        if isinstance(self.system, MachineSystem):  # a machine: SI beside the dimensionless
+            scales = np.array([self.si_scales(p.param) for _, p in rows]).reshape(-1, 2)
+            ds[self.param].attrs["units"] = MACHINE_PARAMETERS[self.param]
+            ds["period_s"] = ("point", ds["period"].values * scales[:, 0], {"units": "s"})
+            ds["amplitude_m"] = ("point", ds["amplitude"].values * scales[:, 1], {"units": "m"})
         return ds
 
     def plot(self, **kwargs: Any) -> Any:
