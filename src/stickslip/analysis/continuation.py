@@ -7,9 +7,15 @@ located on the way (:mod:`stickslip.analysis._arclength`). This module seeds the
 joins them into a :class:`ContinuationResult` and adds steady sliding along the range:
 
 * stick-slip branches start from the cycles :func:`stickslip.analysis.cycles.find_cycles`
-  finds at both ends and the middle of the range, each continued both ways;
-* slip oscillations start next to every Hopf point of steady sliding in the range (velocity-
-  dependent laws other than the linear one, whose Hopf point is degenerate);
+  finds at :data:`SEARCH_POINTS` points of the range (its ends included), each continued
+  both ways;
+* slip oscillations (velocity-dependent laws other than the linear one, whose Hopf point is
+  degenerate) start next to every Hopf point of steady sliding in the range, and from the
+  ones :func:`stickslip.analysis.slip_oscillations.find_slip_oscillations` finds at the same
+  points, stable or unstable, with or without a Hopf point;
+* a branch that leaves the range ends on its end; one seeded twice is kept once;
+* a machine in SI (:class:`MachineSystem`, ``--config``) is continued in its belt speed,
+  load or friction coefficients like the dimensionless system in its groups;
 * ``hopf`` events: steady sliding gains or loses stability (:mod:`stickslip.analysis.stability`).
 
 On the rigid base a stick-slip cycle has no free coordinate (the breakaway state is unique), so
