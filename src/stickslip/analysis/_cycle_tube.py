@@ -17,10 +17,10 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.linalg
 from numpy.typing import NDArray
 
 from stickslip.analysis.return_map import ReturnMap
+from stickslip.kernel.linalg import expm
 from stickslip.kernel.system import SLIP_I, STICK, mode_kind_band
 
 FloatArray = NDArray[np.float64]
@@ -87,7 +87,7 @@ def _functions(pmap: ReturnMap, mode: int) -> list[tuple[FloatArray, float]]:
     return out
 
 
-def sample_times(duration: float, norm_a: float) -> FloatArray:
+def sample_times(duration: float, norm_a: float) -> tuple[FloatArray, float]:
     """Sample times of a phase: a uniform grid, refined geometrically towards both ends.
 
     The uniform step keeps ``||A|| h <= SAMPLE_STEP`` (at most ``MAX_SAMPLES`` steps); the
@@ -103,14 +103,50 @@ def sample_times(duration: float, norm_a: float) -> FloatArray:
 
     Returns
     -------
-    ndarray
-        Increasing times from 0 to ``duration``.
+    (ndarray, float)
+        Increasing times from 0 to ``duration``, and the uniform step ``h``.
     """
     samples = int(min(MAX_SAMPLES, max(8, math.ceil(duration * norm_a / SAMPLE_STEP))))
     h = duration / samples
     fine = h * 2.0 ** -np.arange(1, REFINE + 1)
     grid = np.concatenate([np.arange(samples) * h, [duration], fine, duration - fine])
-    return np.unique(grid)
+    return np.unique(grid), h
+
+
+def sampled_flow(a: FloatArray, c: FloatArray, duration: float, norm_a: float
+                 ) -> tuple[FloatArray, FloatArray]:
+    """The affine flow ``z' = A z + c`` of a phase at its :func:`sample_times`.
+
+    Parameters
+    ----------
+    a, c : ndarray
+        The mode's matrix and constant (per unit ``tau``).
+    duration, norm_a : float
+        The phase's duration and ``||A||_F``.
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        The times and the augmented propagators ``expm([[A, c], [0, 0]] s)`` there (shape
+        ``(times, 2n + 1, 2n + 1)``): the uniform grid's as powers of one step (by doubling,
+        a few batched products), the refined ones each from its own exponential.
+    """
+    times, h = sample_times(duration, norm_a)
+    n2 = a.shape[0]
+    aug = np.zeros((n2 + 1, n2 + 1))
+    aug[:n2, :n2], aug[:n2, n2] = a, c
+    index = np.rint(times / h)
+    on_grid = np.abs(times - index * h) <= 1e-12 * max(h, 1e-300) * np.maximum(index, 1.0)
+    count = int(np.max(index[on_grid])) + 1
+    powers = np.eye(n2 + 1)[None]
+    step = expm(aug * h)
+    while powers.shape[0] < count:  # doubling: E^(j + m) = E^m E^j
+        powers = np.concatenate([powers, np.linalg.matrix_power(step, powers.shape[0]) @ powers])
+    out = np.empty((times.size, n2 + 1, n2 + 1))
+    out[on_grid] = powers[index[on_grid].astype(np.int64)]
+    for j in np.flatnonzero(~on_grid):
+        out[j] = expm(aug * times[j])
+    return times, out
 
 
 def phases(pmap: ReturnMap, b: FloatArray, q: int) -> tuple[list[Phase], FloatArray] | None:
@@ -147,24 +183,10 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int) -> tuple[list[Phase], FloatAr
         start_zero = [abs(float(nv @ z0) - g0) <= 1e-9 * scale for nv, g0 in functions]
         duration = t1 - t0
         norm_a = float(np.linalg.norm(a))
-        times = sample_times(duration, norm_a)
-        aug = np.zeros((n2 + 1, n2 + 1))
-        aug[:n2, :n2], aug[:n2, n2] = a, c
+        times, propagators = sampled_flow(a, c, duration, norm_a)
         hs = np.diff(times)
-        uniform = float(np.max(hs))
-        step = scipy.linalg.expm(aug * uniform)
-        w = np.concatenate([z0, [1.0]])
-        e_power = np.eye(n2)
-        zs = np.empty((times.size, n2))
-        m_norm = np.empty(times.size)
-        for j in range(times.size):
-            zs[j] = w[:n2]
-            m_norm[j] = float(np.linalg.norm(e_power))
-            if j < hs.size:
-                here = (step if abs(hs[j] - uniform) <= 1e-12 * uniform
-                        else scipy.linalg.expm(aug * hs[j]))
-                w = here @ w
-                e_power = here[:n2, :n2] @ e_power
+        zs = propagators[:, :n2, :n2] @ z0 + propagators[:, :n2, n2]
+        m_norm = np.sqrt(np.sum(propagators[:, :n2, :n2] ** 2, axis=(1, 2)))
         fields = zs @ a.T + c
         normals = np.array([nv for nv, _ in functions])
         levels = np.array([g0 for _, g0 in functions])
@@ -193,7 +215,7 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int) -> tuple[list[Phase], FloatAr
         phases.append(Phase(mode, duration, a, c, norm_a, functions, ending, start_zero,
                             tangential, g, rate, curv,
                              np.linalg.norm(fields, axis=1), m_norm, hs, z_end,
-                             a @ z_end + c, f_plus, a_plus, belt, scipy.linalg.expm(a * duration),
+                             a @ z_end + c, f_plus, a_plus, belt, expm(a * duration),
                              bk))
     return phases, z_hit
 
