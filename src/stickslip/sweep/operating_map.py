@@ -243,9 +243,12 @@ class OperatingCells:
                 time_scale[c] = reference.time_scale
                 length_scale[c] = reference.length_scale
                 gamma = slider.gamma
+        # writable stacks, as StructureSet.resolve's np.stack makes for `map`: a read-only view
+        # of the structure's matrices is another numba signature of the cell kernels, which
+        # the first `map --config` after `stickslip compile` compiled for a minute (issue 32.5)
         structures = StructureSet(zetas=np.array([inner.zeta]), foundations=(None,),
-                                  masses=inner.mass[None], dampings=inner.damping[None],
-                                  stiffnesses=inner.stiffness[None])
+                                  masses=np.stack([inner.mass]), dampings=np.stack([inner.damping]),
+                                  stiffnesses=np.stack([inner.stiffness]))
         coulomb = all(isinstance(law, CoulombFriction) for law in laws)
         return cls(structures, lam, tuple(laws), coulomb, time_scale, length_scale, float(gamma),
                    float(structure.zeta))
