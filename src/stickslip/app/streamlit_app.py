@@ -89,7 +89,8 @@ __all__ = [
 
 _fmt = fmt  # the page's short name
 #: The app's pages, in the sidebar.
-PAGES = ("paper's slider", "your machine (matrices or modes)", "identify from a record")
+PAGES = ("paper's slider", "your machine (matrices or modes)", "identify from a record",
+         "frequency response and absorber tuning")
 
 
 def _input_widgets() -> dict[str, str]:
@@ -372,6 +373,11 @@ def main() -> None:
         from stickslip.app.identify_page import show_identify_page
 
         show_identify_page()
+        return
+    if page == PAGES[3]:
+        from stickslip.app.tuning_page import show_tuning_page
+
+        show_tuning_page()
         return
     st.title("Stick-slip on an elastic foundation")
     st.caption("Will this sliding system stick-slip, at which belt speed or load, and which "

@@ -165,6 +165,10 @@ def phase_portrait_plot(
     artists += ax.plot(x[0], v[0], "o", color="tab:green", ms=4, label="start")
     artists.append(ax.axhline(speed if si is not None else 1.0, color="tab:red", lw=0.8,
                               ls="--", label="belt speed"))
+    if si is not None:  # millimetre-sized SI ticks are long: fewer of them
+        from matplotlib.ticker import MaxNLocator
+
+        ax.xaxis.set_major_locator(MaxNLocator(nbins=4))
     ax.set_xlabel(r"$\xi$" if si is None else "slider x [m]")
     ax.set_ylabel(r"$\xi'$" if si is None else "slider v [m/s]")
     ax.legend(loc="lower right", fontsize="small", frameon=False)
