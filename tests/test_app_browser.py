@@ -391,3 +391,16 @@ def test_the_app_benchmark_runs_in_the_browser(capsys: pytest.CaptureFixture[str
     assert set(times) == {"new point", "cached"}, out
     # a rerun of inputs computed before skips every computation and drawing
     assert times["cached"] < times["new point"], out
+
+
+def test_the_tuning_page(server: str, page: Any) -> None:
+    expect = _playwright().expect
+    page.goto(server, wait_until="domcontentloaded", timeout=PAGE_TIMEOUT_MS)
+    page.get_by_text("frequency response and absorber tuning", exact=True).click(
+        timeout=PAGE_TIMEOUT_MS)
+    # tests/test_app_tuning.py checks the numbers against 'stickslip tune --json'
+    table = page.locator('[data-testid="stDataFrame"]')
+    expect(table).to_have_count(1, timeout=PAGE_TIMEOUT_MS)
+    expect(page.locator('[data-testid="stImage"]')).to_have_count(1, timeout=PAGE_TIMEOUT_MS)
+    expect(page.locator('[data-testid="stException"]')).to_have_count(0)
+    _screenshot(page, "app-tuning.png")
