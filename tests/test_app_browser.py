@@ -353,6 +353,7 @@ def test_the_machine_page_with_typed_modes(server: str, page: Any) -> None:
     _screenshot(page, "app-machine.png")
 
 
+@pytest.mark.slow  # the fit of a 2,400-row record, then the slider page's computations
 def test_the_identification_page_takes_the_fit_to_the_slider_page(server: str, page: Any) -> None:
     expect = _playwright().expect
     page.goto(server, wait_until="domcontentloaded", timeout=PAGE_TIMEOUT_MS)
