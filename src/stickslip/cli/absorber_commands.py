@@ -140,14 +140,14 @@ def tune(
 ) -> None:
     """Optimal foundation for a given zeta: exact numerical optimum next to Eqs. (28)-(31).
 
-    With ``--objective stick-slip`` the foundation maximises the simulated stick-slip onset
-    instead, with ``M`` bounded by the absorber optimum's ``M_opt`` (Eq. 28) unless
-    ``--mass-ratio`` sets the bound. With ``--objective stability`` it maximises the largest
-    friction weakening ``delta`` for which steady sliding stays linearly stable (same bound).
+    With --objective stick-slip the foundation maximises the simulated stick-slip onset
+    instead, with M bounded by the absorber optimum's M_opt (Eq. 28) unless --mass-ratio
+    sets the bound. With --objective stability it maximises the largest friction weakening
+    delta for which steady sliding stays linearly stable (same bound).
 
     Example: stickslip tune --zeta 0.1 --objective stability --json
 
-    Your machine (DESIGN.md section 10): stickslip tune --config machine.toml --objective stick-slip
+    Your machine (docs/structures.md): stickslip tune --config machine.toml --objective stick-slip
     """
     from stickslip.analysis.absorber_tuning import tune_foundation
     from stickslip.analysis.theory import MAX_TUNING_ZETA

@@ -33,6 +33,7 @@ try:  # Ctrl-C while the command line starts (these imports are most of its 0.1 
 
     # typer is held below 0.25 (pyproject.toml: start-up time), which parses with click itself
     from click import exceptions as click_exceptions
+    from typer.core import TyperCommand
 
     from stickslip.cli.console import BadInput, fail
 except KeyboardInterrupt:
@@ -115,9 +116,46 @@ def build_app(command: str | None = None, *, announced: bool = False) -> typer.T
     for module in modules:
         import_module(f"stickslip.cli.{module}").register(app)
     for info in app.registered_commands:
+        if info.cls is None or info.cls is TyperCommand:
+            info.cls = _command_class()
         if info.name not in NUMBA_FREE_COMMANDS and info.callback is not None:
             info.callback = watching_compiles(info.callback, announced)
     return app
+
+
+def first_sentence(text: str) -> str:
+    """The first sentence of ``text``'s first paragraph, whitespace collapsed.
+
+    click ends it at any period followed by a word that does not start in lowercase, which cut
+    "(paper Figs. 8 and 11)" to "(paper Figs."; here a period ends a sentence only before an
+    upper-case letter or at the end of the paragraph.
+    """
+    import re
+
+    paragraph = " ".join(text.strip().split("\n\n")[0].split())
+    match = re.search(r"\.(?=\s+[A-Z])", paragraph)
+    return paragraph[: match.end()] if match else paragraph
+
+
+@functools.cache
+def _command_class() -> type[Any]:
+    """typer's command, listed in ``stickslip --help`` by :func:`first_sentence`.
+
+    The sentence is shortened to the width click gives it (the terminal's), at a word.
+    """
+    import textwrap
+
+    class Command(TyperCommand):
+        def get_short_help_str(self, limit: int = 45) -> str:
+            if self.short_help or not self.help:
+                return str(super().get_short_help_str(limit))
+            sentence = first_sentence(self.help)
+            if len(sentence) <= limit:
+                return sentence
+            return textwrap.shorten(sentence, max(limit, 4), placeholder="...",
+                                    break_on_hyphens=False)
+
+    return Command
 
 
 def __getattr__(name: str) -> typer.Typer:

@@ -230,7 +230,7 @@ def map_command(
 
     Example: stickslip map --lam log:0.1:50:100 --delta -0.1:0.3:41 --zeta 0.1 --out dmap.nc
 
-    Your machine over belt speed and normal load (DESIGN.md section 10), each cell a certified
+    Your machine over belt speed and normal load (docs/structures.md), each cell a certified
     run with lambda = (mu_s - mu_k) W / (V sqrt(m_ref k_ref)) and the friction law's own shape
     at (V, W):
 

@@ -20,7 +20,7 @@ K_SCALE = Annotated[float, typer.Option("--k-scale", help="multiply the foundati
 JSON = Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")]
 PLOT = Annotated[Path | None, typer.Option("--plot", help="write the figure here (.png, .pdf, .svg)")]
 OVERWRITE = Annotated[
-    bool, typer.Option("--overwrite", help="replace an existing --plot (or --csv) file")
+    bool, typer.Option("--overwrite", help="replace existing output files (refused otherwise)")
 ]
 FRICTION = Annotated[
     str,
@@ -28,7 +28,8 @@ FRICTION = Annotated[
         "--friction",
         help="friction law while sliding (dimensionless): coulomb (the paper's), linear:DELTA, "
         "table:FILE.csv (columns v = v_r/V and f = (mu - mu_k)/(mu_s - mu_k)), or "
-        "stribeck:vs=V_S/V[,n=N][,viscous=D_V][,mu0=R0][,tol=TOL]",
+        "stribeck:vs=V_S/V, optionally followed by ,n=N ,viscous=D_V ,mu0=R0 ,tol=TOL "
+        "(e.g. stribeck:vs=0.2,viscous=0.01)",
     ),
 ]
 #: The backend options of resumable runs (``map``, ``basin``): same names, same help.

@@ -64,7 +64,11 @@ def simulate(
     t_max: T_MAX = 5000.0,
     initial: Annotated[
         str,
-        typer.Option("--initial", help="startup (default) or q..., v... in shifted coordinates"),
+        typer.Option("--initial", help="startup (default), or 2n comma-separated numbers for n "
+                     "DOF: the n positions, then the n velocities, dimensionless and shifted "
+                     "(positions from the kinetic-friction equilibrium, Eqs. 15-16; velocities "
+                     "in units of the belt speed); slider first, then the foundation (with "
+                     "--config: the order of its structure's DOFs), e.g. 0.5,0,0,0"),
     ] = "startup",
     max_events: Annotated[int, typer.Option("--max-events", help="bound on mode switches")] = 100_000,
     plot: Annotated[
@@ -81,7 +85,7 @@ def simulate(
 
     Example: stickslip simulate --lam 3 --zeta 0.1 --dva optimal --friction linear:0.05 --json
 
-    Your machine in SI (DESIGN.md section 10): stickslip simulate --config machine.toml --json
+    Your machine in SI (docs/structures.md): stickslip simulate --config machine.toml --json
     gives period_s, amplitude_m (half the peak-to-peak displacement of the contact DOF) next to
     the dimensionless period, amplitude, lambda, zeta and gamma; --t-max and --initial stay
     dimensionless (tau = omega_n t, displacements in V / omega_n of the contact DOF).
