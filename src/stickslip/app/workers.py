@@ -15,6 +15,7 @@ and the time elapsed, and gives up after :data:`MAX_WAIT_S`.
 
 from __future__ import annotations
 
+import atexit
 import collections
 import concurrent.futures
 import multiprocessing
@@ -88,7 +89,20 @@ def _executor() -> concurrent.futures.ProcessPoolExecutor:
                          name="stickslip-progress").start()
         _pool = concurrent.futures.ProcessPoolExecutor(
             MAX_WORKERS, mp_context=context, initializer=_init_worker, initargs=(progress_queue,))
+        atexit.register(_stop)
     return _pool
+
+
+def _stop() -> None:
+    """At the server's exit: drop waiting jobs and stop the workers (a search may run for
+    minutes), before the interpreter tears down the modules the pool's threads use."""
+    if _pool is None:
+        return
+    processes = list(getattr(_pool, "_processes", {}).values())
+    _pool.shutdown(wait=False, cancel_futures=True)
+    for process in processes:
+        process.terminate()
+        process.join(timeout=10)
 
 
 def result(key: Hashable) -> Any | None:
