@@ -21,6 +21,7 @@ from stickslip.analysis.friction_coupling import (
     FrictionCoupledSystem,
     coupled_system,
     critical_friction,
+    one_blas_thread,
     track_branches,
     verdict_of,
 )
@@ -59,6 +60,7 @@ class RootLocus:
         return root_locus_plot(self, **kwargs)
 
 
+@one_blas_thread
 def root_locus(system: FrictionCoupledSystem, mus: Sequence[float] | FloatArray) -> RootLocus:
     """Eigenvalues of the linearisation along ``mus``, branches followed by continuity.
 
@@ -112,6 +114,7 @@ class StabilityMap:
         return stability_map_plot(self, **kwargs)
 
 
+@one_blas_thread
 def stability_map(systems: Sequence[FrictionCoupledSystem], values: Sequence[float] | FloatArray,
                   mus: Sequence[float] | FloatArray, name: str) -> StabilityMap:
     """Growth rate and verdict of steady sliding on the grid ``systems x mus``.
@@ -187,6 +190,7 @@ class OperatingRanges:
                 "unstable_loads_N": self.unstable_loads()}
 
 
+@one_blas_thread
 def operating_ranges(machine: Machine, contact: Contact | None, *, normal_dof: int | None = None,
                      decades: float = 1.0, points: int = 41) -> OperatingRanges:
     """Where along speed and load (the machine's law, ``mu = mu(V)``) steady sliding is unstable.

@@ -26,6 +26,7 @@ from stickslip.analysis.friction_coupling import (
     FrictionCoupledSystem,
     coupled_system,
     critical_friction,
+    one_blas_thread,
     verdict_of,
 )
 
@@ -125,6 +126,7 @@ def _locus_range(result: StabilityResult) -> FloatArray:
     return np.linspace(0.0, top, 301)
 
 
+@one_blas_thread
 def complex_eigenvalue_analysis(machine: Machine, contact: Contact | None, *,
                                 normal_dof: int | None = None, mu_max: float = MU_MAX,
                                 n_scan: int = N_SCAN) -> StabilityResult:

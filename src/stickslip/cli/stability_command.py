@@ -132,8 +132,9 @@ def _print(p: dict[str, Any]) -> None:
         flag = "  <- unstable" if m["growth_rate_per_s"] > 0 and p["verdict"] == "unstable" else ""
         lines.append(f"            {m['frequency_hz']:14.6g}  {m['damping_ratio']:13.4g}  "
                      f"{m['growth_rate_per_s']:15.6g}{flag}")
-    lines.append("eigenvalues " + ", ".join(f"{re:.6g}{im:+.6g}j" for re, im in p["eigenvalues"])
-                 + " [1/s]")
+    values = p["eigenvalues"]
+    lines.append("eigenvalues " + (", ".join(f"{re:.6g}{im:+.6g}j" for re, im in values) + " [1/s]"
+                                   if len(values) <= 12 else f"{len(values)} (listed by --json)"))
     lines.append(f"natural     {', '.join(f'{f:.6g}' for f in p['natural_frequencies_hz'])} Hz "
                  "(modes 1, 2, ...: the structure pressed on the belt, mu = 0)")
     lines.append(f"critical mu {_critical_line(p['critical'])}")
