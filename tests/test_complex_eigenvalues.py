@@ -312,3 +312,32 @@ def test_brake_squeal_worked_example_prints_the_numbers_the_page_quotes(tmp_path
     assert "Stribeck, V = 0.1 m/s: slope -0.09048 s/m, critical mu 0.0" in out
     for name in ("locus", "damping", "map"):
         assert (tmp_path / f"brake_squeal_{name}.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_figures_follow_the_plotting_contract() -> None:
+    # stickslip.plot.figure: data first, ax=None or given axes, TypeError on unknown keywords,
+    # a PlotResult back, no pyplot figure left behind
+    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
+
+    from stickslip.plot.figure import PlotResult
+    from stickslip.plot.stability import root_locus_plot, stability_map_plot
+
+    machine, contact = _brake_pad()
+    result = complex_eigenvalue_analysis(machine, contact, n_scan=50)
+    locus = root_locus(result.system, np.linspace(0.0, 0.4, 21))
+    grid = stability_map([result.system], [5.0], np.linspace(0.0, 0.4, 5), "speed [m/s]")
+    fig = Figure()
+    axes = list(fig.subplots(2, 1))
+    drawn = root_locus_plot(locus, ax=axes)
+    assert isinstance(drawn, PlotResult) and drawn.figure is fig and drawn.axes == axes
+    assert len(axes[0].get_lines()) >= 2 and axes[1].get_xlabel() == "friction coefficient mu"
+    assert isinstance(grid.plot(), PlotResult) and isinstance(locus.plot(), PlotResult)
+    with pytest.raises(TypeError):
+        root_locus_plot(locus, colour="red")  # type: ignore[call-arg]
+    with pytest.raises(TypeError):
+        stability_map_plot(grid, colour="red")  # type: ignore[call-arg]
+    assert plt.get_fignums() == []
+    # the map: growth of the one row equals the largest real part at each mu
+    for j, mu in enumerate(grid.mu):
+        assert grid.growth[0, j] == float(np.max(result.system.eigenvalues(float(mu))[0].real))
