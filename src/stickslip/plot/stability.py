@@ -96,10 +96,11 @@ def stability_map_plot(data: StabilityMap, *, ax: Axes | None = None, log_y: boo
     mesh = axis.pcolormesh(data.mu, data.values, growth, cmap="RdBu_r", vmin=-limit, vmax=limit,
                            shading="nearest")
     artists: list[Any] = [mesh]
-    if data.mu.size > 1 and data.values.size > 1 and growth.min() < 0.0 < growth.max():
+    grid_2d = data.mu.size > 1 and data.values.size > 1  # contours need a 2 x 2 grid at least
+    if grid_2d and growth.min() < 0.0 < growth.max():
         artists.append(axis.contour(data.mu, data.values, growth, levels=[0.0], colors="k",
                                     linewidths=1.2))
-    if np.any(data.verdict == 1):
+    if grid_2d and np.any(data.verdict == 1):
         artists.append(axis.contourf(data.mu, data.values, (data.verdict == 1).astype(float),
                                      levels=[0.5, 1.5], colors="none", hatches=["//"]))
     fig.colorbar(mesh, ax=axis, label="largest real part [1/s] (> 0: unstable)")
