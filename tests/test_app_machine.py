@@ -132,3 +132,24 @@ def test_the_modes_of_a_reduced_model_are_drawn_over_the_files_dofs() -> None:
     # the Ritz approximation's error (modes above the cut-off left out) is 6e-6 here; a shape
     # drawn over the wrong DOFs would be off by order 1
     np.testing.assert_allclose(drawn * np.sign(drawn[-1] * expected[-1]), expected, atol=1e-4)
+
+
+def test_an_unforeseen_error_is_one_line_without_a_traceback(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    pytest.importorskip("streamlit", reason="the app extra (streamlit) is not installed")
+    from streamlit.testing.v1 import AppTest
+
+    from stickslip.app import machine_page
+    from stickslip.cli import app_command
+
+    def broken(files: object) -> None:
+        raise RuntimeError("boom in /tmp/stickslip-x/K.csv")
+
+    monkeypatch.setattr(machine_page, "machine_from_files", broken)
+    at = AppTest.from_file(str(app_command.APP_SCRIPT), default_timeout=180.0)
+    at.session_state["page"] = "your machine (matrices or modes)"
+    at.run()
+    assert not at.exception
+    (error,) = [str(e.value).replace("\\", "") for e in at.error]
+    assert "The design of this machine failed unexpectedly (RuntimeError: boom in <path>)" in error
+    assert "/tmp" not in error

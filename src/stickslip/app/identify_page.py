@@ -116,7 +116,7 @@ def show_identify_page() -> None:
     import streamlit as st
 
     from stickslip.app.figures import png
-    from stickslip.app.messages import show_error, show_warning
+    from stickslip.app.messages import show_error, show_unexpected, show_warning
     from stickslip.app.workers import Busy, wait_for
 
     st.title("Identify the machine from a measured record")
@@ -145,6 +145,9 @@ def show_identify_page() -> None:
         return
     except (ValueError, TimeoutError) as exc:
         show_error(str(exc))
+        return
+    except Exception as exc:  # no traceback on the page (it names the server's files)
+        show_unexpected(exc, "The fit of this record")
         return
     for warning in result.warnings:
         show_warning(warning)

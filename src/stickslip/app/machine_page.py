@@ -169,7 +169,7 @@ def show_machine_page() -> None:
     """Lay out the "your machine" page (Streamlit)."""
     import streamlit as st
 
-    from stickslip.app.messages import show_error, show_warning
+    from stickslip.app.messages import show_error, show_unexpected, show_warning
     from stickslip.app.workers import Busy, wait_for
     from stickslip.plot.operating import machine_modes_plot
 
@@ -202,6 +202,9 @@ def show_machine_page() -> None:
     except (ValueError, TimeoutError) as exc:
         show_error(str(exc))
         return
+    except Exception as exc:  # no traceback on the page (it names the server's files)
+        show_unexpected(exc, "The design of this machine")
+        return
     st.subheader("Verdict at the operating point")
     st.text(report.summary())
     if reduction is not None:
@@ -221,6 +224,8 @@ def show_machine_page() -> None:
                 show_warning(str(exc))
             except (ValueError, TimeoutError) as exc:
                 show_error(str(exc))
+            except Exception as exc:  # no traceback on the page (it names the server's files)
+                show_unexpected(exc, "The stick-slip absorber search")
         st.dataframe(_absorber_table(report), key="absorber_table")
         st.caption(f"Absorber mass {report.absorbers[0].mass:.4g} kg on "
                    + ("the foundation (the machine mounted on it)"

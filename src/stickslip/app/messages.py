@@ -57,7 +57,7 @@ def sanitised(message: str) -> str:
         text = text.replace(folder, PATH_PLACEHOLDER)
     text = _ABSOLUTE_PATH.sub(PATH_PLACEHOLDER, text)
     # "<path>/stickslip-abc/x.csv" -> "<path>"
-    return re.sub(re.escape(PATH_PLACEHOLDER) + r"[^\s'\"]*", PATH_PLACEHOLDER, text)
+    return re.sub(re.escape(PATH_PLACEHOLDER) + r"[^\s'\"()\[\];,]*", PATH_PLACEHOLDER, text)
 
 
 def literal_markdown(text: str) -> str:
@@ -85,3 +85,22 @@ def show_warning(message: str, where: Any = None) -> None:
     import streamlit as st
 
     (where or st).warning(literal_markdown(sanitised(message)))
+
+
+def show_unexpected(exc: BaseException, what: str, where: Any = None) -> None:
+    """An error nobody foresaw: its traceback goes to the server's log, one line to the page.
+
+    Parameters
+    ----------
+    exc : BaseException
+        The exception caught.
+    what : str
+        What failed, e.g. "The design of this machine".
+    where : Streamlit container, optional
+        Where to show it (default: the page).
+    """
+    import logging
+
+    logging.getLogger("stickslip.app").error("%s failed", what, exc_info=exc)
+    show_error(f"{what} failed unexpectedly ({type(exc).__name__}: {exc}); the server's log "
+               "has the details", where)
