@@ -419,8 +419,8 @@ def _to_branch(tracer: ArclengthTracer, runs: list[TracedRun], kind: str, k: int
 
 def _on_branch(branches: list[Branch], p: float, amplitude: float, kind: str) -> bool:
     """Whether ``(p, amplitude)`` lies on a computed branch of ``kind``: on the linear
-    interpolation between two points (or its extension by one segment past either end, where
-    the step that left the range was dropped) to 1e-3 relative, or at a point to 1e-6."""
+    interpolation between two points (or its extension by one segment past either end) to
+    1e-3 relative or a tenth of the segment's change of amplitude, or at a point to 1e-6."""
     for b in branches:
         if b.kind != kind:
             continue
@@ -432,7 +432,9 @@ def _on_branch(branches: list[Branch], p: float, amplitude: float, kind: str) ->
             reach = abs(a1 - a0) if i in (0, last) else 0.0
             if min(a0, a1) - 1e-12 - reach <= p <= max(a0, a1) + 1e-12 + reach:
                 w = 0.0 if a1 == a0 else (p - a0) / (a1 - a0)
-                if abs(amps[i] + w * (amps[i + 1] - amps[i]) - amplitude) <= 1e-3 * max(1.0, amplitude):
+                # a coarse step on a curved branch: the chord is off by a share of the change
+                tol = max(1e-3 * max(1.0, amplitude), 0.1 * abs(amps[i + 1] - amps[i]))
+                if abs(amps[i] + w * (amps[i + 1] - amps[i]) - amplitude) <= tol:
                     return True
         if np.any((np.abs(ps - p) <= 1e-9) & (np.abs(amps - amplitude) <= 1e-6 * max(1.0, amplitude))):
             return True
@@ -442,14 +444,14 @@ def _on_branch(branches: list[Branch], p: float, amplitude: float, kind: str) ->
 def _duplicate(branches: list[Branch], new: Branch) -> bool:
     """Whether ``new`` retraces a branch already computed: the same kind and a point at the
     same parameter value (the ends of the range, where every branch that reaches them lands
-    exactly) with the same amplitude to 1e-7."""
+    exactly, or a branch end bisected to :data:`EVENT_TOL`) with the same amplitude to 1e-6."""
     for b in branches:
         if b.kind != new.kind or b.stick_phases != new.stick_phases:
             continue
         for q in new.points:
             for r in b.points:
-                if (abs(q.param - r.param) <= 1e-12 * max(1.0, abs(q.param))
-                        and abs(q.amplitude - r.amplitude) <= 1e-7 * max(1e-9, abs(q.amplitude))):
+                if (abs(q.param - r.param) <= 100.0 * EVENT_TOL * max(1.0, abs(q.param))
+                        and abs(q.amplitude - r.amplitude) <= 1e-6 * max(1e-9, abs(q.amplitude))):
                     return True
     return False
 
