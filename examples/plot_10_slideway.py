@@ -7,7 +7,8 @@ pushes the table (``examples/slideway/make_matrices.py``: 6 degrees of freedom i
 direction, the matrices in Matrix Market files as a finite-element program exports them).
 The friction contact is the table, DOF 2, in the middle of the structure. Everything here is
 what ``stickslip simulate --config``, ``stickslip design --config``, ``stickslip tune --config``
-and ``stickslip map --config`` print, in SI (DESIGN.md section 10).
+and ``stickslip map --config`` print, in SI (the machine file is described in the
+user guide's structures page, ``docs/structures.md``).
 """
 
 # %%

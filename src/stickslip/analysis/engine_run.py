@@ -214,7 +214,7 @@ class SimulationResult:
         return safe_disturbance(self.structure, self.slider)
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary with the keys of DESIGN.md section 5."""
+        """JSON-ready summary: the keys ``simulate --json`` prints (``docs/cli.md``)."""
         def num(x: float) -> float | None:
             return None if not math.isfinite(x) else float(x)
 

@@ -51,7 +51,7 @@ class PhysicalFoundation:
 
 @dataclass(frozen=True)
 class PhysicalFriction:
-    """A velocity-dependent friction law in SI units (DESIGN.md section 8, the ``[friction]`` table).
+    """A velocity-dependent friction law in SI units (the ``[friction]`` table, ``docs/friction.md``).
 
     Parameters
     ----------

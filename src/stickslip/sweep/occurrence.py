@@ -71,7 +71,7 @@ class OccurrenceMap:
         Coordinates ``lambda`` and ``zeta`` (or ``lambda`` and ``delta``, the fixed ``zeta``
         in the attribute ``zeta``); variables ``verdict``, ``certificate``,
         ``n_stick``, ``cycle_k``, ``period``, ``amplitude``, ``stick_ratio``,
-        ``max_velocity``, ``t_end`` (DESIGN.md section 6).
+        ``max_velocity``, ``t_end`` (the layout of the user guide's maps page, ``docs/maps.md``).
     chunks_total, chunks_loaded, chunks_computed : int
         Chunks of the grid, those read from the resume store and those simulated now.
     cells_computed : int
