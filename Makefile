@@ -9,10 +9,13 @@ STAMP := $(VENV)/.installed
 .PHONY: run test browser lint bench docs clean clean-cache
 
 $(STAMP): pyproject.toml
+	@echo "make: creating the virtual environment $(VENV)"
 	$(PYTHON) -m venv $(VENV)
+	@echo "make: installing stickslip and its dependencies into $(VENV) with pip (about a minute; quiet until done)"
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e ".[all]"
-	@# compile every numba kernel now, one family per core, so no first run waits for it
+	@echo "make: installed; now compiling the numba kernels once, so that no first run waits for them"
+	@# one family per core; stickslip compile names each family as it is ready
 	$(BIN)/stickslip compile
 	touch $(STAMP)
 

@@ -44,11 +44,11 @@ viscous = "0.02 s/m"
 #: What a user runs on a machine file after `make` (``{tmp}`` a scratch folder).
 PROBES = [
     ["map", "--config", str(SLIDEWAY), "--speed", "log:1e-4:0.1:4", "--load", "100:1000:3",
-     "--out", "{tmp}/vw.nc", "--json"],
+     "--out", "{tmp}/probe-slideway.nc", "--json"],
     ["simulate", "--config", str(SLIDEWAY), "--json"],
     ["basin", "--config", str(SLIDEWAY), "--samples", "200", "--json"],
     ["map", "--config", "{tmp}/stribeck.toml", "--speed", "0.05:0.3:3", "--load", "5:20:3",
-     "--out", "{tmp}/vw2.nc", "--json"],
+     "--out", "{tmp}/probe-stribeck.nc", "--json"],
     ["simulate", "--config", "{tmp}/stribeck.toml", "--json"],
 ]
 
@@ -136,3 +136,19 @@ def test_the_compile_list_names_each_family_once_and_runs_a_machine_file() -> No
     families = [family for family, _ in WARM_UP_RUNS]
     assert len(families) == len(set(families))
     assert any("--config" in args for _, args in WARM_UP_RUNS)
+
+
+def test_make_says_what_it_does_before_each_quiet_step() -> None:
+    # a first `make` printed nothing for about 70 s (pip --quiet) and 116 s (compile): each
+    # quiet step of the install recipe is announced by an echo line right before it
+    recipe = (ROOT / "Makefile").read_text().split("$(STAMP): pyproject.toml\n", 1)[1].split("\n\n", 1)[0]
+    lines = [line.strip() for line in recipe.splitlines()]
+    for step in ('pip install --quiet -e ".[all]"', "stickslip compile"):
+        at = next(i for i, line in enumerate(lines) if step in line)
+        said = [line for line in lines[:at] if line.startswith("@echo")]
+        assert said, f"nothing is said before {step!r}"
+    pip = next(i for i, line in enumerate(lines) if "pip install --quiet --upgrade pip" in line)
+    assert lines[pip - 1].startswith("@echo") and "pip" in lines[pip - 1]
+    compile_at = next(i for i, line in enumerate(lines) if "stickslip compile" in line
+                      and not line.startswith("@"))
+    assert any("compil" in line for line in lines[pip:compile_at] if line.startswith("@echo"))

@@ -140,8 +140,11 @@ def collect_inputs(flags: Mapping[str, Any], config: Path | None, *,
     if partial:
         raise BadInput("an existing foundation needs all of --m-a, --k-a and --c-a")
     label = None if machine_file is None else machine_file.label
-    values = quantities_to_si(
-        merged, source=lambda key: f"{label}: {key} =" if key in from_file else None)
+    try:
+        values = quantities_to_si(
+            merged, source=lambda key: f"{label}: {key} =" if key in from_file else None)
+    except ValueError as exc:  # it names the file and key, or the flag: no prefix to add
+        raise BadInput(str(exc)) from None
     if not has_structure:
         values.setdefault("c", 0.0)
     return values
@@ -252,4 +255,6 @@ def configured_machine(config: Path) -> ConfiguredMachine:
     except BadInput:
         raise
     except ValueError as exc:
-        raise BadInput(f"{machine_file.label}: {exc}") from None
+        message = str(exc)  # named once: a model message may name the file already
+        raise BadInput(message if message.startswith(f"{machine_file.label}:")
+                       else f"{machine_file.label}: {message}") from None
