@@ -67,6 +67,7 @@ def time_history_plot(
     n_points: int = 4000,
     show_foundation: bool = True,
     si: tuple[float, float, float] | None = None,
+    legend: bool = True,
 ) -> PlotResult:
     """Draw ``xi`` (or ``xi'``) against ``tau`` with stick phases shaded (paper Figs. 7, 12-13).
 
@@ -86,6 +87,9 @@ def time_history_plot(
     si : tuple of float, optional
         ``(1/omega_n [s], V/omega_n [m], V [m/s])`` of the physical system: draw the time in s,
         the displacement (from the kinetic-friction equilibrium) in m and the velocity in m/s.
+    legend : bool
+        Add a legend, outside the axes on the right (the stick shading fills the axes: inside,
+        any place covers data). A figure of many panels may give one legend instead.
 
     Returns
     -------
@@ -122,8 +126,15 @@ def time_history_plot(
         ax.set_xlabel("time t [s]")
         ax.set_ylabel(f"${symbol}$ [m]" if quantity == "position" else f"${symbol}$ [m/s]")
     ax.set_xlim(t[0], t[-1])
-    ax.legend(loc="upper right", fontsize="small", framealpha=0.85)
+    if legend:
+        outside_legend(ax)
     return PlotResult(fig, [ax], artists)
+
+
+def outside_legend(ax: Axes) -> Any:
+    """The legend of ``ax`` outside it, on the right: it never covers a curve."""
+    return ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0,
+                     fontsize="small", frameon=False)
 
 
 def phase_portrait_plot(
@@ -133,6 +144,7 @@ def phase_portrait_plot(
     t_start: float = 0.0,
     n_points: int = 4000,
     si: tuple[float, float, float] | None = None,
+    legend: bool = True,
 ) -> PlotResult:
     """Draw the trajectory in the ``(xi, xi')`` plane (paper Figs. 14-15).
 
@@ -149,6 +161,8 @@ def phase_portrait_plot(
         Samples of the exact trajectory.
     si : tuple of float, optional
         ``(1/omega_n [s], V/omega_n [m], V [m/s])``: draw the plane in m and m/s.
+    legend : bool
+        Add a legend (outside the axes, on the right: it never covers the orbit).
 
     Returns
     -------
@@ -171,7 +185,8 @@ def phase_portrait_plot(
         ax.xaxis.set_major_locator(MaxNLocator(nbins=4))
     ax.set_xlabel(r"$\xi$" if si is None else "slider x [m]")
     ax.set_ylabel(r"$\xi'$" if si is None else "slider v [m/s]")
-    ax.legend(loc="lower right", fontsize="small", frameon=False)
+    if legend:
+        outside_legend(ax)
     return PlotResult(fig, [ax], artists)
 
 

@@ -61,8 +61,12 @@ def fig7_figure(runs: list[Run], n_points: int) -> Figure:
         for row, lam in enumerate(lams):
             run = next(r for r in runs if r.lam == lam and r.k_scale == scale)
             drawn = time_history_plot(run.result, ax=axes[2 * row + col], n_points=n_points,
-                                      show_foundation=False)
+                                      show_foundation=False, legend=False)
             drawn.ax.set_title(f"{run.label}: {run.verdict.value}", fontsize="small")
+    # one legend for the eight panels, below them: inside, the stick shading leaves no room
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=len(labels), fontsize="small",
+               frameon=False)
     fig.suptitle(r"Fig. 7: $\xi(\tau)$ at $\zeta$ = 0.1, $\gamma$ = 2; "
                  r"(a) optimal foundation, (b) $K = 2K_{opt}$")
     return fig
