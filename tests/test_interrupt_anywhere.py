@@ -292,3 +292,32 @@ def test_an_interrupted_or_failed_write_leaves_the_old_file(case: str, how: str,
         assert err.strip().splitlines() == [f"stickslip: error: {name}: No space left on device"], err
     assert target.read_bytes() == b"the previous run's file"
     assert not _leftovers(tmp_path), _leftovers(tmp_path)
+
+
+def test_ctrl_c_lost_in_a_finalizer_is_sent_again(monkeypatch: pytest.MonkeyPatch,
+                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    # Python runs the SIGINT handler wherever the main thread is, a finalizer included; there
+    # its KeyboardInterrupt is only printed ("Exception ignored in ... KeyboardInterrupt", seen
+    # in a Dask map's weakref callback) and the command went on to finish with exit code 0
+    import stickslip.analysis.simulation as simulation
+
+    from .cli_helpers import run_cli
+
+    class Finalised:
+        def __del__(self) -> None:
+            signal.raise_signal(signal.SIGINT)  # the handler's KeyboardInterrupt is lost here
+
+    worked: list[float] = []
+
+    def interrupted(*args: object, **kwargs: object) -> None:
+        Finalised()  # dropped at once: __del__ runs, Ctrl-C is lost in it
+        start = time.monotonic()
+        while time.monotonic() < start + 10.0:  # the command's own work, bounded
+            time.sleep(0.01)
+        worked.append(time.monotonic() - start)  # reached only if Ctrl-C never came back
+
+    monkeypatch.setattr(simulation, "simulate", interrupted)
+    code, out, err = run_cli(["simulate", "--lam", "1", "--zeta", "0.1", "--json"], capsys)
+    assert not worked, "the lost Ctrl-C was not sent again: the command worked on"
+    assert "Exception ignored" not in err
+    _check_aborted(code, out, err)

@@ -320,15 +320,46 @@ def watching_compiles(command: Callable[..., Any], announced: bool) -> Callable[
     return watched
 
 
+#: Times a Ctrl-C lost in a finalizer is sent again (each loss is a rare coincidence).
+MAX_REDELIVERIES = 5
+#: Seconds before a lost Ctrl-C is sent again: the finalizer that lost it has returned by then.
+REDELIVERY_DELAY = 0.05
+
+
 class SigintNote:
-    """Whether SIGINT arrived during a command (set by :func:`noting_sigint`'s handler)."""
+    """Whether SIGINT arrived during a command (set by :func:`noting_sigint`'s handler).
+
+    Python runs the handler wherever the main thread is, a finalizer included (a weakref
+    callback, ``__del__``), and an exception raised there is only printed ("Exception
+    ignored in ...") while the command goes on. :meth:`unraisable` is ``sys.unraisablehook``
+    during the command: such a lost ``KeyboardInterrupt`` is not printed but sent again, a
+    moment later, from another thread, so that it lands in the command's own code.
+    """
 
     def __init__(self) -> None:
         self.caught = False
+        self.active = False  # the handler is installed (a late resend is dropped after it)
+        self.redelivered = 0
+        self.previous_hook: Callable[[Any], object] = sys.unraisablehook
 
     def __call__(self, signum: int, frame: FrameType | None) -> None:
         self.caught = True
         raise KeyboardInterrupt
+
+    def unraisable(self, info: Any) -> None:
+        """``sys.unraisablehook``: send a Ctrl-C lost in a finalizer again; pass on the rest."""
+        if (not issubclass(info.exc_type, KeyboardInterrupt)
+                or self.redelivered >= MAX_REDELIVERIES):
+            self.previous_hook(info)
+            return
+        self.redelivered += 1
+        timer = threading.Timer(REDELIVERY_DELAY, self._resend)
+        timer.daemon = True
+        timer.start()
+
+    def _resend(self) -> None:
+        if self.active:
+            os.kill(os.getpid(), signal.SIGINT)
 
 
 @contextmanager
@@ -338,6 +369,7 @@ def noting_sigint() -> Iterator[SigintNote]:
     Library code may turn the ``KeyboardInterrupt`` into another exception (numba's
     dispatcher raises ``SystemError``, a worker pool its own error, a cleanup handler a
     ``ValueError``): once the note is set, whatever ends the command is reported as Ctrl-C.
+    A ``KeyboardInterrupt`` lost in a finalizer is sent again (:meth:`SigintNote.unraisable`).
     Only where Python handles SIGINT itself, in the main thread (a background job that
     inherits SIGINT ignored keeps it ignored); elsewhere nothing changes.
     """
@@ -347,10 +379,14 @@ def noting_sigint() -> Iterator[SigintNote]:
         yield note
         return
     signal.signal(signal.SIGINT, note)
+    sys.unraisablehook = note.unraisable
+    note.active = True
     try:
         yield note
     finally:
+        note.active = False
         signal.signal(signal.SIGINT, signal.default_int_handler)
+        sys.unraisablehook = note.previous_hook
 
 
 #: How far :func:`interrupted` follows an exception's causes (chains are a few links long).
