@@ -1,0 +1,664 @@
+"""The smooth stiff engine: a Rosenbrock method (RODAS4) for friction with memory, arrays only.
+
+Friction laws with an internal state (rate-and-state, LuGre; :mod:`stickslip.model.state_friction`)
+have no true stick and are stiff (LuGre's bristle stiffness, the state's fast relaxation at
+high slip speed), so the exact piecewise-linear engine does not apply. This module integrates
+
+    M q'' + C q' + K q = e_c F(v, s),   s' = G(v, s),   v = V - q_c'
+
+(dynamic, any linear structure, contact on DOF ``c``) written as ``y' = A y + b F + e_s G``
+with ``y = (q, q', s)``, or the quasi-static slider of rate-and-state (``m = 0``):
+``k x = F(v, psi)`` solved for the slip speed ``v = 2 v_ref exp(-psi/a) sinh(k x / (N a))``,
+``y = (x, psi)``, ``x' = V - v``. ``V`` is constant on each call (a schedule of drive speeds is
+a sequence of calls).
+
+The method is RODAS4 of Hairer and Wanner (Solving Ordinary Differential Equations II, 2nd ed.,
+Springer 1996, Sec. IV.7; the coefficients of their code ``rodas.f``): six stages, order 4, an
+embedded order-3 solution for the error estimate, L-stable and stiffly accurate, and a dense
+output of order 3 between the step's ends. The Jacobian is the exact analytic one of the laws,
+so the order is that of the method (a Rosenbrock method needs the exact Jacobian). Steps are
+controlled on the error in the mixed norm ``rms(err_i / (atol_i + rtol |y_i|)) <= 1`` (with the
+variational equations, over ``Phi`` too, ``Phi_ij`` with the absolute tolerance
+``rtol atol_i / atol_j``).
+
+The variational equations ``Phi' = J(y) Phi`` (``Phi(0) = I``) are integrated with ``y`` as one
+augmented system by the same method, with the augmented system's exact Jacobian (its
+lower-left block ``(dJ/dy . u) Phi`` holds the laws' second derivatives; for the quasi-static
+slider a central difference of the analytic ``J`` with relative step ``1e-6``). ``Phi`` at a
+return to the Poincare section gives the Floquet multipliers and the Newton step of shooting.
+
+Events are located on the dense output: the section ``q_c' = 0`` crossed upwards (each period
+of a periodic motion crosses it once or more, its mean velocity being zero), sampled at
+:data:`EVENT_SAMPLES` points inside each step and bisected to round-off. No Python callback
+runs in the loop: the laws are compiled here, chosen by an integer code.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel is stamped with the whole kernel folder)
+
+#: Law codes (as :mod:`stickslip.model.state_friction`).
+LAW_RATE_STATE_AGING = 0
+LAW_RATE_STATE_SLIP = 1
+LAW_LUGRE = 2
+
+#: System kinds.
+KIND_DYNAMIC = 0
+KIND_QUASI_STATIC = 1
+
+#: Run statuses.
+STATUS_DONE = 0
+STATUS_SECTION = 1
+STATUS_MAX_STEPS = 2
+STATUS_STEP_UNDERFLOW = 3
+
+#: Points of the dense output tested for a section crossing inside each step.
+EVENT_SAMPLES = 4
+#: Bisection steps of an event time (halves the bracket to below 1e-15 of the step).
+EVENT_BISECTIONS = 60
+
+# RODAS4 (Hairer & Wanner, rodas.f, METH = 1)
+GAM = 0.25
+A21 = 1.544
+A31 = 0.9466785280815826
+A32 = 0.2557011698983284
+A41 = 3.314825187068521
+A42 = 2.896124015972201
+A43 = 0.9986419139977817
+A51 = 1.221224509226641
+A52 = 6.019134481288629
+A53 = 12.53708332932087
+A54 = -0.6878860361058950
+C21 = -5.6688
+C31 = -2.430093356833875
+C32 = -0.2063599157091915
+C41 = -0.1073529058151375
+C42 = -9.594562251023355
+C43 = -20.47028614809616
+C51 = 7.496443313967647
+C52 = -10.24680431464352
+C53 = -33.99990352819905
+C54 = 11.70890893206160
+C61 = 8.083246795921522
+C62 = -7.981132988064893
+C63 = -31.52159432874371
+C64 = 16.31930543123136
+C65 = -6.058818238834054
+D21 = 10.12623508344586
+D22 = -7.487995877610167
+D23 = -34.80091861555747
+D24 = -7.992771707568823
+D25 = 1.025137723295662
+D31 = -0.6762803392801253
+D32 = 6.087714651680015
+D33 = 16.43084320892478
+D34 = 24.76722511418386
+D35 = -6.594389125716872
+
+#: Step-size controller: safety factor and the bounds of one change (Hairer & Wanner's).
+SAFETY = 0.9
+FAC_MIN = 0.2
+FAC_MAX = 6.0
+
+#: Entries of the law's value array.
+N_LAW = 12
+(L_F, L_G, L_FV, L_FS, L_GV, L_GS, L_FVV, L_FVS, L_FSS, L_GVV, L_GVS, L_GSS) = range(12)
+
+#: Largest exponent used before asinh's argument is replaced by its logarithm.
+_LOG_SWITCH = 30.0
+
+
+@njit(cache=True)
+def law_values(law: int, p: np.ndarray, v: float, s: float, out: np.ndarray) -> None:
+    """Friction force ``F`` (N), state rate ``G`` and their first and second partials in ``(v, s)``.
+
+    ``p``: rate-and-state ``[N, a, b, d_c, mu_ref, v_ref, 0]``, state ``psi``; LuGre
+    ``[N, sigma0, sigma1, sigma2, mu_c, mu_s, v_s]``, state ``z`` (m). ``v``: slip speed, m/s.
+    """
+    load = p[0]
+    sv = 1.0 if v > 0.0 else (-1.0 if v < 0.0 else 0.0)
+    av = abs(v)
+    if law == LAW_LUGRE:
+        s0, s1, s2, mc, ms, vs = p[1], p[2], p[3], p[4], p[5], p[6]
+        ex = math.exp(-(v / vs) ** 2)
+        g = load * (mc + (ms - mc) * ex)
+        g1 = load * (ms - mc) * ex * (-2.0 * v / (vs * vs))
+        g2 = load * (ms - mc) * ex * (4.0 * v * v / vs**4 - 2.0 / (vs * vs))
+        hh = av / g
+        h1 = sv / g - av * g1 / (g * g)
+        h2 = -2.0 * sv * g1 / (g * g) - av * g2 / (g * g) + 2.0 * av * g1 * g1 / (g * g * g)
+        G = v - s0 * s * hh
+        Gv = 1.0 - s0 * s * h1
+        Gs = -s0 * hh
+        Gvv = -s0 * s * h2
+        Gvs = -s0 * h1
+        out[L_F] = s0 * s + s1 * G + s2 * v
+        out[L_G] = G
+        out[L_FV] = s1 * Gv + s2
+        out[L_FS] = s0 + s1 * Gs
+        out[L_GV] = Gv
+        out[L_GS] = Gs
+        out[L_FVV] = s1 * Gvv
+        out[L_FVS] = s1 * Gvs
+        out[L_FSS] = 0.0
+        out[L_GVV] = Gvv
+        out[L_GVS] = Gvs
+        out[L_GSS] = 0.0
+        return
+    a, b, dc, mu0, vref = p[1], p[2], p[3], p[4], p[5]
+    # F = N a asinh(X), X = v E, E = exp(psi/a) / (2 v_ref); r = 1 / sqrt(1 + X^2)
+    le = s / a - math.log(2.0 * vref)
+    if av > 0.0 and le + math.log(av) > _LOG_SWITCH:
+        lx = le + math.log(av)
+        # X huge: asinh(X) = ln(2X) + 1/(4 X^2) ..., r = 1/X (1 - ...), to round-off
+        out[L_F] = sv * load * a * (lx + math.log(2.0))
+        out[L_FV] = load * a / av
+        out[L_FS] = sv * load
+        out[L_FVV] = -sv * load * a / (av * av)
+        out[L_FVS] = 0.0
+        out[L_FSS] = 0.0
+    else:
+        e = math.exp(le)
+        x = v * e
+        r = 1.0 / math.sqrt(1.0 + x * x)
+        out[L_F] = load * a * math.asinh(x)
+        out[L_FV] = load * a * r * e
+        out[L_FS] = load * r * x
+        out[L_FVV] = -load * a * x * r * r * r * e * e
+        out[L_FVS] = load * e * r * r * r
+        out[L_FSS] = load * x * r * r * r / a
+    if law == LAW_RATE_STATE_AGING:
+        w = vref * math.exp((mu0 - s) / b) if b > 0.0 else vref
+        out[L_G] = (b / dc) * (w - av) if b > 0.0 else 0.0
+        out[L_GV] = -(b / dc) * sv
+        out[L_GS] = -w / dc if b > 0.0 else 0.0
+        out[L_GVV] = 0.0
+        out[L_GVS] = 0.0
+        out[L_GSS] = w / (b * dc) if b > 0.0 else 0.0
+    else:
+        if av > 0.0:
+            lg = b * math.log(av / vref) + s - mu0
+            out[L_G] = -(av / dc) * lg
+            out[L_GV] = -(sv / dc) * (lg + b)
+            out[L_GVV] = -b / (dc * av)
+        else:
+            out[L_G] = 0.0
+            out[L_GV] = 0.0
+            out[L_GVV] = 0.0
+        out[L_GS] = -av / dc
+        out[L_GVS] = -sv / dc
+        out[L_GSS] = 0.0
+
+
+@njit(cache=True)
+def quasi_static_speed(p: np.ndarray, kq: float, x: float, psi: float) -> tuple[float, float, float]:
+    """Slip speed of the quasi-static slider and its partials: ``v``, ``dv/dx``, ``dv/dpsi``.
+
+    ``k x = N a asinh(v exp(psi/a) / (2 v_ref))`` gives ``v = 2 v_ref exp(-psi/a) sinh(k x / (N a))``.
+    """
+    load, a, vref = p[0], p[1], p[5]
+    arg = kq * x / (load * a)
+    c = 2.0 * vref * math.exp(-psi / a)
+    v = c * math.sinh(arg)
+    return v, c * math.cosh(arg) * kq / (load * a), -v / a
+
+
+@njit(cache=True)
+def contact_speed(kind: int, law: int, p: np.ndarray, kq: float, iv: int, y: np.ndarray,
+                  speed: float) -> float:
+    """The contact's velocity ``q_c'`` (m/s, ground frame): the section function."""
+    if kind == KIND_QUASI_STATIC:
+        v, _, _ = quasi_static_speed(p, kq, y[0], y[1])
+        return speed - v
+    return y[iv]
+
+
+@njit(cache=True)
+def rhs(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
+        is_: int, kq: float, y: np.ndarray, speed: float, lv: np.ndarray, f: np.ndarray) -> None:
+    """``f = y'`` at ``y`` for drive speed ``speed`` (m/s); ``lv`` receives the law's values."""
+    n = y.shape[0]
+    if kind == KIND_QUASI_STATIC:
+        v, _, _ = quasi_static_speed(p, kq, y[0], y[1])
+        law_values(law, p, v, y[1], lv)
+        f[0] = speed - v
+        f[1] = lv[L_G]
+        return
+    v = speed - y[iv]
+    law_values(law, p, v, y[is_], lv)
+    for i in range(n):
+        acc = 0.0
+        for j in range(n):
+            acc += amat[i, j] * y[j]
+        f[i] = acc + bvec[i] * lv[L_F]
+    f[is_] = lv[L_G]
+
+
+@njit(cache=True)
+def jacobian(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
+             is_: int, kq: float, y: np.ndarray, speed: float, lv: np.ndarray,
+             jac: np.ndarray) -> None:
+    """The exact Jacobian ``df/dy`` at ``y``."""
+    n = y.shape[0]
+    if kind == KIND_QUASI_STATIC:
+        v, vx, vp = quasi_static_speed(p, kq, y[0], y[1])
+        law_values(law, p, v, y[1], lv)
+        jac[0, 0] = -vx
+        jac[0, 1] = -vp
+        jac[1, 0] = lv[L_GV] * vx
+        jac[1, 1] = lv[L_GV] * vp + lv[L_GS]
+        return
+    v = speed - y[iv]
+    law_values(law, p, v, y[is_], lv)
+    for i in range(n):
+        for j in range(n):
+            jac[i, j] = amat[i, j]
+    for i in range(n):
+        jac[i, iv] -= bvec[i] * lv[L_FV]
+        jac[i, is_] += bvec[i] * lv[L_FS]
+    jac[is_, iv] = -lv[L_GV]
+    jac[is_, is_] = lv[L_GS]
+
+
+@njit(cache=True)
+def jacobian_derivative_times(kind: int, law: int, p: np.ndarray, amat: np.ndarray,
+                              bvec: np.ndarray, iv: int, is_: int, kq: float, y: np.ndarray,
+                              speed: float, u: np.ndarray, phi: np.ndarray, lv: np.ndarray,
+                              out: np.ndarray) -> None:
+    """``out = (dJ/dy . u) Phi``: the lower-left block of the augmented system's Jacobian."""
+    n = y.shape[0]
+    if kind == KIND_QUASI_STATIC:
+        scale = 0.0
+        for i in range(n):
+            scale = max(scale, abs(u[i]) / (1.0 + abs(y[i])))
+        if scale == 0.0:
+            out[:, :] = 0.0
+            return
+        eps = 1e-6 / scale
+        yp = y + eps * u
+        ym = y - eps * u
+        jp = np.empty((n, n))
+        jm = np.empty((n, n))
+        jacobian(kind, law, p, amat, bvec, iv, is_, kq, yp, speed, lv, jp)
+        jacobian(kind, law, p, amat, bvec, iv, is_, kq, ym, speed, lv, jm)
+        d = (jp - jm) / (2.0 * eps)
+        for i in range(n):
+            for j in range(n):
+                acc = 0.0
+                for k in range(n):
+                    acc += d[i, k] * phi[k, j]
+                out[i, j] = acc
+        return
+    v = speed - y[iv]
+    law_values(law, p, v, y[is_], lv)
+    dv = -u[iv]
+    ds = u[is_]
+    af = lv[L_FVV] * dv + lv[L_FVS] * ds
+    bf = lv[L_FVS] * dv + lv[L_FSS] * ds
+    ag = lv[L_GVV] * dv + lv[L_GVS] * ds
+    bg = lv[L_GVS] * dv + lv[L_GSS] * ds
+    for j in range(n):
+        rf = -af * phi[iv, j] + bf * phi[is_, j]
+        rg = -ag * phi[iv, j] + bg * phi[is_, j]
+        for i in range(n):
+            out[i, j] = bvec[i] * rf
+        out[is_, j] = rg
+
+
+@njit(cache=True)
+def lu_factor(a: np.ndarray, piv: np.ndarray) -> bool:
+    """In-place LU with partial pivoting; False when singular."""
+    n = a.shape[0]
+    for k in range(n):
+        m = k
+        big = abs(a[k, k])
+        for i in range(k + 1, n):
+            if abs(a[i, k]) > big:
+                big = abs(a[i, k])
+                m = i
+        piv[k] = m
+        if big == 0.0:
+            return False
+        if m != k:
+            for j in range(n):
+                t = a[k, j]
+                a[k, j] = a[m, j]
+                a[m, j] = t
+        inv = 1.0 / a[k, k]
+        for i in range(k + 1, n):
+            a[i, k] *= inv
+            lik = a[i, k]
+            if lik != 0.0:
+                for j in range(k + 1, n):
+                    a[i, j] -= lik * a[k, j]
+    return True
+
+
+@njit(cache=True)
+def lu_solve(lu: np.ndarray, piv: np.ndarray, b: np.ndarray) -> None:
+    """Solve in place with the factors of :func:`lu_factor`."""
+    n = lu.shape[0]
+    for k in range(n):
+        m = piv[k]
+        if m != k:
+            t = b[k]
+            b[k] = b[m]
+            b[m] = t
+    for i in range(n):
+        acc = b[i]
+        for j in range(i):
+            acc -= lu[i, j] * b[j]
+        b[i] = acc
+    for i in range(n - 1, -1, -1):
+        acc = b[i]
+        for j in range(i + 1, n):
+            acc -= lu[i, j] * b[j]
+        b[i] = acc / lu[i, i]
+
+
+@njit(cache=True)
+def _aug_rhs(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
+             is_: int, kq: float, z: np.ndarray, n: int, with_phi: bool, speed: float,
+             lv: np.ndarray, jw: np.ndarray, out: np.ndarray) -> None:
+    """Right-hand side of the augmented system ``z = (y, vec Phi)``: ``(f(y), J(y) Phi)``."""
+    y = z[:n]
+    f = out[:n]
+    rhs(kind, law, p, amat, bvec, iv, is_, kq, y, speed, lv, f)
+    if with_phi:
+        jacobian(kind, law, p, amat, bvec, iv, is_, kq, y, speed, lv, jw)
+        phi = z[n:].reshape((n, n))
+        dphi = out[n:].reshape((n, n))
+        for i in range(n):
+            for j in range(n):
+                acc = 0.0
+                for k in range(n):
+                    acc += jw[i, k] * phi[k, j]
+                dphi[i, j] = acc
+
+
+@njit(cache=True)
+def _stage_solve(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
+                 is_: int, kq: float, z0: np.ndarray, n: int, with_phi: bool, speed: float,
+                 lu: np.ndarray, piv: np.ndarray, lv: np.ndarray, hw: np.ndarray,
+                 r: np.ndarray) -> None:
+    """Solve ``(I/(gamma h) - J_aug) K = r`` in place (block lower-triangular ``J_aug``)."""
+    ry = r[:n]
+    lu_solve(lu, piv, ry)
+    if with_phi:
+        jacobian_derivative_times(kind, law, p, amat, bvec, iv, is_, kq, z0[:n], speed, ry,
+                                  z0[n:].reshape((n, n)), lv, hw)
+        rphi = r[n:].reshape((n, n))
+        col = np.empty(n)
+        for j in range(n):
+            for i in range(n):
+                col[i] = rphi[i, j] + hw[i, j]
+            lu_solve(lu, piv, col)
+            for i in range(n):
+                rphi[i, j] = col[i]
+
+
+@njit(cache=True)
+def dense_value(z0: np.ndarray, z1: np.ndarray, c3: np.ndarray, c4: np.ndarray, theta: float,
+                out: np.ndarray) -> None:
+    """RODAS4's dense output at ``theta`` in [0, 1] of the step: order 3 (Hairer & Wanner)."""
+    s1 = 1.0 - theta
+    for i in range(z0.shape[0]):
+        out[i] = z0[i] * s1 + theta * (z1[i] + s1 * (c3[i] + theta * c4[i]))
+
+
+@njit(cache=True)
+def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
+              is_: int, kq: float, z: np.ndarray, n: int, with_phi: bool, t0: float, t1: float,
+              speed: float, rtol: float, atol: np.ndarray, h_start: float, max_steps: int,
+              t_out: np.ndarray, z_out: np.ndarray, stop_at_section: bool, section_after: float,
+              cross_t: np.ndarray, cross_z: np.ndarray, stats: np.ndarray) -> tuple[int, float, float]:
+    """Integrate ``z = (y, vec Phi)`` from ``t0`` towards ``t1`` (s) at drive speed ``speed``.
+
+    Parameters
+    ----------
+    kind, law, p, amat, bvec, iv, is_, kq
+        The system (see the module docstring): ``amat`` (n x n) and ``bvec`` (n) of the dynamic
+        form, ``iv`` the index of ``q_c'``, ``is_`` that of the state; ``kq`` the stiffness of
+        the quasi-static slider (N/m).
+    z : ndarray
+        Initial augmented state (length ``n`` or ``n + n*n``), overwritten with the final one.
+    n : int
+        Length of ``y``.
+    with_phi : bool
+        Integrate the variational equations too.
+    t0, t1 : float
+        Start and end time, s.
+    speed : float
+        Drive speed ``V``, m/s (constant on this call).
+    rtol : float
+        Relative tolerance.
+    atol : ndarray
+        Absolute tolerance per component of ``y``.
+    h_start : float
+        First step to try (s); 0 chooses one.
+    max_steps : int
+        Bound on attempted steps.
+    t_out : ndarray
+        Increasing times (s) at which ``z_out`` rows are filled from the dense output (those
+        in ``[t0, t1]``; the others are left untouched).
+    z_out : ndarray
+        ``len(t_out)`` rows.
+    stop_at_section : bool
+        Stop at the first upward crossing of ``q_c' = 0`` after ``section_after``.
+    section_after : float
+        See above, s.
+    cross_t, cross_z : ndarray
+        Buffers for the times and states ``y`` of upward section crossings (the first
+        ``len(cross_t)`` are kept; ``stats[3]`` counts them all).
+    stats : ndarray
+        Out: ``[accepted, rejected, last step h, crossings, min q_c', max q_c']``.
+
+    Returns
+    -------
+    (status, t, h)
+        :data:`STATUS_DONE`, :data:`STATUS_SECTION` (stopped at a crossing; ``t`` its time),
+        :data:`STATUS_MAX_STEPS` or :data:`STATUS_STEP_UNDERFLOW`; the time reached and the
+        next step to try.
+    """
+    nz = z.shape[0]
+    lv = np.empty(N_LAW)
+    jac = np.empty((n, n))
+    lu = np.empty((n, n))
+    piv = np.empty(n, dtype=np.int64)
+    jw = np.empty((n, n))
+    hw = np.empty((n, n))
+    k1 = np.empty(nz)
+    k2 = np.empty(nz)
+    k3 = np.empty(nz)
+    k4 = np.empty(nz)
+    k5 = np.empty(nz)
+    k6 = np.empty(nz)
+    zt = np.empty(nz)
+    dz = np.empty(nz)
+    znew = np.empty(nz)
+    c3 = np.empty(nz)
+    c4 = np.empty(nz)
+    zd = np.empty(nz)
+    t = t0
+    span = t1 - t0
+    if span <= 0.0:
+        return STATUS_DONE, t, h_start
+    n_out = t_out.shape[0]
+    io = 0
+    while io < n_out and t_out[io] < t0:
+        io += 1
+    while io < n_out and t_out[io] == t0:
+        z_out[io, :] = z
+        io += 1
+    n_cross_buf = cross_t.shape[0]
+    sec_prev = contact_speed(kind, law, p, kq, iv, z[:n], speed)
+    h = h_start
+    if h <= 0.0:
+        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, z, n, False, speed, lv, jw, dz)
+        d0 = 0.0
+        d1 = 0.0
+        for i in range(n):
+            sc = atol[i] + rtol * abs(z[i])
+            d0 += (z[i] / sc) ** 2
+            d1 += (dz[i] / sc) ** 2
+        d0 = math.sqrt(d0 / n)
+        d1 = math.sqrt(d1 / n)
+        h = 0.01 * d0 / d1 if d0 > 1e-5 and d1 > 1e-5 else 1e-6 * span
+        h = min(max(h, 1e-12 * span), span)
+    err_old = 1.0
+    h_old = h
+    first = True
+    tc = t
+    for _attempt in range(max_steps):
+        if t + h >= t1 or (t1 - (t + h)) < 1e-12 * span:
+            h = t1 - t
+        y0 = z[:n]
+        jacobian(kind, law, p, amat, bvec, iv, is_, kq, y0, speed, lv, jac)
+        for i in range(n):
+            for j in range(n):
+                lu[i, j] = -jac[i, j]
+            lu[i, i] += 1.0 / (GAM * h)
+        if not lu_factor(lu, piv):
+            h *= 0.5
+            continue
+        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lv, jw, dz)
+        for i in range(nz):
+            k1[i] = dz[i]
+        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k1)
+        for i in range(nz):
+            zt[i] = z[i] + A21 * k1[i]
+        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
+        for i in range(nz):
+            k2[i] = dz[i] + C21 * k1[i] / h
+        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k2)
+        for i in range(nz):
+            zt[i] = z[i] + A31 * k1[i] + A32 * k2[i]
+        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
+        for i in range(nz):
+            k3[i] = dz[i] + (C31 * k1[i] + C32 * k2[i]) / h
+        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k3)
+        for i in range(nz):
+            zt[i] = z[i] + A41 * k1[i] + A42 * k2[i] + A43 * k3[i]
+        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
+        for i in range(nz):
+            k4[i] = dz[i] + (C41 * k1[i] + C42 * k2[i] + C43 * k3[i]) / h
+        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k4)
+        for i in range(nz):
+            zt[i] = z[i] + A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i]
+        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
+        for i in range(nz):
+            k5[i] = dz[i] + (C51 * k1[i] + C52 * k2[i] + C53 * k3[i] + C54 * k4[i]) / h
+        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k5)
+        for i in range(nz):
+            zt[i] += k5[i]
+        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
+        for i in range(nz):
+            k6[i] = dz[i] + (C61 * k1[i] + C62 * k2[i] + C63 * k3[i] + C64 * k4[i] + C65 * k5[i]) / h
+        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k6)
+        err = 0.0
+        finite = True
+        for i in range(nz):
+            znew[i] = zt[i] + k6[i]
+            if not math.isfinite(znew[i]):
+                finite = False
+        if finite:
+            for i in range(n):
+                sc = atol[i] + rtol * max(abs(z[i]), abs(znew[i]))
+                err += (k6[i] / sc) ** 2
+            if with_phi:
+                # Phi[i, j] has the units of y_i / y_j: its absolute tolerance is rtol atol_i / atol_j
+                for i in range(n):
+                    for j in range(n):
+                        ij = n + i * n + j
+                        sc = rtol * (atol[i] / atol[j] + max(abs(z[ij]), abs(znew[ij])))
+                        err += (k6[ij] / sc) ** 2
+            err = math.sqrt(err / nz)
+        else:
+            err = 1e10
+        if err <= 1.0:
+            # accepted: dense output, events, outputs
+            for i in range(nz):
+                c3[i] = D21 * k1[i] + D22 * k2[i] + D23 * k3[i] + D24 * k4[i] + D25 * k5[i]
+                c4[i] = D31 * k1[i] + D32 * k2[i] + D33 * k3[i] + D34 * k4[i] + D35 * k5[i]
+            t_new = t + h
+            stop = False
+            # section crossings: sample the dense output, bisect the first sign change upwards
+            prev_val = sec_prev
+            prev_th = 0.0
+            for js in range(1, EVENT_SAMPLES + 2):
+                th = js / (EVENT_SAMPLES + 1.0)
+                if js == EVENT_SAMPLES + 1:
+                    for i in range(nz):
+                        zd[i] = znew[i]
+                else:
+                    dense_value(z, znew, c3, c4, th, zd)
+                val = contact_speed(kind, law, p, kq, iv, zd[:n], speed)
+                if val < stats[4]:
+                    stats[4] = val
+                if val > stats[5]:
+                    stats[5] = val
+                if prev_val < 0.0 and val >= 0.0:
+                    lo = prev_th
+                    hi = th
+                    for _b in range(EVENT_BISECTIONS):
+                        mid = 0.5 * (lo + hi)
+                        dense_value(z, znew, c3, c4, mid, zd)
+                        if contact_speed(kind, law, p, kq, iv, zd[:n], speed) < 0.0:
+                            lo = mid
+                        else:
+                            hi = mid
+                    dense_value(z, znew, c3, c4, hi, zd)
+                    tc = t + hi * h
+                    nc = int(stats[3])
+                    if nc < n_cross_buf:
+                        cross_t[nc] = tc
+                        for i in range(cross_z.shape[1]):
+                            cross_z[nc, i] = zd[i]
+                    stats[3] += 1.0
+                    if stop_at_section and tc > section_after:
+                        while io < n_out and t_out[io] <= tc:
+                            dense_value(z, znew, c3, c4, (t_out[io] - t) / h, z_out[io, :])
+                            io += 1
+                        for i in range(nz):
+                            z[i] = zd[i]
+                        stats[0] += 1.0
+                        stats[2] = h
+                        stop = True
+                        break
+                prev_val = val
+                prev_th = th
+            if stop:
+                return STATUS_SECTION, tc, h
+            while io < n_out and t_out[io] <= t_new:
+                dense_value(z, znew, c3, c4, (t_out[io] - t) / h, z_out[io, :])
+                io += 1
+            sec_prev = prev_val
+            for i in range(nz):
+                z[i] = znew[i]
+            t = t_new
+            stats[0] += 1.0
+            stats[2] = h
+            # predictive controller (Gustafsson), as in Hairer & Wanner's rodas.f
+            fac = max(1.0 / FAC_MAX, min(1.0 / FAC_MIN, (err ** 0.25) / SAFETY))
+            if not first:
+                facgus = (h_old / h) * (err * err / err_old) ** 0.25 / SAFETY
+                facgus = max(1.0 / FAC_MAX, min(1.0 / FAC_MIN, facgus))
+                fac = max(fac, facgus)
+            first = False
+            h_old = h
+            err_old = max(1e-2, err)
+            if t >= t1 or t1 - t <= 1e-12 * span:
+                return STATUS_DONE, t1, h / fac
+            h = h / fac
+        else:
+            stats[1] += 1.0
+            fac = max(1.0 / FAC_MAX, min(1.0 / FAC_MIN, (err ** 0.25) / SAFETY)) if err < 1e9 else 10.0
+            h = h / fac
+        if h < 1e-14 * max(abs(t), span):
+            return STATUS_STEP_UNDERFLOW, t, h
+    return STATUS_MAX_STEPS, t, h
