@@ -283,7 +283,7 @@ def integrate_run(system: MemorySystem, y0: FloatArray, t_max: float, *,
         last = i + 1 == len(sched.speeds)
         status, t, _h = stiff.integrate(ks.kind, ks.law, ks.p, ks.amat, ks.bvec, ks.iv, ks.is_,
                                        ks.kq, z, ks.n, False, t, t_end, float(speed), rtol, atol,
-                                       0.0, MAX_STEPS, h_times, z_out, False, 0.0, cross_t,
+                                       0.0, 0.0, MAX_STEPS, h_times, z_out, False, 0.0, cross_t,
                                        cross_z, stats)
         steps += int(stats[0])
         rejected += int(stats[1])
@@ -343,23 +343,29 @@ def return_map(system: MemorySystem, y0: FloatArray, speed: float, *, min_time: 
                ) -> tuple[FloatArray, FloatArray, float] | None:
     """The first upward return to the section after ``min_time`` (s): ``(y(T), Phi(T), T)``.
 
-    The variational equations are integrated with the orbit; None when no return comes
-    before ``t_limit`` (s).
+    The variational equations are integrated with the orbit, ``Phi`` under the same error
+    control as ``y``; where that cannot be met (the steps shrink to round-off at the kink of
+    ``|v|`` in the laws, at a reversal of the slip speed) ``Phi`` rides on the steps chosen for
+    ``y`` alone. None when no return comes before ``t_limit`` (s).
     """
     ks = kernel_system(system)
     n = ks.n
-    z = np.concatenate([np.asarray(y0, dtype=np.float64), np.eye(n).ravel()])
     atol = rtol * state_scales(system, speed)
-    stats = np.array([0.0, 0.0, 0.0, 0.0, math.inf, -math.inf])
-    cross_t = np.empty(1)
-    cross_z = np.empty((1, n + n * n))
-    status, t, _ = stiff.integrate(ks.kind, ks.law, ks.p, ks.amat, ks.bvec, ks.iv, ks.is_, ks.kq,
-                                   z, n, True, 0.0, t_limit, float(speed), rtol, atol, 0.0,
-                                   MAX_STEPS, np.zeros(0), np.zeros((0, n + n * n)), True,
-                                   min_time, cross_t, cross_z, stats)
-    if status != stiff.STATUS_SECTION:
-        return None
-    return z[:n].copy(), z[n:].reshape((n, n)).copy(), float(t)
+    for phi_rtol in (rtol, 0.0):
+        z = np.concatenate([np.asarray(y0, dtype=np.float64), np.eye(n).ravel()])
+        stats = np.array([0.0, 0.0, 0.0, 0.0, math.inf, -math.inf])
+        cross_t = np.empty(1)
+        cross_z = np.empty((1, n + n * n))
+        status, t, _ = stiff.integrate(ks.kind, ks.law, ks.p, ks.amat, ks.bvec, ks.iv, ks.is_,
+                                       ks.kq, z, n, True, 0.0, t_limit, float(speed), rtol, atol,
+                                       phi_rtol, 0.0, MAX_STEPS, np.zeros(0),
+                                       np.zeros((0, n + n * n)), True, min_time, cross_t, cross_z,
+                                       stats)
+        if status == stiff.STATUS_SECTION:
+            return z[:n].copy(), z[n:].reshape((n, n)).copy(), float(t)
+        if status == stiff.STATUS_DONE:
+            return None
+    return None
 
 
 def _section_gradient(system: MemorySystem, y: FloatArray, speed: float) -> FloatArray:

@@ -18,8 +18,7 @@ embedded order-3 solution for the error estimate, L-stable and stiffly accurate,
 output of order 3 between the step's ends. The Jacobian is the exact analytic one of the laws,
 so the order is that of the method (a Rosenbrock method needs the exact Jacobian). Steps are
 controlled on the error in the mixed norm ``rms(err_i / (atol_i + rtol |y_i|)) <= 1`` (with the
-variational equations, over ``Phi`` too, ``Phi_ij`` with the absolute tolerance
-``rtol atol_i / atol_j``).
+variational equations, optionally over ``Phi`` too).
 
 The variational equations ``Phi' = J(y) Phi`` (``Phi(0) = I``) are integrated with ``y`` as one
 augmented system by the same method, with the augmented system's exact Jacobian (its
@@ -414,7 +413,8 @@ def dense_value(z0: np.ndarray, z1: np.ndarray, c3: np.ndarray, c4: np.ndarray, 
 @njit(cache=True)
 def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
               is_: int, kq: float, z: np.ndarray, n: int, with_phi: bool, t0: float, t1: float,
-              speed: float, rtol: float, atol: np.ndarray, h_start: float, max_steps: int,
+              speed: float, rtol: float, atol: np.ndarray, phi_rtol: float, h_start: float,
+              max_steps: int,
               t_out: np.ndarray, z_out: np.ndarray, stop_at_section: bool, section_after: float,
               cross_t: np.ndarray, cross_z: np.ndarray, stats: np.ndarray) -> tuple[int, float, float]:
     """Integrate ``z = (y, vec Phi)`` from ``t0`` towards ``t1`` (s) at drive speed ``speed``.
@@ -439,6 +439,9 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
         Relative tolerance.
     atol : ndarray
         Absolute tolerance per component of ``y``.
+    phi_rtol : float
+        With ``with_phi``: relative tolerance on ``Phi`` in the error norm (``Phi_ij`` with
+        the absolute tolerance ``phi_rtol atol_i / atol_j``); 0 leaves ``Phi`` out of it.
     h_start : float
         First step to try (s); 0 chooses one.
     max_steps : int
@@ -570,14 +573,16 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
             for i in range(n):
                 sc = atol[i] + rtol * max(abs(z[i]), abs(znew[i]))
                 err += (k6[i] / sc) ** 2
-            if with_phi:
-                # Phi[i, j] has the units of y_i / y_j: its absolute tolerance is rtol atol_i / atol_j
+            count = n
+            if with_phi and phi_rtol > 0.0:
+                # Phi[i, j] has the units of y_i / y_j: its absolute tolerance is phi_rtol atol_i / atol_j
                 for i in range(n):
                     for j in range(n):
                         ij = n + i * n + j
-                        sc = rtol * (atol[i] / atol[j] + max(abs(z[ij]), abs(znew[ij])))
+                        sc = phi_rtol * (atol[i] / atol[j] + max(abs(z[ij]), abs(znew[ij])))
                         err += (k6[ij] / sc) ** 2
-            err = math.sqrt(err / nz)
+                count = nz
+            err = math.sqrt(err / count)
         else:
             err = 1e10
         if err <= 1.0:
