@@ -22,7 +22,9 @@ import math
 import numpy as np
 import pytest
 
+from stickslip.analysis import memory_cycles as mc
 from stickslip.analysis import memory_friction as mf
+from stickslip.analysis import memory_simulation as ms
 from stickslip.analysis.verdict import Verdict
 from stickslip.model.state_friction import (
     LuGreFriction,
@@ -80,16 +82,16 @@ def test_rate_state_stick_slip_cycle_is_certified() -> None:
     law = RateStateFriction(a=0.01, b=0.015, d_c=1e-5, mu_ref=0.6, v_ref=1e-6)
     k_c = mf.rice_ruina_critical_stiffness(1.0, 0.01, 0.015, 1e-5, 1.0, 1e-6)
     system = _slider(law, m=1.0, k=0.8 * k_c, load=1.0, speed=1e-6)
-    result = mf.simulate_memory(system, kick=0.5)
+    result = ms.simulate_memory(system, kick=0.5)
     assert result.verdict is Verdict.STICK_SLIP, result.reason
     orbit = result.orbit
     assert orbit is not None
-    assert orbit.residual < mf.SHOOTING_TOLERANCE
+    assert orbit.residual < mc.SHOOTING_TOLERANCE
     assert np.all(np.abs(orbit.multipliers) < 1.0)
     assert abs(orbit.trivial_multiplier - 1.0) < 1e-4
-    assert result.min_slip_speed < mf.QUASI_STICK * 1e-6
+    assert result.min_slip_speed < ms.QUASI_STICK * 1e-6
     # the cycle is a fixed point: one more period from its section state returns to it
-    again = mf.return_map(system, orbit.y0, 1e-6, min_time=0.2 * orbit.period,
+    again = mc.return_map(system, orbit.y0, 1e-6, min_time=0.2 * orbit.period,
                           t_limit=5.0 * orbit.period)
     assert again is not None
     assert again[2] == pytest.approx(orbit.period, rel=1e-6)
@@ -99,7 +101,7 @@ def test_stable_steady_sliding_is_reached() -> None:
     law = RateStateFriction(a=0.01, b=0.015, d_c=1e-5, mu_ref=0.6, v_ref=1e-6)
     k_c = mf.rice_ruina_critical_stiffness(1.0, 0.01, 0.015, 1e-5, 1.0, 1e-5)
     system = _slider(law, m=1.0, k=1.5 * k_c, load=1.0, speed=1e-5)
-    result = mf.simulate_memory(system, kick=0.2)
+    result = ms.simulate_memory(system, kick=0.2)
     assert result.verdict is Verdict.STEADY_SLIDING, result.reason
     assert "linearly stable" in result.certificate
 
@@ -108,7 +110,7 @@ def test_unstable_equilibrium_is_not_a_verdict() -> None:
     law = RateStateFriction(a=0.01, b=0.015, d_c=1e-5, mu_ref=0.6, v_ref=1e-6)
     k_c = mf.rice_ruina_critical_stiffness(1.0, 0.01, 0.015, 1e-5, 1.0, 1e-6)
     system = _slider(law, m=1.0, k=0.8 * k_c, load=1.0, speed=1e-6)
-    result = mf.simulate_memory(system, t_max=50.0)
+    result = ms.simulate_memory(system, t_max=50.0)
     assert result.verdict is Verdict.UNDETERMINED
     assert "linearly unstable" in result.reason
 
@@ -133,7 +135,7 @@ def test_canudas_de_wit_stick_slip_tends_to_the_exact_law() -> None:
     for sigma0 in (1e5, 1e6, 1e7):
         law = LuGreFriction(sigma0=sigma0, sigma1=math.sqrt(sigma0), sigma2=0.4, mu_c=1.0,
                             mu_s=1.5, stribeck_velocity=1e-3)
-        result = mf.simulate_memory(_slider(law, m=1.0, k=2.0, load=1.0, speed=0.1), kick=-1.0,
+        result = ms.simulate_memory(_slider(law, m=1.0, k=2.0, load=1.0, speed=0.1), kick=-1.0,
                                     t_max=60.0)
         assert result.verdict is Verdict.STICK_SLIP, result.reason
         assert result.orbit is not None and result.orbit.stable

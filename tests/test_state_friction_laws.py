@@ -20,6 +20,8 @@ from stickslip.model.state_friction import (
     MemorySystem,
     RateStateFriction,
     SpeedSchedule,
+)
+from stickslip.model.state_friction_input import (
     parse_state_friction,
     speed_schedule_from_config,
     state_friction_from_table,

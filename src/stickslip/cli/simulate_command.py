@@ -210,7 +210,7 @@ def _simulate_memory(ctx: typer.Context, machine_file: Any, *, t_max: str | None
     """``simulate --config`` with a friction law with memory: the smooth stiff engine, in SI."""
     import math
 
-    from stickslip.analysis.memory_friction import simulate_memory
+    from stickslip.analysis.memory_simulation import simulate_memory
 
     typed = [name for name in ("initial", "max_events", "t_plot_start")
              if getattr(ctx.get_parameter_source(name), "name", None) == "COMMANDLINE"]

@@ -139,7 +139,7 @@ class MachineFile:
     @property
     def has_memory_law(self) -> bool:
         """True when ``[friction]`` names a law with memory (``rate-state`` or ``lugre``)."""
-        from stickslip.model.state_friction import is_memory_law
+        from stickslip.model.state_friction_input import is_memory_law
 
         return is_memory_law(self.friction_table)
 
@@ -150,7 +150,7 @@ class MachineFile:
         ``m_a``, ``k_a``, ``c_a`` a foundation) or a ``[structure]`` (at most
         :data:`~stickslip.model.machine.MAX_DIRECT_DOF` DOF, or with a ``cutoff``).
         """
-        from stickslip.model.state_friction import memory_system_from_config
+        from stickslip.model.state_friction_input import memory_system_from_config
 
         assert self.friction_table is not None
         structure = None
