@@ -166,3 +166,23 @@ def test_old_options_refused_next_to_memory_laws(tmp_path: Path,
     code, _, err = _run(["simulate", "--lam", "1", "--zeta", "0.1", "--initial-kick", "0.5",
                          "--json"], capsys)
     assert code == 2 and "friction law with memory" in err
+
+
+def test_dimensionless_friction_option(capsys: pytest.CaptureFixture[str]) -> None:
+    # the Canudas de Wit example in the slider's units: m = k = V = 1 needs the time scale
+    # sqrt(m/k) = 1/sqrt(2) s, length V/omega_n = 0.1/sqrt(2) m, force V sqrt(m k) = 0.1 sqrt(2) N:
+    # load 1 N -> lambda = 1/(0.1 sqrt 2); sigma0 1e5 N/m -> 5e4 (in k); sigma1, sigma2 in sqrt(m k)
+    root2 = math.sqrt(2.0)
+    text = (f"lugre:sigma0=5e4,sigma1={math.sqrt(1e5) / root2},sigma2={0.4 / root2},mu_c=1,"
+            "mu_s=1.5,vs=0.01")
+    code, out, err = _run(["simulate", "--lam", str(1.0 / (0.1 * root2)), "--zeta", "0",
+                           "--friction", text, "--initial-kick", "-1", "--t-max", "80", "--json"],
+                          capsys)
+    assert code == 0, err
+    payload = json.loads(out)
+    assert payload["verdict"] == "stick-slip"
+    # the SI period 6.3627 s (test_lugre_stick_slip_contract) in tau = omega_n t
+    assert payload["period"] == pytest.approx(6.3627198 * root2, rel=1e-5)
+    code, _, err = _run(["map", "--lam", "1", "--zeta", "0.1", "--friction",
+                         "rate-state:a=0.01,b=0.015,dc=1,mu_ref=0.6,vref=1", "--out", "x.nc"], capsys)
+    assert code == 2 and "runs on `stickslip simulate`" in err

@@ -160,10 +160,12 @@ def simulate(
             _simulate_memory(ctx, machine_file, t_max=t_max, history_times=history_times,
                              initial_kick=initial_kick, plot=plot, json=json)
             return
+    memory_law = friction.strip().lower().startswith(("rate-state:", "lugre:"))
     for name, value in (("--history-times", history_times), ("--initial-kick", initial_kick)):
-        if value is not None:
-            raise BadInput(f"{name} works with a friction law with memory (--config with "
-                           "[friction] law = \"rate-state\" or \"lugre\")")
+        if value is not None and not memory_law:
+            raise BadInput(f"{name} works with a friction law with memory (--friction "
+                           "rate-state:... or lugre:..., or --config with [friction] law = "
+                           "\"rate-state\" or \"lugre\")")
     if config is not None:
         run = configured_machine(config)
         structure, slider = run.structure, run.slider
@@ -171,6 +173,12 @@ def simulate(
     else:
         require_dimensionless(lam=lam, zeta=zeta)
         assert lam is not None and zeta is not None
+        if memory_law:
+            _simulate_memory_dimensionless(ctx, lam=lam, zeta=zeta, dva=dva, k_scale=k_scale,
+                                           friction=friction, t_max=t_max,
+                                           history_times=history_times,
+                                           initial_kick=initial_kick, plot=plot, json=json)
+            return
         slider = Slider(lam, gamma=gamma, friction=parse_friction_option(friction))
         check_run_limits(slider.lam, slider.gamma, max_events=max_events, plot_from=t_plot_start)
         foundation = parse_dva(dva, zeta, k_scale)
@@ -204,6 +212,70 @@ def simulate(
     _print_summary(payload)
 
 
+def _refuse_exact_engine_options(ctx: typer.Context, plot: Path | None,
+                                 names: tuple[str, ...] = ("initial", "max_events", "t_plot_start"),
+                                 ) -> None:
+    """Options of the exact engine, typed next to a friction law with memory: one line."""
+    typed = [name for name in names
+             if getattr(ctx.get_parameter_source(name), "name", None) == "COMMANDLINE"]
+    if typed or plot is not None:
+        flags = ", ".join(["--" + n.replace("_", "-").replace("t-plot-start", "plot-from")
+                           for n in typed] + (["--plot"] if plot is not None else []))
+        raise BadInput(f"{flags} cannot be given with a friction law with memory (use "
+                       "--initial-kick, --history-times, --t-max)")
+
+
+def _simulate_memory_dimensionless(ctx: typer.Context, *, lam: float, zeta: float, dva: str,
+                                   k_scale: float, friction: str, t_max: str | None,
+                                   history_times: str | None, initial_kick: float | None,
+                                   plot: Path | None, json: bool) -> None:
+    """``--friction rate-state:...`` / ``lugre:...``: the dimensionless system on the stiff engine.
+
+    The system in the slider's units (``m = k = 1``, drive speed 1, time tau = omega_n t):
+    the structure of ``--zeta`` and ``--dva``, the normal load ``--lam`` (for these laws the
+    load number ``W / (V sqrt(m k))``), the law's numbers as
+    :func:`stickslip.model.state_friction_input.parse_state_friction` reads them. Answers are
+    dimensionless (``period``, ``amplitude``; the ``*_s`` and ``*_m`` keys are then in tau
+    and ``V / omega_n``).
+    """
+    from stickslip.analysis.memory_simulation import simulate_memory
+    from stickslip.model import chain_structure
+    from stickslip.model.state_friction import MemorySystem, SpeedSchedule
+    from stickslip.model.state_friction_input import parse_state_friction
+
+    _refuse_exact_engine_options(ctx, plot, ("initial", "max_events", "t_plot_start", "gamma"))
+    raw = friction.strip()
+    kind, _, arg = raw.partition(":")
+    try:
+        law = parse_state_friction(kind.strip().lower(), arg, raw)
+    except ValueError as exc:
+        raise BadInput(f"--friction: {exc}") from None
+    foundation = parse_dva(dva, zeta, k_scale)
+    structure = chain_structure(zeta, () if foundation is None else (foundation,))
+    try:
+        system = MemorySystem(structure.mass, structure.damping, structure.stiffness,
+                              structure.contact_dof, lam, law, SpeedSchedule.constant(1.0))
+    except ValueError as exc:
+        raise BadInput(str(exc)) from None
+    horizon = parse_t_max(t_max, None)
+    times = None if history_times is None else parse_history_times(history_times)
+    try:
+        result = simulate_memory(system, t_max=horizon, kick=initial_kick or 0.0,
+                                 history_times=times)
+    except ValueError as exc:
+        raise BadInput(str(exc)) from None
+    payload = result.to_dict()
+    payload.update({"period": payload["period_s"], "amplitude": payload["amplitude_m"],
+                    "lambda": lam, "zeta": zeta, "units": "dimensionless: m = k = V = 1, "
+                    "time tau = omega_n t, lengths in V / omega_n, load = lambda"})
+    if json:
+        print_json(payload)
+        return
+    typer.echo(f"verdict     {payload['verdict']}\ncertificate "
+               f"{payload['certificate'] or '- (' + payload['status_message'] + ')'}\n"
+               f"period      {payload['period']}   amplitude {payload['amplitude']} (dimensionless)")
+
+
 def _simulate_memory(ctx: typer.Context, machine_file: Any, *, t_max: str | None,
                      history_times: str | None, initial_kick: float | None, plot: Path | None,
                      json: bool) -> None:
@@ -212,13 +284,7 @@ def _simulate_memory(ctx: typer.Context, machine_file: Any, *, t_max: str | None
 
     from stickslip.analysis.memory_simulation import simulate_memory
 
-    typed = [name for name in ("initial", "max_events", "t_plot_start")
-             if getattr(ctx.get_parameter_source(name), "name", None) == "COMMANDLINE"]
-    if typed or plot is not None:
-        flags = ", ".join(["--" + n.replace("_", "-").replace("t-plot-start", "plot-from")
-                           for n in typed] + (["--plot"] if plot is not None else []))
-        raise BadInput(f"{flags} cannot be given with a friction law with memory (use "
-                       "--initial-kick, --history-times, --t-max)")
+    _refuse_exact_engine_options(ctx, plot)
     try:
         system = machine_file.memory_system()
     except ValueError as exc:
