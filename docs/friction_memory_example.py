@@ -15,15 +15,15 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
 
-from stickslip.analysis.memory_friction import (  # noqa: E402
+from stickslip.analysis.memory_friction import (
     hopf_stiffness,
     rice_ruina_critical_stiffness,
 )
-from stickslip.analysis.memory_simulation import simulate_memory  # noqa: E402
-from stickslip.model.state_friction import (  # noqa: E402
+from stickslip.analysis.memory_simulation import simulate_memory
+from stickslip.model.state_friction import (
     LuGreFriction,
     MemorySystem,
     RateStateFriction,
