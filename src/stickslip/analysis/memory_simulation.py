@@ -247,7 +247,10 @@ def simulate_memory(system: MemorySystem, *, t_max: float | None = None, kick: f
                   rejected=run.rejected, history=history)
     nan = math.nan
     if run.status != stiff.STATUS_DONE:
-        why = ("the step budget was used up" if run.status == stiff.STATUS_MAX_STEPS
+        why = ("the step budget was used up (typically where the slip speed reverses: near "
+               "v = 0 rate-and-state friction is extremely steep, dF/dv = N a exp(psi/a)/(2 v_ref), "
+               "and the steps shrink to follow it; a shorter --t-max still reports the history)"
+               if run.status == stiff.STATUS_MAX_STEPS
                else "the step size fell to round-off")
         return MemoryResult(verdict=Verdict.UNDETERMINED, certificate="",
                             reason=f"the run stopped at {run.t:.6g} s: {why}", orbit=None,
