@@ -33,6 +33,10 @@ WARM_UP_RUNS: tuple[tuple[str, ...], ...] = (
     ("basin", "--lam", "2.5", "--zeta", "0.1", "--samples", "1000", "--json"),
     ("continue", "--param", "lam", "--range", "0.5:3", "--zeta", "0.1", "--json"),
     ("cycles", "--lam", "2", "--zeta", "0.1", "--json"),
+    # the smooth stiff engine of friction with memory, its shooting (variational equations) too
+    ("simulate", "--lam", "7.07", "--zeta", "0", "--friction",
+     "lugre:sigma0=5e4,sigma1=223.6,sigma2=0.283,mu_c=1,mu_s=1.5,vs=0.01", "--initial-kick", "-1",
+     "--t-max", "80", "--json"),
 )
 #: Longest a warm-up run may take, s (a cold compile takes one to three minutes).
 RUN_TIMEOUT = 1800.0
