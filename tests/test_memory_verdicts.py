@@ -144,3 +144,33 @@ def test_canudas_de_wit_stick_slip_tends_to_the_exact_law() -> None:
     assert gaps[0] < 0.03  # the paper's parameters: 2.3 %
     assert gaps[2] < gaps[1] < gaps[0]
     assert gaps[2] < 2e-3
+
+
+def test_floquet_multipliers_match_differences_of_the_return_map() -> None:
+    """The nontrivial multipliers (from the variational equations) are the eigenvalues of the
+    return map's Jacobian on the section, here taken by central differences of the map."""
+    law = RateStateFriction(a=0.01, b=0.015, d_c=1e-5, mu_ref=0.6, v_ref=1e-6)
+    k_c = mf.rice_ruina_critical_stiffness(1.0, 0.01, 0.015, 1e-5, 1.0, 1e-6)
+    system = _slider(law, m=1.0, k=0.8 * k_c, load=1.0, speed=1e-6)
+    result = ms.simulate_memory(system, kick=0.5)
+    orbit = result.orbit
+    assert orbit is not None
+    scale = mf.state_scales(system, 1e-6)
+    free = [0, 2]  # the section q' = 0 fixes the velocity: position and state move on it
+    jac = np.empty((2, 2))
+    for col, j in enumerate(free):
+        h = 1e-6 * scale[j]
+        images = []
+        for sign in (1.0, -1.0):
+            y = orbit.y0.copy()
+            y[j] += sign * h
+            ret = mc.return_map(system, y, 1e-6, min_time=0.2 * orbit.period,
+                                t_limit=5.0 * orbit.period, rtol=1e-11)
+            assert ret is not None
+            images.append(ret[0][free])
+        jac[:, col] = (images[0] - images[1]) / (2 * h)
+    by_differences = np.sort(np.abs(np.linalg.eigvals(jac)))[::-1]
+    by_variations = np.sort(np.abs(orbit.multipliers))[::-1]
+    print(f"multipliers: variational {by_variations}, differences {by_differences}")
+    assert by_differences[0] == pytest.approx(by_variations[0], rel=1e-4)
+    assert by_differences[1] < 1e-4 and by_variations[1] < 1e-4
