@@ -174,3 +174,23 @@ def test_floquet_multipliers_match_differences_of_the_return_map() -> None:
     print(f"multipliers: variational {by_variations}, differences {by_differences}")
     assert by_differences[0] == pytest.approx(by_variations[0], rel=1e-4)
     assert by_differences[1] < 1e-4 and by_variations[1] < 1e-4
+
+
+def test_slip_reversals_and_quasi_stick_of_the_lugre_cycle() -> None:
+    # on the Canudas de Wit cycle the slider overtakes the belt at the end of each slip (the
+    # smallest slip speed is -3.2e-4 m/s) and the re-stick rings (the bristles' damped
+    # oscillation): the same reversals recur every period
+    law = LuGreFriction(sigma0=1e5, sigma1=math.sqrt(1e5), sigma2=0.4, mu_c=1.0, mu_s=1.5,
+                        stribeck_velocity=1e-3)
+    result = ms.simulate_memory(_slider(law, m=1.0, k=2.0, load=1.0, speed=0.1), kick=-1.0,
+                                t_max=60.0)
+    assert result.min_slip_speed < 0.0
+    times = np.array(result.slip_reversals)
+    assert times.size >= 14
+    assert np.all(np.diff(times) > 0.0)
+    late = times[times > 20.0]
+    per_period = int(np.sum(late < late[0] + 0.5 * result.period))  # one cluster per period
+    assert per_period >= 2
+    assert np.allclose(late[per_period:] - late[:-per_period], result.period, rtol=1e-6)
+    # the stick phase: the spring loads from about F_c to F_s at k V = 0.2 N/s
+    assert 0.3 < result.stick_ratio < 1.0

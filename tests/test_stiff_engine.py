@@ -131,12 +131,12 @@ def test_variational_equations_match_differences() -> None:
     def run(y: np.ndarray, with_phi: bool) -> np.ndarray:
         n = ks.n
         z = np.concatenate([y, np.eye(n).ravel()]) if with_phi else y.copy()
-        stats = np.array([0.0, 0.0, 0.0, 0.0, math.inf, -math.inf])
+        stats = np.array([0.0, 0.0, 0.0, 0.0, math.inf, -math.inf, 0.0])
         status, _, _ = stiff.integrate(ks.kind, ks.law, ks.p, ks.amat, ks.bvec, ks.iv, ks.is_,
                                        ks.kq, z, n, with_phi, 0.0, t1, speed, 1e-11,
                                        1e-11 * scale, 1e-11, 0.0, 100000, np.zeros(0),
                                        np.zeros((0, z.size)), False, 0.0, np.empty(1),
-                                       np.empty((1, z.size)), stats)
+                                       np.empty((1, z.size)), np.empty(0), stats)
         assert status == stiff.STATUS_DONE
         return z
 

@@ -115,14 +115,14 @@ def return_map(system: MemorySystem, y0: FloatArray, speed: float, *, min_time: 
     atol = rtol * state_scales(system, speed)
     for phi_rtol in (rtol, 0.0):
         z = np.concatenate([np.asarray(y0, dtype=np.float64), np.eye(n).ravel()])
-        stats = np.array([0.0, 0.0, 0.0, 0.0, math.inf, -math.inf])
+        stats = np.array([0.0, 0.0, 0.0, 0.0, math.inf, -math.inf, 0.0])
         cross_t = np.empty(1)
         cross_z = np.empty((1, n + n * n))
         status, t, _ = stiff.integrate(ks.kind, ks.law, ks.p, ks.amat, ks.bvec, ks.iv, ks.is_,
                                        ks.kq, z, n, True, 0.0, t_limit, float(speed), rtol, atol,
                                        phi_rtol, 0.0, MAX_STEPS, np.zeros(0),
                                        np.zeros((0, n + n * n)), True, min_time, cross_t, cross_z,
-                                       stats)
+                                       np.empty(0), stats)
         if status == stiff.STATUS_SECTION:
             return z[:n].copy(), z[n:].reshape((n, n)).copy(), float(t)
         if status == stiff.STATUS_DONE:

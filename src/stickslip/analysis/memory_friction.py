@@ -335,6 +335,8 @@ class _Run:
     history: FloatArray | None
     steps: int
     rejected: int
+    reversals: int
+    reversal_times: FloatArray
 
 
 def integrate_run(system: MemorySystem, y0: FloatArray, t_max: float, *,
@@ -371,7 +373,8 @@ def integrate_run(system: MemorySystem, y0: FloatArray, t_max: float, *,
     cross_t = np.empty(MAX_CROSSINGS)
     cross_z = np.empty((MAX_CROSSINGS, ks.n))
     n_cross = 0
-    steps = rejected = 0
+    reversal_t = np.empty(MAX_CROSSINGS)
+    steps = rejected = reversals = 0
     status = stiff.STATUS_DONE
     t = 0.0
     for i, speed in enumerate(sched.speeds):
@@ -379,20 +382,23 @@ def integrate_run(system: MemorySystem, y0: FloatArray, t_max: float, *,
         if t_end <= t:
             break
         atol = rtol * state_scales(system, speed)
-        stats = np.array([0.0, 0.0, 0.0, 0.0, math.inf, -math.inf])
+        stats = np.array([0.0, 0.0, 0.0, 0.0, math.inf, -math.inf, 0.0])
         last = i + 1 == len(sched.speeds)
         status, t, _h = stiff.integrate(ks.kind, ks.law, ks.p, ks.amat, ks.bvec, ks.iv, ks.is_,
                                        ks.kq, z, ks.n, False, t, t_end, float(speed), rtol, atol,
                                        0.0, 0.0, MAX_STEPS, h_times, z_out, False, 0.0, cross_t,
-                                       cross_z, stats)
+                                       cross_z, reversal_t[min(reversals, MAX_CROSSINGS):],
+                                       stats)
         steps += int(stats[0])
         rejected += int(stats[1])
+        reversals += int(stats[6])
         if last:
             n_cross = min(int(stats[3]), MAX_CROSSINGS)
         if status != stiff.STATUS_DONE:
             break
     return _Run(t, z, status, cross_t[:n_cross].copy(), cross_z[:n_cross].copy(),
-                z_out if history_times is not None else None, steps, rejected)
+                z_out if history_times is not None else None, steps, rejected, reversals,
+                reversal_t[:min(reversals, MAX_CROSSINGS)].copy())
 
 
 def observables(system: MemorySystem, y: FloatArray, speeds: FloatArray) -> dict[str, FloatArray]:

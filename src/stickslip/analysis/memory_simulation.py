@@ -74,6 +74,12 @@ class MemoryResult:
         ``t_s``, ``x_m``, ``v_m_s``, ``slip_speed_m_s``, ``mu``, ``state`` at the asked times.
     steps, rejected : int
         Accepted and rejected steps of the run.
+    slip_reversals : list of float
+        Times (s) at which the run's slip speed changed sign (the contact overtook the drive or
+        fell back behind it), the first 4096.
+    stick_ratio : float
+        Fraction of the cycle in quasi-stick (slip speed below ``QUASI_STICK`` times the drive
+        speed, from 4001 samples of the period; NaN without a cycle).
     """
 
     system: MemorySystem
@@ -92,6 +98,8 @@ class MemoryResult:
     rtol: float
     steps: int
     rejected: int
+    slip_reversals: list[float] = field(default_factory=list)
+    stick_ratio: float = math.nan
     history: dict[str, list[float]] | None = field(default=None)
 
     def to_dict(self) -> dict[str, Any]:
@@ -112,6 +120,8 @@ class MemoryResult:
             "t_max_s": float(self.t_max),
             "steps": self.steps,
             "rejected_steps": self.rejected,
+            "slip_reversal_times_s": self.slip_reversals,
+            "stick_ratio": num(self.stick_ratio),
             "steady_sliding": self.steady.to_dict(),
             "steady_sliding_stable": self.steady.stable,
             "growth_rate_per_s": self.steady.growth_rate,
@@ -244,7 +254,8 @@ def simulate_memory(system: MemorySystem, *, t_max: float | None = None, kick: f
                    "state": clean(obs["state"])}
     common: dict[str, Any] = dict(system=system, steady=steady, t_end=run.t, t_max=horizon, initial=y0,
                   initial_description=description, rtol=rtol, steps=run.steps,
-                  rejected=run.rejected, history=history)
+                  rejected=run.rejected, history=history,
+                  slip_reversals=[float(t) for t in run.reversal_times])
     nan = math.nan
     if run.status != stiff.STATUS_DONE:
         why = ("the step budget was used up (typically where the slip speed reverses: near "
@@ -316,7 +327,7 @@ def _cycle_result(system: MemorySystem, orbit: PeriodicOrbit, common: dict[str, 
     return MemoryResult(verdict=verdict, certificate=certificate,
                         reason="a stable periodic orbit attracts the run", orbit=orbit,
                         period=orbit.period, amplitude=amplitude, min_slip_speed=min_slip,
-                        **common)
+                        **{**common, "stick_ratio": float(np.mean(obs["slip"] < QUASI_STICK * v))})
 
 
 

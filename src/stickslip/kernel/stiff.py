@@ -27,8 +27,10 @@ slider a central difference of the analytic ``J`` with relative step ``1e-6``). 
 return to the Poincare section gives the Floquet multipliers and the Newton step of shooting.
 
 Events are located on the dense output: the section ``q_c' = 0`` crossed upwards (each period
-of a periodic motion crosses it once or more, its mean velocity being zero), sampled at
-:data:`EVENT_SAMPLES` points inside each step and bisected to round-off. No Python callback
+of a periodic motion crosses it once or more, its mean velocity being zero) and the slip
+reversals ``q_c' = V``, sampled at :data:`EVENT_SAMPLES` points inside each step and bisected to
+round-off. Quasi-stick (the slip speed below a fraction of ``V``) is judged by the caller on
+the dense output. No Python callback
 runs in the loop: the laws are compiled here, chosen by an integer code.
 """
 
@@ -328,7 +330,8 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
               speed: float, rtol: float, atol: np.ndarray, phi_rtol: float, h_start: float,
               max_steps: int,
               t_out: np.ndarray, z_out: np.ndarray, stop_at_section: bool, section_after: float,
-              cross_t: np.ndarray, cross_z: np.ndarray, stats: np.ndarray) -> tuple[int, float, float]:
+              cross_t: np.ndarray, cross_z: np.ndarray, reversal_t: np.ndarray,
+              stats: np.ndarray) -> tuple[int, float, float]:
     """Integrate ``z = (y, vec Phi)`` from ``t0`` towards ``t1`` (s) at drive speed ``speed``.
 
     Parameters
@@ -370,8 +373,12 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
     cross_t, cross_z : ndarray
         Buffers for the times and states ``y`` of upward section crossings (the first
         ``len(cross_t)`` are kept; ``stats[3]`` counts them all).
+    reversal_t : ndarray
+        Buffer for the times of slip reversals (the slip speed ``V - q_c'`` changes sign,
+        located like the crossings; the first ``len(reversal_t)`` are kept).
     stats : ndarray
-        Out: ``[accepted, rejected, last step h, crossings, min q_c', max q_c']``.
+        Out: ``[accepted, rejected, last step h, crossings, min q_c', max q_c', reversals]``
+        (the caller sets ``stats[4] = inf``, ``stats[5] = -inf``, the rest 0).
 
     Returns
     -------
@@ -525,6 +532,27 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
                     stats[4] = val
                 if val > stats[5]:
                     stats[5] = val
+                if (prev_val < speed) != (val < speed):
+                    # slip reversal: the slip speed V - q_c' changes sign
+                    lo = prev_th
+                    hi = th
+                    below = prev_val < speed
+                    for _b in range(EVENT_BISECTIONS):
+                        mid = 0.5 * (lo + hi)
+                        dense_value(z, znew, c3, c4, mid, zd)
+                        if (contact_speed(kind, law, p, kq, iv, zd[:n], speed) < speed) == below:
+                            lo = mid
+                        else:
+                            hi = mid
+                    nr = int(stats[6])
+                    if nr < reversal_t.shape[0]:
+                        reversal_t[nr] = t + hi * h
+                    stats[6] += 1.0
+                    if js < EVENT_SAMPLES + 1:
+                        dense_value(z, znew, c3, c4, th, zd)
+                    else:
+                        for i in range(nz):
+                            zd[i] = znew[i]
                 if prev_val < 0.0 and val >= 0.0:
                     lo = prev_th
                     hi = th
