@@ -145,7 +145,8 @@ def default_horizon(system: MemorySystem) -> float:
     relaxation ``d_c / V`` and the elastic loading time ``N a / (k V)`` (rate-state), the
     loading time ``mu_s N / (k V)`` (LuGre). When
     steady sliding is unstable with growth rate ``sigma``, at least ``40 / sigma`` (a
-    disturbance grows by ``e^40``).
+    disturbance grows by ``e^40``); when it is stable, at least ``12 / |sigma|`` (a disturbance
+    decays by ``e^-12``), up to 1000 natural times.
 
     Parameters
     ----------
@@ -172,6 +173,8 @@ def default_horizon(system: MemorySystem) -> float:
     span = 100.0 * max(times)
     if growth > 0.0:
         span = max(span, 40.0 / growth)
+    elif growth < 0.0:  # long enough to decay by e^-12 (STEADY_TOLERANCE with a margin), bounded
+        span = max(span, min(12.0 / -growth, 1000.0 * max(times)))
     return system.schedule.times[-1] + span
 
 
