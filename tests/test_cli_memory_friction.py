@@ -210,7 +210,7 @@ v_ref = "1 um/s"
 
 def test_structure_with_rate_state(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     # a 2-DOF structure whose contact spring (2e4 N/m) is stiffer than Rice & Ruina's k_c of
-    # the slider alone, N (b - a)/d_c (1 + m V^2/(N a d_c)) = 5000 * 1.1 = 5500 N/m: steady
+    # the slider alone, N (b - a)/d_c (1 + m V^2/(N a d_c)) = 5000 * 2 = 10000 N/m: steady
     # sliding is stable; kicked, the run returns to it within the default horizon
     path = _file(tmp_path, STRUCTURE)
     code, out, err = _run(["simulate", "--config", str(path), "--initial-kick", "0.5", "--json"],
