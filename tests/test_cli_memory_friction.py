@@ -220,3 +220,18 @@ def test_structure_with_rate_state(tmp_path: Path, capsys: pytest.CaptureFixture
     assert payload["machine"]["n_dof"] == 2
     assert payload["steady_sliding"]["stable"] is True
     assert payload["verdict"] == "steady-sliding"
+
+
+def test_json_gives_the_hopf_stiffness(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # Rice & Ruina (1983): k_c = N (b - a)/d_c (1 + m V^2/(N a d_c)) = 10 * 0.005/1e-5 * 2 = 1e4 N/m
+    text = STRUCTURE.replace("[structure]\nmass = [[1.0, 0.0], [0.0, 2.0]]\n"
+                             "stiffness = [[2e4, -2e4], [-2e4, 6e4]]\n"
+                             "damping = [[0.0, 0.0], [0.0, 5.0]]\ncontact_dof = 0\n",
+                             'm = "1 kg"\nk = "8000 N/m"\n')
+    path = _file(tmp_path, text)
+    code, out, err = _run(["simulate", "--config", str(path), "--t-max", "0.5 s", "--json"], capsys)
+    assert code == 0, err
+    steady = json.loads(out)["steady_sliding"]
+    assert steady["stable"] is False
+    assert steady["rice_ruina_critical_stiffness_N_m"] == pytest.approx(1e4, rel=1e-12)
+    assert steady["critical_stiffness_N_m"] == pytest.approx(1e4, rel=1e-10)

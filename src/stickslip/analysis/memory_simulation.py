@@ -24,9 +24,11 @@ from stickslip.analysis.memory_friction import (
     DEFAULT_RTOL,
     FloatArray,
     SteadySliding,
+    hopf_stiffness,
     integrate_run,
     kernel_system,
     observables,
+    rice_ruina_critical_stiffness,
     speed_at,
     state_scales,
     steady_sliding,
@@ -102,6 +104,25 @@ class MemoryResult:
     stick_ratio: float = math.nan
     history: dict[str, list[float]] | None = field(default=None)
 
+    def _hopf(self) -> dict[str, Any]:
+        """The Hopf boundary in stiffness at the last speed, from the eigenvalues.
+
+        ``critical_stiffness_factor``: the factor on every stiffness at which steady sliding is
+        neutral (None when none in 1e-6 to 1e6); for one DOF also ``critical_stiffness_N_m``,
+        and for the rate-and-state slider Rice and Ruina's closed form beside it.
+        """
+        factor = hopf_stiffness(self.system)
+        out: dict[str, Any] = {"critical_stiffness_factor": factor if math.isfinite(factor) else None}
+        if self.system.n_dof == 1:
+            k = float(self.system.stiffness[0, 0])
+            out["critical_stiffness_N_m"] = factor * k if math.isfinite(factor) else None
+            law = self.system.friction
+            if isinstance(law, RateStateFriction):
+                out["rice_ruina_critical_stiffness_N_m"] = rice_ruina_critical_stiffness(
+                    self.system.load, law.a, law.b, law.d_c, float(self.system.mass[0, 0]),
+                    self.system.schedule.last)
+        return out
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary (SI)."""
         def num(x: float) -> float | None:
@@ -122,7 +143,7 @@ class MemoryResult:
             "rejected_steps": self.rejected,
             "slip_reversal_times_s": self.slip_reversals,
             "stick_ratio": num(self.stick_ratio),
-            "steady_sliding": self.steady.to_dict(),
+            "steady_sliding": {**self.steady.to_dict(), **self._hopf()},
             "steady_sliding_stable": self.steady.stable,
             "growth_rate_per_s": self.steady.growth_rate,
             "cycle": None if self.orbit is None else self.orbit.to_dict(),
