@@ -42,6 +42,7 @@ import numpy as np
 from numba import njit
 
 from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel is stamped with the whole kernel folder)
+from stickslip.kernel import stiff_tableau as rodas
 from stickslip.kernel.stiff_laws import (
     L_F,
     L_FS,
@@ -77,44 +78,6 @@ STATUS_STEP_UNDERFLOW = 3
 EVENT_SAMPLES = 4
 #: Bisection steps of an event time (halves the bracket to below 1e-15 of the step).
 EVENT_BISECTIONS = 60
-
-# RODAS4 (Hairer & Wanner, rodas.f, METH = 1)
-GAM = 0.25
-A21 = 1.544
-A31 = 0.9466785280815826
-A32 = 0.2557011698983284
-A41 = 3.314825187068521
-A42 = 2.896124015972201
-A43 = 0.9986419139977817
-A51 = 1.221224509226641
-A52 = 6.019134481288629
-A53 = 12.53708332932087
-A54 = -0.6878860361058950
-C21 = -5.6688
-C31 = -2.430093356833875
-C32 = -0.2063599157091915
-C41 = -0.1073529058151375
-C42 = -9.594562251023355
-C43 = -20.47028614809616
-C51 = 7.496443313967647
-C52 = -10.24680431464352
-C53 = -33.99990352819905
-C54 = 11.70890893206160
-C61 = 8.083246795921522
-C62 = -7.981132988064893
-C63 = -31.52159432874371
-C64 = 16.31930543123136
-C65 = -6.058818238834054
-D21 = 10.12623508344586
-D22 = -7.487995877610167
-D23 = -34.80091861555747
-D24 = -7.992771707568823
-D25 = 1.025137723295662
-D31 = -0.6762803392801253
-D32 = 6.087714651680015
-D33 = 16.43084320892478
-D34 = 24.76722511418386
-D35 = -6.594389125716872
 
 #: Step-size controller: safety factor and the bounds of one change (Hairer & Wanner's).
 SAFETY = 0.9
@@ -450,7 +413,7 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
         for i in range(n):
             for j in range(n):
                 lu[i, j] = -jac[i, j]
-            lu[i, i] += 1.0 / (GAM * h)
+            lu[i, i] += 1.0 / (rodas.GAM * h)
         if not lu_factor(lu, piv):
             h *= 0.5
             continue
@@ -459,34 +422,36 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
             k1[i] = dz[i]
         _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k1)
         for i in range(nz):
-            zt[i] = z[i] + A21 * k1[i]
+            zt[i] = z[i] + rodas.A21 * k1[i]
         _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
         for i in range(nz):
-            k2[i] = dz[i] + C21 * k1[i] / h
+            k2[i] = dz[i] + rodas.C21 * k1[i] / h
         _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k2)
         for i in range(nz):
-            zt[i] = z[i] + A31 * k1[i] + A32 * k2[i]
+            zt[i] = z[i] + rodas.A31 * k1[i] + rodas.A32 * k2[i]
         _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
         for i in range(nz):
-            k3[i] = dz[i] + (C31 * k1[i] + C32 * k2[i]) / h
+            k3[i] = dz[i] + (rodas.C31 * k1[i] + rodas.C32 * k2[i]) / h
         _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k3)
         for i in range(nz):
-            zt[i] = z[i] + A41 * k1[i] + A42 * k2[i] + A43 * k3[i]
+            zt[i] = z[i] + rodas.A41 * k1[i] + rodas.A42 * k2[i] + rodas.A43 * k3[i]
         _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
         for i in range(nz):
-            k4[i] = dz[i] + (C41 * k1[i] + C42 * k2[i] + C43 * k3[i]) / h
+            k4[i] = dz[i] + (rodas.C41 * k1[i] + rodas.C42 * k2[i] + rodas.C43 * k3[i]) / h
         _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k4)
         for i in range(nz):
-            zt[i] = z[i] + A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i]
+            zt[i] = z[i] + rodas.A51 * k1[i] + rodas.A52 * k2[i] + rodas.A53 * k3[i] + rodas.A54 * k4[i]
         _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
         for i in range(nz):
-            k5[i] = dz[i] + (C51 * k1[i] + C52 * k2[i] + C53 * k3[i] + C54 * k4[i]) / h
+            k5[i] = dz[i] + (rodas.C51 * k1[i] + rodas.C52 * k2[i] + rodas.C53 * k3[i]
+                             + rodas.C54 * k4[i]) / h
         _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k5)
         for i in range(nz):
             zt[i] += k5[i]
         _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
         for i in range(nz):
-            k6[i] = dz[i] + (C61 * k1[i] + C62 * k2[i] + C63 * k3[i] + C64 * k4[i] + C65 * k5[i]) / h
+            k6[i] = dz[i] + (rodas.C61 * k1[i] + rodas.C62 * k2[i] + rodas.C63 * k3[i]
+                             + rodas.C64 * k4[i] + rodas.C65 * k5[i]) / h
         _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k6)
         err = 0.0
         finite = True
@@ -513,8 +478,10 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
         if err <= 1.0:
             # accepted: dense output, events, outputs
             for i in range(nz):
-                c3[i] = D21 * k1[i] + D22 * k2[i] + D23 * k3[i] + D24 * k4[i] + D25 * k5[i]
-                c4[i] = D31 * k1[i] + D32 * k2[i] + D33 * k3[i] + D34 * k4[i] + D35 * k5[i]
+                c3[i] = (rodas.D21 * k1[i] + rodas.D22 * k2[i] + rodas.D23 * k3[i] + rodas.D24 * k4[i]
+                         + rodas.D25 * k5[i])
+                c4[i] = (rodas.D31 * k1[i] + rodas.D32 * k2[i] + rodas.D33 * k3[i] + rodas.D34 * k4[i]
+                         + rodas.D35 * k5[i])
             t_new = t + h
             stop = False
             # section crossings: sample the dense output, bisect the first sign change upwards
