@@ -63,6 +63,15 @@ _EXPORTS: dict[str, str] = {
     "DvaSpec": "stickslip.model.dva",
     # analysis: one simulation and its verdict
     "simulate": "stickslip.analysis.simulation",
+    # friction with memory (rate-and-state, LuGre): the smooth stiff engine
+    "RateStateFriction": "stickslip.model.state_friction",
+    "LuGreFriction": "stickslip.model.state_friction",
+    "MemorySystem": "stickslip.model.state_friction",
+    "SpeedSchedule": "stickslip.model.state_friction",
+    "MemoryResult": "stickslip.analysis.memory_simulation",
+    "simulate_memory": "stickslip.analysis.memory_simulation",
+    "hopf_stiffness": "stickslip.analysis.memory_friction",
+    "rice_ruina_critical_stiffness": "stickslip.analysis.memory_friction",
     "EngineOptions": "stickslip.analysis.simulation",
     "SimulationResult": "stickslip.analysis.simulation",
     "TimeHistory": "stickslip.analysis.simulation",
@@ -163,20 +172,25 @@ __all__ = [
     "IdentificationResult",
     "InitialState",
     "LinearFriction",
+    "LuGreFriction",
     "MapConfig",
     "MeasuredRecord",
+    "MemoryResult",
+    "MemorySystem",
     "Mode",
     "OccurrenceMap",
     "PhysicalFoundation",
     "PhysicalFriction",
     "PhysicalSystem",
     "PlotResult",
+    "RateStateFriction",
     "ResponseCurves",
     "ResponsePeak",
     "RunStatus",
     "SafeDisturbance",
     "SimulationResult",
     "Slider",
+    "SpeedSchedule",
     "StabilityTuning",
     "SteadySlidingStability",
     "StickSlipTuning",
@@ -207,6 +221,7 @@ __all__ = [
     "foundation_to_dimensionless",
     "foundation_to_physical",
     "frequency_response",
+    "hopf_stiffness",
     "hopf_weakenings",
     "identify",
     "lowest_onset",
@@ -224,10 +239,12 @@ __all__ = [
     "resolve_dva",
     "response_curves",
     "response_peak",
+    "rice_ruina_critical_stiffness",
     "rigid_base",
     "safe_disturbance",
     "sample_box",
     "simulate",
+    "simulate_memory",
     "stability_margin",
     "startup_state",
     "steady_sliding_stability",
@@ -280,6 +297,8 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from stickslip.analysis.identification import identify
     from stickslip.analysis.identification_estimates import MeasuredRecord
     from stickslip.analysis.identification_result import IdentificationResult
+    from stickslip.analysis.memory_friction import hopf_stiffness, rice_ruina_critical_stiffness
+    from stickslip.analysis.memory_simulation import MemoryResult, simulate_memory
     from stickslip.analysis.simulation import EngineOptions, SimulationResult, TimeHistory, simulate
     from stickslip.analysis.stability import (
         SteadySlidingStability,
@@ -314,6 +333,12 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         PhysicalSystem,
         foundation_to_dimensionless,
         foundation_to_physical,
+    )
+    from stickslip.model.state_friction import (
+        LuGreFriction,
+        MemorySystem,
+        RateStateFriction,
+        SpeedSchedule,
     )
     from stickslip.model.structure import Structure, chain_structure, elastic_foundation, rigid_base
     from stickslip.model.units import to_si

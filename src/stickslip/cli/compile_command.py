@@ -44,6 +44,10 @@ contact_dof = 1
 #: stick-slip point on a foundation, so the cycle proof's kernels (N DOF) are warmed with
 #: the engine's.
 WARM_UP_RUNS: tuple[tuple[str, tuple[str, ...]], ...] = (
+    ("friction with memory (stiff engine, shooting)",
+     ("simulate", "--lam", "7.07", "--zeta", "0", "--friction",
+      "lugre:sigma0=5e4,sigma1=223.6,sigma2=0.283,mu_c=1,mu_s=1.5,vs=0.01", "--initial-kick", "-1",
+      "--t-max", "80", "--json")),
     ("basin (velocity-dependent friction)",
      ("basin", "--lam", "2", "--zeta", "0.1", "--friction", "stribeck:vs=0.2", "--samples", "1000",
       "--json")),

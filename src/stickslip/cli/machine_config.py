@@ -62,6 +62,16 @@ def load_machine_file(config: Path, *, normal_coupling: bool = False) -> Machine
     return machine_file
 
 
+def refuse_memory_law(machine_file: MachineFile) -> None:
+    """Commands other than ``simulate`` take the curve laws only: say so in one line."""
+    if machine_file.has_memory_law:
+        assert machine_file.friction_table is not None
+        raise BadInput(f"{machine_file.label}: [friction] law = "
+                       f"{machine_file.friction_table['law']!r} is a friction law with memory: "
+                       "`stickslip simulate --config` runs it; this command takes the curve laws "
+                       "(coulomb, linear, table, stribeck)")
+
+
 def refuse_mix(ctx: typer.Context, config: Path | None,
                names: Sequence[str] = DIMENSIONLESS_OPTIONS) -> None:
     """Refuse options of ``names`` given on the command line together with ``--config``.
@@ -117,6 +127,8 @@ def collect_inputs(flags: Mapping[str, Any], config: Path | None, *,
 
     machine_file = (load_machine_file(config, normal_coupling=normal_coupling)
                     if config is not None else None)
+    if machine_file is not None:
+        refuse_memory_law(machine_file)
     merged: dict[str, Any] = dict(machine_file.raw) if machine_file is not None else {}
     given_flags = {key: value for key, value in flags.items() if is_given(value)}
     from_file = set(merged) - set(given_flags)
@@ -243,6 +255,7 @@ def configured_machine(config: Path) -> ConfiguredMachine:
     from stickslip.model.machine import machine_from_physical_system
 
     machine_file = load_machine_file(config)
+    refuse_memory_law(machine_file)
     try:
         if not machine_file.has_structure:
             system = config_system(config)

@@ -30,7 +30,63 @@ CONFIG = Annotated[Path | None, typer.Option(
     "--config", help="machine.toml in SI (the paper's m, k, c or a [structure] table, [friction]): "
     "one run of that machine, answers in seconds and metres beside the dimensionless ones; "
     "not with --lam, --zeta, --gamma, --dva, --k-scale, --friction")]
-T_MAX = Annotated[float, typer.Option("--t-max", help="dimensionless time horizon")]
+T_MAX = Annotated[str | None, typer.Option(
+    "--t-max", help="time horizon: dimensionless tau (default 5000), or a time with units with "
+    "--config (\"40 s\"); for friction with memory a bare number is tau = omega_n t and the "
+    "default covers 100 natural times")]
+HISTORY_TIMES = Annotated[str | None, typer.Option(
+    "--history-times", help="A:B:N: add `history` (t_s, x_m, v_m_s, mu, state) at N times from A "
+    "to B seconds (--config with a friction law with memory)")]
+INITIAL_KICK = Annotated[float | None, typer.Option(
+    "--initial-kick", help="F: start with the slip speed at (1 + F) V, the contact moving at -F V, "
+    "positions and state of steady sliding (--config with a friction law with memory)")]
+
+#: Most ``--history-times`` points.
+MAX_HISTORY_POINTS = 1_000_000
+
+
+def parse_history_times(text: str) -> Any:
+    """``A:B:N`` -> N equally spaced times from A to B seconds (numpy array)."""
+    import numpy as np
+
+    parts = text.split(":")
+    try:
+        if len(parts) != 3:
+            raise ValueError
+        a, b, n = float(parts[0]), float(parts[1]), int(parts[2])
+    except ValueError:
+        raise BadInput(f"--history-times {text!r} must be A:B:N (seconds from A to B, N points), "
+                       "e.g. 0:40:401") from None
+    if not (np.isfinite(a) and np.isfinite(b)) or a < 0.0 or b < a:
+        raise BadInput(f"--history-times {text!r}: need 0 <= A <= B (seconds)")
+    if not 1 <= n <= MAX_HISTORY_POINTS:
+        raise BadInput(f"--history-times {text!r}: N = {n} must be from 1 to {MAX_HISTORY_POINTS}")
+    return np.linspace(a, b, n)
+
+
+def parse_t_max(text: str | None, time_scale: float | None) -> float | None:
+    """``--t-max``: a bare number is dimensionless (returned as is); a time with units is turned
+    into tau with ``time_scale`` (s per unit tau; None: no machine file, refused)."""
+    if text is None:
+        return None
+    try:
+        value = float(text)
+    except ValueError:
+        value = None
+    if value is not None:  # checked by the engine's options, with their messages
+        return value
+    from stickslip.model.units import to_si
+
+    try:
+        seconds = to_si("time", text, source="--t-max")
+    except ValueError as exc:
+        raise BadInput(str(exc)) from None
+    if not seconds > 0.0:
+        raise BadInput(f"--t-max {text!r} must be positive")
+    if time_scale is None:
+        raise BadInput(f"--t-max {text!r}: a time with units needs --config (the machine's time "
+                       "scale); without it give dimensionless tau, e.g. --t-max 5000")
+    return seconds / time_scale
 
 
 def parse_initial(text: str, n_dof: int) -> InitialState | None:
@@ -61,7 +117,7 @@ def simulate(
     gamma: GAMMA = 2.0,
     dva: DVA = "none",
     k_scale: K_SCALE = 1.0,
-    t_max: T_MAX = 5000.0,
+    t_max: T_MAX = None,
     initial: Annotated[
         str,
         typer.Option("--initial", help="startup (default), or 2n comma-separated numbers for n "
@@ -79,6 +135,8 @@ def simulate(
     ] = 0.0,
     friction: FRICTION = "coulomb",
     overwrite: OVERWRITE = False,
+    history_times: HISTORY_TIMES = None,
+    initial_kick: INITIAL_KICK = None,
     json: JSON = False,
 ) -> None:
     """One simulation: certified verdict, period, amplitude, events.
@@ -99,12 +157,32 @@ def simulate(
     foundation = None
     run = None
     if config is not None:
+        from stickslip.cli.machine_config import load_machine_file
+
+        machine_file = load_machine_file(config)
+        if machine_file.has_memory_law:
+            _simulate_memory(ctx, machine_file, t_max=t_max, history_times=history_times,
+                             initial_kick=initial_kick, plot=plot, json=json)
+            return
+    memory_law = friction.strip().lower().startswith(("rate-state:", "lugre:"))
+    for name, value in (("--history-times", history_times), ("--initial-kick", initial_kick)):
+        if value is not None and not memory_law:
+            raise BadInput(f"{name} works with a friction law with memory (--friction "
+                           "rate-state:... or lugre:..., or --config with [friction] law = "
+                           "\"rate-state\" or \"lugre\")")
+    if config is not None:
         run = configured_machine(config)
         structure, slider = run.structure, run.slider
         check_run_limits(slider.lam, slider.gamma, max_events=max_events, plot_from=t_plot_start)
     else:
         require_dimensionless(lam=lam, zeta=zeta)
         assert lam is not None and zeta is not None
+        if memory_law:
+            _simulate_memory_dimensionless(ctx, lam=lam, zeta=zeta, dva=dva, k_scale=k_scale,
+                                           friction=friction, t_max=t_max,
+                                           history_times=history_times,
+                                           initial_kick=initial_kick, plot=plot, json=json)
+            return
         slider = Slider(lam, gamma=gamma, friction=parse_friction_option(friction))
         check_run_limits(slider.lam, slider.gamma, max_events=max_events, plot_from=t_plot_start)
         foundation = parse_dva(dva, zeta, k_scale)
@@ -114,8 +192,10 @@ def simulate(
         check_figure_path(plot, overwrite=overwrite)
     if config is None:
         warn_fitted_range(dva, [zeta])
+    horizon = parse_t_max(t_max, None if run is None else run.reference.time_scale)
     result = run_simulation(structure, slider, initial=init,
-                            options=EngineOptions(t_max=t_max, max_events=max_events))
+                            options=EngineOptions(t_max=5000.0 if horizon is None else horizon,
+                                                  max_events=max_events))
     payload = result.to_dict()
     if run is not None and config is not None:
         payload.update(machine_answers(payload, run, config))
@@ -134,6 +214,131 @@ def simulate(
         print_json(payload)
         return
     _print_summary(payload)
+
+
+def _refuse_exact_engine_options(ctx: typer.Context, plot: Path | None,
+                                 names: tuple[str, ...] = ("initial", "max_events", "t_plot_start"),
+                                 ) -> None:
+    """Options of the exact engine, typed next to a friction law with memory: one line."""
+    typed = [name for name in names
+             if getattr(ctx.get_parameter_source(name), "name", None) == "COMMANDLINE"]
+    if typed or plot is not None:
+        flags = ", ".join(["--" + n.replace("_", "-").replace("t-plot-start", "plot-from")
+                           for n in typed] + (["--plot"] if plot is not None else []))
+        raise BadInput(f"{flags} cannot be given with a friction law with memory (use "
+                       "--initial-kick, --history-times, --t-max)")
+
+
+def _simulate_memory_dimensionless(ctx: typer.Context, *, lam: float, zeta: float, dva: str,
+                                   k_scale: float, friction: str, t_max: str | None,
+                                   history_times: str | None, initial_kick: float | None,
+                                   plot: Path | None, json: bool) -> None:
+    """``--friction rate-state:...`` / ``lugre:...``: the dimensionless system on the stiff engine.
+
+    The system in the slider's units (``m = k = 1``, drive speed 1, time tau = omega_n t):
+    the structure of ``--zeta`` and ``--dva``, the normal load ``--lam`` (for these laws the
+    load number ``W / (V sqrt(m k))``), the law's numbers as
+    :func:`stickslip.model.state_friction_input.parse_state_friction` reads them. Answers are
+    dimensionless (``period``, ``amplitude``; the ``*_s`` and ``*_m`` keys are then in tau
+    and ``V / omega_n``).
+    """
+    from stickslip.analysis.memory_simulation import simulate_memory
+    from stickslip.model import chain_structure
+    from stickslip.model.state_friction import MemorySystem, SpeedSchedule
+    from stickslip.model.state_friction_input import parse_state_friction
+
+    _refuse_exact_engine_options(ctx, plot, ("initial", "max_events", "t_plot_start", "gamma"))
+    raw = friction.strip()
+    kind, _, arg = raw.partition(":")
+    try:
+        law = parse_state_friction(kind.strip().lower(), arg, raw)
+    except ValueError as exc:
+        raise BadInput(f"--friction: {exc}") from None
+    foundation = parse_dva(dva, zeta, k_scale)
+    structure = chain_structure(zeta, () if foundation is None else (foundation,))
+    try:
+        system = MemorySystem(structure.mass, structure.damping, structure.stiffness,
+                              structure.contact_dof, lam, law, SpeedSchedule.constant(1.0))
+    except ValueError as exc:
+        raise BadInput(str(exc)) from None
+    horizon = parse_t_max(t_max, None)
+    times = None if history_times is None else parse_history_times(history_times)
+    try:
+        result = simulate_memory(system, t_max=horizon, kick=initial_kick or 0.0,
+                                 history_times=times)
+    except ValueError as exc:
+        raise BadInput(str(exc)) from None
+    payload = result.to_dict()
+    payload.update({"period": payload["period_s"], "amplitude": payload["amplitude_m"],
+                    "lambda": lam, "zeta": zeta, "units": "dimensionless: m = k = V = 1, "
+                    "time tau = omega_n t, lengths in V / omega_n, load = lambda"})
+    if json:
+        print_json(payload)
+        return
+    typer.echo(f"verdict     {payload['verdict']}\ncertificate "
+               f"{payload['certificate'] or '- (' + payload['status_message'] + ')'}\n"
+               f"period      {payload['period']}   amplitude {payload['amplitude']} (dimensionless)")
+
+
+def _simulate_memory(ctx: typer.Context, machine_file: Any, *, t_max: str | None,
+                     history_times: str | None, initial_kick: float | None, plot: Path | None,
+                     json: bool) -> None:
+    """``simulate --config`` with a friction law with memory: the smooth stiff engine, in SI."""
+    import math
+
+    from stickslip.analysis.memory_simulation import simulate_memory
+
+    _refuse_exact_engine_options(ctx, plot)
+    try:
+        system = machine_file.memory_system()
+    except ValueError as exc:
+        raise BadInput(str(exc)) from None
+    time_scale = None
+    if not system.quasi_static:
+        c = system.contact_dof
+        time_scale = math.sqrt(float(system.mass[c, c]) / float(system.stiffness[c, c]))
+    if t_max is not None and time_scale is None:
+        try:
+            float(t_max)
+        except ValueError:
+            pass
+        else:
+            raise BadInput(f"--t-max {t_max!r}: the quasi-static slider (m = 0) has no natural "
+                           "time; give a time with units, e.g. --t-max \"40 s\"")
+    horizon_tau = parse_t_max(t_max, time_scale if time_scale is not None else 1.0)
+    horizon = None
+    if horizon_tau is not None:
+        horizon = horizon_tau * (1.0 if time_scale is None else time_scale)
+    times = None if history_times is None else parse_history_times(history_times)
+    try:
+        result = simulate_memory(system, t_max=horizon, kick=initial_kick or 0.0,
+                                 history_times=times)
+    except ValueError as exc:
+        raise BadInput(str(exc)) from None
+    payload = result.to_dict()
+    payload["config"] = str(machine_file.path)
+    if json:
+        print_json(payload)
+        return
+
+    def fmt(x: object) -> str:
+        return "-" if x is None else (f"{x:.6g}" if isinstance(x, float) else str(x))
+
+    steady = payload["steady_sliding"]
+    typer.echo("\n".join([
+        f"machine     {payload['config']}: {system.n_dof} DOF"
+        + (" (quasi-static slider, m = 0)" if system.quasi_static else ""),
+        f"friction    {payload['friction']['description']}",
+        f"verdict     {payload['verdict']}",
+        f"certificate {payload['certificate'] or '- (' + payload['status_message'] + ')'}",
+        f"period      {fmt(payload['period_s'])} s   amplitude {fmt(payload['amplitude_m'])} m",
+        f"sliding     steady sliding at {fmt(steady['speed_m_s'])} m/s is "
+        + ("linearly stable" if steady["stable"] else "linearly UNSTABLE")
+        + f" (growth rate {fmt(steady['growth_rate_per_s'])} 1/s)",
+        f"initial     {payload['initial_condition']}",
+        f"run         {fmt(payload['t_end_s'])} s, {payload['steps']} steps "
+        f"({payload['rejected_steps']} rejected)",
+    ]))
 
 
 def machine_answers(payload: dict[str, Any], run: ConfiguredMachine, config: Path) -> dict[str, Any]:

@@ -135,6 +135,10 @@ class MachineFile:
         if self.friction_table is None:
             return PhysicalFriction()
         source = f"{self.label}: [friction]"
+        if self.has_memory_law:
+            raise ValueError(f"{source} law = {self.friction_table['law']!r} is a friction law with "
+                             "memory: `stickslip simulate --config` runs it; this command takes the "
+                             "curve laws (coulomb, linear, table, stribeck)")
         columns = None
         if self.files is not None and "table" in self.friction_table:
             from stickslip.model.friction_input import friction_csv_columns
@@ -148,6 +152,32 @@ class MachineFile:
             columns = friction_csv_columns(text, repr(spec))
         return physical_friction_from_config(self.friction_table, base_dir=self.path.parent,
                                              source=source, table_columns=columns)
+
+    @property
+    def has_memory_law(self) -> bool:
+        """True when ``[friction]`` names a law with memory (``rate-state`` or ``lugre``)."""
+        from stickslip.model.state_friction_input import is_memory_law
+
+        return is_memory_law(self.friction_table)
+
+    def memory_system(self) -> Any:
+        """The :class:`~stickslip.model.state_friction.MemorySystem` of a file with a memory law.
+
+        The paper's slider (``m``, ``k``, ``c``; ``m = "0 kg"`` the quasi-static slider;
+        ``m_a``, ``k_a``, ``c_a`` a foundation) or a ``[structure]`` (at most
+        :data:`~stickslip.model.machine.MAX_DIRECT_DOF` DOF, or with a ``cutoff``).
+        """
+        from stickslip.model.state_friction_input import memory_system_from_config
+
+        assert self.friction_table is not None
+        structure = None
+        if self.structure_table is not None:
+            m, c, k, contact, _name, _reduction = build_structure(
+                self.structure_table, base_dir=self.path.parent, source=f"{self.label}: [structure]",
+                absorber=None, operating_point=None, files=self.files, max_dof=self.max_dof)
+            structure = (m, c, k, contact)
+        return memory_system_from_config(self.raw, self.friction_table, label=self.label,
+                                         structure=structure)
 
     def absorber(self) -> AbsorberSpec | None:
         """The ``[absorber]`` table, checked (mass in kg; ``attach_dof`` or ``attach``)."""

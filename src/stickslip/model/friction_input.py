@@ -210,6 +210,9 @@ def parse_friction(text: str) -> FrictionLaw:
             raise ValueError(f"friction law {raw!r}: {exc}") from None
     if kind == "table" and arg:
         return _dimensionless_table(raw, arg.strip())
+    if kind in ("rate-state", "lugre"):
+        raise ValueError(f"friction law {raw!r}: friction with memory runs on `stickslip simulate` "
+                         "(--friction rate-state:... or lugre:..., or --config) only")
     if kind == "stribeck" and arg:
         names = STRIBECK_KEYS
         values: dict[str, float] = {}

@@ -35,6 +35,24 @@ FRICTION_QUANTITIES: dict[str, tuple[str, str, str]] = {
     "tolerance": ("", "", "Stribeck law: law approximation error in units of lambda"),
 }
 
+#: Quantities of the friction laws with memory (``law = "rate-state"`` or ``"lugre"``,
+#: :mod:`stickslip.model.state_friction`), kept apart from ``FRICTION_QUANTITIES`` (the curve
+#: laws' keys, which the app lists as fields).
+MEMORY_FRICTION_QUANTITIES: dict[str, tuple[str, str, str]] = {
+    "a": ("", "", "rate-state direct-effect parameter a"),
+    "b": ("", "", "rate-state evolution-effect parameter b"),
+    "d_c": ("[length]", "m", "rate-state characteristic slip distance d_c"),
+    "mu_ref": ("", "", "rate-state friction coefficient at v_ref"),
+    "v_ref": ("[velocity]", "m/s", "rate-state reference slip speed v_ref"),
+    "sigma0": ("[force] / [length]", "N/m", "LuGre bristle stiffness sigma0"),
+    "sigma1": ("[force] * [time] / [length]", "N s/m", "LuGre bristle damping sigma1"),
+    "sigma2": ("[force] * [time] / [length]", "N s/m", "LuGre viscous friction sigma2"),
+    "mu_c": ("", "", "LuGre Coulomb friction coefficient mu_c"),
+    "lugre_mu_s": ("", "", "LuGre static friction coefficient mu_s"),
+    "lugre_stribeck_velocity": ("[velocity]", "m/s", "LuGre Stribeck velocity v_s"),
+    "time": ("[time]", "s", "time"),
+}
+
 #: Quantities of the ``[structure]`` and ``[absorber]`` tables (DESIGN.md section 10): the unit
 #: of each matrix's entries, modal data and the absorber.
 STRUCTURE_QUANTITIES: dict[str, tuple[str, str, str]] = {
@@ -123,7 +141,8 @@ def to_si(name: str, value: str | float | int, *, source: str | None = None) -> 
     float
         The value in SI units.
     """
-    table = next(t for t in (QUANTITIES, FRICTION_QUANTITIES, STRUCTURE_QUANTITIES) if name in t)
+    table = next(t for t in (QUANTITIES, FRICTION_QUANTITIES, STRUCTURE_QUANTITIES,
+                             MEMORY_FRICTION_QUANTITIES) if name in t)
     dim, si_unit, what = table[name]
     flag = source or f"--{name.replace('_', '-')}"
     if isinstance(value, bool) or not isinstance(value, (int, float, str)):

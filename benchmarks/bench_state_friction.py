@@ -1,0 +1,177 @@
+"""Benchmark: the smooth stiff engine against scipy's solve_ivp with a Python right-hand side.
+
+Usage::
+
+    .venv/bin/python benchmarks/bench_state_friction.py
+
+Measured on the 2-core development machine, shared with other jobs (times vary by tens of
+per cent run to run)::
+
+    velocity step (quasi-static rate-and-state): engine rtol 1e-8, error 3.37e-07, 0.29 ms
+      scipy LSODA rtol 1e-09: error 9.89e-08, 5.4 ms, ratio 18.5x
+      scipy Radau rtol 1e-08: error 1.43e-07, 69.3 ms, ratio 238.4x
+    LuGre stick-slip (Canudas de Wit et al. 1995): engine rtol 1e-8, error 1.99e-06, 6.71 ms
+      scipy LSODA rtol 1e-10: error 1.62e-06, 226.9 ms, ratio 33.8x
+      scipy Radau rtol 1e-08: error 6.26e-07, 2352.6 ms, ratio 350.7x
+
+Two runs (docs/friction_memory.md): a velocity step of the quasi-static rate-and-state slider
+(1 -> 10 um/s at 10 s, 20 s) and the LuGre stick-slip example of Canudas de Wit et al. (1995),
+30 s from stick. The baseline is what ``rsfmodel`` does: scipy integrating a Python right-hand
+side (LSODA, the method of ``odeint``, and Radau with the analytic Jacobian in Python). Equal
+accuracy: the engine runs at ``rtol = 1e-8``; its largest error at 200 (resp. 300) output times,
+in units of each component's scale, against a reference (the engine at ``rtol = 1e-12``,
+which agrees with scipy's DOP853 at 1e-13 to 3e-9, tests/test_stiff_engine.py) sets the target;
+each baseline runs at the loosest of ``rtol = 1e-6, 1e-7, ..., 1e-12`` that meets it. Times are
+the best of 3 (engine compiled beforehand). The ratio is baseline time over engine time.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+
+import numpy as np
+import scipy.integrate
+
+from stickslip.analysis.memory_friction import integrate_run, state_scales, steady_state
+from stickslip.analysis.memory_simulation import initial_state
+from stickslip.model.state_friction import (
+    LuGreFriction,
+    MemorySystem,
+    RateStateFriction,
+    SpeedSchedule,
+)
+
+RS = RateStateFriction(a=0.01, b=0.008, d_c=10e-6, mu_ref=0.6, v_ref=1e-6)
+STEP = MemorySystem(np.zeros((1, 1)), np.zeros((1, 1)), np.array([[1e7]]), 0, 1e3, RS,
+                    SpeedSchedule((0.0, 10.0), (1e-6, 1e-5)))
+LUGRE = LuGreFriction(sigma0=1e5, sigma1=math.sqrt(1e5), sigma2=0.4, mu_c=1.0, mu_s=1.5,
+                      stribeck_velocity=1e-3)
+CANUDAS = MemorySystem(np.array([[1.0]]), np.array([[0.0]]), np.array([[2.0]]), 0, 1.0, LUGRE,
+                       SpeedSchedule.constant(0.1))
+
+Rhs = Callable[[float, np.ndarray], np.ndarray]
+
+
+def step_rhs(speed: float) -> tuple[Rhs, Rhs]:
+    """Quasi-static slider, aging law in psi: ``x' = V - v(x, psi)``; and its Jacobian."""
+    a, b, dc, mu0, vref, load, k = RS.a, RS.b, RS.d_c, RS.mu_ref, RS.v_ref, 1e3, 1e7
+
+    def f(_t: float, y: np.ndarray) -> np.ndarray:
+        x, psi = y
+        v = 2.0 * vref * math.exp(-psi / a) * math.sinh(k * x / (load * a))
+        return np.array([speed - v, (b / dc) * (vref * math.exp((mu0 - psi) / b) - abs(v))])
+
+    def jac(_t: float, y: np.ndarray) -> np.ndarray:
+        x, psi = y
+        c = 2.0 * vref * math.exp(-psi / a)
+        v = c * math.sinh(k * x / (load * a))
+        vx = c * math.cosh(k * x / (load * a)) * k / (load * a)
+        vp = -v / a
+        s = math.copysign(1.0, v)
+        gp = -(vref / dc) * math.exp((mu0 - psi) / b)
+        return np.array([[-vx, -vp], [-(b / dc) * s * vx, -(b / dc) * s * vp + gp]])
+
+    return f, jac
+
+
+def lugre_rhs(speed: float) -> tuple[Rhs, Rhs]:
+    """LuGre slider ``m x'' + k x = F``, ``v = V - x'``; and a Jacobian by differences."""
+    s0, s1, s2, mc, ms, vs = 1e5, math.sqrt(1e5), 0.4, 1.0, 1.5, 1e-3
+
+    def f(_t: float, y: np.ndarray) -> np.ndarray:
+        x, xd, z = y
+        v = speed - xd
+        g = mc + (ms - mc) * math.exp(-((v / vs) ** 2))
+        dz = v - s0 * abs(v) * z / g
+        force = s0 * z + s1 * dz + s2 * v
+        return np.array([xd, -2.0 * x + force, dz])
+
+    def jac(t: float, y: np.ndarray) -> np.ndarray:
+        out = np.empty((3, 3))
+        for j in range(3):
+            h = 1e-8 * max(abs(y[j]), 1e-6)
+            e = np.zeros(3)
+            e[j] = h
+            out[:, j] = (f(t, y + e) - f(t, y - e)) / (2 * h)
+        return out
+
+    return f, jac
+
+
+def scipy_run(system: MemorySystem, make: Callable[[float], tuple[Rhs, Rhs]], y0: np.ndarray,
+              times: np.ndarray, method: str, rtol: float) -> np.ndarray:
+    """The baseline through the schedule, states at ``times``."""
+    sched = system.schedule
+    rows = [y0] if times[0] == 0.0 else []
+    y = y0
+    for i, speed in enumerate(sched.speeds):
+        t0 = sched.times[i]
+        t1 = sched.times[i + 1] if i + 1 < len(sched.times) else float(times[-1])
+        f, jac = make(speed)
+        inside = times[(times > t0) & (times <= t1)]
+        options = {"jac": jac} if method == "Radau" else {}
+        sol = scipy.integrate.solve_ivp(f, (t0, t1), y, method=method, rtol=rtol,
+                                        atol=rtol * state_scales(system, speed), t_eval=inside,
+                                        **options)
+        if not sol.success:
+            raise RuntimeError(sol.message)
+        rows += list(sol.y.T)
+        y = sol.y[:, -1] if sol.t.size and sol.t[-1] == t1 else scipy.integrate.solve_ivp(
+            f, (t0, t1), y, method=method, rtol=rtol,
+            atol=rtol * state_scales(system, speed), **options).y[:, -1]
+    return np.array(rows)
+
+
+def best_of(fn: Callable[[], object], repeat: int = 3) -> float:
+    """Fastest wall time of ``repeat`` calls, s."""
+    best = math.inf
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        best = min(best, time.perf_counter() - t0)
+    return best
+
+
+def case(name: str, system: MemorySystem, make: Callable[[float], tuple[Rhs, Rhs]],
+         y0: np.ndarray, t_end: float, n_out: int) -> None:
+    times = np.linspace(0.0, t_end, n_out)
+    scale = state_scales(system, system.schedule.last)
+
+    def engine(rtol: float) -> np.ndarray:
+        run = integrate_run(system, y0, t_end, rtol=rtol, history_times=times)
+        assert run.history is not None
+        return run.history
+
+    reference = engine(1e-12)
+    target = float(np.max(np.abs(engine(1e-8) - reference) / scale))
+    t_engine = best_of(lambda: engine(1e-8))
+    print(f"{name}: engine rtol 1e-8, error {target:.2e}, {t_engine * 1e3:.2f} ms")
+    for method in ("LSODA", "Radau"):
+        for exponent in range(6, 13):
+            rtol = 10.0 ** -exponent
+            try:
+                err = float(np.max(np.abs(scipy_run(system, make, y0, times, method, rtol)
+                                          - reference) / scale))
+            except RuntimeError:
+                continue
+            if err <= target:
+                t_base = best_of(lambda m=method, r=rtol: scipy_run(system, make, y0, times, m, r))
+                print(f"  scipy {method:5s} rtol {rtol:.0e}: error {err:.2e}, {t_base * 1e3:.1f} ms, "
+                      f"ratio {t_base / t_engine:.1f}x")
+                break
+        else:
+            print(f"  scipy {method:5s}: no rtol down to 1e-12 reached the engine's accuracy")
+
+
+def main() -> None:
+    integrate_run(STEP, steady_state(STEP, 1e-6), 1.0)  # compile
+    case("velocity step (quasi-static rate-and-state)", STEP, step_rhs,
+         steady_state(STEP, 1e-6), 20.0, 201)
+    case("LuGre stick-slip (Canudas de Wit et al. 1995)", CANUDAS, lugre_rhs,
+         initial_state(CANUDAS, -1.0)[0], 30.0, 301)
+
+
+if __name__ == "__main__":
+    main()

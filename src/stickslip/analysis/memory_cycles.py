@@ -1,0 +1,223 @@
+"""Periodic orbits of structures with friction with memory: Newton shooting and Floquet multipliers.
+
+A periodic orbit is a fixed point of the return map ``P`` to the Poincare section ``q_c' = 0``
+crossed upwards (every periodic motion crosses it: the contact's mean velocity over a period is
+zero). ``P`` and its Jacobian come from one run of the orbit with its variational equations
+``Phi' = J(y) Phi`` (:mod:`stickslip.kernel.stiff`); the Jacobian of ``P`` is
+``(I - f g^T / (g . f)) Phi(T)`` (``f`` the flow at the return, ``g`` the section's gradient)
+and the Floquet multipliers are the eigenvalues of the monodromy matrix ``Phi(T)``, one of them
+the trivial 1 of the flow direction (its distance from 1 measures the accuracy of ``Phi``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from stickslip.analysis.memory_friction import (
+    DEFAULT_RTOL,
+    MAX_STEPS,
+    FloatArray,
+    kernel_system,
+    state_scales,
+    steady_state,
+)
+from stickslip.kernel import stiff
+from stickslip.model.state_friction import MemorySystem
+
+#: Largest scaled residual ``|P(y) - y|`` of an accepted periodic orbit.
+SHOOTING_TOLERANCE = 1e-7
+#: Smallest orbit told apart from steady sliding: ``max_i |y0 - y_ss|_i / scale_i``.
+MIN_ORBIT_SIZE = 1e-6
+#: Newton iterations of shooting.
+MAX_NEWTON = 25
+
+
+@dataclass(frozen=True)
+class PeriodicOrbit:
+    """A periodic orbit found by Newton shooting, with its Floquet multipliers.
+
+    Attributes
+    ----------
+    y0 : ndarray
+        State on the section ``q_c' = 0`` (crossed upwards).
+    period : float
+        Period, s.
+    residual : float
+        Scaled residual ``max_i |P(y0) - y0|_i / scale_i`` of the last iterate.
+    multipliers : ndarray
+        Eigenvalues of the monodromy matrix ``Phi(T)``, sorted by decreasing modulus distance
+        from 1 last: the trivial multiplier (closest to 1) is ``trivial_multiplier``.
+    trivial_multiplier : complex
+        The multiplier of the flow direction (1 in exact arithmetic).
+    iterations : int
+        Newton iterations.
+    """
+
+    y0: FloatArray
+    period: float
+    residual: float
+    multipliers: NDArray[np.complex128]
+    trivial_multiplier: complex
+    iterations: int
+
+    @property
+    def stable(self) -> bool:
+        """True when every nontrivial multiplier lies inside the unit circle."""
+        return bool(np.all(np.abs(self.multipliers) < 1.0))
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready."""
+        return {"period_s": self.period, "residual": self.residual,
+                "floquet_multipliers": [[float(m.real), float(m.imag)] for m in self.multipliers],
+                "trivial_multiplier": [float(self.trivial_multiplier.real),
+                                       float(self.trivial_multiplier.imag)],
+                "newton_iterations": self.iterations, "stable": self.stable,
+                "section": "contact velocity q_c' = 0, crossed upwards"}
+
+
+def return_map(system: MemorySystem, y0: FloatArray, speed: float, *, min_time: float,
+               t_limit: float, rtol: float = DEFAULT_RTOL,
+               ) -> tuple[FloatArray, FloatArray, float] | None:
+    """The first upward return to the section after ``min_time`` (s): ``(y(T), Phi(T), T)``.
+
+    The variational equations are integrated with the orbit, ``Phi`` under the same error
+    control as ``y``; where that cannot be met (the steps shrink to round-off at the kink of
+    ``|v|`` in the laws, at a reversal of the slip speed) ``Phi`` rides on the steps chosen for
+    ``y`` alone. None when no return comes before ``t_limit`` (s).
+
+    Parameters
+    ----------
+    system : MemorySystem
+        Structure, load, law and schedule (SI).
+    y0 : ndarray
+        Start state (on the section).
+    speed : float
+        Drive speed, m/s.
+    min_time : float
+        Earliest return counted, s.
+    t_limit : float
+        Latest, s.
+    rtol : float
+        Relative tolerance.
+
+    Returns
+    -------
+    tuple or None
+        ``(y(T), Phi(T), T)``.
+    """
+    ks = kernel_system(system)
+    n = ks.n
+    atol = rtol * state_scales(system, speed)
+    for phi_rtol in (rtol, 0.0):
+        z = np.concatenate([np.asarray(y0, dtype=np.float64), np.eye(n).ravel()])
+        stats = np.array([0.0, 0.0, 0.0, 0.0, math.inf, -math.inf, 0.0])
+        cross_t = np.empty(1)
+        cross_z = np.empty((1, n + n * n))
+        status, t, _ = stiff.integrate(ks.kind, ks.law, ks.p, ks.amat, ks.bvec, ks.iv, ks.is_,
+                                       ks.kq, z, n, True, 0.0, t_limit, float(speed), rtol, atol,
+                                       phi_rtol, 0.0, MAX_STEPS, np.zeros(0),
+                                       np.zeros((0, n + n * n)), True, min_time, cross_t, cross_z,
+                                       np.empty(0), stats)
+        if status == stiff.STATUS_SECTION:
+            return z[:n].copy(), z[n:].reshape((n, n)).copy(), float(t)
+        if status == stiff.STATUS_DONE:
+            return None
+    return None
+
+
+def _section_gradient(system: MemorySystem, y: FloatArray, speed: float) -> FloatArray:
+    """Gradient of the section function ``q_c'(y)``."""
+    ks = kernel_system(system)
+    g = np.zeros(ks.n)
+    if system.quasi_static:
+        _, vx, vp = stiff.quasi_static_speed(ks.p, ks.kq, float(y[0]), float(y[1]))
+        g[0], g[1] = -vx, -vp
+    else:
+        g[ks.iv] = 1.0
+    return g
+
+
+def _flow(system: MemorySystem, y: FloatArray, speed: float) -> FloatArray:
+    ks = kernel_system(system)
+    f = np.empty(ks.n)
+    stiff.rhs(ks.kind, ks.law, ks.p, ks.amat, ks.bvec, ks.iv, ks.is_, ks.kq,
+              np.ascontiguousarray(y, dtype=np.float64), float(speed), np.empty(stiff.N_LAW), f)
+    return f
+
+
+def shoot_cycle(system: MemorySystem, y_start: FloatArray, period_guess: float, *,
+                speed: float | None = None, rtol: float = DEFAULT_RTOL,
+                tolerance: float = SHOOTING_TOLERANCE) -> PeriodicOrbit | None:
+    """Newton shooting for a fixed point of the return map to the section ``q_c' = 0``.
+
+    Unknown: the state ``y0`` on the section. Equations: ``P(y0) - y0 = 0`` and the section
+    condition, solved in the least-squares sense each step (``N + 1`` equations, ``N``
+    unknowns, scaled by :func:`state_scales`) with the Jacobian ``Phi(T) - I`` corrected by the
+    change of return time, ``(I - f g^T / (g . f)) Phi(T) - I`` (``g``: the section's
+    gradient, ``f``: the flow at the return). Returns None when Newton does not converge
+    within :data:`MAX_NEWTON` iterations to ``tolerance``.
+
+    Parameters
+    ----------
+    system : MemorySystem
+        Structure, load, law and schedule (SI).
+    y_start : ndarray
+        First guess on the section.
+    period_guess : float
+        First guess of the period, s.
+    speed : float, optional
+        Drive speed, m/s (default the schedule's last).
+    rtol : float
+        Relative tolerance of the runs.
+    tolerance : float
+        Largest scaled residual accepted.
+
+    Returns
+    -------
+    PeriodicOrbit or None
+        The orbit and its Floquet multipliers.
+    """
+    v = system.schedule.last if speed is None else float(speed)
+    scale = state_scales(system, v)
+    y = np.asarray(y_start, dtype=np.float64).copy()
+    period = period_guess
+    for it in range(1, MAX_NEWTON + 1):
+        ret = return_map(system, y, v, min_time=0.2 * period, t_limit=5.0 * period, rtol=rtol)
+        if ret is None:
+            return None
+        y1, phi, period = ret
+        r = y1 - y
+        residual = float(np.max(np.abs(r) / scale))
+        if residual < tolerance:
+            if float(np.max(np.abs(y - steady_state(system, v)) / scale)) < MIN_ORBIT_SIZE:
+                return None  # steady sliding itself (an equilibrium on the section), no cycle
+            mult = np.linalg.eigvals(phi)
+            k = int(np.argmin(np.abs(mult - 1.0)))
+            trivial = complex(mult[k])
+            others = np.delete(mult, k)
+            others = others[np.argsort(-np.abs(others))]
+            return PeriodicOrbit(y, period, residual, others, trivial, it)
+        f1 = _flow(system, y1, v)
+        g = _section_gradient(system, y1, v)
+        proj = np.eye(y.size) - np.outer(f1, g) / float(g @ f1)
+        dp = proj @ phi
+        g0 = _section_gradient(system, y, v)
+        jac = np.vstack([(dp - np.eye(y.size)) / scale[:, None] * scale[None, :],
+                         (g0 * scale)[None, :] / max(float(np.max(np.abs(g0 * scale))), 1e-300)])
+        rhs_vec = np.concatenate([-r / scale, [0.0]])
+        step, *_ = np.linalg.lstsq(jac, rhs_vec, rcond=None)
+        y = y + step * scale
+        if system.quasi_static:
+            continue
+        y[kernel_system(system).iv] = 0.0
+    return None
+
+
+
+
+__all__ = ["PeriodicOrbit", "return_map", "shoot_cycle"]

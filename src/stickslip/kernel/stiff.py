@@ -1,0 +1,592 @@
+"""The smooth stiff engine: a Rosenbrock method (RODAS4) for friction with memory, arrays only.
+
+Friction laws with an internal state (rate-and-state, LuGre; :mod:`stickslip.model.state_friction`)
+have no true stick and are stiff (LuGre's bristle stiffness, the state's fast relaxation at
+high slip speed), so the exact piecewise-linear engine does not apply. This module integrates
+
+    M q'' + C q' + K q = e_c F(v, s),   s' = G(v, s),   v = V - q_c'
+
+(dynamic, any linear structure, contact on DOF ``c``) written as ``y' = A y + b F + e_s G``
+with ``y = (q, q', s)``, or the quasi-static slider of rate-and-state (``m = 0``):
+``k x = F(v, psi)`` solved for the slip speed ``v = 2 v_ref exp(-psi/a) sinh(k x / (N a))``,
+``y = (x, psi)``, ``x' = V - v``. ``V`` is constant on each call (a schedule of drive speeds is
+a sequence of calls).
+
+The method is RODAS4 of Hairer and Wanner (Solving Ordinary Differential Equations II, 2nd ed.,
+Springer 1996, Sec. IV.7; the coefficients of their code ``rodas.f``): six stages, order 4, an
+embedded order-3 solution for the error estimate, L-stable and stiffly accurate, and a dense
+output of order 3 between the step's ends. The Jacobian is the exact analytic one of the laws,
+so the order is that of the method (a Rosenbrock method needs the exact Jacobian). Steps are
+controlled on the error in the mixed norm ``rms(err_i / (atol_i + rtol |y_i|)) <= 1`` (with the
+variational equations, optionally over ``Phi`` too).
+
+The variational equations ``Phi' = J(y) Phi`` (``Phi(0) = I``) are integrated with ``y`` as one
+augmented system by the same method, with the augmented system's exact Jacobian (its
+lower-left block ``(dJ/dy . u) Phi`` holds the laws' second derivatives; for the quasi-static
+slider a central difference of the analytic ``J`` with relative step ``1e-6``). ``Phi`` at a
+return to the Poincare section gives the Floquet multipliers and the Newton step of shooting.
+
+Events are located on the dense output: the section ``q_c' = 0`` crossed upwards (each period
+of a periodic motion crosses it once or more, its mean velocity being zero) and the slip
+reversals ``q_c' = V``, sampled at :data:`EVENT_SAMPLES` points inside each step and bisected to
+round-off. Quasi-stick (the slip speed below a fraction of ``V``) is judged by the caller on
+the dense output. No Python callback
+runs in the loop: the laws are compiled here, chosen by an integer code.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel is stamped with the whole kernel folder)
+from stickslip.kernel import stiff_tableau as rodas
+from stickslip.kernel.stiff_laws import (
+    L_F,
+    L_FS,
+    L_FSS,
+    L_FV,
+    L_FVS,
+    L_FVV,
+    L_G,
+    L_GS,
+    L_GSS,
+    L_GV,
+    L_GVS,
+    L_GVV,
+    LAW_LUGRE,
+    LAW_RATE_STATE_AGING,
+    LAW_RATE_STATE_SLIP,
+    N_LAW,
+    law_values,
+    quasi_static_speed,
+)
+
+#: System kinds.
+KIND_DYNAMIC = 0
+KIND_QUASI_STATIC = 1
+
+#: Run statuses.
+STATUS_DONE = 0
+STATUS_SECTION = 1
+STATUS_MAX_STEPS = 2
+STATUS_STEP_UNDERFLOW = 3
+
+#: Points of the dense output tested for a section crossing inside each step.
+EVENT_SAMPLES = 4
+#: Bisection steps of an event time (halves the bracket to below 1e-15 of the step).
+EVENT_BISECTIONS = 60
+
+#: Step-size controller: safety factor and the bounds of one change (Hairer & Wanner's).
+SAFETY = 0.9
+FAC_MIN = 0.2
+FAC_MAX = 6.0
+
+@njit(cache=True)
+def contact_speed(kind: int, law: int, p: np.ndarray, kq: float, iv: int, y: np.ndarray,
+                  speed: float) -> float:
+    """The contact's velocity ``q_c'`` (m/s, ground frame): the section function."""
+    if kind == KIND_QUASI_STATIC:
+        v, _, _ = quasi_static_speed(p, kq, y[0], y[1])
+        return speed - v
+    return y[iv]
+
+
+@njit(cache=True)
+def rhs(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
+        is_: int, kq: float, y: np.ndarray, speed: float, lv: np.ndarray, f: np.ndarray) -> None:
+    """``f = y'`` at ``y`` for drive speed ``speed`` (m/s); ``lv`` receives the law's values."""
+    n = y.shape[0]
+    if kind == KIND_QUASI_STATIC:
+        v, _, _ = quasi_static_speed(p, kq, y[0], y[1])
+        law_values(law, p, v, y[1], lv)
+        f[0] = speed - v
+        f[1] = lv[L_G]
+        return
+    v = speed - y[iv]
+    law_values(law, p, v, y[is_], lv)
+    for i in range(n):
+        acc = 0.0
+        for j in range(n):
+            acc += amat[i, j] * y[j]
+        f[i] = acc + bvec[i] * lv[L_F]
+    f[is_] = lv[L_G]
+
+
+@njit(cache=True)
+def jacobian(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
+             is_: int, kq: float, y: np.ndarray, speed: float, lv: np.ndarray,
+             jac: np.ndarray) -> None:
+    """The exact Jacobian ``df/dy`` at ``y``."""
+    n = y.shape[0]
+    if kind == KIND_QUASI_STATIC:
+        v, vx, vp = quasi_static_speed(p, kq, y[0], y[1])
+        law_values(law, p, v, y[1], lv)
+        jac[0, 0] = -vx
+        jac[0, 1] = -vp
+        jac[1, 0] = lv[L_GV] * vx
+        jac[1, 1] = lv[L_GV] * vp + lv[L_GS]
+        return
+    v = speed - y[iv]
+    law_values(law, p, v, y[is_], lv)
+    for i in range(n):
+        for j in range(n):
+            jac[i, j] = amat[i, j]
+    for i in range(n):
+        jac[i, iv] -= bvec[i] * lv[L_FV]
+        jac[i, is_] += bvec[i] * lv[L_FS]
+    jac[is_, iv] = -lv[L_GV]
+    jac[is_, is_] = lv[L_GS]
+
+
+@njit(cache=True)
+def jacobian_derivative_times(kind: int, law: int, p: np.ndarray, amat: np.ndarray,
+                              bvec: np.ndarray, iv: int, is_: int, kq: float, y: np.ndarray,
+                              speed: float, u: np.ndarray, phi: np.ndarray, lv: np.ndarray,
+                              out: np.ndarray) -> None:
+    """``out = (dJ/dy . u) Phi``: the lower-left block of the augmented system's Jacobian."""
+    n = y.shape[0]
+    if kind == KIND_QUASI_STATIC:
+        scale = 0.0
+        for i in range(n):
+            scale = max(scale, abs(u[i]) / (1.0 + abs(y[i])))
+        if scale == 0.0:
+            out[:, :] = 0.0
+            return
+        eps = 1e-6 / scale
+        yp = y + eps * u
+        ym = y - eps * u
+        jp = np.empty((n, n))
+        jm = np.empty((n, n))
+        jacobian(kind, law, p, amat, bvec, iv, is_, kq, yp, speed, lv, jp)
+        jacobian(kind, law, p, amat, bvec, iv, is_, kq, ym, speed, lv, jm)
+        d = (jp - jm) / (2.0 * eps)
+        for i in range(n):
+            for j in range(n):
+                acc = 0.0
+                for k in range(n):
+                    acc += d[i, k] * phi[k, j]
+                out[i, j] = acc
+        return
+    v = speed - y[iv]
+    law_values(law, p, v, y[is_], lv)
+    dv = -u[iv]
+    ds = u[is_]
+    af = lv[L_FVV] * dv + lv[L_FVS] * ds
+    bf = lv[L_FVS] * dv + lv[L_FSS] * ds
+    ag = lv[L_GVV] * dv + lv[L_GVS] * ds
+    bg = lv[L_GVS] * dv + lv[L_GSS] * ds
+    for j in range(n):
+        rf = -af * phi[iv, j] + bf * phi[is_, j]
+        rg = -ag * phi[iv, j] + bg * phi[is_, j]
+        for i in range(n):
+            out[i, j] = bvec[i] * rf
+        out[is_, j] = rg
+
+
+@njit(cache=True)
+def lu_factor(a: np.ndarray, piv: np.ndarray) -> bool:
+    """In-place LU with partial pivoting; False when singular."""
+    n = a.shape[0]
+    for k in range(n):
+        m = k
+        big = abs(a[k, k])
+        for i in range(k + 1, n):
+            if abs(a[i, k]) > big:
+                big = abs(a[i, k])
+                m = i
+        piv[k] = m
+        if big == 0.0:
+            return False
+        if m != k:
+            for j in range(n):
+                t = a[k, j]
+                a[k, j] = a[m, j]
+                a[m, j] = t
+        inv = 1.0 / a[k, k]
+        for i in range(k + 1, n):
+            a[i, k] *= inv
+            lik = a[i, k]
+            if lik != 0.0:
+                for j in range(k + 1, n):
+                    a[i, j] -= lik * a[k, j]
+    return True
+
+
+@njit(cache=True)
+def lu_solve(lu: np.ndarray, piv: np.ndarray, b: np.ndarray) -> None:
+    """Solve in place with the factors of :func:`lu_factor`."""
+    n = lu.shape[0]
+    for k in range(n):
+        m = piv[k]
+        if m != k:
+            t = b[k]
+            b[k] = b[m]
+            b[m] = t
+    for i in range(n):
+        acc = b[i]
+        for j in range(i):
+            acc -= lu[i, j] * b[j]
+        b[i] = acc
+    for i in range(n - 1, -1, -1):
+        acc = b[i]
+        for j in range(i + 1, n):
+            acc -= lu[i, j] * b[j]
+        b[i] = acc / lu[i, i]
+
+
+@njit(cache=True)
+def _aug_rhs(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
+             is_: int, kq: float, z: np.ndarray, n: int, with_phi: bool, speed: float,
+             lv: np.ndarray, jw: np.ndarray, out: np.ndarray) -> None:
+    """Right-hand side of the augmented system ``z = (y, vec Phi)``: ``(f(y), J(y) Phi)``."""
+    y = z[:n]
+    f = out[:n]
+    rhs(kind, law, p, amat, bvec, iv, is_, kq, y, speed, lv, f)
+    if with_phi:
+        jacobian(kind, law, p, amat, bvec, iv, is_, kq, y, speed, lv, jw)
+        phi = z[n:].reshape((n, n))
+        dphi = out[n:].reshape((n, n))
+        for i in range(n):
+            for j in range(n):
+                acc = 0.0
+                for k in range(n):
+                    acc += jw[i, k] * phi[k, j]
+                dphi[i, j] = acc
+
+
+@njit(cache=True)
+def _stage_solve(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
+                 is_: int, kq: float, z0: np.ndarray, n: int, with_phi: bool, speed: float,
+                 lu: np.ndarray, piv: np.ndarray, lv: np.ndarray, hw: np.ndarray,
+                 r: np.ndarray) -> None:
+    """Solve ``(I/(gamma h) - J_aug) K = r`` in place (block lower-triangular ``J_aug``)."""
+    ry = r[:n]
+    lu_solve(lu, piv, ry)
+    if with_phi:
+        jacobian_derivative_times(kind, law, p, amat, bvec, iv, is_, kq, z0[:n], speed, ry,
+                                  z0[n:].reshape((n, n)), lv, hw)
+        rphi = r[n:].reshape((n, n))
+        col = np.empty(n)
+        for j in range(n):
+            for i in range(n):
+                col[i] = rphi[i, j] + hw[i, j]
+            lu_solve(lu, piv, col)
+            for i in range(n):
+                rphi[i, j] = col[i]
+
+
+@njit(cache=True)
+def dense_value(z0: np.ndarray, z1: np.ndarray, c3: np.ndarray, c4: np.ndarray, theta: float,
+                out: np.ndarray) -> None:
+    """RODAS4's dense output at ``theta`` in [0, 1] of the step: order 3 (Hairer & Wanner)."""
+    s1 = 1.0 - theta
+    for i in range(z0.shape[0]):
+        out[i] = z0[i] * s1 + theta * (z1[i] + s1 * (c3[i] + theta * c4[i]))
+
+
+@njit(cache=True)
+def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
+              is_: int, kq: float, z: np.ndarray, n: int, with_phi: bool, t0: float, t1: float,
+              speed: float, rtol: float, atol: np.ndarray, phi_rtol: float, h_start: float,
+              max_steps: int,
+              t_out: np.ndarray, z_out: np.ndarray, stop_at_section: bool, section_after: float,
+              cross_t: np.ndarray, cross_z: np.ndarray, reversal_t: np.ndarray,
+              stats: np.ndarray) -> tuple[int, float, float]:
+    """Integrate ``z = (y, vec Phi)`` from ``t0`` towards ``t1`` (s) at drive speed ``speed``.
+
+    Parameters
+    ----------
+    kind, law, p, amat, bvec, iv, is_, kq
+        The system (see the module docstring): ``amat`` (n x n) and ``bvec`` (n) of the dynamic
+        form, ``iv`` the index of ``q_c'``, ``is_`` that of the state; ``kq`` the stiffness of
+        the quasi-static slider (N/m).
+    z : ndarray
+        Initial augmented state (length ``n`` or ``n + n*n``), overwritten with the final one.
+    n : int
+        Length of ``y``.
+    with_phi : bool
+        Integrate the variational equations too.
+    t0, t1 : float
+        Start and end time, s.
+    speed : float
+        Drive speed ``V``, m/s (constant on this call).
+    rtol : float
+        Relative tolerance.
+    atol : ndarray
+        Absolute tolerance per component of ``y``.
+    phi_rtol : float
+        With ``with_phi``: relative tolerance on ``Phi`` in the error norm (``Phi_ij`` with
+        the absolute tolerance ``phi_rtol atol_i / atol_j``); 0 leaves ``Phi`` out of it.
+    h_start : float
+        First step to try (s); 0 chooses one.
+    max_steps : int
+        Bound on attempted steps.
+    t_out : ndarray
+        Increasing times (s) at which ``z_out`` rows are filled from the dense output (those
+        in ``[t0, t1]``; the others are left untouched).
+    z_out : ndarray
+        ``len(t_out)`` rows.
+    stop_at_section : bool
+        Stop at the first upward crossing of ``q_c' = 0`` after ``section_after``.
+    section_after : float
+        See above, s.
+    cross_t, cross_z : ndarray
+        Buffers for the times and states ``y`` of upward section crossings (the first
+        ``len(cross_t)`` are kept; ``stats[3]`` counts them all).
+    reversal_t : ndarray
+        Buffer for the times of slip reversals (the slip speed ``V - q_c'`` changes sign,
+        located like the crossings; the first ``len(reversal_t)`` are kept).
+    stats : ndarray
+        Out: ``[accepted, rejected, last step h, crossings, min q_c', max q_c', reversals]``
+        (the caller sets ``stats[4] = inf``, ``stats[5] = -inf``, the rest 0).
+
+    Returns
+    -------
+    (status, t, h)
+        :data:`STATUS_DONE`, :data:`STATUS_SECTION` (stopped at a crossing; ``t`` its time),
+        :data:`STATUS_MAX_STEPS` or :data:`STATUS_STEP_UNDERFLOW`; the time reached and the
+        next step to try.
+
+    Notes
+    -----
+    Why this function is longer than the house's 120 lines: the six stages of RODAS4, its
+    dense output, the section search and the step-size controller share the stage vectors
+    of one step; split into compiled helpers they would pass a dozen arrays per call.
+    """
+    nz = z.shape[0]
+    lv = np.empty(N_LAW)
+    jac = np.empty((n, n))
+    lu = np.empty((n, n))
+    piv = np.empty(n, dtype=np.int64)
+    jw = np.empty((n, n))
+    hw = np.empty((n, n))
+    k1 = np.empty(nz)
+    k2 = np.empty(nz)
+    k3 = np.empty(nz)
+    k4 = np.empty(nz)
+    k5 = np.empty(nz)
+    k6 = np.empty(nz)
+    zt = np.empty(nz)
+    dz = np.empty(nz)
+    znew = np.empty(nz)
+    c3 = np.empty(nz)
+    c4 = np.empty(nz)
+    zd = np.empty(nz)
+    t = t0
+    span = t1 - t0
+    if span <= 0.0:
+        return STATUS_DONE, t, h_start
+    n_out = t_out.shape[0]
+    io = 0
+    while io < n_out and t_out[io] < t0:
+        io += 1
+    while io < n_out and t_out[io] == t0:
+        z_out[io, :] = z
+        io += 1
+    n_cross_buf = cross_t.shape[0]
+    sec_prev = contact_speed(kind, law, p, kq, iv, z[:n], speed)
+    h = h_start
+    if h <= 0.0:
+        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, z, n, False, speed, lv, jw, dz)
+        d0 = 0.0
+        d1 = 0.0
+        for i in range(n):
+            sc = atol[i] + rtol * abs(z[i])
+            d0 += (z[i] / sc) ** 2
+            d1 += (dz[i] / sc) ** 2
+        d0 = math.sqrt(d0 / n)
+        d1 = math.sqrt(d1 / n)
+        h = 0.01 * d0 / d1 if d0 > 1e-5 and d1 > 1e-5 else 1e-6 * span
+        h = min(max(h, 1e-12 * span), span)
+    err_old = 1.0
+    h_old = h
+    first = True
+    tc = t
+    for _attempt in range(max_steps):
+        if t + h >= t1 or (t1 - (t + h)) < 1e-12 * span:
+            h = t1 - t
+        y0 = z[:n]
+        jacobian(kind, law, p, amat, bvec, iv, is_, kq, y0, speed, lv, jac)
+        for i in range(n):
+            for j in range(n):
+                lu[i, j] = -jac[i, j]
+            lu[i, i] += 1.0 / (rodas.GAM * h)
+        if not lu_factor(lu, piv):
+            h *= 0.5
+            continue
+        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lv, jw, dz)
+        for i in range(nz):
+            k1[i] = dz[i]
+        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k1)
+        for i in range(nz):
+            zt[i] = z[i] + rodas.A21 * k1[i]
+        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
+        for i in range(nz):
+            k2[i] = dz[i] + rodas.C21 * k1[i] / h
+        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k2)
+        for i in range(nz):
+            zt[i] = z[i] + rodas.A31 * k1[i] + rodas.A32 * k2[i]
+        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
+        for i in range(nz):
+            k3[i] = dz[i] + (rodas.C31 * k1[i] + rodas.C32 * k2[i]) / h
+        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k3)
+        for i in range(nz):
+            zt[i] = z[i] + rodas.A41 * k1[i] + rodas.A42 * k2[i] + rodas.A43 * k3[i]
+        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
+        for i in range(nz):
+            k4[i] = dz[i] + (rodas.C41 * k1[i] + rodas.C42 * k2[i] + rodas.C43 * k3[i]) / h
+        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k4)
+        for i in range(nz):
+            zt[i] = z[i] + rodas.A51 * k1[i] + rodas.A52 * k2[i] + rodas.A53 * k3[i] + rodas.A54 * k4[i]
+        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
+        for i in range(nz):
+            k5[i] = dz[i] + (rodas.C51 * k1[i] + rodas.C52 * k2[i] + rodas.C53 * k3[i]
+                             + rodas.C54 * k4[i]) / h
+        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k5)
+        for i in range(nz):
+            zt[i] += k5[i]
+        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
+        for i in range(nz):
+            k6[i] = dz[i] + (rodas.C61 * k1[i] + rodas.C62 * k2[i] + rodas.C63 * k3[i]
+                             + rodas.C64 * k4[i] + rodas.C65 * k5[i]) / h
+        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k6)
+        err = 0.0
+        finite = True
+        for i in range(nz):
+            znew[i] = zt[i] + k6[i]
+            if not math.isfinite(znew[i]):
+                finite = False
+        if finite:
+            for i in range(n):
+                sc = atol[i] + rtol * max(abs(z[i]), abs(znew[i]))
+                err += (k6[i] / sc) ** 2
+            count = n
+            if with_phi and phi_rtol > 0.0:
+                # Phi[i, j] has the units of y_i / y_j: its absolute tolerance is phi_rtol atol_i / atol_j
+                for i in range(n):
+                    for j in range(n):
+                        ij = n + i * n + j
+                        sc = phi_rtol * (atol[i] / atol[j] + max(abs(z[ij]), abs(znew[ij])))
+                        err += (k6[ij] / sc) ** 2
+                count = nz
+            err = math.sqrt(err / count)
+        else:
+            err = 1e10
+        if err <= 1.0:
+            # accepted: dense output, events, outputs
+            for i in range(nz):
+                c3[i] = (rodas.D21 * k1[i] + rodas.D22 * k2[i] + rodas.D23 * k3[i] + rodas.D24 * k4[i]
+                         + rodas.D25 * k5[i])
+                c4[i] = (rodas.D31 * k1[i] + rodas.D32 * k2[i] + rodas.D33 * k3[i] + rodas.D34 * k4[i]
+                         + rodas.D35 * k5[i])
+            t_new = t + h
+            stop = False
+            # section crossings: sample the dense output, bisect the first sign change upwards
+            prev_val = sec_prev
+            prev_th = 0.0
+            for js in range(1, EVENT_SAMPLES + 2):
+                th = js / (EVENT_SAMPLES + 1.0)
+                if js == EVENT_SAMPLES + 1:
+                    for i in range(nz):
+                        zd[i] = znew[i]
+                else:
+                    dense_value(z, znew, c3, c4, th, zd)
+                val = contact_speed(kind, law, p, kq, iv, zd[:n], speed)
+                if val < stats[4]:
+                    stats[4] = val
+                if val > stats[5]:
+                    stats[5] = val
+                if (prev_val < speed) != (val < speed):
+                    # slip reversal: the slip speed V - q_c' changes sign
+                    lo = prev_th
+                    hi = th
+                    below = prev_val < speed
+                    for _b in range(EVENT_BISECTIONS):
+                        mid = 0.5 * (lo + hi)
+                        dense_value(z, znew, c3, c4, mid, zd)
+                        if (contact_speed(kind, law, p, kq, iv, zd[:n], speed) < speed) == below:
+                            lo = mid
+                        else:
+                            hi = mid
+                    nr = int(stats[6])
+                    if nr < reversal_t.shape[0]:
+                        reversal_t[nr] = t + hi * h
+                    stats[6] += 1.0
+                    if js < EVENT_SAMPLES + 1:
+                        dense_value(z, znew, c3, c4, th, zd)
+                    else:
+                        for i in range(nz):
+                            zd[i] = znew[i]
+                if prev_val < 0.0 and val >= 0.0:
+                    lo = prev_th
+                    hi = th
+                    for _b in range(EVENT_BISECTIONS):
+                        mid = 0.5 * (lo + hi)
+                        dense_value(z, znew, c3, c4, mid, zd)
+                        if contact_speed(kind, law, p, kq, iv, zd[:n], speed) < 0.0:
+                            lo = mid
+                        else:
+                            hi = mid
+                    dense_value(z, znew, c3, c4, hi, zd)
+                    tc = t + hi * h
+                    nc = int(stats[3])
+                    if nc < n_cross_buf:
+                        cross_t[nc] = tc
+                        for i in range(cross_z.shape[1]):
+                            cross_z[nc, i] = zd[i]
+                    stats[3] += 1.0
+                    if stop_at_section and tc > section_after:
+                        while io < n_out and t_out[io] <= tc:
+                            dense_value(z, znew, c3, c4, (t_out[io] - t) / h, z_out[io, :])
+                            io += 1
+                        for i in range(nz):
+                            z[i] = zd[i]
+                        stats[0] += 1.0
+                        stats[2] = h
+                        stop = True
+                        break
+                prev_val = val
+                prev_th = th
+            if stop:
+                return STATUS_SECTION, tc, h
+            while io < n_out and t_out[io] <= t_new:
+                dense_value(z, znew, c3, c4, (t_out[io] - t) / h, z_out[io, :])
+                io += 1
+            sec_prev = prev_val
+            for i in range(nz):
+                z[i] = znew[i]
+            t = t_new
+            stats[0] += 1.0
+            stats[2] = h
+            # predictive controller (Gustafsson), as in Hairer & Wanner's rodas.f
+            fac = max(1.0 / FAC_MAX, min(1.0 / FAC_MIN, (err ** 0.25) / SAFETY))
+            if not first:
+                facgus = (h_old / h) * (err * err / err_old) ** 0.25 / SAFETY
+                facgus = max(1.0 / FAC_MAX, min(1.0 / FAC_MIN, facgus))
+                fac = max(fac, facgus)
+            first = False
+            h_old = h
+            err_old = max(1e-2, err)
+            if t >= t1 or t1 - t <= 1e-12 * span:
+                return STATUS_DONE, t1, h / fac
+            h = h / fac
+        else:
+            stats[1] += 1.0
+            fac = max(1.0 / FAC_MAX, min(1.0 / FAC_MIN, (err ** 0.25) / SAFETY)) if err < 1e9 else 10.0
+            h = h / fac
+        if h < 1e-14 * max(abs(t), span):
+            return STATUS_STEP_UNDERFLOW, t, h
+    return STATUS_MAX_STEPS, t, h
+
+
+
+__all__ = [  # the laws' names are re-exported: one module for the engine's callers
+    "KIND_DYNAMIC", "KIND_QUASI_STATIC", "LAW_LUGRE", "LAW_RATE_STATE_AGING", "LAW_RATE_STATE_SLIP",
+    "L_F", "L_FS", "L_FSS", "L_FV", "L_FVS", "L_FVV", "L_G", "L_GS", "L_GSS", "L_GV", "L_GVS",
+    "L_GVV", "N_LAW", "STATUS_DONE", "STATUS_MAX_STEPS", "STATUS_SECTION", "STATUS_STEP_UNDERFLOW",
+    "contact_speed", "dense_value", "integrate", "jacobian", "jacobian_derivative_times",
+    "law_values", "lu_factor", "lu_solve", "quasi_static_speed", "rhs",
+]

@@ -1,0 +1,237 @@
+"""``stickslip simulate --config`` with friction with memory (issue 33, the scripted contract).
+
+The contract: ``[friction] law = "rate-state" | "lugre"`` with units; ``[system] m = "0 kg"``
+(the quasi-static slider) and a speed schedule; ``--json`` gives ``verdict``, ``period_s``,
+``amplitude_m``; ``--t-max "40 s"``; ``--history-times A:B:N`` adds ``history`` with ``t_s``,
+``x_m``, ``v_m_s``, ``mu`` and ``state``; runs start from steady sliding at the first speed and
+``--initial-kick F`` starts the contact at ``-F V``. Bad input: one line, exit 2.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+from stickslip.cli.main import run
+
+LUGRE = """
+[system]
+m = "1 kg"
+k = "2 N/m"
+load = "1 N"
+speed = "0.1 m/s"
+
+[friction]
+law = "lugre"
+sigma0 = "1e5 N/m"
+sigma1 = "316.22776601683796 N*s/m"
+sigma2 = "0.4 N*s/m"
+mu_c = 1.0
+mu_s = 1.5
+stribeck_velocity = "1 mm/s"
+"""
+
+QUASI_STATIC = """
+[system]
+m = "0 kg"
+k = "1e5 N/m"
+load = "1 kN"
+speed = [["0 s", "1 um/s"], ["10 s", "10 um/s"]]
+
+[friction]
+law = "rate-state"
+a = 0.01
+b = 0.008
+d_c = "10 um"
+mu_ref = 0.6
+v_ref = "1 um/s"
+evolution = "aging"
+"""
+
+
+def _run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
+    try:
+        run(args)
+        code = 0
+    except SystemExit as exc:
+        code = int(exc.code or 0)
+    captured = capsys.readouterr()
+    return code, captured.out, captured.err
+
+
+def _file(tmp_path: Path, text: str) -> Path:
+    path = tmp_path / "machine.toml"
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def test_lugre_stick_slip_contract(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path = _file(tmp_path, LUGRE)
+    code, out, err = _run(["simulate", "--config", str(path), "--t-max", "40 s", "--initial-kick",
+                           "-1", "--history-times", "0:40:81", "--json"], capsys)
+    assert code == 0, err
+    payload = json.loads(out)
+    assert payload["verdict"] == "stick-slip"
+    assert payload["period_s"] == pytest.approx(6.3627, rel=1e-3)  # tests/test_memory_verdicts.py
+    assert payload["amplitude_m"] > 0.1
+    history = payload["history"]
+    assert set(history) >= {"t_s", "x_m", "v_m_s", "mu", "state"}
+    assert len(history["t_s"]) == 81 and history["t_s"][-1] == 40.0
+    # the kick: slip speed 0 (the contact moves with the belt), position of steady sliding
+    assert history["v_m_s"][0] == pytest.approx(0.1)
+    assert history["x_m"][0] == pytest.approx((1.0 + 0.4 * 0.1) / 2.0)
+    # friction stays between the Coulomb level and the static one (plus the viscous part)
+    assert max(history["mu"]) < 1.5 + 0.4 * 0.2 and min(history["mu"]) > 0.0
+
+
+def test_runs_start_from_steady_sliding(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path = _file(tmp_path, LUGRE)
+    code, out, err = _run(["simulate", "--config", str(path), "--t-max", "5 s", "--history-times",
+                           "0:5:6", "--json"], capsys)
+    assert code == 0, err
+    payload = json.loads(out)
+    # steady sliding at 0.1 m/s is stable for these parameters (the paper's cycle needs a start
+    # off it): the run stays there
+    assert payload["verdict"] == "steady-sliding"
+    assert payload["period_s"] is None and payload["amplitude_m"] is None
+    for v in payload["history"]["v_m_s"]:
+        assert abs(v) < 1e-12
+
+
+def test_quasi_static_velocity_step(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path = _file(tmp_path, QUASI_STATIC)
+    code, out, err = _run(["simulate", "--config", str(path), "--t-max", "60 s", "--history-times",
+                           "0:60:601", "--json"], capsys)
+    assert code == 0, err
+    payload = json.loads(out)
+    assert payload["machine"]["quasi_static"] is True
+    history = payload["history"]
+    mu = history["mu"]
+    t = history["t_s"]
+    # steady sliding at 1 um/s before the step: mu_ss = mu_ref + (a - b) ln(V/v_ref) = 0.6
+    assert mu[0] == pytest.approx(0.6, abs=1e-12)
+    # the state theta = d_c / V = 10 s before the step
+    assert history["state"][0] == pytest.approx(10.0, rel=1e-9)
+    # after the step the friction rises (direct effect a > 0) then relaxes towards
+    # mu_ss(10 um/s) = 0.6 + (a - b) ln 10 (textbook features of a velocity step)
+    peak = max(mu)
+    final = mu[-1]
+    mu_ss = 0.6 + (0.01 - 0.008) * math.log(10.0)
+    assert peak > final > 0.6
+    assert final == pytest.approx(mu_ss, abs=2e-4)
+    assert t[mu.index(peak)] > 10.0
+    # 50 s after the step is 5 elastic loading times N a / (k V): not yet steady to 1e-4
+    assert payload["verdict"] == "undetermined"
+    code, out, err = _run(["simulate", "--config", str(path), "--t-max", "400 s", "--json"], capsys)
+    assert code == 0, err
+    assert json.loads(out)["verdict"] == "steady-sliding"
+
+
+@pytest.mark.parametrize(("text", "args", "needle"), [
+    (LUGRE.replace('sigma0 = "1e5 N/m"', 'sigma0 = "-1 N/m"'), [], "sigma0=-1.0 must be positive"),
+    (QUASI_STATIC.replace('d_c = "10 um"', 'd_c = "0 um"'), [], "d_c=0.0 must be positive"),
+    (QUASI_STATIC.replace("a = 0.01", "a = 0"), [], "a=0.0 must be positive"),
+    (QUASI_STATIC.replace('"10 s", "10 um/s"', '"10 s", "10 kg"'), [], "wrong unit"),
+    (LUGRE.replace('m = "1 kg"', 'm = "0 kg"'), [], "needs law = \"rate-state\""),
+    (LUGRE, ["--t-max", "40 kg"], "--t-max"),
+    (LUGRE, ["--history-times", "0:40"], "--history-times"),
+    (QUASI_STATIC, ["--t-max", "40"], "no natural time"),
+    (QUASI_STATIC, ["--initial-kick", "0.5"], "needs the slider's mass"),
+    (LUGRE.replace("[system]", "[system]\nmu_k = 0.3"), [], "belong to the curve laws"),
+])
+def test_bad_input_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str], text: str,
+                               args: list[str], needle: str) -> None:
+    path = _file(tmp_path, text)
+    code, out, err = _run(["simulate", "--config", str(path), *args, "--json"], capsys)
+    assert code == 2
+    assert out == ""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    assert needle in lines[0], lines[0]
+
+
+def test_other_commands_say_where_memory_laws_run(tmp_path: Path,
+                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    path = _file(tmp_path, LUGRE)
+    code, out, err = _run(["design", "--config", str(path), "--json"], capsys)
+    assert code == 2 and out == ""
+    assert "simulate --config" in err and len(err.strip().splitlines()) == 1
+
+
+def test_old_options_refused_next_to_memory_laws(tmp_path: Path,
+                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    code, _, err = _run(["simulate", "--lam", "1", "--zeta", "0.1", "--initial-kick", "0.5",
+                         "--json"], capsys)
+    assert code == 2 and "friction law with memory" in err
+
+
+def test_dimensionless_friction_option(capsys: pytest.CaptureFixture[str]) -> None:
+    # the Canudas de Wit example in the slider's units: m = k = V = 1 needs the time scale
+    # sqrt(m/k) = 1/sqrt(2) s, length V/omega_n = 0.1/sqrt(2) m, force V sqrt(m k) = 0.1 sqrt(2) N:
+    # load 1 N -> lambda = 1/(0.1 sqrt 2); sigma0 1e5 N/m -> 5e4 (in k); sigma1, sigma2 in sqrt(m k)
+    root2 = math.sqrt(2.0)
+    text = (f"lugre:sigma0=5e4,sigma1={math.sqrt(1e5) / root2},sigma2={0.4 / root2},mu_c=1,"
+            "mu_s=1.5,vs=0.01")
+    code, out, err = _run(["simulate", "--lam", str(1.0 / (0.1 * root2)), "--zeta", "0",
+                           "--friction", text, "--initial-kick", "-1", "--t-max", "80", "--json"],
+                          capsys)
+    assert code == 0, err
+    payload = json.loads(out)
+    assert payload["verdict"] == "stick-slip"
+    # the SI period 6.3627 s (test_lugre_stick_slip_contract) in tau = omega_n t
+    assert payload["period"] == pytest.approx(6.3627198 * root2, rel=1e-5)
+    code, _, err = _run(["map", "--lam", "1", "--zeta", "0.1", "--friction",
+                         "rate-state:a=0.01,b=0.015,dc=1,mu_ref=0.6,vref=1", "--out", "x.nc"], capsys)
+    assert code == 2 and "runs on `stickslip simulate`" in err
+
+
+STRUCTURE = """
+load = "10 N"
+speed = "1 mm/s"
+
+[structure]
+mass = [[1.0, 0.0], [0.0, 2.0]]
+stiffness = [[2e4, -2e4], [-2e4, 6e4]]
+damping = [[0.0, 0.0], [0.0, 5.0]]
+contact_dof = 0
+
+[friction]
+law = "rate-state"
+a = 0.01
+b = 0.015
+d_c = "10 um"
+mu_ref = 0.6
+v_ref = "1 um/s"
+"""
+
+
+def test_structure_with_rate_state(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # a 2-DOF structure whose contact spring (2e4 N/m) is stiffer than Rice & Ruina's k_c of
+    # the slider alone, N (b - a)/d_c (1 + m V^2/(N a d_c)) = 5000 * 2 = 10000 N/m: steady
+    # sliding is stable; kicked, the run returns to it within the default horizon
+    path = _file(tmp_path, STRUCTURE)
+    code, out, err = _run(["simulate", "--config", str(path), "--initial-kick", "0.5", "--json"],
+                          capsys)
+    assert code == 0, err
+    payload = json.loads(out)
+    assert payload["machine"]["n_dof"] == 2
+    assert payload["steady_sliding"]["stable"] is True
+    assert payload["verdict"] == "steady-sliding"
+
+
+def test_json_gives_the_hopf_stiffness(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # Rice & Ruina (1983): k_c = N (b - a)/d_c (1 + m V^2/(N a d_c)) = 10 * 0.005/1e-5 * 2 = 1e4 N/m
+    text = STRUCTURE.replace("[structure]\nmass = [[1.0, 0.0], [0.0, 2.0]]\n"
+                             "stiffness = [[2e4, -2e4], [-2e4, 6e4]]\n"
+                             "damping = [[0.0, 0.0], [0.0, 5.0]]\ncontact_dof = 0\n",
+                             'm = "1 kg"\nk = "8000 N/m"\n')
+    path = _file(tmp_path, text)
+    code, out, err = _run(["simulate", "--config", str(path), "--t-max", "0.5 s", "--json"], capsys)
+    assert code == 0, err
+    steady = json.loads(out)["steady_sliding"]
+    assert steady["stable"] is False
+    assert steady["rice_ruina_critical_stiffness_N_m"] == pytest.approx(1e4, rel=1e-12)
+    assert steady["critical_stiffness_N_m"] == pytest.approx(1e4, rel=1e-10)

@@ -1,0 +1,33 @@
+"""docs/friction_memory.md quotes numbers that docs/friction_memory_example.py prints: run it and
+check that every quoted number is still what the example computes (examples that cannot rot)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+QUOTED = [
+    "stick-slip, period 6.36272 s, amplitude 0.19169 m",
+    "trivial 1.00000002",
+    "peak mu 0.62124",
+    "mu_0 + a ln 10 = 0.62303",
+    "final mu 0.60461 (mu_ss = 0.60461)",
+    "V = 1.0e-03 m/s: k_c from the eigenvalues 10000 N/m, Rice-Ruina 10000 N/m",
+]
+
+
+def test_example_prints_the_numbers_the_page_quotes(tmp_path: Path) -> None:
+    done = subprocess.run([sys.executable, str(ROOT / "docs" / "friction_memory_example.py"),
+                           "--out", str(tmp_path)], capture_output=True, text=True, timeout=600,
+                          check=False)
+    assert done.returncode == 0, done.stderr
+    page = (ROOT / "docs" / "friction_memory.md").read_text(encoding="utf-8")
+    for text in QUOTED:
+        assert text in done.stdout, text
+    for number in ("6.36272", "0.19169", "1.00000002", "0.62124", "0.62303", "0.60461"):
+        assert number in page, number
+    for name in ("memory_lugre_stick_slip.png", "memory_velocity_step.png", "memory_rice_ruina.png"):
+        assert (tmp_path / name).stat().st_size > 10_000
