@@ -18,9 +18,7 @@ from stickslip.cli.main import COMMAND_MODULES, build_app, first_sentence
 from tests.cli_helpers import run_cli
 
 COMMANDS = sorted(COMMAND_MODULES)
-#: ``cycles --help`` still cites DESIGN.md: cli/cycles_command.py is being changed in the
-#: continuation work of this issue, which fixes its text; it joins this list then.
-CITING_COMMANDS = [c for c in COMMANDS if c != "cycles"]
+CITING_COMMANDS = COMMANDS
 
 
 def _help(args: list[str], columns: int, capsys: pytest.CaptureFixture[str],

@@ -73,3 +73,25 @@ def test_every_result_states_how_friction_was_computed() -> None:
     d = r.to_dict()
     assert d["friction"]["law"] == "stribeck" and d["friction"]["tolerance"] == 1e-4
     assert d["friction"]["description"] == r.friction_description
+
+
+def test_a_start_on_the_breakaway_section_departs_in_slip() -> None:
+    # A state with xi' = 1 and the stick force at lambda to rounding (4.4e-16 above it) is a
+    # breakaway; with mu(0+) = mu_s the slip acceleration there is zero. The engine took the
+    # rounding-level rise of xi' - 1 for a return to the belt speed and looped at tau = 0 until
+    # its event budget ran out (seen on this machine at tolerance 1e-3, which left the cycle
+    # unproven): a start at the belt speed onto slip is a departure, like a breakaway event.
+    from stickslip.analysis.engine_run import EngineOptions, run_engine
+    from stickslip.analysis.return_map import ReturnMap
+    from stickslip.model.initial import InitialState
+
+    structure = elastic_foundation(0.1, Foundation(1.5, 1.0, 0.5))
+    slider = Slider(3.0, friction=_law(1e-3))
+    opts = EngineOptions()
+    first = run_engine(structure, slider, None, opts, False, False)
+    pmap = ReturnMap(structure, slider, opts)
+    z = pmap.state(pmap.reduce(first.final_state))
+    assert float(pmap.stick_normal @ z) >= slider.lam  # on (or just past) the section
+    run = run_engine(structure, slider, InitialState(z[:2], z[2:]), opts, True, False)
+    assert run.t_end > 1.0 and run.breakaway_times.size >= 1
+    assert run.verdict is Verdict.STICK_SLIP

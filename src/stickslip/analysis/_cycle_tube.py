@@ -376,6 +376,7 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
     z_devs: list[float] = []
     stick_norm = float(np.linalg.norm(stick_normal))
     deltas: list[float] = []
+    carried: list[float] = []  # Delta_j Z_j
     breakaway_dev: list[float] = []
     low_level = -lam * (1.0 + 2.0 * gamma)
     for i, ph in enumerate(phases):
@@ -403,17 +404,18 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
                            + float(np.linalg.norm(u_star)) * dp / ((abs(p_star) - dp) * abs(p_star)))
         d_exp = ph.norm_a * t_dev * float(ph.m_norm[-1]) * ext
         deltas.append((ph.salt_norm + d_salt) * d_exp + d_salt * ph.e_norm)
-        tight = norms.prefix[i + 1] * radius + sum(
-            norms.between[j + 1][i + 1] * deltas[j] * z_devs[j] for j in range(i + 1))
+        carried.append(deltas[-1] * z_devs[-1])
+        tight = norms.prefix[i + 1] * radius + float(norms.between[1:i + 2, i + 1] @ np.array(carried))
         z_dev = min(z_event, tight + ROUNDING * scale)
         if ph.breakaway:
             breakaway_dev.append(z_dev)
     n_ph = len(phases)
-    d_suffix = [0.0] * (n_ph + 1)
+    suffix, delta = np.array(norms.suffix), np.array(deltas)
+    d_suffix = np.zeros(n_ph + 1)
     for i in range(n_ph - 1, -1, -1):
-        d_suffix[i] = sum((norms.suffix[j] + d_suffix[j]) * deltas[j] * norms.between[i + 1][j]
-                          for j in range(i + 1, n_ph))
-    bound = sum((norms.suffix[i] + d_suffix[i]) * deltas[i] * norms.prefix[i] for i in range(n_ph))
+        j = slice(i + 1, n_ph)
+        d_suffix[i] = float(((suffix[j] + d_suffix[j]) * delta[j]) @ norms.between[i + 1, j])
+    bound = float(((suffix + d_suffix[:n_ph]) * delta) @ np.array(norms.prefix[:n_ph]))
     return Tube(True, bound, breakaway_dev)
 
 
@@ -422,32 +424,38 @@ class ProductNorms:
     """Norms of the nominal products of :func:`tube_bound` (independent of the radius).
 
     ``prefix[i] = ||G(0, i) L||`` (``i = 0..N``), ``suffix[i] = ||R G(i + 1, N)||`` and
-    ``between[j][i] = ||G(j, i)||`` (``G(j, i) = X*_{i-1} ... X*_j``, the identity for
+    ``between[j, i] = ||G(j, i)||`` (``G(j, i) = X*_{i-1} ... X*_j``, the identity for
     ``j >= i``), 2-norms.
     """
 
     prefix: list[float]
     suffix: list[float]
-    between: list[list[float]]
+    between: FloatArray
 
     @classmethod
     def of(cls, phases: list[Phase], lift: FloatArray, reduce_rows: FloatArray) -> ProductNorms:
+        """The norms of the nominal run's products (the factors ``X* = S expm(A t)``).
+
+        ``between`` has ``N^2 / 2`` entries: the products of ``d`` consecutive factors are
+        formed for every start at once (``G(j, j + d) = X*_{j+d-1} G(j, j + d - 1)``, one
+        stacked product per ``d``) and their 2-norms taken as one stacked SVD.
+        """
         n_ph = len(phases)
-        factors = [ph.salt @ ph.e_nominal for ph in phases]
-        dim = lift.shape[0]
-        between = [[1.0] * (n_ph + 1) for _ in range(n_ph + 1)]
-        for j in range(n_ph):
-            product = np.eye(dim)
-            for i in range(j + 1, n_ph + 1):
-                product = factors[i - 1] @ product
-                between[j][i] = float(np.linalg.norm(product, 2))
-        prefix, product = [], lift.copy()
+        factors = np.array([ph.salt @ ph.e_nominal for ph in phases])
+        between = np.ones((n_ph + 1, n_ph + 1))
+        product = factors.copy()  # G(j, j + 1) for j = 0..N-1
+        for d in range(1, n_ph + 1):
+            starts = np.arange(n_ph - d + 1)
+            between[starts, starts + d] = np.linalg.svd(product, compute_uv=False)[:, 0]
+            if d < n_ph:
+                product = factors[d:] @ product[:-1]  # G(j, j + d + 1) = X*_{j+d} G(j, j + d)
+        prefix, current = [], lift.copy()
         for i in range(n_ph + 1):
-            prefix.append(float(np.linalg.norm(product, 2)))
+            prefix.append(float(np.linalg.norm(current, 2)))
             if i < n_ph:
-                product = factors[i] @ product
-        suffix, product = [0.0] * n_ph, reduce_rows.copy()
+                current = factors[i] @ current
+        suffix, current = [0.0] * n_ph, reduce_rows.copy()
         for i in range(n_ph - 1, -1, -1):
-            suffix[i] = float(np.linalg.norm(product, 2))
-            product = product @ factors[i]
+            suffix[i] = float(np.linalg.norm(current, 2))
+            current = current @ factors[i]
         return cls(prefix, suffix, between)

@@ -1,4 +1,4 @@
-"""Poincare sections of periodic motions, for continuation (DESIGN.md section 12).
+"""Poincare sections of periodic motions, for continuation.
 
 * **Stick-slip cycles** on the breakaway section of :mod:`stickslip.analysis.cycles`
   (``xi' = 1``, ``S`` at the level of a breakaway onto slip-I or onto slip-II; unknowns ``b``,
@@ -56,7 +56,7 @@ class ContinuationSystem:
     foundation : Foundation or None
         The elastic foundation (None: rigid base).
     friction : FrictionLaw
-        The friction law (section 8 of DESIGN.md).
+        The friction law.
     """
 
     lam: float

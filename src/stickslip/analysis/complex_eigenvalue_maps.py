@@ -16,12 +16,12 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from stickslip.analysis.blas_threads import one_blas_thread
 from stickslip.analysis.friction_coupling import (
     MU_MAX,
     FrictionCoupledSystem,
     coupled_system,
     critical_friction,
-    one_blas_thread,
     track_branches,
     verdict_of,
 )

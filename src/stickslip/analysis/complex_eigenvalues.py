@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from stickslip.analysis.blas_threads import one_blas_thread
 from stickslip.analysis.complex_eigenvalue_maps import RootLocus, root_locus
 from stickslip.analysis.friction_coupling import (
     MU_MAX,
@@ -26,7 +27,6 @@ from stickslip.analysis.friction_coupling import (
     FrictionCoupledSystem,
     coupled_system,
     critical_friction,
-    one_blas_thread,
     verdict_of,
 )
 

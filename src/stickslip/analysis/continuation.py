@@ -1,4 +1,4 @@
-"""Continuation of periodic motions in one parameter: bifurcation diagrams (DESIGN.md section 12).
+"""Continuation of periodic motions in one parameter: bifurcation diagrams.
 
 Periodic motions are fixed points of exact return maps on Poincare sections
 (:mod:`stickslip.analysis._periodic_sections`: the breakaway section for stick-slip cycles, a
@@ -29,8 +29,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
-from typing import Any
+from dataclasses import replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -54,6 +53,7 @@ from stickslip.analysis._periodic_sections import (
     StickSlipSection,
     refined_root,
 )
+from stickslip.analysis.continuation_result import Branch, BranchPoint, ContinuationResult, Event
 from stickslip.analysis.cycles import find_cycles
 from stickslip.analysis.simulation import EngineOptions
 from stickslip.analysis.slip_oscillations import find_slip_oscillations
@@ -73,156 +73,6 @@ SLIP_START = 0.02
 #: a foundation's stick-slip cycles are (:func:`find_cycles`): every branch that exists at one
 #: of them is traced, whether or not an event in the range leads to it.
 SEARCH_POINTS = 5
-
-
-@dataclass(frozen=True)
-class BranchPoint:
-    """One periodic motion on a branch (dimensionless: ``tau``, ``V/omega_n``)."""
-
-    param: float
-    period: float
-    amplitude: float
-    stick_ratio: float
-    multipliers: NDArray[np.complex128] = field(repr=False)
-    stable: bool
-    state: FloatArray = field(repr=False)
-
-    @property
-    def multiplier(self) -> float:
-        """Largest Floquet multiplier modulus (0 for the rigid base's stick-slip cycle)."""
-        return float(np.max(np.abs(self.multipliers))) if self.multipliers.size else 0.0
-
-    def to_dict(self, name: str) -> dict[str, Any]:
-        return {name: self.param, "period": self.period, "amplitude": self.amplitude,
-                "stick_ratio": self.stick_ratio, "multiplier": self.multiplier, "stable": self.stable,
-                "multipliers": [{"re": float(m.real), "im": float(m.imag), "abs": float(abs(m))}
-                                for m in self.multipliers]}
-
-
-@dataclass(frozen=True)
-class Branch:
-    """A continued branch: its kind, points in order of arclength and why it stopped."""
-
-    kind: str
-    stick_phases: int
-    points: tuple[BranchPoint, ...]
-    stop_reason: str
-
-    def to_dict(self, name: str) -> dict[str, Any]:
-        return {"kind": self.kind, "stick_phases": self.stick_phases, "stop_reason": self.stop_reason,
-                "points": [p.to_dict(name) for p in self.points]}
-
-
-@dataclass(frozen=True)
-class Event:
-    """A named point: ``type`` is fold, period-doubling, torus, grazing or hopf."""
-
-    type: str
-    param: float
-    amplitude: float
-    branch: int | None
-    detail: str = ""
-
-    def to_dict(self, name: str) -> dict[str, Any]:
-        return {"type": self.type, name: self.param, "amplitude": self.amplitude,
-                "branch": self.branch, "detail": self.detail}
-
-
-@dataclass(frozen=True)
-class ContinuationResult:
-    """Outcome of :func:`continue_cycles`: branches, steady sliding along the range, events."""
-
-    system: AnySystem
-    param: str
-    param_range: tuple[float, float]
-    branches: tuple[Branch, ...]
-    steady_param: FloatArray = field(repr=False)
-    steady_growth: FloatArray = field(repr=False)
-    events: tuple[Event, ...]
-
-    @property
-    def steady_stable(self) -> NDArray[np.bool_]:
-        return np.asarray(self.steady_growth < 0.0)
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready, the keys of ``stickslip continue --json``."""
-        name = self.param
-        branches = [b.to_dict(name) for b in self.branches]
-        units = MACHINE_PARAMETERS.get(name) if isinstance(self.system, MachineSystem) else None
-        if units is not None:  # seconds and metres at each point's own scales
-            for branch in branches:
-                for point in branch["points"]:
-                    time_s, length_m = self.si_scales(point[name])
-                    point["period_s"] = point["period"] * time_s
-                    point["amplitude_m"] = point["amplitude"] * length_m
-        return {
-            "param": name,
-            "param_units": units,
-            "range": list(self.param_range),
-            "system": self.system.to_dict(),
-            "branches": branches,
-            "steady": [{name: float(p), "growth_rate": float(g), "stable": bool(g < 0.0)}
-                       for p, g in zip(self.steady_param, self.steady_growth, strict=True)],
-            "events": [e.to_dict(name) for e in self.events],
-        }
-
-    def si_scales(self, value: float) -> tuple[float, float]:
-        """``(time_scale_s, length_scale_m)`` at parameter ``value``; ``(1, 1)`` for a
-        dimensionless system (its answers stay in ``tau`` and ``V/omega_n``)."""
-        scales = self.system.with_value(self.param, value).si_scales()
-        return (1.0, 1.0) if scales is None else scales
-
-    def summary(self) -> str:
-        """A few lines: the branches, their ranges and the events."""
-        lines = [f"continuation in {self.param} over [{self.param_range[0]:g}, {self.param_range[1]:g}]: "
-                 f"{len(self.branches)} branch(es), {len(self.events)} event(s)"]
-        for i, b in enumerate(self.branches):
-            ps = [p.param for p in b.points]
-            lines.append(f"  branch {i}: {b.kind}, {b.stick_phases} stick phase(s), {len(ps)} points, "
-                         f"{self.param} in [{min(ps):.6g}, {max(ps):.6g}], stopped: {b.stop_reason}")
-        for e in self.events:
-            lines.append(f"  {e.type} at {self.param} = {e.param:.10g} "
-                         f"(amplitude {e.amplitude:.6g}) {e.detail}")
-        return "\n".join(lines)
-
-    def to_xarray(self) -> Any:
-        """Points of every branch along one ``point`` dimension, steady sliding, events (CF attrs)."""
-        import xarray as xr
-
-        rows = [(i, p) for i, b in enumerate(self.branches) for p in b.points]
-        ds = xr.Dataset(
-            {
-                "branch": ("point", np.array([i for i, _ in rows], dtype=np.int64)),
-                self.param: ("point", np.array([p.param for _, p in rows])),
-                "period": ("point", np.array([p.period for _, p in rows])),
-                "amplitude": ("point", np.array([p.amplitude for _, p in rows])),
-                "stick_ratio": ("point", np.array([p.stick_ratio for _, p in rows])),
-                "multiplier": ("point", np.array([p.multiplier for _, p in rows])),
-                "stable": ("point", np.array([p.stable for _, p in rows], dtype=np.int8),
-                           {"flag_values": [0, 1], "flag_meanings": "unstable stable"}),
-                "steady_" + self.param: ("steady", np.asarray(self.steady_param)),
-                "steady_growth_rate": ("steady", np.asarray(self.steady_growth),
-                                       {"units": "1", "long_name": "largest real part, per tau"}),
-                "event_type": ("event", np.array([e.type for e in self.events], dtype=str)),
-                "event_" + self.param: ("event", np.array([e.param for e in self.events])),
-                "event_amplitude": ("event", np.array([e.amplitude for e in self.events])),
-            },
-            attrs={"branch_kinds": " ".join(b.kind for b in self.branches),
-                   "branch_stop_reasons": "; ".join(b.stop_reason for b in self.branches),
-                   "parameter": self.param},
-        )
-        if isinstance(self.system, MachineSystem):  # a machine: SI beside the dimensionless
-            scales = np.array([self.si_scales(p.param) for _, p in rows]).reshape(-1, 2)
-            ds[self.param].attrs["units"] = MACHINE_PARAMETERS[self.param]
-            ds["period_s"] = ("point", ds["period"].values * scales[:, 0], {"units": "s"})
-            ds["amplitude_m"] = ("point", ds["amplitude"].values * scales[:, 1], {"units": "m"})
-        return ds
-
-    def plot(self, **kwargs: Any) -> Any:
-        """The bifurcation diagram (:func:`stickslip.plot.continuation.continuation_plot`)."""
-        from stickslip.plot.continuation import continuation_plot
-
-        return continuation_plot(self, **kwargs)
 
 
 def _rigid_stick_slip(system: AnySystem, name: str, lo: float, hi: float, n_points: int,

@@ -21,7 +21,8 @@ Steps of :func:`prove_cycle`, for every divisor ``q`` of ``k`` in increasing ord
    ball ``B(b_hat, r)``: every trajectory
    started in the ball goes through the same sequence of phases as the nominal one (no event
    appears or vanishes, every event stays transversal), and
-   ``sup_B ||D P^q(b) - J||_2 <= E(r)``. See :func:`stickslip.analysis._cycle_tube.tube_bound` for the derivation.
+   ``sup_B ||D P^q(b) - J||_2 <= E(r)``. See
+   :func:`stickslip.analysis._cycle_tube.tube_bound` for the derivation.
 3. Contraction in the norm adapted to ``J`` (``||x||_W = ||C x||_2`` with ``C^T C = W``,
    ``(J/s)^T W (J/s) - W = -I`` with ``s = (1 + rho(J))/2``, so ``||J||_W = s sqrt(1 -
    1/lambda_max(W)) < s < 1`` when the spectral radius ``rho(J)`` of ``J`` is below 1):

@@ -1,4 +1,4 @@
-"""The stick-slip cycles that exist at a parameter point, whatever the start (DESIGN.md section 9).
+"""The stick-slip cycles that exist at a parameter point, whatever the start.
 
 A stick-slip cycle is a fixed point of the breakaway-to-breakaway return map. At a breakaway
 the slider moves with the belt (``xi' = 1``) and its stick force has just reached the static

@@ -1,4 +1,4 @@
-"""Disturbances of steady sliding: the certified safe margin (DESIGN.md section 9).
+"""Disturbances of steady sliding: the certified safe margin.
 
 Above the stick-slip boundary the sliding system is usually bistable: steady sliding is
 stable, yet a large enough knock tips it into stick-slip. :func:`safe_disturbance` answers

@@ -85,14 +85,14 @@ of Hoffmann et al. (2002), whose undamped flutter boundary has a closed form, is
 
 from __future__ import annotations
 
-import functools
 import math
-from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
+
+from stickslip.analysis.blas_threads import one_blas_thread
 
 if TYPE_CHECKING:
     from stickslip.model.contact import Contact
@@ -100,25 +100,7 @@ if TYPE_CHECKING:
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
-_F = TypeVar("_F", bound=Callable[..., Any])
 
-
-def one_blas_thread(function: _F) -> _F:
-    """Run ``function`` with BLAS on one thread (``threadpoolctl``), then restore the setting.
-
-    The matrices here are small and eigenvalue problems many: BLAS threads only contend. On a
-    loaded 2-core machine a 116 x 116 ``scipy.linalg.eig`` took 2.4 s with OpenBLAS's default
-    threads and 0.026 s on one thread (measured 2026-11-25).
-    """
-
-    @functools.wraps(function)
-    def wrapped(*args: Any, **kwargs: Any) -> Any:
-        from threadpoolctl import threadpool_limits
-
-        with threadpool_limits(limits=1, user_api="blas"):
-            return function(*args, **kwargs)
-
-    return wrapped  # type: ignore[return-value]
 
 #: Default range of the friction coefficient searched for the critical one (dimensionless).
 MU_MAX = 2.0

@@ -28,7 +28,7 @@ Standard errors come from the Jacobian at the optimum, ``cov = s^2 (J^T J)^-1`` 
 ``s^2 = chi^2 / (N - p)`` (lmfit's ``scale_covar``). The rule for an undetermined parameter
 is documented in :data:`UNDETERMINED_RULE`.
 
-Dimensionless mapping (DESIGN.md section 1, paper Section 2.3): ``omega_n = sqrt(k/m)``,
+Dimensionless mapping (paper Section 2.3): ``omega_n = sqrt(k/m)``,
 ``tau = omega_n t``, ``lambda = (mu_s - mu_k) W / (V sqrt(m k))``,
 ``gamma = mu_k / (mu_s - mu_k)``, ``zeta = c / (2 sqrt(m k))``, and the shifted coordinate
 ``xi = x omega_n / V - gamma lambda`` (measured from the kinetic equilibrium ``k x = mu_k W``).
@@ -38,15 +38,13 @@ from __future__ import annotations
 
 import itertools
 import math
-import threading
-from collections.abc import Iterator, Mapping, Sequence
-from contextlib import contextmanager
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from threadpoolctl import threadpool_limits
 
+from stickslip.analysis.blas_threads import blas_limited
 from stickslip.analysis.identification_estimates import (
     MeasuredRecord,
     RecordError,
@@ -296,7 +294,7 @@ def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulo
         raise ValueError(f"blas_threads={blas_threads!r} must be at least 1 (or None)")
     if fit_offset is None:
         fit_offset = record.x is not None and record.F is not None
-    with _blas_limited(blas_threads):
+    with blas_limited(blas_threads):
         used, window = fit_window(record, estimate(record, mass=mass, load=load, speed=speed))
         return _identify(used, known, law, mass=mass, load=load, speed=speed, bootstrap=bootstrap,
                          seed=seed, fit_offset=fit_offset, knots=knots, window=window)
@@ -391,39 +389,6 @@ def check_known(known: Mapping[str, Any], law: str) -> None:
                              f"{high:g}] ({why})")
     if "mu_s" in known and "mu_k" in known and not known["mu_s"] > known["mu_k"]:
         raise ValueError(f"mu_s = {known['mu_s']!r} held fixed must exceed mu_k = {known['mu_k']!r}")
-
-
-_BLAS_LOCK = threading.Lock()
-_blas_state: dict[str, Any] = {"users": 0, "limiter": None}
-
-
-@contextmanager
-def _blas_limited(threads: int | None) -> Iterator[None]:
-    """Hold the BLAS libraries at ``threads`` threads while any fit runs (``None``: as they are).
-
-    ``threadpoolctl`` sets a process-wide number, so fits running at once share one limit:
-    the first fit to start sets it, the last to finish restores the process's own setting (a
-    plain ``with threadpool_limits`` per fit would let the first fit to finish lift the limit
-    under the others). The OpenBLAS that numpy and scipy ship ignores a limit set from a
-    worker thread (measured: ``threadpool_info`` still reports the cores there), so a program
-    that runs fits in a thread pool sets the limit around the pool, in its main thread:
-    ``with threadpoolctl.threadpool_limits(1, user_api="blas"): ...``.
-    """
-    if threads is None:
-        yield
-        return
-    with _BLAS_LOCK:
-        if _blas_state["users"] == 0:
-            _blas_state["limiter"] = threadpool_limits(limits=threads, user_api="blas")
-        _blas_state["users"] += 1
-    try:
-        yield
-    finally:
-        with _BLAS_LOCK:
-            _blas_state["users"] -= 1
-            if _blas_state["users"] == 0:
-                _blas_state["limiter"].restore_original_limits()
-                _blas_state["limiter"] = None
 
 
 def _identify(record: MeasuredRecord, known: Mapping[str, float], law: str, *, mass: float, load: float,

@@ -1,4 +1,4 @@
-"""A measured stick-slip record and the starting values read from it (issue 19, DESIGN.md section 11).
+"""A measured stick-slip record and the starting values read from it (issue 19).
 
 The 1DOF rig of the paper's Fig. 1 (rigid base), in SI units: a slider of mass ``m`` [kg] on
 a belt (or drive) moving at ``V`` [m/s] under the normal load ``W`` [N], held by a spring ``k``
@@ -199,6 +199,49 @@ def _slip_omega(t_slip: float, d: float, speed: float) -> float:
     return float(brentq(g, lo, hi)) if g(lo) < 0.0 < g(hi) else 1.5 * math.pi / t_slip
 
 
+def _stick_phases(t: FloatArray, main: FloatArray, peaks: NDArray[np.int64], period: float,
+                  dt: float, wide: int, slope: FloatArray, smooth: FloatArray,
+                  sigma_smooth: float) -> list[StickPhase]:
+    """The stick phases before the force peaks: a linear rise, found from the smoothed slope.
+
+    For each peak, the steepest stretch of the preceding ``0.9`` period (the slope above 75 %
+    of its 90th percentile) is fitted by a line, extended while the smoothed signal stays
+    within ``3 sigma`` of it; its end is the breakaway.
+    """
+    span = int(0.9 * period / dt)
+    stick: list[StickPhase] = []
+    for p in peaks:
+        lo = max(0, p - span)
+        if p - lo < 2 * wide:
+            continue
+        region = slope[lo:p]
+        rate = float(np.percentile(region, 90))
+        if rate <= 0.0:
+            continue
+        top = lo + int(np.argmax(region))
+        a = top
+        while a > lo and region[a - 1 - lo] > 0.75 * rate:
+            a -= 1
+        b = top
+        while b < p - 1 and region[b + 1 - lo] > 0.75 * rate:
+            b += 1
+        fa, fb = (a + wide // 2, b - wide // 2) if a > 0 else (0, b - wide // 2)
+        if fb - fa < 4:
+            continue
+        line = np.polyfit(t[fa:fb], main[fa:fb], 1)
+        dev = np.abs(smooth - np.polyval(line, t))
+        end = fb
+        while end < p and dev[end + 1] < 3.0 * sigma_smooth:
+            end += 1
+        start = fa
+        while start > 0 and dev[start - 1] < 3.0 * sigma_smooth and start > lo:
+            start -= 1
+        start_value = float(np.polyval(line, t[start]))
+        stick.append(StickPhase(start=start, anchor=(fa + fb) // 2, breakaway=end,
+                                onset_value=start_value, peak_value=float(np.polyval(line, t[end]))))
+    return stick
+
+
 def estimate(record: MeasuredRecord, *, mass: float, load: float, speed: float) -> RecordEstimates:
     """Read starting values from the record: period, stick phases, ``k``, ``mu_s``, ``mu_k``.
 
@@ -237,37 +280,7 @@ def estimate(record: MeasuredRecord, *, mass: float, load: float, speed: float) 
     sigma_smooth = sigma * math.sqrt(3.0 / (2 * half + 1))
     peaks, _ = find_peaks(smooth, distance=max(1, int(0.6 * period / dt)),
                           prominence=0.3 * float(np.ptp(smooth)))
-    span = int(0.9 * period / dt)
-    stick: list[StickPhase] = []
-    for p in peaks:
-        lo = max(0, p - span)
-        if p - lo < 2 * wide:
-            continue
-        region = slope[lo:p]
-        rate = float(np.percentile(region, 90))
-        if rate <= 0.0:
-            continue
-        top = lo + int(np.argmax(region))
-        a = top
-        while a > lo and region[a - 1 - lo] > 0.75 * rate:
-            a -= 1
-        b = top
-        while b < p - 1 and region[b + 1 - lo] > 0.75 * rate:
-            b += 1
-        fa, fb = (a + wide // 2, b - wide // 2) if a > 0 else (0, b - wide // 2)
-        if fb - fa < 4:
-            continue
-        line = np.polyfit(t[fa:fb], main[fa:fb], 1)
-        dev = np.abs(smooth - np.polyval(line, t))
-        end = fb
-        while end < p and dev[end + 1] < 3.0 * sigma_smooth:
-            end += 1
-        start = fa
-        while start > 0 and dev[start - 1] < 3.0 * sigma_smooth and start > lo:
-            start -= 1
-        start_value = float(np.polyval(line, t[start]))
-        stick.append(StickPhase(start=start, anchor=(fa + fb) // 2, breakaway=end,
-                                onset_value=start_value, peak_value=float(np.polyval(line, t[end]))))
+    stick = _stick_phases(t, main, peaks, period, dt, wide, slope, smooth, sigma_smooth)
     if len(stick) < MIN_STICK_PHASES:
         raise RecordError(
             f"the record shows {len(stick)} complete stick phase(s) (a linear rise of the force "

@@ -1,6 +1,6 @@
 """The result of an identification: values, uncertainties, the fit report and the machine file.
 
-Parameters carry the names of the machine file (DESIGN.md sections 8 and 11): ``k`` [N/m],
+Parameters carry the names of the machine file: ``k`` [N/m],
 ``c`` [N s/m], ``mu_s``, ``mu_k`` and the ``[friction]`` keys ``slope`` [s/m],
 ``stribeck_velocity`` [m/s], ``exponent``, ``viscous`` [s/m]; the nuisance parameters of the
 force zero are ``force_offset`` [N] and ``force_drift`` [N/s].
@@ -402,7 +402,7 @@ def _rule() -> str:
 def friction_coefficient(law: str, values: Mapping[str, float], v_r: Sequence[float] | FloatArray,
                          table_v: Sequence[float] = ()) -> FloatArray:
     """The fitted friction coefficient ``mu(v_r)`` at sliding speeds ``v_r`` [m/s] (SI law,
-    DESIGN.md section 8, floored at zero as the engine does).
+    the law's definition, floored at zero as the engine does).
 
     Parameters
     ----------

@@ -132,19 +132,59 @@ class _Parts:
 
 
 def may_oscillate(slider: Slider) -> bool:
-    """Whether the law can have isolated slip oscillations (not Coulomb, not the linear law)."""
+    """Whether the law can have isolated slip oscillations (not Coulomb, not the linear law).
+
+    Parameters
+    ----------
+    slider : Slider
+        The slider and its friction law.
+
+    Returns
+    -------
+    bool
+        False for Coulomb's and the linear law (their slip motions are linear, no isolated
+        oscillation), True otherwise.
+    """
     return not isinstance(slider.friction, (CoulombFriction, LinearFriction))
 
 
 def slip_section(structure: Structure, slider: Slider, options: EngineOptions | None = None
                  ) -> SlipSection:
-    """The velocity-maximum section of a contact-first structure."""
+    """The velocity-maximum section of a contact-first structure.
+
+    Parameters
+    ----------
+    structure, slider : Structure, Slider
+        The system, dimensionless (contact on DOF 0).
+    options : EngineOptions, optional
+        Horizon and budgets of the section's runs (the defaults when None).
+
+    Returns
+    -------
+    SlipSection
+        The Poincare section ``xi'' = 0`` (velocity maximum) in slip and its return map.
+    """
     return SlipSection(_Parts(structure, slider), options or EngineOptions())  # type: ignore[arg-type]
 
 
 def refine(section: SlipSection, y0: FloatArray, max_iter: int = NEWTON_STEPS
            ) -> tuple[FloatArray, FloatArray] | None:
-    """Newton's method on ``P(y) = y`` from ``y0``: the fixed point and ``D P`` there, or None."""
+    """Newton's method on ``P(y) = y`` from ``y0``: the fixed point and ``D P`` there, or None.
+
+    Parameters
+    ----------
+    section : SlipSection
+        The section and its return map ``P``.
+    y0 : ndarray
+        Start on the section.
+    max_iter : int
+        Bound on the iterations.
+
+    Returns
+    -------
+    (ndarray, ndarray) or None
+        The fixed point and ``D P`` there; None without convergence.
+    """
     y = np.asarray(y0, dtype=np.float64).copy()
     for _ in range(max_iter):
         out = section.residual(y)

@@ -1,7 +1,7 @@
 """The web app's inputs: its text fields, their parsing into a physical system, cache keys.
 
 The fields are the quantities of ``stickslip design`` and its TOML file (the ``[system]`` and
-``[friction]`` tables, DESIGN.md section 8), parsed by the same functions
+``[friction]`` tables), parsed by the same functions
 (:mod:`stickslip.model.inputs`): the app names a bad value by its field's label instead of a
 flag, and reports every bad field at once. No Streamlit here: the page is
 :mod:`stickslip.app.streamlit_app`.

@@ -1,6 +1,6 @@
 """Shared pieces of the command line: input parsing, errors and JSON output.
 
-The command line is a public contract (DESIGN.md section 5): invalid input prints one line
+The command line is a public contract: invalid input prints one line
 on stderr naming the value and why, exits with code 2, and writes no file.
 """
 

@@ -34,7 +34,7 @@ def cycles(
 
     Example: stickslip cycles --lam 15 --zeta 0.1 --dva optimal --json
 
-    Your machine: stickslip cycles --config machine.toml --json (DESIGN.md section 10)
+    Your machine: stickslip cycles --config machine.toml --json
     """
     from stickslip.analysis.cycles import find_cycles
     from stickslip.cli.console import BadInput

@@ -1,4 +1,4 @@
-"""``--config machine.toml`` on every command: the user's machine, in SI (DESIGN.md sections 8, 10).
+"""``--config machine.toml`` on every command: the user's machine, in SI.
 
 The machine file is read by :func:`stickslip.io.machine_file.read_machine_file` (the one
 reader); its flat quantities are parsed by :mod:`stickslip.model.inputs` (the one parser, the

@@ -1,4 +1,4 @@
-"""The flat view of a machine's TOML file: its quantities and its friction law (DESIGN.md 8).
+"""The flat view of a machine's TOML file: its quantities and its friction law.
 
 The file has one reader, :func:`stickslip.io.machine_file.read_machine_file` (the
 ``[structure]`` and ``[absorber]`` tables of section 10 as well); its quantities are parsed by

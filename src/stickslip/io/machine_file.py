@@ -1,4 +1,4 @@
-"""The machine TOML file (DESIGN.md sections 8 and 10): the one reader, for every command and the app.
+"""The machine TOML file: the one reader, for every command and the app.
 
 Layout::
 
@@ -24,7 +24,7 @@ Layout::
     mass = "3 kg"
     attach_dof = 2        # or attach = "foundation": the whole machine mounted on it
 
-    [friction]            # as DESIGN.md section 8
+    [friction]            # a friction law: coulomb, linear, table, stribeck, ...
 
     [contact]             # the contact spring(s): stickslip.model.contact
     normal_stiffness = "4e7 N/m"

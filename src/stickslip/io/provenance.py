@@ -71,7 +71,7 @@ def utc_now() -> str:
 
 
 def provenance_attributes(title: str, configuration: dict[str, Any]) -> dict[str, Any]:
-    """Global attributes of a stickslip dataset (CF-1.10 and provenance, DESIGN.md section 6).
+    """Global attributes of a stickslip dataset (CF-1.10 and provenance).
 
     Parameters
     ----------

@@ -210,10 +210,10 @@ def record_from_text(text: str, name: str, columns: list[ColumnSpec] | None = No
     names = [n for n, _ in header]
     if columns is None:
         columns = []
-        for (name, unit) in header:
-            role = ALIASES.get(name.lower())
+        for (column, unit) in header:  # not ``name``: that is the record's, for messages
+            role = ALIASES.get(column.lower())
             if role is not None and role not in [c.role for c in columns]:
-                columns.append(ColumnSpec(role, name, unit))
+                columns.append(ColumnSpec(role, column, unit))
         if not any(c.role == "t" for c in columns):
             raise RecordError(f"record {name!r}: no time column (header {', '.join(header_raw)}); "
                               "name one t or give --columns")

@@ -1,4 +1,4 @@
-"""Structure matrices from files or inline arrays, with their units (DESIGN.md section 10).
+"""Structure matrices from files or inline arrays, with their units.
 
 Formats: Matrix Market ``.mtx`` (what finite-element programs export; read with
 ``scipy.io.mmread``, sparse or dense, ``symmetric`` storage expanded), NumPy ``.npy``, and

@@ -65,7 +65,7 @@ from stickslip.kernel.system import (
 
 @njit(cache=True)
 def startup_vector(stiffness, lam, gamma):
-    """Startup state ``(q, v)``: ``q = -gamma lam K^-1 e_0``, ``v = e_0`` (DESIGN.md section 1).
+    """Startup state ``(q, v)``: ``q = -gamma lam K^-1 e_0``, ``v = e_0``.
 
     ``K^-1 e_0`` by :func:`~stickslip.kernel.linalg.gauss_solve` (no LAPACK in the engine): for
     the rigid base and one foundation stage its arithmetic is that of LAPACK's ``gesv``, so a

@@ -9,7 +9,7 @@ steadily, for the law's full band table (every band the motion can still visit),
 :func:`stickslip.kernel.system.trap_certifies` tests a state against it.
 
 Derivation (one degree of freedom, ``M q'' + C q' + K q = F(1 - q') - gamma lambda`` in
-slip-I, Eqs. (22)-(24) with the law of DESIGN.md section 8; ``F`` continuous and piecewise
+slip-I, Eqs. (22)-(24) with the slider's friction law; ``F`` continuous and piecewise
 affine, hence Lipschitz, so solutions are unique). Relative to the equilibrium
 ``q_eq = (F(1) - gamma lambda) / K`` with ``z = q - q_eq``, ``v = q'``:
 

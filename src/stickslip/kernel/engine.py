@@ -389,7 +389,9 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
     n_steps = 0
     status = STATUS_STUCK if stop_at_stick and mode == STICK else STATUS_RUNNING
     last_bound = np.nan
-    just_broke_away = False  # the first step after a breakaway (see first_reach)
+    # the first step after a breakaway (see first_reach); a start at the belt speed onto a
+    # slip mode (a breakaway state) is one: its rounding-level rise must not end the phase
+    just_broke_away = mode != STICK and w[n] == 1.0
     fresh = True  # the signature of w must be recomputed (at the start and after events)
     fill_mode(ahat, phi, hstep, sig_rows, mode)  # a mode prepared lazily (prepare_point)
     phi_m, sig_m, ahat_m = phi[mode], sig_rows[mode], ahat[mode]  # rebound when the mode changes
@@ -520,6 +522,8 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
                 t_last_stick = t
                 if stop_at_stick and status == STATUS_RUNNING:
                     status = STATUS_STUCK
+            else:
+                just_broke_away = True  # leaves the belt speed in slip: a departure as well
         if new_mode != mode:
             if mode == STICK and t == stick_start:
                 n_stick -= 1  # a stick phase of zero duration is a touch, not a phase

@@ -1,4 +1,4 @@
-"""Velocity-dependent friction laws (DESIGN.md section 8), dimensionless inside.
+"""Velocity-dependent friction laws, dimensionless inside.
 
 While the slider slides, the friction force has the magnitude ``W mu(v_r)`` with the sliding
 speed ``v_r = |V - x'|``. In the units of the engine (forces over ``V sqrt(m k)``, speeds

@@ -1,7 +1,7 @@
 """Physical inputs as text: one parser for the command line, its TOML file and the web app.
 
-A machine is given as quantities with units ("2 kg", "50 kN/m") for the system (DESIGN.md
-section 8, the ``[system]`` table) and the fields of a friction law (the ``[friction]`` table).
+A machine is given as quantities with units ("2 kg", "50 kN/m") for the system (the
+``[system]`` table) and the fields of a friction law (the ``[friction]`` table).
 ``stickslip design`` and ``stickslip basin --config`` read them from flags and a TOML file
 (:mod:`stickslip.io.config` reads the file), the web app from its text fields; all of them
 turn the values into SI floats and a :class:`~stickslip.model.physical.PhysicalFriction` here,

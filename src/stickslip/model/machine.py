@@ -1,6 +1,6 @@
 """A real machine in SI units: any linear structure with the friction contact on one DOF.
 
-``Mass x'' + Damping x' + Stiffness x = f`` in kg, N s/m and N/m (DESIGN.md section 10), the
+``Mass x'' + Damping x' + Stiffness x = f`` in kg, N s/m and N/m, the
 belt rubbing DOF ``contact_dof`` with static and kinetic coefficients ``mu_s``, ``mu_k``,
 under the normal load ``W`` at the belt speed ``V``, and a friction law.
 
@@ -154,7 +154,7 @@ def modal_structure(frequencies_hz: Sequence[float], damping_ratios: Sequence[fl
 
 @dataclass(frozen=True)
 class Machine:
-    """A linear structure in SI units with one frictional contact (DESIGN.md section 10).
+    """A linear structure in SI units with one frictional contact.
 
     Parameters
     ----------

@@ -372,7 +372,7 @@ def physical_friction_from_config(table: Mapping[str, Any], *, base_dir: Path | 
                                   source: str = "[friction]",
                                   table_columns: tuple[list[float], list[float]] | None = None,
                                   ) -> PhysicalFriction:
-    """The ``[friction]`` table of a TOML configuration (DESIGN.md section 8) in SI units.
+    """The ``[friction]`` table of a TOML configuration in SI units.
 
     Keys: ``law`` (coulomb | linear | table | stribeck), ``slope`` (linear, s/m), ``mu_0``,
     ``stribeck_velocity`` (m/s), ``exponent``, ``viscous`` (s/m), ``tolerance`` (stribeck), and

@@ -25,7 +25,7 @@ QUANTITIES: dict[str, tuple[str, str, str]] = {
     "c_a": ("[force] * [time] / [length]", "N s/m", "foundation damping coefficient"),
 }
 
-#: Quantities of the ``[friction]`` table (DESIGN.md section 8), same layout.
+#: Quantities of the ``[friction]`` table, same layout.
 FRICTION_QUANTITIES: dict[str, tuple[str, str, str]] = {
     "slope": ("[time] / [length]", "s/m", "linear law: slope sigma of mu = mu_k - sigma v_r"),
     "mu_0": ("", "", "Stribeck law: friction coefficient at vanishing sliding speed"),
@@ -53,7 +53,7 @@ MEMORY_FRICTION_QUANTITIES: dict[str, tuple[str, str, str]] = {
     "time": ("[time]", "s", "time"),
 }
 
-#: Quantities of the ``[structure]`` and ``[absorber]`` tables (DESIGN.md section 10): the unit
+#: Quantities of the ``[structure]`` and ``[absorber]`` tables: the unit
 #: of each matrix's entries, modal data and the absorber.
 STRUCTURE_QUANTITIES: dict[str, tuple[str, str, str]] = {
     "mass": ("[mass]", "kg", "mass matrix entries"),

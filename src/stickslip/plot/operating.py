@@ -1,4 +1,4 @@
-"""Pictures of a machine (DESIGN.md section 10): its verdicts over speed and load, its modes.
+"""Pictures of a machine: its verdicts over speed and load, its modes.
 
 Two functions of the plotting contract (:mod:`stickslip.plot.figure`): data in, an optional
 ``ax``, a :class:`~stickslip.plot.figure.PlotResult` out.

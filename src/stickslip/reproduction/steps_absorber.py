@@ -78,7 +78,7 @@ def absorber_figures(out_dir: Path, quality: Quality) -> tuple[list[FigureRecord
         "confirmed" if np.max(np.abs(rel_h)) < 0.02 else "differs",
         {"zeta": zetas.tolist(), "relative_difference": rel_h.tolist()},
     ))
-    # Settle the paper's definitions (DESIGN.md section 1): H_max at the fitted parameters
+    # Settle the paper's definitions: H_max at the fitted parameters
     readings = {}
     for zeta in (0.05, 0.1, 0.2):
         fit = optimal_foundation_fit(zeta)

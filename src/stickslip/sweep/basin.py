@@ -1,4 +1,4 @@
-"""Basin stability: certified verdicts for many initial states of one system (DESIGN.md section 9).
+"""Basin stability: certified verdicts for many initial states of one system.
 
 Above the stick-slip boundary the sliding system is usually bistable: steady sliding and a
 stick-slip cycle side by side, and which one a disturbed start ends in depends on the start.

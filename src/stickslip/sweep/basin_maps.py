@@ -1,4 +1,4 @@
-"""Basin stability maps: the disturbed-start fraction over a parameter grid (DESIGN.md section 9).
+"""Basin stability maps: the disturbed-start fraction over a parameter grid.
 
 :func:`basin_map` puts one system's basin stability (:func:`stickslip.sweep.basin.basin_stability`)
 on every cell of a ``(lambda, zeta)`` or ``(lambda, delta)`` grid, next to the start-up verdict of

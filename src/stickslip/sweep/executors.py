@@ -70,7 +70,7 @@ class StructureSet:
 
     @classmethod
     def resolve(cls, dva: DvaSpec, zetas: Sequence[float] | FloatArray) -> StructureSet:
-        """Resolve ``dva`` at each ``zeta`` and build the chain structure (DESIGN.md section 1)."""
+        """Resolve ``dva`` at each ``zeta`` and build the chain structure."""
         z = np.asarray(zetas, dtype=np.float64).reshape(-1)
         for value in z.tolist():
             non_negative("zeta", value)

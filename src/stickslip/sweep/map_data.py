@@ -1,4 +1,4 @@
-"""The dataset of an occurrence map (DESIGN.md section 6) and how to read one back.
+"""The dataset of an occurrence map and how to read one back.
 
 :func:`map_dataset` assembles the CF-described ``xarray.Dataset`` from the engine's per-cell
 summaries; :func:`map_axes` and :func:`stored_foundations` read a stored map's grid and
@@ -75,7 +75,7 @@ def map_axes(dataset: xr.Dataset) -> tuple[str, str]:
 def map_dataset(
     config: MapConfig, float_summary: NDArray[np.float64], int_summary: NDArray[np.int64], fingerprint: str
 ) -> xr.Dataset:
-    """Assemble the dataset of DESIGN.md section 6 from the engine's per-cell summaries.
+    """Assemble the occurrence-map dataset from the engine's per-cell summaries.
 
     Parameters
     ----------

@@ -3,10 +3,10 @@
 The paper's Figs. 8 and 11 classify a grid of ``(lambda, zeta)`` by simulation, for the
 rigid base and for a foundation that depends on ``zeta`` (the fitted optimum of Eqs. 28-30,
 possibly with ``K`` scaled). Here each cell is a certified simulation from the startup
-state (DESIGN.md section 2), so a cell is ``stick-slip``, ``steady-sliding`` or, when
+state, so a cell is ``stick-slip``, ``steady-sliding`` or, when
 neither could be certified before the time horizon, explicitly ``undetermined``.
 
-The result is an ``xarray.Dataset`` laid out as DESIGN.md section 6 asks (coordinates
+The result is an ``xarray.Dataset`` laid out as the results format asks (coordinates
 ``lambda`` and ``zeta``, CF flag attributes for the integer codes, provenance in the
 attributes) inside an :class:`OccurrenceMap`.
 

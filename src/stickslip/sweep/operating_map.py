@@ -8,7 +8,7 @@ The structure of a machine does not depend on where it runs; the contact does. A
 
 and ``zeta`` and the dimensionless structure stay fixed. For the paper's Coulomb law that is
 all: each cell is one ``lambda``. A velocity-dependent law also changes its *shape* with the
-operating point (DESIGN.md section 8): the Stribeck law's ``v_s / V``, the linear law's slope
+operating point: the Stribeck law's ``v_s / V``, the linear law's slope
 ``delta = sigma W / (2 sqrt(m_ref k_ref))``, a measured table's speeds ``v_i / V``, the viscous
 term ``sigma_v W / (2 sqrt(m k))``. Each cell therefore gets its own dimensionless law, built by
 :meth:`Machine.with_operating_point(speed=V, load=W).slider() <stickslip.model.machine.Machine>`
