@@ -18,10 +18,10 @@ import numpy as np
 import pytest
 from threadpoolctl import threadpool_info
 
+from stickslip.analysis.blas_threads import blas_limited as _blas_limited
 from stickslip.analysis.identification import (
     TABLE_QUANTILES,
     MeasuredRecord,
-    _blas_limited,
     identify,
     table_knots,
     visited_knots,
@@ -232,7 +232,7 @@ def test_blas_limited_while_any_fit_runs():
     """The limit holds while any fit runs and the process's setting comes back after the
     last one: overlapping fits (entered twice, left once) keep it; ``None`` leaves BLAS as
     it is. (Checked from the main thread: OpenBLAS here ignores a limit set from a worker
-    thread, see the docstring of ``_blas_limited``.)"""
+    thread, see the docstring of ``blas_limited``.)"""
     np.dot(np.ones((2, 2)), np.ones((2, 2)))  # load BLAS
     before = _blas_threads()
     first, second = _blas_limited(1), _blas_limited(1)
