@@ -25,7 +25,8 @@ run: $(STAMP)
 
 test: $(STAMP)
 	@$(MAKE) --no-print-directory browser
-	$(BIN)/python -m pytest
+	@# one worker per core (pytest-xdist); a file's tests stay together in one worker
+	$(BIN)/python -m pytest -n auto --dist loadfile
 
 # What the browser test (tests/test_app_browser.py) needs besides the Python extras: Debian's
 # Chromium. Installed here, in the open, as root when missing; a failure is tolerated (the test
