@@ -492,7 +492,9 @@ def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -
     (:func:`stickslip.analysis.stability.critical_weakening`) and the friction slope it allows,
     ``sigma_crit = 2 delta_crit sqrt(m k) / W`` in s/m (``d mu / d v_r`` may fall by at most that
     much at the belt speed), next to the law's own local weakening ``delta_local``; the margin is
-    ``delta_crit - delta_local`` (positive: stable). ``safe_disturbance``: the largest knock
+    ``delta_crit - delta_local`` (positive: stable). ``neutral``: the growth rate is zero to
+    round-off (:attr:`~stickslip.analysis.stability.SteadySlidingStability.neutral`), marginally
+    stable, e.g. an undamped slider on a rigid base. ``safe_disturbance``: the largest knock
     about steady sliding certified never to start stick-slip
     (:func:`stickslip.analysis.disturbance.safe_disturbance`), in J, m/s and m.
 
@@ -519,6 +521,7 @@ def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -
         delta_crit = critical_weakening(structure)
         out[name] = {
             "stable": bool(stab.stable),
+            "neutral": bool(stab.neutral),
             "growth_rate": stab.growth_rate * system.natural_frequency,
             "delta_local": stab.delta_local,
             "delta_crit": delta_crit,
@@ -531,9 +534,37 @@ def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -
     return out
 
 
+def coulomb_tuning_note(law: str, *, onset_own_law: bool = False) -> str | None:
+    """The sentence that says a stick-slip optimum assumes Coulomb friction, or None for Coulomb.
+
+    The stick-slip-optimal foundation and absorber are tuned with the Coulomb law whatever the
+    machine's law (:mod:`stickslip.analysis.stick_slip_tuning` says why); the report puts this
+    sentence beside them.
+
+    Parameters
+    ----------
+    law : str
+        The machine's friction law (``coulomb``, ``linear``, ``stribeck``, ``table``, ...).
+    onset_own_law : bool
+        The onset reported beside the result is the machine's own law (a ``[structure]``
+        machine's absorber); otherwise it is Coulomb too.
+    """
+    if law == "coulomb":
+        return None
+    if onset_own_law:
+        return (f"assumes Coulomb friction: it is tuned with the paper's law mu = mu_k while "
+                f"sliding, not the machine's {law} law; its V_c and W_c are the machine's own law")
+    return (f"assumes Coulomb friction: it is tuned, and its onset computed, with the paper's law "
+            f"mu = mu_k while sliding, not the machine's {law} law; check it with the machine's "
+            "law before use, e.g. as the machine's given foundation or absorber")
+
+
 def _stick_slip_optimum(system: PhysicalSystem, zeta: float, gamma: float,
                         lam: float) -> dict[str, Any]:
-    """The stick-slip-optimal foundation in SI units, beside the absorber optimum."""
+    """The stick-slip-optimal foundation in SI units, beside the absorber optimum.
+
+    Tuned for the Coulomb law whatever the machine's (``assumption`` says so for another law).
+    """
     from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
 
     result = optimal_foundation_stick_slip(zeta, gamma, lam_max=max(100.0, 4.0 * lam))
@@ -549,4 +580,6 @@ def _stick_slip_optimum(system: PhysicalSystem, zeta: float, gamma: float,
         "critical_load": crit.to_dict()["load"],
         "absorber_optimum_lambda_crit": result.reference_lambda_crit,
         "source": "maximum simulated stick-slip onset, M <= M_opt of Eq. (28)",
+        "friction_law": COULOMB_LAW,
+        "assumption": coulomb_tuning_note(system.friction.law),
     }
