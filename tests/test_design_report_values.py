@@ -35,6 +35,7 @@ def _args(**override: str) -> list[str]:
 
 @pytest.mark.parametrize(("flag", "value", "named"), [
     ("speed", "1e300", "speed V=1e+300"), ("load", "1e300", "load W=1e+300"),
+    ("mu_s", "1e300", "mu_s=1e+300"),
     ("m", "1e300", "m=1e+300"), ("k", "1e300", "k=1e+300"), ("c", "1e300", "c=1e+300"),
     ("speed", "1e-300", "speed V=1e-300"),
 ])

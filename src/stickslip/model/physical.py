@@ -24,7 +24,6 @@ from stickslip.model.friction import (
 from stickslip.model.parameters import Foundation, Slider
 from stickslip.model.structure import Structure, chain_structure
 
-
 #: Supported magnitudes of a physical input in SI units, ``[MIN_SI, MAX_SI]``. The report
 #: multiplies and divides up to three inputs (the energy scale ``m V^2``, the force scale
 #: ``V sqrt(m k)``, ``lambda`` itself) and a double overflows beyond 1.8e308: 1e50 keeps each
@@ -35,7 +34,10 @@ MIN_SI = 1e-50
 
 
 def si_input(name: str, value: float, unit: str, *, zero: bool = False) -> float:
-    """``value`` as a float whose magnitude lies in ``[MIN_SI, MAX_SI]`` (or is 0 if ``zero``).
+    """``value`` as a float whose magnitude lies in ``[MIN_SI, MAX_SI]``.
+
+    A quantity that may be zero (``zero``: a damping, a kinetic coefficient) has no lower
+    bound: a tiny damping only makes a tiny damping ratio.
 
     Parameters
     ----------
@@ -54,10 +56,8 @@ def si_input(name: str, value: float, unit: str, *, zero: bool = False) -> float
         One line naming the value, the range and why.
     """
     x = non_negative(name, value) if zero else positive(name, value)
-    if x == 0.0:
-        return x
-    return within(name, x, MIN_SI, MAX_SI, f"in {unit or 'dimensionless units'}; beyond it products "
-                  "of the inputs such as m V^2 overflow double precision")
+    return within(name, x, 0.0 if zero else MIN_SI, MAX_SI, f"in {unit or 'dimensionless units'}; "
+                  "beyond it products of the inputs such as m V^2 overflow double precision")
 
 
 @dataclass(frozen=True)
