@@ -524,22 +524,20 @@ def test_issue_30_foundation_branch_reaches_25(capsys: pytest.CaptureFixture[str
 # issue 32 item 5: a range whose grid node 50 of 101 falls exactly on the Hopf point of this
 # Stribeck rigid base (growth rate 0.0 there); before, no sign change was seen across the node
 # (-9.7e-5 * 0.0 and 0.0 * 9.7e-5 are not negative), so no Hopf event and no slip oscillation
-ON_NODE = dict(lo=0.3087029951786762, hi=0.3773036607739376, zeta=0.04696058371209822,
-               friction=StribeckFriction(0.5246147318554589, viscous=0.0016345486847232239,
-                                         tolerance=1e-6))
+ON_NODE_RANGE = (0.3087029951786762, 0.3773036607739376)
+ON_NODE_SYSTEM = ContinuationSystem(1.0, 0.04696058371209822, 0.5, friction=StribeckFriction(
+    0.5246147318554589, viscous=0.0016345486847232239, tolerance=1e-6))
 
 
 def test_a_hopf_point_on_a_grid_node_is_found() -> None:
-    system = ContinuationSystem(1.0, ON_NODE["zeta"], 0.5, friction=ON_NODE["friction"])
-    grid, rates, hopf = steady_sliding_along(system, "lam", ON_NODE["lo"], ON_NODE["hi"])
+    grid, rates, hopf = steady_sliding_along(ON_NODE_SYSTEM, "lam", *ON_NODE_RANGE)
     assert rates[50] == 0.0 and rates[49] < 0.0 < rates[51]  # the case: the node is the Hopf point
     assert hopf == [pytest.approx(grid[50], abs=1e-9)]
 
 
 @pytest.mark.slow  # about 80 s on this project's 2-core machine
 def test_a_hopf_point_on_a_grid_node_starts_the_unstable_slip_oscillation() -> None:
-    system = ContinuationSystem(1.0, ON_NODE["zeta"], 0.5, friction=ON_NODE["friction"])
-    result = continue_cycles(system, "lam", (ON_NODE["lo"], ON_NODE["hi"]))
+    result = continue_cycles(ON_NODE_SYSTEM, "lam", ON_NODE_RANGE)
     (hopf,) = [e for e in result.events if e.type == "hopf"]
     assert hopf.param == pytest.approx(result.steady_param[50], abs=1e-9)
     slips = [b for b in result.branches if b.kind == "slip-oscillation"]

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import json
 import re
+import warnings
 
 import pytest
 
@@ -43,27 +44,14 @@ def test_overflowing_input_is_one_line(flag: str, value: str, named: str,
                                        capsys: pytest.CaptureFixture[str]) -> None:
     # before: --speed 1e300 ended in "OverflowError: (34, 'Numerical result out of range')"
     # from the disturbance margin m V^2 (2 kg * (1e300 m/s)^2 = 2e600 J > 1.8e308)
-    with _no_warnings():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # an overflow RuntimeWarning fails the test
         code, out, err = run_cli(_args(**{flag: value}), capsys)
     assert code != 0 and out == ""
     lines = err.strip().splitlines()
     assert len(lines) == 1, err
     assert named in lines[0] and f"{MAX_SI:g}" in lines[0] and "overflow" in lines[0]
     assert "Traceback" not in err and "Warning" not in err
-
-
-class _no_warnings:
-    """Fail on any warning inside the block (an overflow RuntimeWarning included)."""
-
-    def __enter__(self) -> None:
-        import warnings
-
-        self._catch = warnings.catch_warnings()
-        self._catch.__enter__()
-        warnings.simplefilter("error")
-
-    def __exit__(self, *exc: object) -> None:
-        self._catch.__exit__(*exc)
 
 
 def test_gamma_is_the_decimal_ratio(capsys: pytest.CaptureFixture[str]) -> None:
