@@ -548,6 +548,11 @@ def coulomb_tuning_note(law: str, *, onset_own_law: bool = False) -> str | None:
     onset_own_law : bool
         The onset reported beside the result is the machine's own law (a ``[structure]``
         machine's absorber); otherwise it is Coulomb too.
+
+    Returns
+    -------
+    str or None
+        The sentence (no final full stop), or None for the Coulomb law.
     """
     if law == "coulomb":
         return None

@@ -50,6 +50,11 @@ def si_input(name: str, value: float, unit: str, *, zero: bool = False) -> float
     zero : bool
         Accept exactly zero (a damping, a kinetic coefficient).
 
+    Returns
+    -------
+    float
+        The value, in the unit given.
+
     Raises
     ------
     ValueError
@@ -355,6 +360,16 @@ def gamma_from_coefficients(mu_k: float, mu_s: float) -> float:
     The coefficients are taken as the decimals they were written as (the shortest repr of each
     float, e.g. 0.3 and 0.5) and the ratio is rounded once, so ``mu_s = 0.5, mu_k = 0.3`` give
     gamma = 1.5 exactly; in floating point ``0.3 / (0.5 - 0.3)`` is 1.4999999999999998.
+
+    Parameters
+    ----------
+    mu_k, mu_s : float
+        Kinetic and static friction coefficients, dimensionless, ``mu_s > mu_k >= 0``.
+
+    Returns
+    -------
+    float
+        ``gamma``, dimensionless.
     """
     from fractions import Fraction
 
