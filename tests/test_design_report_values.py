@@ -126,3 +126,12 @@ def test_stick_slip_optimum_of_a_stribeck_machine_says_it_assumes_coulomb(
     row = text.splitlines().index(next(x for x in text.splitlines()
                                        if x.startswith("stick-slip-optimal foundation")))
     assert "assumes Coulomb friction" in text.splitlines()[row + 1]
+
+
+@pytest.mark.parametrize("bound", ["1e300", "1e-300"])
+def test_an_absurd_deflection_bound_is_named(bound: str, capsys: pytest.CaptureFixture[str]) -> None:
+    # before: "K=5.477e-152 is below the supported range" -- a foundation ratio the user never gave
+    code, out, err = run_cli([*_args(), "--max-foundation-deflection", bound], capsys)
+    assert code == 2 and out == ""
+    (line,) = err.strip().splitlines()
+    assert f"max_foundation_deflection={float(bound)!r}" in line and "mu_k W / k = 0.003 m" in line

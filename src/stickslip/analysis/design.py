@@ -33,7 +33,7 @@ from stickslip.analysis.theory import (
     optimal_foundation_fit,
 )
 from stickslip.analysis.verdict import RunStatus, Verdict
-from stickslip.model._validate import positive
+from stickslip.model._validate import MIN_RATIO, positive, within
 from stickslip.model.friction import CoulombFriction
 from stickslip.model.parameters import Foundation
 from stickslip.model.physical import (
@@ -468,6 +468,9 @@ def stability_optimum(system: PhysicalSystem, max_foundation_deflection: float |
         d_max = positive("max_foundation_deflection", max_foundation_deflection)
     if own <= 0.0:
         raise ValueError("a foundation deflection bound needs a kinetic friction force mu_k W > 0")
+    # d_max / own = 1 / K^2 bounds K = sqrt(k_a / k), which must stay in [MIN_RATIO, MAX_PARAMETER]
+    within("max_foundation_deflection", d_max, own * MIN_RATIO**2, own / MIN_RATIO**2,
+           f"in m: 1e-12 to 1e12 times the slider spring's deflection mu_k W / k = {own:.4g} m")
     result = optimal_foundation_stability(system.zeta, max_deflection_ratio=d_max / own)
     phys = foundation_to_physical(result.foundation, system.mass, system.stiffness)
     per_slope = 2.0 * math.sqrt(system.mass * system.stiffness) / system.load
