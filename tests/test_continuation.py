@@ -547,3 +547,17 @@ def test_a_hopf_point_on_a_grid_node_starts_the_unstable_slip_oscillation() -> N
     # steady sliding is stable below lam_H here: the slip oscillation born beside it, below
     # lam_H, is unstable (a subcritical Hopf, as in the paper's Stribeck discussion)
     assert not any(p.stable for p in born[0].points if p.amplitude > 0.0)
+
+
+@pytest.mark.parametrize(("args", "named"), [
+    (["--param", "lam", "--range", "1e300:1e301"], "lam = 1e+300 makes no valid system: lambda=1e+300"),
+    (["--param", "gamma", "--range", "1:1e300"], "gamma = 1e+300 makes no valid system: gamma=1e+300"),
+])
+def test_a_range_beyond_the_engine_is_refused_by_its_parameter(args: list[str], named: str,
+                                                               capsys: pytest.CaptureFixture[str]) -> None:
+    # before: "initial state has an entry of magnitude 1e+300, beyond the supported 1e+100",
+    # a state the user never gave; the bound is simulate's (MAX_PARAMETER = 1e6, 2 gamma lambda)
+    code, out, err = run_cli(["continue", *args], capsys)
+    assert code == 2 and out == ""
+    (line,) = err.strip().splitlines()
+    assert named in line and "beyond the supported range (magnitude at most 1e+06" in line
