@@ -126,6 +126,12 @@ def test_stick_slip_optimum_of_a_stribeck_machine_says_it_assumes_coulomb(
     row = text.splitlines().index(next(x for x in text.splitlines()
                                        if x.startswith("stick-slip-optimal foundation")))
     assert "assumes Coulomb friction" in text.splitlines()[row + 1]
+    # the Coulomb-tuned foundation assessed once with the machine's law, by the same search as
+    # the foundation_simulation row (its law is the Stribeck law's description)
+    own = best["own_law"]
+    assert own["law"] == payload["critical_law"]["foundation_simulation"] != best["friction_law"]
+    assert own["speed"] is not None or own["note"]  # a value, or what the search found instead
+    assert text.splitlines()[row + 2].startswith("  with the machine's friction law: V_c=")
 
 
 @pytest.mark.parametrize("bound", ["1e300", "1e-300"])

@@ -419,8 +419,9 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
     warnings = _warnings(system, {"on the rigid base": run_rigid, "with the foundation": run_found}, opts)
     optimum = None
     if stick_slip_optimum:
-        start("stick-slip-optimal foundation (Coulomb law)")
-        optimum = _stick_slip_optimum(system, zeta, gamma, lam)
+        start("stick-slip-optimal foundation (Coulomb law" + (", then the machine's)" if own else ")"))
+        optimum = _stick_slip_optimum(system, zeta, gamma, lam,
+                                      (lambda f: searched(f, None)) if own else None)
     start("stability of steady sliding")
     stability = stability_margin(system, {"rigid": rigid, "foundation": with_foundation})
     stable_best = None
@@ -562,16 +563,16 @@ def coulomb_tuning_note(law: str, *, onset_own_law: bool = False) -> str | None:
     if onset_own_law:
         return (f"assumes Coulomb friction: it is tuned with the paper's law mu = mu_k while "
                 f"sliding, not the machine's {law} law; its V_c and W_c are the machine's own law")
-    return (f"assumes Coulomb friction: it is tuned, and its onset computed, with the paper's law "
-            f"mu = mu_k while sliding, not the machine's {law} law; check it with the machine's "
-            "law before use, e.g. as the machine's given foundation or absorber")
+    return (f"assumes Coulomb friction: it is tuned, and its onset lambda_c computed, with the "
+            f"paper's law mu = mu_k while sliding, not the machine's {law} law")
 
 
-def _stick_slip_optimum(system: PhysicalSystem, zeta: float, gamma: float,
-                        lam: float) -> dict[str, Any]:
+def _stick_slip_optimum(system: PhysicalSystem, zeta: float, gamma: float, lam: float,
+                        assess: Callable[[Structure], CriticalValues] | None = None) -> dict[str, Any]:
     """The stick-slip-optimal foundation in SI units, beside the absorber optimum.
 
-    Tuned for the Coulomb law whatever the machine's (``assumption`` says so for another law).
+    Tuned for the Coulomb law whatever the machine's (``assumption`` says so for another law);
+    ``assess``, the machine's own-law boundary search, gives ``own_law``: its critical values.
     """
     from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
 
@@ -590,4 +591,5 @@ def _stick_slip_optimum(system: PhysicalSystem, zeta: float, gamma: float,
         "source": "maximum simulated stick-slip onset, M <= M_opt of Eq. (28)",
         "friction_law": COULOMB_LAW,
         "assumption": coulomb_tuning_note(system.friction.law),
+        "own_law": None if assess is None else assess(elastic_foundation(zeta, result.foundation)).to_dict(),
     }

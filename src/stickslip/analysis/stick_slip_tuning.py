@@ -12,7 +12,8 @@ single ``lambda_crit``; its onset is a critical belt speed found by an exact bou
 of some 40 simulations (:func:`stickslip.analysis.critical.speed_and_load_onsets`), and the
 optimiser needs about a hundred of them, minutes where this search takes seconds. So the
 tuning stays Coulomb, and ``stickslip design`` states beside the result that it assumes
-Coulomb friction (:func:`stickslip.analysis.design.coulomb_tuning_note`).
+Coulomb friction (:func:`stickslip.analysis.design.coulomb_tuning_note`) and assesses the
+result once with the machine's law (one boundary search, its critical speed and load).
 """
 
 from __future__ import annotations

@@ -334,6 +334,11 @@ def format_report(p: dict[str, Any]) -> str:
         )
         if best.get("assumption"):
             lines.append(f"  ({best['assumption']})")
+        if best.get("own_law"):
+            o = best["own_law"]
+            note = f" ({o['note']})" if o["note"] else ""
+            lines.append(f"  with the machine's friction law: V_c={g(o['speed'], 'm/s')}, "
+                         f"W_c={g(o['load'], 'N')}{note}")
     stable_best = p.get("stability_optimal_foundation")
     if stable_best:
         lines.append(
