@@ -223,12 +223,19 @@ def test_bad_input_is_one_clear_line_and_nothing_is_computed(key: str, text: str
 
 def test_inputs_outside_the_model_range_are_one_line() -> None:
     at = AppTest.from_file(str(APP), default_timeout=TIMEOUT)
-    # valid units, but zeta = c / (2 sqrt(mk)) = 4e148: the design procedure refuses it
-    at.session_state["m"] = "1e-300 kg"
+    # valid units, but zeta = c / (2 sqrt(mk)) = 20 / (2 sqrt(1e-10 * 5e4)) = 4472: the design
+    # procedure refuses it
+    at.session_state["m"] = "1e-10 kg"
     at.run()
     assert not at.exception
     (message,) = _errors(at)
     assert message.startswith("Cannot analyse these inputs:") and "is above 0.9" in message
+    # beyond the SI range of a physical input (its products would overflow): refused by name
+    at.session_state["m"] = "1e-300 kg"
+    at.run()
+    assert not at.exception
+    (message,) = _errors(at)
+    assert "m=1e-300 is outside the supported range [1e-50, 1e+50]" in message
 
 
 def test_existing_foundation_is_assessed() -> None:

@@ -204,3 +204,23 @@ def test_a_long_record_is_fitted_on_a_window_by_the_stated_rule() -> None:
     assert f"of {len(est.stick_phases)}" in window and f"fitted on {used.t.size} of 200000" in window
     small = read_record(EXAMPLE)
     assert fit_window(small, estimate(small, mass=1.0, load=100.0, speed=0.05)) == (small, "")
+
+
+def test_the_record_argument_has_a_help_text(capsys: pytest.CaptureFixture[str]) -> None:
+    # before: "RECORD  [required]" -- click 8.5 reset the help typer 0.24 gave the argument
+    code, out, _ = run_cli(["identify", "--help"], capsys)
+    assert code == 0
+    line = next(x for x in out.splitlines() if x.strip().startswith("RECORD"))
+    assert "CSV record" in line
+
+
+def test_a_refused_record_is_named(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # the smooth sine of test_a_record_with_no_stick_phase_is_refused, as a CSV file: before,
+    # "error: the record shows no stick phase ..." did not say which file it refused
+    t = np.arange(0.0, 2.0, 1 / 2000)
+    force = 60.0 + 10.0 * np.sin(2 * np.pi * 7.0 * t) + np.random.default_rng(1).normal(0.0, 0.05, t.size)
+    path = tmp_path / "smooth_sine.csv"
+    np.savetxt(path, np.column_stack([t, force, force / 1e4]), delimiter=",", header="t,F,x",
+               comments="")
+    line = _error([str(path), *KNOWN], capsys, tmp_path)
+    assert "record smooth_sine.csv: " in line and "stick phase" in line

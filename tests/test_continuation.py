@@ -519,3 +519,45 @@ def test_issue_30_foundation_branch_reaches_25(capsys: pytest.CaptureFixture[str
     lams = [p["lam"] for p in branch["points"]]
     assert max(lams) == 25.0 and min(lams) == pytest.approx(5.994754, abs=1e-6)
     assert branch["stop_reason"] == "backward: grazing; forward: range-end"
+
+
+# issue 32 item 5: a range whose grid node 50 of 101 falls exactly on the Hopf point of this
+# Stribeck rigid base (growth rate 0.0 there); before, no sign change was seen across the node
+# (-9.7e-5 * 0.0 and 0.0 * 9.7e-5 are not negative), so no Hopf event and no slip oscillation
+ON_NODE_RANGE = (0.3087029951786762, 0.3773036607739376)
+ON_NODE_SYSTEM = ContinuationSystem(1.0, 0.04696058371209822, 0.5, friction=StribeckFriction(
+    0.5246147318554589, viscous=0.0016345486847232239, tolerance=1e-6))
+
+
+def test_a_hopf_point_on_a_grid_node_is_found() -> None:
+    grid, rates, hopf = steady_sliding_along(ON_NODE_SYSTEM, "lam", *ON_NODE_RANGE)
+    assert rates[50] == 0.0 and rates[49] < 0.0 < rates[51]  # the case: the node is the Hopf point
+    assert hopf == [pytest.approx(grid[50], abs=1e-9)]
+
+
+@pytest.mark.slow  # about 80 s on this project's 2-core machine
+def test_a_hopf_point_on_a_grid_node_starts_the_unstable_slip_oscillation() -> None:
+    result = continue_cycles(ON_NODE_SYSTEM, "lam", ON_NODE_RANGE)
+    (hopf,) = [e for e in result.events if e.type == "hopf"]
+    assert hopf.param == pytest.approx(result.steady_param[50], abs=1e-9)
+    slips = [b for b in result.branches if b.kind == "slip-oscillation"]
+    assert slips, result.branches
+    born = [b for b in slips if min(abs(p.param - hopf.param) for p in b.points) < 1e-6]
+    assert born, "no slip oscillation starts at the Hopf point"
+    # steady sliding is stable below lam_H here: the slip oscillation born beside it, below
+    # lam_H, is unstable (a subcritical Hopf, as in the paper's Stribeck discussion)
+    assert not any(p.stable for p in born[0].points if p.amplitude > 0.0)
+
+
+@pytest.mark.parametrize(("args", "named"), [
+    (["--param", "lam", "--range", "1e300:1e301"], "lam = 1e+300 makes no valid system: lambda=1e+300"),
+    (["--param", "gamma", "--range", "1:1e300"], "gamma = 1e+300 makes no valid system: gamma=1e+300"),
+])
+def test_a_range_beyond_the_engine_is_refused_by_its_parameter(args: list[str], named: str,
+                                                               capsys: pytest.CaptureFixture[str]) -> None:
+    # before: "initial state has an entry of magnitude 1e+300, beyond the supported 1e+100",
+    # a state the user never gave; the bound is simulate's (MAX_PARAMETER = 1e6, 2 gamma lambda)
+    code, out, err = run_cli(["continue", *args], capsys)
+    assert code == 2 and out == ""
+    (line,) = err.strip().splitlines()
+    assert named in line and "beyond the supported range (magnitude at most 1e+06" in line

@@ -21,12 +21,15 @@ from stickslip.analysis.critical import lowest_onset
 from stickslip.analysis.machine_absorber import (
     LAM_MAX,
     LAM_MIN,
+    AbsorberDesign,
+    CriticalPoint,
+    MachineDesign,
     mounted_on_foundation,
     tune_machine_absorber,
 )
 from stickslip.model.machine import Machine, machine_from_physical_system
 from stickslip.model.parameters import Foundation
-from stickslip.model.physical import PhysicalSystem
+from stickslip.model.physical import PhysicalFriction, PhysicalSystem
 from stickslip.model.structure import elastic_foundation
 
 
@@ -97,3 +100,25 @@ def test_stick_slip_optimum_is_no_worse_than_the_hinf_optimum_on_the_slideway() 
                                    {"mu_s": 0.15, "mu_k": 0.1, "load": 2600.0, "speed": 5e-4})
     hinf, stick_slip = tune_machine_absorber(machine, 10.0, 2, maxiter=15)
     assert stick_slip.critical.speed <= hinf.critical.speed * (1 + 1e-4)
+
+
+@pytest.mark.parametrize("law", ["coulomb", "stribeck"])
+def test_the_stick_slip_absorber_of_a_non_coulomb_machine_says_it_assumes_coulomb(law: str) -> None:
+    # the report only: a made-up critical point, no search (the tuning itself is tested above)
+    system = PhysicalSystem(mass=1.0, stiffness=1e4, damping=5.0, mu_s=0.6, mu_k=0.4, load=100.0,
+                            speed=0.05, friction=PhysicalFriction(law, stribeck_velocity=0.1))
+    critical = CriticalPoint(1.0, 0.1, 50.0)
+    absorbers = tuple(AbsorberDesign(objective, 0.5, 5e3, 10.0, None, 1e-4, critical)
+                      for objective in ("hinf", "stick-slip"))
+    report = MachineDesign(machine_from_physical_system(system), "stick-slip", 0.1, 1e-3, "", 1e-4,
+                           critical, absorbers)
+    text = report.summary()
+    notes = [line for line in text.splitlines() if "assumes Coulomb friction" in line]
+    entries = report.to_dict()["absorbers"]
+    if law == "coulomb":
+        assert notes == [] and entries[1]["assumption"] is None
+    else:
+        lines = text.splitlines()
+        assert len(notes) == 1 and lines.index(notes[0]) == len(lines) - 1  # under the stick-slip row
+        assert "stribeck" in notes[0] and "machine's own law" in notes[0]
+        assert "assumption" not in entries[0] and entries[1]["assumption"].startswith("assumes Coulomb")

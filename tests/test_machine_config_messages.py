@@ -51,3 +51,17 @@ def test_a_load_in_kg_is_refused_naming_the_file_once(command: list[str], kind: 
     assert err.strip() == ("stickslip: error: --config 'm.toml': load = '10 kg' has the wrong unit "
                            "for the normal load W: expected N (dimension [force]), got kg"), err
     assert not Path("vw.nc").exists()
+
+
+@pytest.mark.parametrize("command", [["simulate"], ["stability"], ["cycles"], ["design"]])
+def test_a_bad_friction_table_names_the_file_once(command: list[str], tmp_path: Path,
+                                                  capsys: pytest.CaptureFixture[str],
+                                                  monkeypatch: pytest.MonkeyPatch) -> None:
+    # before: simulate and stability said "--config 'm.toml': --config 'm.toml': [friction]: ..."
+    monkeypatch.chdir(tmp_path)
+    Path("m.toml").write_text(FLAT.replace('"10 kg"', '"10 N"')
+                              + '\n[friction]\nlaw = "stribeck"\nvs = 0.1\n')
+    code, out, err = run_cli([command[0], "--config", "m.toml", *command[1:]], capsys)
+    assert code == 2 and out == ""
+    assert err.startswith("stickslip: error: --config 'm.toml': [friction]: unknown keys vs"), err
+    assert err.count("--config 'm.toml'") == 1

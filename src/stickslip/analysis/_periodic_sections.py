@@ -32,6 +32,7 @@ from stickslip.analysis.simulation import EngineOptions, simulate
 from stickslip.analysis.stability import slip_matrix
 from stickslip.analysis.verdict import Verdict
 from stickslip.kernel.system import SLIP_I, STICK, mode_kind_band
+from stickslip.model._validate import friction_range
 from stickslip.model.friction import CoulombFriction, FrictionLaw, LinearFriction, evaluate_bands
 from stickslip.model.initial import InitialState
 from stickslip.model.machine import Machine
@@ -97,8 +98,9 @@ class ContinuationSystem:
         return replace(self, foundation=replace(f, damping_ratio=float(value)))
 
     def build(self) -> tuple[Structure, Slider]:
-        """The engine's structure and slider."""
+        """The engine's structure and slider (``ValueError`` beyond the engine's range)."""
         structure = chain_structure(self.zeta, () if self.foundation is None else (self.foundation,))
+        friction_range(self.lam, self.gamma)  # as simulate: 2 gamma lambda must not overflow
         return structure, Slider(self.lam, gamma=self.gamma, friction=self.friction)
 
     def check(self, name: str) -> None:
@@ -156,6 +158,7 @@ class MachineSystem:
     def build(self) -> tuple[Structure, Slider]:
         """The contact-first dimensionless structure and the slider of the contact."""
         structure, slider = self.machine.to_dimensionless()
+        friction_range(slider.lam, slider.gamma)  # as simulate: 2 gamma lambda must not overflow
         return structure.contact_first()[0], slider
 
     @property

@@ -20,6 +20,10 @@ only a spring and a dashpot in series). ``M_opt`` grows steeply with ``zeta`` (2
 ``zeta = 0.58`` no foundation within the bounds beats the rigid base and the search ends
 at ``K -> 1e3`` (a rigid foundation). At ``zeta = 0`` the optimum is ``M = 25/16``,
 ``K^2 = 7/8``, ``zeta_a = 25/(16 sqrt 2)``, ``H_max = sqrt 5`` (see ``docs/absorber.md``).
+
+Friction law: none enters. The objective is the receptance of the linear structure, the
+same under any friction law; the law enters only the onset of stick-slip, which
+:mod:`stickslip.analysis.stick_slip_tuning` tunes for (with the Coulomb law, stated there).
 """
 
 from __future__ import annotations

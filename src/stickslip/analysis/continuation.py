@@ -120,7 +120,8 @@ def steady_sliding_along(system: AnySystem, name: str, lo: float, hi: float,
     Hopf points in ``delta`` (linear law) are exact: the roots of the characteristic polynomial
     (:func:`stickslip.analysis.stability.hopf_weakenings`). In any other parameter the local
     slope of the law enters the linearisation; a sign change of the growth rate between two
-    grid points is then refined by Brent's method to :data:`EVENT_TOL`.
+    grid points (across any nodes where it is exactly zero) is then refined by Brent's method to
+    :data:`EVENT_TOL`.
 
     Parameters
     ----------
@@ -152,9 +153,12 @@ def steady_sliding_along(system: AnySystem, name: str, lo: float, hi: float,
         structure, _ = system.build()
         hopf = [float(d) for d in hopf_weakenings(structure) if lo <= d <= hi]
     else:
-        for i in range(n_points - 1):
-            if rates[i] * rates[i + 1] < 0.0:
-                hopf.append(refined_root(rate, float(grid[i]), float(grid[i + 1])))
+        # a node whose rate is exactly 0 (on the Hopf point) changes no sign with either
+        # neighbour: bracket across it, between the nearest nodes with a sign
+        signed = np.flatnonzero(rates != 0.0)
+        for i, j in itertools.pairwise(signed):
+            if rates[i] * rates[j] < 0.0:
+                hopf.append(refined_root(rate, float(grid[i]), float(grid[j])))
     return grid, rates, hopf
 
 

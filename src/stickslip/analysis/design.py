@@ -33,7 +33,7 @@ from stickslip.analysis.theory import (
     optimal_foundation_fit,
 )
 from stickslip.analysis.verdict import RunStatus, Verdict
-from stickslip.model._validate import positive
+from stickslip.model._validate import MIN_RATIO, positive, within
 from stickslip.model.friction import CoulombFriction
 from stickslip.model.parameters import Foundation
 from stickslip.model.physical import (
@@ -419,8 +419,9 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
     warnings = _warnings(system, {"on the rigid base": run_rigid, "with the foundation": run_found}, opts)
     optimum = None
     if stick_slip_optimum:
-        start("stick-slip-optimal foundation (Coulomb law)")
-        optimum = _stick_slip_optimum(system, zeta, gamma, lam)
+        start("stick-slip-optimal foundation (Coulomb law" + (", then the machine's)" if own else ")"))
+        optimum = _stick_slip_optimum(system, zeta, gamma, lam,
+                                      (lambda f: searched(f, None)) if own else None)
     start("stability of steady sliding")
     stability = stability_margin(system, {"rigid": rigid, "foundation": with_foundation})
     stable_best = None
@@ -468,6 +469,9 @@ def stability_optimum(system: PhysicalSystem, max_foundation_deflection: float |
         d_max = positive("max_foundation_deflection", max_foundation_deflection)
     if own <= 0.0:
         raise ValueError("a foundation deflection bound needs a kinetic friction force mu_k W > 0")
+    # d_max / own = 1 / K^2 bounds K = sqrt(k_a / k), which must stay in [MIN_RATIO, MAX_PARAMETER]
+    within("max_foundation_deflection", d_max, own * MIN_RATIO**2, own / MIN_RATIO**2,
+           f"in m: 1e-12 to 1e12 times the slider spring's deflection mu_k W / k = {own:.4g} m")
     result = optimal_foundation_stability(system.zeta, max_deflection_ratio=d_max / own)
     phys = foundation_to_physical(result.foundation, system.mass, system.stiffness)
     per_slope = 2.0 * math.sqrt(system.mass * system.stiffness) / system.load
@@ -492,7 +496,9 @@ def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -
     (:func:`stickslip.analysis.stability.critical_weakening`) and the friction slope it allows,
     ``sigma_crit = 2 delta_crit sqrt(m k) / W`` in s/m (``d mu / d v_r`` may fall by at most that
     much at the belt speed), next to the law's own local weakening ``delta_local``; the margin is
-    ``delta_crit - delta_local`` (positive: stable). ``safe_disturbance``: the largest knock
+    ``delta_crit - delta_local`` (positive: stable). ``neutral``: the growth rate is zero to
+    round-off (:attr:`~stickslip.analysis.stability.SteadySlidingStability.neutral`), marginally
+    stable, e.g. an undamped slider on a rigid base. ``safe_disturbance``: the largest knock
     about steady sliding certified never to start stick-slip
     (:func:`stickslip.analysis.disturbance.safe_disturbance`), in J, m/s and m.
 
@@ -519,6 +525,7 @@ def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -
         delta_crit = critical_weakening(structure)
         out[name] = {
             "stable": bool(stab.stable),
+            "neutral": bool(stab.neutral),
             "growth_rate": stab.growth_rate * system.natural_frequency,
             "delta_local": stab.delta_local,
             "delta_crit": delta_crit,
@@ -531,9 +538,42 @@ def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -
     return out
 
 
-def _stick_slip_optimum(system: PhysicalSystem, zeta: float, gamma: float,
-                        lam: float) -> dict[str, Any]:
-    """The stick-slip-optimal foundation in SI units, beside the absorber optimum."""
+def coulomb_tuning_note(law: str, *, onset_own_law: bool = False) -> str | None:
+    """The sentence that says a stick-slip optimum assumes Coulomb friction, or None for Coulomb.
+
+    The stick-slip-optimal foundation and absorber are tuned with the Coulomb law whatever the
+    machine's law (:mod:`stickslip.analysis.stick_slip_tuning` says why); the report puts this
+    sentence beside them.
+
+    Parameters
+    ----------
+    law : str
+        The machine's friction law (``coulomb``, ``linear``, ``stribeck``, ``table``, ...).
+    onset_own_law : bool
+        The onset reported beside the result is the machine's own law (a ``[structure]``
+        machine's absorber); otherwise it is Coulomb too.
+
+    Returns
+    -------
+    str or None
+        The sentence (no final full stop), or None for the Coulomb law.
+    """
+    if law == "coulomb":
+        return None
+    if onset_own_law:
+        return (f"assumes Coulomb friction: it is tuned with the paper's law mu = mu_k while "
+                f"sliding, not the machine's {law} law; its V_c and W_c are the machine's own law")
+    return (f"assumes Coulomb friction: it is tuned, and its onset lambda_c computed, with the "
+            f"paper's law mu = mu_k while sliding, not the machine's {law} law")
+
+
+def _stick_slip_optimum(system: PhysicalSystem, zeta: float, gamma: float, lam: float,
+                        assess: Callable[[Structure], CriticalValues] | None = None) -> dict[str, Any]:
+    """The stick-slip-optimal foundation in SI units, beside the absorber optimum.
+
+    Tuned for the Coulomb law whatever the machine's (``assumption`` says so for another law);
+    ``assess``, the machine's own-law boundary search, gives ``own_law``: its critical values.
+    """
     from stickslip.analysis.stick_slip_tuning import optimal_foundation_stick_slip
 
     result = optimal_foundation_stick_slip(zeta, gamma, lam_max=max(100.0, 4.0 * lam))
@@ -549,4 +589,7 @@ def _stick_slip_optimum(system: PhysicalSystem, zeta: float, gamma: float,
         "critical_load": crit.to_dict()["load"],
         "absorber_optimum_lambda_crit": result.reference_lambda_crit,
         "source": "maximum simulated stick-slip onset, M <= M_opt of Eq. (28)",
+        "friction_law": COULOMB_LAW,
+        "assumption": coulomb_tuning_note(system.friction.law),
+        "own_law": None if assess is None else assess(elastic_foundation(zeta, result.foundation)).to_dict(),
     }

@@ -294,10 +294,15 @@ def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulo
         raise ValueError(f"blas_threads={blas_threads!r} must be at least 1 (or None)")
     if fit_offset is None:
         fit_offset = record.x is not None and record.F is not None
-    with blas_limited(blas_threads):
-        used, window = fit_window(record, estimate(record, mass=mass, load=load, speed=speed))
-        return _identify(used, known, law, mass=mass, load=load, speed=speed, bootstrap=bootstrap,
-                         seed=seed, fit_offset=fit_offset, knots=knots, window=window)
+    try:
+        with blas_limited(blas_threads):
+            used, window = fit_window(record, estimate(record, mass=mass, load=load, speed=speed))
+            return _identify(used, known, law, mass=mass, load=load, speed=speed, bootstrap=bootstrap,
+                             seed=seed, fit_offset=fit_offset, knots=knots, window=window)
+    except RecordError as exc:  # a refusal names the record it refuses
+        text = str(exc)
+        named = text if text.startswith("record ") else f"record {record.source}: {text}"
+        raise RecordError(named) from None
 
 
 def fit_window(record: MeasuredRecord, est: RecordEstimates) -> tuple[MeasuredRecord, str]:

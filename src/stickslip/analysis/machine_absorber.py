@@ -24,6 +24,10 @@ Two objectives over ``(k_a, c_a)`` (searched in the dimensionless ``k_a / k_ref`
     range of speeds the widest), and the critical load ``W_c`` above which it stick-slips
     the highest. Nelder-Mead from the H-infinity optimum (the objective is piecewise
     constant at the scale of the onset's tolerance: a good design, not a certified optimum).
+    With another friction law the tuning still uses the Coulomb onset (one search by the
+    machine's own law per candidate is too slow for the optimiser; see
+    :mod:`stickslip.analysis.stick_slip_tuning`); the critical speed and load reported for
+    the result are the machine's own law, and the report says the tuning assumes Coulomb.
 
 Each result reports the critical speed and load without and with the absorber.
 """
@@ -221,7 +225,9 @@ class MachineDesign:
                 "critical": self.critical.to_dict(),
                 "critical_speed": num(self.critical.speed), "critical_load": num(self.critical.load),
                 "status": None if self.status is None else self.status.label, "t_max": self.t_max,
-                "absorbers": [a.to_dict() for a in self.absorbers]}
+                "absorbers": [{**a.to_dict(), **({"assumption": self.tuning_note}
+                                                 if a.objective == "stick-slip" else {})}
+                              for a in self.absorbers]}
 
     def _critical_text(self) -> str:
         """The critical point, or what its search found at a bound of its range."""
@@ -251,7 +257,16 @@ class MachineDesign:
             lines.append(f"absorber ({a.objective}): m_a={a.mass:.4g} kg, k_a={a.stiffness:.4g} N/m, "
                          f"c_a={a.damping:.4g} N s/m -> V_c={a.critical.speed:.4g} m/s, "
                          f"W_c={a.critical.load:.4g} N, peak {a.peak_receptance:.4g} m/N")
+            if a.objective == "stick-slip" and self.tuning_note is not None:
+                lines.append(f"  (this absorber {self.tuning_note})")
         return "\n".join(lines)
+
+    @property
+    def tuning_note(self) -> str | None:
+        """The stick-slip absorber's Coulomb assumption in one sentence; None for a Coulomb machine."""
+        from stickslip.analysis.design import coulomb_tuning_note
+
+        return coulomb_tuning_note(self.machine.friction.law, onset_own_law=True)
 
 
 def _bound_text(machine: Machine, lam: float) -> str:

@@ -293,7 +293,7 @@ def steady_sliding_stability(structure: Structure, slider: Slider) -> SteadySlid
         rh = routh_hurwitz_1dof(zeta, -0.5 * slope / scale)
     elif structure.n_dof == 2:
         rh = routh_hurwitz_2dof(structure, slope)
-    return SteadySlidingStability(slope, -0.5 * slope, eig, growth, growth < -round_off, rh,
+    return SteadySlidingStability(slope, -0.5 * slope + 0.0, eig, growth, growth < -round_off, rh,
                                   left != right, round_off)
 
 

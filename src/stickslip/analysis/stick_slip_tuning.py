@@ -5,6 +5,15 @@ foundation detuned to ``K_opt/2`` suppresses stick-slip far better; here the obj
 simulated stick-slip onset ``lambda_crit`` itself (:func:`stickslip.analysis.critical.lowest_onset`),
 maximised over ``(M, K, zeta_a)`` with the shared optimiser of :mod:`stickslip.analysis.optimise`.
 All quantities are dimensionless.
+
+Friction law: the Coulomb law of the paper (``mu = mu_k`` while sliding), whatever the
+machine's. Decision: a law that moves with the belt speed (Stribeck, linear, table) has no
+single ``lambda_crit``; its onset is a critical belt speed found by an exact boundary search
+of some 40 simulations (:func:`stickslip.analysis.critical.speed_and_load_onsets`), and the
+optimiser needs about a hundred of them, minutes where this search takes seconds. So the
+tuning stays Coulomb, and ``stickslip design`` states beside the result that it assumes
+Coulomb friction (:func:`stickslip.analysis.design.coulomb_tuning_note`) and assesses the
+result once with the machine's law (one boundary search, its critical speed and load).
 """
 
 from __future__ import annotations

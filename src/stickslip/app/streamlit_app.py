@@ -29,6 +29,7 @@ from typing import Any
 import pandas as pd
 import streamlit as st
 
+from stickslip.analysis.design import coulomb_tuning_note
 from stickslip.app.computations import (
     BASIN_SAMPLES,
     BASIN_V,
@@ -183,7 +184,8 @@ def _show_stability(report: Mapping[str, Any]) -> None:
     rows = {"rigid": "rigid base", "foundation": "with foundation"}
     present = [k for k in rows if k in stab]
     st.dataframe(pd.DataFrame({
-        "stable": ["yes" if stab[k]["stable"] else "no" for k in present],
+        "stable": ["yes" if stab[k]["stable"] else "neutral" if stab[k].get("neutral") else "no"
+                   for k in present],
         "growth rate [1/s]": [_fmt(stab[k]["growth_rate"]) for k in present],
         "δ_crit": [_fmt(stab[k]["delta_crit"]) for k in present],
         "δ_local": [_fmt(stab[k]["delta_local"] + 0.0) for k in present],  # no "-0"
@@ -268,6 +270,9 @@ def _show_stick_slip_optimum(report: Mapping[str, Any], system: PhysicalSystem
             f"- its onset: {onset(opt['lambda_crit'])}\n"
             f"- absorber optimum of Eqs. (28)-(30): {onset(ref['lambda_crit'])}"
         )
+        note = coulomb_tuning_note(system.friction.law)
+        if note:
+            st.caption(f"This foundation {note}.")
         return opt
 
 

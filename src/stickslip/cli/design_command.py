@@ -231,6 +231,13 @@ def _num(x: float | None, unit: str = "") -> str:
     return f"{x + 0.0:.4g}{(' ' + unit) if unit else ''}"
 
 
+def _stability_word(s: dict[str, Any]) -> str:
+    """``stable``, ``neutral`` (growth rate zero to round-off) or ``UNSTABLE``, as simulate says."""
+    if s["stable"]:
+        return "stable"
+    return "neutral" if s.get("neutral") else "UNSTABLE"
+
+
 def _slope_text(sigma: float) -> str:
     """The friction slope ``d mu / d v_r`` steady sliding tolerates (``sigma`` in s/m, >= -sigma)."""
     if sigma > 0.0:
@@ -308,9 +315,13 @@ def format_report(p: dict[str, Any]) -> str:
         lines.append(f"foundation assessed: the recommended one (Fig. 16 procedure, Eqs. 28-30): "
                      f"{recommended}  {dimensionless}")
     else:
-        lines += [f"foundation assessed ({f['source']}): m_a={g(f['m_a'], 'kg')}, k_a={g(f['k_a'], 'N/m')}, "
-                  f"c_a={g(f['c_a'], 'N s/m')}  {dimensionless}",
-                  f"recommended foundation (Eqs. 28-30): {recommended}"]
+        assessed = f"m_a={g(f['m_a'], 'kg')}, k_a={g(f['k_a'], 'N/m')}, c_a={g(f['c_a'], 'N s/m')}"
+        if assessed == recommended:  # one line, not the same foundation twice
+            lines.append(f"foundation assessed ({f['source']}), the recommended one (Eqs. 28-30) "
+                         f"to the digits shown: {assessed}  {dimensionless}")
+        else:
+            lines += [f"foundation assessed ({f['source']}): {assessed}  {dimensionless}",
+                      f"recommended foundation (Eqs. 28-30): {recommended}"]
     best = p.get("stick_slip_optimal_foundation")
     if best:
         onset = (f">= {best['lambda_crit_at_least']:g} (none found)" if best["lambda_crit"] is None
@@ -321,6 +332,13 @@ def format_report(p: dict[str, Any]) -> str:
             f"m_a={g(best['m_a'], 'kg')}, k_a={g(best['k_a'], 'N/m')}, "
             f"c_a={g(best['c_a'], 'N s/m')}; stick-slip onset lambda_c {onset}"
         )
+        if best.get("assumption"):
+            lines.append(f"  ({best['assumption']})")
+        if best.get("own_law"):
+            o = best["own_law"]
+            note = f" ({o['note']})" if o["note"] else ""
+            lines.append(f"  with the machine's friction law: V_c={g(o['speed'], 'm/s')}, "
+                         f"W_c={g(o['load'], 'N')}{note}")
     stable_best = p.get("stability_optimal_foundation")
     if stable_best:
         lines.append(
@@ -338,7 +356,8 @@ def format_report(p: dict[str, Any]) -> str:
             s = stab[name]
             lines.append(
                 f"  {('rigid base' if name == 'rigid' else 'with foundation'):22}"
-                f"{'stable' if s['stable'] else 'UNSTABLE':>9}  growth rate {g(s['growth_rate'], '1/s')}; "
+                f"{_stability_word(s):>9}  growth rate {g(s['growth_rate'], '1/s')}"
+                f"{' (zero to round-off: marginally stable)' if s.get('neutral') else ''}; "
                 f"tolerates {_slope_text(s['sigma_crit'])} "
                 f"(delta_crit={g(s['delta_crit'])}, law's delta={g(s['delta_local'])}, "
                 f"margin {g(s['margin'])})"

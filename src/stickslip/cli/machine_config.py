@@ -184,7 +184,8 @@ def config_system(config: Path, flags: Mapping[str, Any] | None = None) -> Physi
                               speed=values["speed"], foundation=foundation,
                               friction=load_machine_file(config).friction())
     except ValueError as exc:
-        raise BadInput(f"--config {str(config)!r}: {exc}") from None
+        label = f"--config {str(config)!r}"  # named once: the [friction] message names it already
+        raise BadInput(str(exc) if str(exc).startswith(label) else f"{label}: {exc}") from None
 
 
 def config_machine(config: Path, flags: Mapping[str, Any] | None = None,

@@ -146,6 +146,10 @@ def _command_class() -> type[Any]:
     import textwrap
 
     class Command(TyperCommand):
+        def __init__(self, *args: Any, **kwargs: Any) -> None:
+            super().__init__(*args, **kwargs)
+            _restore_argument_help(self)
+
         def get_short_help_str(self, limit: int = 45) -> str:
             if self.short_help or not self.help:
                 return str(super().get_short_help_str(limit))
@@ -156,6 +160,26 @@ def _command_class() -> type[Any]:
                                     break_on_hyphens=False)
 
     return Command
+
+
+def _restore_argument_help(command: TyperCommand) -> None:
+    """Give each argument of ``command`` the ``help`` of its ``typer.Argument`` again.
+
+    click 8.5's ``Parameter.__init__`` sets ``help`` itself (to None for an argument), after
+    typer 0.24's ``TyperArgument`` has set it: ``identify --help`` listed ``RECORD`` with no
+    description. The help is read back from the command's signature.
+    """
+    from typer.core import TyperArgument
+    from typer.utils import get_params_from_function
+
+    if command.callback is None:
+        return
+    lost = [p for p in command.params if isinstance(p, TyperArgument) and not p.help]
+    if lost:
+        declared = get_params_from_function(command.callback)
+        for param in lost:
+            meta = declared.get(param.name or "")
+            param.help = getattr(meta.default, "help", None) if meta is not None else None
 
 
 def __getattr__(name: str) -> typer.Typer:

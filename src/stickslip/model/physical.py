@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from stickslip.model._validate import non_negative, positive
+from stickslip.model._validate import non_negative, positive, within
 from stickslip.model.friction import (
     CoulombFriction,
     FrictionLaw,
@@ -23,6 +23,46 @@ from stickslip.model.friction import (
 )
 from stickslip.model.parameters import Foundation, Slider
 from stickslip.model.structure import Structure, chain_structure
+
+#: Supported magnitudes of a physical input in SI units, ``[MIN_SI, MAX_SI]``. The report
+#: multiplies and divides up to three inputs (the energy scale ``m V^2``, the force scale
+#: ``V sqrt(m k)``, ``lambda`` itself) and a double overflows beyond 1.8e308: 1e50 keeps each
+#: such product within 1e150, far from overflow, and spans any machine (from a 1e-9 kg MEMS
+#: slider to a 1e8 kg ship). Beyond it ``--speed 1e300`` used to end in an ``OverflowError``.
+MAX_SI = 1e50
+MIN_SI = 1e-50
+
+
+def si_input(name: str, value: float, unit: str, *, zero: bool = False) -> float:
+    """``value`` as a float whose magnitude lies in ``[MIN_SI, MAX_SI]``.
+
+    A quantity that may be zero (``zero``: a damping, a kinetic coefficient) has no lower
+    bound: a tiny damping only makes a tiny damping ratio.
+
+    Parameters
+    ----------
+    name : str
+        The quantity's name in messages (``"speed V"``).
+    value : float
+        The value in SI units.
+    unit : str
+        Its SI unit, for the message (``"m/s"``; empty for a dimensionless coefficient).
+    zero : bool
+        Accept exactly zero (a damping, a kinetic coefficient).
+
+    Returns
+    -------
+    float
+        The value, in the unit given.
+
+    Raises
+    ------
+    ValueError
+        One line naming the value, the range and why.
+    """
+    x = non_negative(name, value) if zero else positive(name, value)
+    return within(name, x, 0.0 if zero else MIN_SI, MAX_SI, f"in {unit or 'dimensionless units'}; "
+                  "beyond it products of the inputs such as m V^2 overflow double precision")
 
 
 @dataclass(frozen=True)
@@ -44,9 +84,9 @@ class PhysicalFoundation:
     c_a: float
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "m_a", positive("m_a", self.m_a))
-        object.__setattr__(self, "k_a", positive("k_a", self.k_a))
-        object.__setattr__(self, "c_a", non_negative("c_a", self.c_a))
+        object.__setattr__(self, "m_a", si_input("m_a", self.m_a, "kg"))
+        object.__setattr__(self, "k_a", si_input("k_a", self.k_a, "N/m"))
+        object.__setattr__(self, "c_a", si_input("c_a", self.c_a, "N s/m", zero=True))
 
 
 @dataclass(frozen=True)
@@ -184,13 +224,13 @@ class PhysicalSystem:
         self.__post_init__()
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "mass", positive("m", self.mass))
-        object.__setattr__(self, "stiffness", positive("k", self.stiffness))
-        object.__setattr__(self, "damping", non_negative("c", self.damping))
-        object.__setattr__(self, "mu_s", positive("mu_s", self.mu_s))
-        object.__setattr__(self, "mu_k", non_negative("mu_k", self.mu_k))
-        object.__setattr__(self, "load", positive("load W", self.load))
-        object.__setattr__(self, "speed", positive("speed V", self.speed))
+        object.__setattr__(self, "mass", si_input("m", self.mass, "kg"))
+        object.__setattr__(self, "stiffness", si_input("k", self.stiffness, "N/m"))
+        object.__setattr__(self, "damping", si_input("c", self.damping, "N s/m", zero=True))
+        object.__setattr__(self, "mu_s", si_input("mu_s", self.mu_s, ""))
+        object.__setattr__(self, "mu_k", si_input("mu_k", self.mu_k, "", zero=True))
+        object.__setattr__(self, "load", si_input("load W", self.load, "N"))
+        object.__setattr__(self, "speed", si_input("speed V", self.speed, "m/s"))
         if self.mu_k >= self.mu_s:
             raise ValueError(
                 f"mu_k={self.mu_k!r} must be smaller than mu_s={self.mu_s!r} "
@@ -245,7 +285,7 @@ class PhysicalSystem:
         root_mk = math.sqrt(self.mass * self.stiffness)
         return Slider(
             (self.mu_s - self.mu_k) * self.load / (self.speed * root_mk),
-            gamma=self.mu_k / (self.mu_s - self.mu_k),
+            gamma=gamma_from_coefficients(self.mu_k, self.mu_s),
             friction=self.friction.dimensionless(self.mass, self.stiffness, self.mu_s, self.mu_k, self.load,
                                                  self.speed),
         )
@@ -312,6 +352,29 @@ class PhysicalSystem:
             speed=speed,
             foundation=phys_foundation,
         )
+
+
+def gamma_from_coefficients(mu_k: float, mu_s: float) -> float:
+    """``gamma = mu_k / (mu_s - mu_k)`` (after Eq. 27), dimensionless, exact for decimal inputs.
+
+    The coefficients are taken as the decimals they were written as (the shortest repr of each
+    float, e.g. 0.3 and 0.5) and the ratio is rounded once, so ``mu_s = 0.5, mu_k = 0.3`` give
+    gamma = 1.5 exactly; in floating point ``0.3 / (0.5 - 0.3)`` is 1.4999999999999998.
+
+    Parameters
+    ----------
+    mu_k, mu_s : float
+        Kinetic and static friction coefficients, dimensionless, ``mu_s > mu_k >= 0``.
+
+    Returns
+    -------
+    float
+        ``gamma``, dimensionless.
+    """
+    from fractions import Fraction
+
+    k, s = Fraction(repr(float(mu_k))), Fraction(repr(float(mu_s)))
+    return float(k / (s - k))
 
 
 _FORMER_NAMES = {"m": "mass", "k": "stiffness", "c": "damping"}
