@@ -3,7 +3,8 @@
 One home for every name and integer code a result can carry: the :class:`Verdict` of a run
 (``stick-slip``, ``steady-sliding``, ``undetermined``), the :class:`RunStatus` that certifies
 it (or says why there is no certificate), the friction :class:`Mode` of each phase, and the
-CF ``flag_values``/``flag_meanings`` attributes with which datasets store them. Codes never change meaning; new members get new codes.
+CF ``flag_values``/``flag_meanings`` attributes with which datasets store them. Codes never
+change meaning; new members get new codes.
 """
 
 from __future__ import annotations
