@@ -137,7 +137,9 @@ class DesignReport:
         return {
             "lambda": self.lam,
             "zeta": self.zeta,
-            "gamma": self.gamma,
+            # the ratio to the 15 digits its inputs carry: mu_s = 0.5, mu_k = 0.3 report 1.5,
+            # not the 1.4999999999999998 the engine runs with (mu_k / (mu_s - mu_k) in floats)
+            "gamma": float(f"{self.gamma:.15g}"),
             "zeta_eq": self.zeta_eq,
             "zeta_eq_source": self.zeta_eq_source,
             "verdict": self.verdicts,

@@ -285,7 +285,7 @@ class PhysicalSystem:
         root_mk = math.sqrt(self.mass * self.stiffness)
         return Slider(
             (self.mu_s - self.mu_k) * self.load / (self.speed * root_mk),
-            gamma=gamma_from_coefficients(self.mu_k, self.mu_s),
+            gamma=self.mu_k / (self.mu_s - self.mu_k),
             friction=self.friction.dimensionless(self.mass, self.stiffness, self.mu_s, self.mu_k, self.load,
                                                  self.speed),
         )
@@ -352,29 +352,6 @@ class PhysicalSystem:
             speed=speed,
             foundation=phys_foundation,
         )
-
-
-def gamma_from_coefficients(mu_k: float, mu_s: float) -> float:
-    """``gamma = mu_k / (mu_s - mu_k)`` (after Eq. 27), dimensionless, exact for decimal inputs.
-
-    The coefficients are taken as the decimals they were written as (the shortest repr of each
-    float, e.g. 0.3 and 0.5) and the ratio is rounded once, so ``mu_s = 0.5, mu_k = 0.3`` give
-    gamma = 1.5 exactly; in floating point ``0.3 / (0.5 - 0.3)`` is 1.4999999999999998.
-
-    Parameters
-    ----------
-    mu_k, mu_s : float
-        Kinetic and static friction coefficients, dimensionless, ``mu_s > mu_k >= 0``.
-
-    Returns
-    -------
-    float
-        ``gamma``, dimensionless.
-    """
-    from fractions import Fraction
-
-    k, s = Fraction(repr(float(mu_k))), Fraction(repr(float(mu_s)))
-    return float(k / (s - k))
 
 
 _FORMER_NAMES = {"m": "mass", "k": "stiffness", "c": "damping"}
