@@ -47,9 +47,10 @@ CONTACT_KEYS: dict[str, str] = {
     "mass": "mass",
 }
 
-#: The one line every command but ``stickslip stability`` gives for a machine with a contact.
-NOT_SUPPORTED = ("normal-load coupling is supported by `stickslip stability` only in this version "
-                 "([structure] normal_dof and the [contact] table); remove them to run this command")
+#: The one line every command but ``simulate`` and ``stability`` gives for a machine with a contact.
+NOT_SUPPORTED = ("a machine with its contact ([structure] normal_dof and the [contact] table) runs "
+                 "in `stickslip simulate` and `stickslip stability` only in this version; remove "
+                 "them to run this command")
 
 
 @dataclass(frozen=True)
