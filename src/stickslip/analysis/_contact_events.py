@@ -41,6 +41,8 @@ CHUNK = 256
 MAX_HALVINGS = 52
 #: Relative allowance of a surface that the phase starts on (its own rounding).
 START_TOLERANCE = 1e-10
+#: Multiple of that allowance beyond which the surface counts as left (exact again).
+LEFT = 1e3
 
 
 class AffineFlow:
@@ -143,8 +145,10 @@ def first_event(flow: AffineFlow, z0: FloatArray, normals: FloatArray, levels: F
     n_d = z0.size
     g0 = normals @ z0 + levels
     size = np.abs(levels) + np.abs(normals) @ np.abs(z0) + 1e-300
-    # a surface the phase starts on counts from just beyond its own rounding
-    shift = np.where(g0 <= START_TOLERANCE * size, START_TOLERANCE * size, 0.0)
+    # a surface the phase starts on counts from just beyond its own rounding, until the
+    # function has clearly left it (then the exact surface again)
+    tol = START_TOLERANCE * size
+    shift = np.where(g0 <= tol, tol, 0.0)
     if np.any(g0 + shift < 0.0):
         index = int(np.argmin(g0 + shift))
         return Found(0.0, z0, index, 0)
@@ -165,11 +169,16 @@ def first_event(flow: AffineFlow, z0: FloatArray, normals: FloatArray, levels: F
         if used > max_samples:
             raise RuntimeError(f"sample budget of {max_samples} exhausted")
         zs = np.vstack([z[None, :], powers[:k, :n_d, :n_d] @ z + powers[:k, :n_d, n_d]])
-        g = zs @ normals.T + levels + shift
+        g = zs @ normals.T + levels
+        # the surface is left behind once the function was clearly positive at a sample
+        left = np.maximum.accumulate((g > LEFT * tol) | (shift == 0.0)[None, :], axis=0)
+        shifts = np.where(left, 0.0, shift[None, :])  # per sample; an interval keeps its start's
+        shift = shifts[-1]
+        low = np.minimum(g[:-1], g[1:]) + shifts[:-1]
         bound = coef[None, :] * (flow.field_norm(zs[:-1]) * growth)[:, None] * h * h / 8.0
-        suspect = np.flatnonzero(~np.all(np.minimum(g[:-1], g[1:]) > bound, axis=1))
+        suspect = np.flatnonzero(~np.all(low > bound, axis=1))
         for j in suspect:
-            hit = _refine(flow, zs[j], (done + j) * h, h, normals, levels + shift, coef, 0)
+            hit = _refine(flow, zs[j], (done + j) * h, h, normals, levels + shifts[j], coef, 0)
             if hit is not None:
                 dt, index = hit
                 z_hit = flow.at(z0, dt)

@@ -268,7 +268,7 @@ def _build_mode(sys: ContactSystem, mode: int) -> ModeSystem:
     rigid_stick = mode == STICK and not jenkins
     if rigid_stick:  # the belt force keeps q_t'' = 0: [[M, -e_t], [e_t^T, 0]] [q''; F] = [f; 0]
         kkt = np.zeros((n + 1, n + 1))
-        kkt[:n, :n], kkt[:n, n], kkt[n, t] = sys.mass, -1.0, 1.0
+        kkt[:n, :n], kkt[t, n], kkt[n, t] = sys.mass, -1.0, 1.0
         sol = np.linalg.solve(kkt, np.vstack([force, np.zeros(d + 1)]))
         acc, belt = sol[:n], sol[n]
         acc[t] = 0.0
