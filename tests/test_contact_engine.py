@@ -120,7 +120,7 @@ def oracle(system: ContactSystem, t_end: float) -> list[tuple[str, float, np.nda
             f[t_dof] += (1.0 if mode == "slip+" else -1.0) * system.mu_k * normal
         return f, normal
 
-    def rhs(mode: str):  # noqa: ANN202
+    def rhs(mode: str):
         def f(_t: float, y: np.ndarray) -> np.ndarray:
             force, _ = forces(y, mode)
             acc = force / m
@@ -129,8 +129,8 @@ def oracle(system: ContactSystem, t_end: float) -> list[tuple[str, float, np.nda
             return np.concatenate([y[2:], acc])
         return f
 
-    def events(mode: str) -> list:  # noqa: ANN202
-        def ev(fun, kind):  # noqa: ANN001, ANN202
+    def events(mode: str) -> list:
+        def ev(fun, kind):
             fun.terminal, fun.direction, fun.kind = True, -1.0, kind
             return fun
         stick_force = lambda y: -forces(y, "stick")[0][t_dof]  # noqa: E731
