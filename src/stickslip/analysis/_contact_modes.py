@@ -37,7 +37,7 @@ class ModeSystem:
 
     ``normal``, ``belt_force`` and ``relative_velocity`` are affine rows: the normal force
     (N), the belt's force on the contact point (N; the stick force in stick) and
-    ``V - p'`` (m/s). ``equilibrium`` is ``(z*, V, V^-1)`` of a Hurwitz slip mode, else None.
+    ``V - p'`` (m/s). ``equilibrium`` is :func:`_equilibrium`'s (slip modes), else None.
     """
 
     mode: int
@@ -48,7 +48,7 @@ class ModeSystem:
     rows: tuple[tuple[FloatArray, str], ...]
     compression: FloatArray
     candidate: FloatArray
-    equilibrium: tuple[FloatArray, FloatArray, FloatArray] | None
+    equilibrium: tuple[NDArray[np.intp], FloatArray, FloatArray] | None
 
     def surfaces(self, z: FloatArray) -> tuple[FloatArray, FloatArray, list[str]]:
         """Event functions (normals, levels) positive while the mode holds, and their kinds.
@@ -307,14 +307,21 @@ def _build_mode(sys: ContactSystem, mode: int) -> ModeSystem:
                       _equilibrium(flow) if s != 0.0 else None)
 
 
-def _equilibrium(flow: AffineFlow) -> tuple[FloatArray, FloatArray, FloatArray] | None:
-    """``(z*, V, V^-1)`` of a Hurwitz ``A`` (``A z* + c = 0``, ``A = V Lambda V^-1``), else None."""
-    values, vectors = np.linalg.eig(flow.a)
+def _equilibrium(flow: AffineFlow) -> tuple[NDArray[np.intp], FloatArray, FloatArray] | None:
+    """``(moving, V, V^-1)`` of a slip mode whose moving part is Hurwitz, else None.
+
+    ``moving`` are the state entries whose rows of ``A`` and ``c`` are not all zero (an
+    undamped massless Jenkins element keeps its extension constant while it slips: that
+    entry is a parameter of the mode, not a neutral direction); ``A`` restricted to them is
+    ``V Lambda V^-1``.
+    """
+    moving = np.flatnonzero(np.any(flow.a != 0.0, axis=1) | (flow.c != 0.0))
+    a = flow.a[np.ix_(moving, moving)]
+    values, vectors = np.linalg.eig(a)
     if not np.all(values.real < 0.0):
         return None
     try:
-        z_star = np.linalg.solve(flow.a, -flow.c)
         inverse = np.linalg.inv(vectors)
     except np.linalg.LinAlgError:
         return None
-    return z_star, vectors, inverse
+    return moving, vectors, inverse

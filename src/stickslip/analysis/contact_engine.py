@@ -342,18 +342,25 @@ def _repeat(system: ContactSystem, breakaways: list[tuple[float, FloatArray]],
 
 
 def _settled_check(ms: ModeSystem, normals: FloatArray, levels: FloatArray) -> Any:
-    """``stop(z)``: True when the slip mode's events cannot be reached from ``z`` any more."""
+    """``stop(z)``: True when the slip mode's events cannot be reached from ``z`` any more.
+
+    The entries that do not move in this mode are held at their values at ``z``; the moving
+    ones relax to the equilibrium ``z*`` with modal amplitudes that never grow (Hurwitz).
+    """
     if ms.equilibrium is None:
         return None
-    z_star, vectors, inverse = ms.equilibrium
-    g_star = normals @ z_star + levels
-    if np.any(g_star <= 0.0):
-        return None
-    reach = np.abs(normals @ vectors).sum(axis=1)
+    moving, vectors, inverse = ms.equilibrium
+    a, c = ms.flow.a, ms.flow.c
+    a_moving = a[np.ix_(moving, moving)]
+    reach = np.abs(normals[:, moving] @ vectors).sum(axis=1)
 
     def stop(z: FloatArray) -> bool:
-        modal = float(np.max(np.abs(inverse @ (z - z_star))))
-        return bool(np.all(reach * modal < g_star))
+        z_star = z.copy()
+        z_star[moving] = np.linalg.solve(a_moving, -(c[moving] + a[moving] @ z
+                                                     - a_moving @ z[moving]))
+        g_star = normals @ z_star + levels
+        modal = float(np.max(np.abs(inverse @ (z[moving] - z_star[moving]))))
+        return bool(np.all(g_star > 0.0) and np.all(reach * modal < g_star))
 
     return stop
 
