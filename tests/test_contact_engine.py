@@ -200,7 +200,7 @@ def test_engine_agrees_with_an_event_driven_solve_ivp_oracle(system: ContactSyst
     assert np.max(np.abs(breaks[-1][1] - breaks[-2][1]) / scale) < 1e-6  # the oracle repeats too
     print(f"period: engine {run.period_s!r} | solve_ivp {period!r}")
     assert run.period_s == pytest.approx(period, rel=1e-7)
-    names = {"break+": "breakaway forward", "break-": "breakaway backward"}
+    names = {"break+": "breakaway forward", "break-": "breakaway backward", "re-stick": "belt speed"}
     assert [names.get(kind, kind) for kind, _, _ in ref] == [e.kind for e in run.events]
 
 

@@ -206,7 +206,7 @@ class ContactSystem:
             new = SLIP_BACKWARD
         elif kind == "lift-off":
             new = SEPARATED
-        elif kind == "re-stick":
+        elif kind == "belt speed":
             new = self._stick_or_slip(z)
         elif kind == "re-contact by the damper" and _value(self.mode(SEPARATED).compression,
                                                            z) <= 0.0:
@@ -297,7 +297,7 @@ def _build_mode(sys: ContactSystem, mode: int) -> ModeSystem:
         events += [(sys.mu_s * normal - belt, "breakaway forward"),
                    (sys.mu_s * normal + belt, "breakaway backward")]
     elif mode != SEPARATED:
-        events.append((s * relative, "re-stick"))
+        events.append((s * relative, "belt speed"))
     if nd is not None:
         events += ([(normal, "lift-off")] if in_contact else
                    [(-compression, "re-contact")]

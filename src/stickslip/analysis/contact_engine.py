@@ -31,9 +31,12 @@ Friction (Coulomb, ``mu_s > mu_k``)
 
 Every mode (stick, slip forward, slip backward, separation) is affine in the state,
 ``z' = A z + c``, and is solved exactly with the matrix exponential of the augmented system.
-Events (breakaway ``|F| = mu_s N``, re-stick ``v_r = 0`` with the stick force within the
-cone, lift-off ``N = 0``, re-contact) are found on the exact flow by the graze-proof search of
-:mod:`stickslip.analysis._contact_events`.
+Events are found on the exact flow by the graze-proof search of
+:mod:`stickslip.analysis._contact_events`; their kinds: ``breakaway forward`` and ``breakaway
+backward`` (``F = +-mu_s N`` in stick), ``belt speed`` (``v_r = 0`` in slip: stick when the
+stick force is within ``mu_s N``, else slip the other way), ``lift-off`` (``N = 0``),
+``re-contact`` (the spring compressed again) and ``re-contact by the damper`` (``N``
+positive again while the spring is still compressed).
 
 Verdicts
     A periodic motion is recognised when the state at an event (a breakaway, a lift-off, ...)
