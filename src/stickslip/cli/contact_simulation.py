@@ -114,7 +114,7 @@ def _summary(p: dict[str, Any]) -> str:
 
     counts = ", ".join(f"{k} {v}" for k, v in p["event_counts"].items()) or "none"
     lines = [
-        f"machine     {p['config']}: {p['n_dof']} DOF, contact on DOF {p['contact_dof']}, normal "
+        f"machine     {p['machine']}: {p['n_dof']} DOF, contact on DOF {p['contact_dof']}, normal "
         f"DOF {fmt(p['normal_dof'])}",
         f"verdict     {p['verdict']}",
         f"certificate {p['certificate']}",
