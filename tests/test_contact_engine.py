@@ -17,7 +17,7 @@ import pytest
 import scipy.linalg
 from scipy.integrate import solve_ivp
 
-from stickslip.analysis._contact_events import AffineFlow
+from stickslip.analysis._contact_events import AffineFlow, Found, first_event
 from stickslip.analysis.contact_engine import ContactSystem, simulate_contact
 from stickslip.analysis.theory import critical_lambda_exact
 from stickslip.analysis.verdict import Verdict
@@ -227,3 +227,18 @@ def test_separation_with_a_contact_damper_and_the_bad_inputs() -> None:
         ContactSystem(np.eye(1), np.zeros((1, 1)), np.eye(1), 0, None, 1.0, 1.0, 0.2, 0.3)
     with pytest.raises(ValueError, match="t_max"):
         simulate_contact(slider(1.0, 0.1), t_max=-1.0)
+
+
+@pytest.mark.parametrize("depth", [1e-10, 0.0])
+def test_a_root_between_samples_is_not_skipped(depth: float) -> None:
+    # x = cos(t - 1) rises to its maximum 1 at t = 1; g = 1 - depth - x is negative only on
+    # |t - 1| < acos(1 - depth) (2.8e-5 s wide for depth 1e-10, a touch for depth 0), far
+    # inside one sample interval (||A|| h = 0.25): the bound on g'' must still find it
+    flow = AffineFlow(np.array([[0.0, 1.0], [-1.0, 0.0]]), np.zeros(2))
+    z0 = np.array([math.cos(-1.0), -math.sin(-1.0)])
+    found = first_event(flow, z0, np.array([[-1.0, 0.0]]), np.array([1.0 - depth]), 3.0,
+                        max_samples=10_000)
+    assert isinstance(found, Found)
+    expected = 1.0 - math.acos(1.0 - depth)
+    # a touch is located to sqrt(eps) (1 - cos(t - 1) is rounding there), a crossing far better
+    assert found.dt == pytest.approx(expected, abs=1e-9 if depth else 1e-7)

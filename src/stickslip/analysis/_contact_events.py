@@ -177,7 +177,7 @@ def first_event(flow: AffineFlow, z0: FloatArray, normals: FloatArray, levels: F
         low = np.minimum(g[:-1], g[1:]) + shifts[:-1]
         bound = coef[None, :] * (flow.field_norm(zs[:-1]) * growth)[:, None] * h * h / 8.0
         suspect = np.flatnonzero(~np.all(low > bound, axis=1))
-        for j in suspect:
+        for j in suspect.tolist():
             hit = _refine(flow, zs[j], (done + j) * h, h, normals, levels + shifts[j], coef, 0)
             if hit is not None:
                 dt, index = hit
