@@ -39,6 +39,8 @@ STEP = 0.25
 CHUNK = 256
 #: Halvings of a sample interval before a touch of zero is taken as a graze.
 MAX_HALVINGS = 52
+#: Most interval halvings in one search (a budget: beyond it the search gives up).
+MAX_REFINEMENTS = 100_000
 #: Relative allowance of a surface that the phase starts on (its own rounding).
 START_TOLERANCE = 1e-10
 #: Multiple of that allowance beyond which the surface counts as left (exact again).
@@ -133,7 +135,8 @@ def first_event(flow: AffineFlow, z0: FloatArray, normals: FloatArray, levels: F
     horizon : float
         Longest duration searched, s (> 0).
     max_samples : int
-        Budget of samples; exceeding it raises ``RuntimeError`` (the caller reports it).
+        Budget of samples; exceeding it (or :data:`MAX_REFINEMENTS` halvings) raises
+        ``RuntimeError`` (the caller reports it).
     stop : callable, optional
         Checked at each chunk's end; True ends the search there (:class:`Settled`).
 
@@ -163,6 +166,7 @@ def first_event(flow: AffineFlow, z0: FloatArray, normals: FloatArray, levels: F
     for j in range(1, chunk):
         powers[j] = step @ powers[j - 1]
     done, z, used = 0, z0, 0
+    budget = [MAX_REFINEMENTS]
     while done < steps:
         k = min(chunk, steps - done)
         used += k
@@ -178,7 +182,8 @@ def first_event(flow: AffineFlow, z0: FloatArray, normals: FloatArray, levels: F
         bound = coef[None, :] * (flow.field_norm(zs[:-1]) * growth)[:, None] * h * h / 8.0
         suspect = np.flatnonzero(~np.all(low > bound, axis=1))
         for j in suspect.tolist():
-            hit = _refine(flow, zs[j], (done + j) * h, h, normals, levels + shifts[j], coef, 0)
+            hit = _refine(flow, zs[j], (done + j) * h, h, normals, levels + shifts[j], coef, 0,
+                          budget)
             if hit is not None:
                 dt, index = hit
                 z_hit = flow.at(z0, dt)
@@ -191,8 +196,15 @@ def first_event(flow: AffineFlow, z0: FloatArray, normals: FloatArray, levels: F
 
 
 def _refine(flow: AffineFlow, z_left: FloatArray, t_left: float, h: float, normals: FloatArray,
-            levels: FloatArray, coef: FloatArray, depth: int) -> tuple[float, int] | None:
-    """The first root in ``[t_left, t_left + h]`` (time from the phase start), or None."""
+            levels: FloatArray, coef: FloatArray, depth: int,
+            budget: list[int]) -> tuple[float, int] | None:
+    """The first root in ``[t_left, t_left + h]`` (time from the phase start), or None.
+
+    ``budget[0]`` counts the halvings left; at zero the search raises ``RuntimeError``.
+    """
+    budget[0] -= 1
+    if budget[0] < 0:
+        raise RuntimeError(f"event search budget of {MAX_REFINEMENTS} interval halvings exhausted")
     half = 0.5 * h
     z_mid = flow.at(z_left, half)
     z_right = flow.at(z_left, h)
@@ -213,7 +225,8 @@ def _refine(flow: AffineFlow, z_left: FloatArray, t_left: float, h: float, norma
         if depth >= MAX_HALVINGS:  # a touch of zero: the graze is the event
             index = int(np.argmin(np.minimum(lo, hi) - bound))
             return t_left + side * half + (0.0 if lo[index] <= hi[index] else half), index
-        hit = _refine(flow, zs[side], t_left + side * half, half, normals, levels, coef, depth + 1)
+        hit = _refine(flow, zs[side], t_left + side * half, half, normals, levels, coef,
+                      depth + 1, budget)
         if hit is not None:
             return hit
     return None

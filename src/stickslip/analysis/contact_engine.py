@@ -283,8 +283,8 @@ def simulate_contact(system: ContactSystem, *, t_max: float | None = None,
         try:
             found = first_event(ms.flow, z, normals, levels, horizon - t,
                                 max_samples=max_samples - used, stop=stop)
-        except RuntimeError:
-            certificate = f"sample budget ({max_samples}) exhausted; increase max_samples"
+        except RuntimeError as exc:
+            certificate = f"{exc}; increase max_samples or shorten t_max"
             break
         used += found.samples
         if isinstance(found, Settled) or (stop is not None and not isinstance(found, Found)
