@@ -171,8 +171,10 @@ def simulate(
                                      plot=plot, json=json)
             return
         if machine_file.has_memory_law:
-            if machine_file.has_contact:  # the memory engine has no contact: one line
-                load_machine_file(config)
+            if machine_file.has_contact:  # neither engine has both: one line
+                raise BadInput(f"{machine_file.label}: a [contact] (normal_dof, Jenkins element) "
+                               "runs with the Coulomb law (mu_s, mu_k) only, not with a friction "
+                               "law with memory; remove one of them")
             _simulate_memory(ctx, machine_file, t_max=t_max, history_times=history_times,
                              initial_kick=initial_kick, plot=plot, json=json)
             return
