@@ -184,7 +184,7 @@ def simulate(
             raise BadInput(f"{name} works with a friction law with memory (--friction "
                            "rate-state:... or lugre:..., or --config with [friction] law = "
                            "\"rate-state\" or \"lugre\")"
-                           + (" or, --history-times, a [contact] machine"
+                           + (" or a machine file with a [contact]"
                               if name == "--history-times" else ""))
     if config is not None:
         run = configured_machine(config)
