@@ -11,13 +11,15 @@ expm(A s) f(t_j)``, so on ``[t_j, t_j + h]``
 
     |g''| <= ||a A D|| ||D^-1 f(t_j)|| exp(||D^-1 A D|| h)
 
-(``D`` the diagonal balancing of ``A``, which makes metres and metres per second comparable).
-The linear interpolant of the two samples is then within ``|g''|_max h^2 / 8`` of ``g``: an
-interval whose sampled values both exceed that bound holds no root, and every other interval
-is halved (the same bound with ``h / 2``) until it is cleared or a sign change is found. A
-sign change is refined by Brent's method on the exact flow. A root that only touches zero
-(a graze) is found too: its interval can never be cleared, and once it is shorter than
-:data:`GRAZE_LENGTH` of the step the touch is taken as the event.
+(``D`` the diagonal balancing of ``A``, which makes metres and metres per second comparable),
+or, tighter once ``g''`` is resolved, the larger sampled ``|g''|`` plus the interpolation
+error of ``g''`` itself, ``||a A^3 D|| ||D^-1 f(t_j)|| exp(||D^-1 A D|| h) h^2 / 8``
+(:class:`_Curvature`). The linear interpolant of the two samples of ``g`` is then within
+``max|g''| h^2 / 8`` of ``g``: an interval whose sampled values both exceed that bound holds
+no root, and every other interval is halved (the same bounds with ``h / 2``) until it is
+cleared or a sign change is found. A sign change is refined by Brent's method on the exact
+flow. A root that only touches zero (a graze) is found too: its interval can never be
+cleared, and after :data:`MAX_HALVINGS` halvings the touch is taken as the event.
 """
 
 from __future__ import annotations
@@ -157,8 +159,7 @@ def first_event(flow: AffineFlow, z0: FloatArray, normals: FloatArray, levels: F
         return Found(0.0, z0, index, 0)
     steps = max(1, math.ceil(horizon * flow.norm / STEP))
     h = horizon / steps
-    coef = np.linalg.norm((normals @ flow.a) * flow.scale, axis=1)
-    growth = math.exp(flow.norm * h)
+    coef = _Curvature.of(flow, normals)
     chunk = min(CHUNK, steps)
     step = flow.propagator(h)
     powers = np.empty((chunk, n_d + 1, n_d + 1))
@@ -179,7 +180,7 @@ def first_event(flow: AffineFlow, z0: FloatArray, normals: FloatArray, levels: F
         shifts = np.where(left, 0.0, shift[None, :])  # per sample; an interval keeps its start's
         shift = shifts[-1]
         low = np.minimum(g[:-1], g[1:]) + shifts[:-1]
-        bound = coef[None, :] * (flow.field_norm(zs[:-1]) * growth)[:, None] * h * h / 8.0
+        bound = coef.bound(flow, zs, h)
         suspect = np.flatnonzero(~np.all(low > bound, axis=1))
         for j in suspect.tolist():
             hit = _refine(flow, zs[j], (done + j) * h, h, normals, levels + shifts[j], coef, 0,
@@ -195,8 +196,41 @@ def first_event(flow: AffineFlow, z0: FloatArray, normals: FloatArray, levels: F
     return Horizon(z, used)
 
 
+@dataclass(frozen=True)
+class _Curvature:
+    """What bounds ``|g''|`` of every event function between two samples ``h`` apart.
+
+    Two bounds, both from ``f(t_j + s) = expm(A s) f(t_j)``, the smaller is used:
+    ``||a A D|| F_j exp(||A_s|| h)`` (``F_j = ||D^-1 f(t_j)||``), and the larger of the two
+    sampled values of ``g'' = a A f`` plus the error of their linear interpolant,
+    ``||a A^3 D|| F_j exp(||A_s|| h) h^2 / 8`` (tight when ``g''`` is well resolved).
+    """
+
+    second: FloatArray  # (m, d): g'' = second @ z + second_level
+    second_level: FloatArray
+    first_norm: FloatArray  # ||a A D||
+    fourth_norm: FloatArray  # ||a A^3 D||
+
+    @classmethod
+    def of(cls, flow: AffineFlow, normals: FloatArray) -> _Curvature:
+        na = normals @ flow.a
+        na2 = na @ flow.a
+        na3 = na2 @ flow.a
+        return cls(na2, na @ flow.c, np.linalg.norm(na * flow.scale, axis=1),
+                   np.linalg.norm(na3 * flow.scale, axis=1))
+
+    def bound(self, flow: AffineFlow, zs: FloatArray, h: float) -> FloatArray:
+        """``max |g - linear interpolant|`` on each interval of the samples ``zs``: (k, m)."""
+        speed = flow.field_norm(zs[:-1]) * math.exp(flow.norm * h)
+        sampled = np.abs(zs @ self.second.T + self.second_level)
+        second = np.minimum(self.first_norm[None, :] * speed[:, None],
+                            np.maximum(sampled[:-1], sampled[1:])
+                            + self.fourth_norm[None, :] * speed[:, None] * h * h / 8.0)
+        return np.asarray(second * h * h / 8.0)
+
+
 def _refine(flow: AffineFlow, z_left: FloatArray, t_left: float, h: float, normals: FloatArray,
-            levels: FloatArray, coef: FloatArray, depth: int,
+            levels: FloatArray, coef: _Curvature, depth: int,
             budget: list[int]) -> tuple[float, int] | None:
     """The first root in ``[t_left, t_left + h]`` (time from the phase start), or None.
 
@@ -210,7 +244,6 @@ def _refine(flow: AffineFlow, z_left: FloatArray, t_left: float, h: float, norma
     z_right = flow.at(z_left, h)
     zs = np.vstack([z_left, z_mid, z_right])
     g = zs @ normals.T + levels
-    growth = math.exp(flow.norm * half)
     for side in (0, 1):
         lo, hi = g[side], g[side + 1]
         crossing = np.flatnonzero(hi <= 0.0)
@@ -218,7 +251,7 @@ def _refine(flow: AffineFlow, z_left: FloatArray, t_left: float, h: float, norma
             roots = [(_root(flow, zs[side], normals[i], levels[i], half), int(i)) for i in crossing]
             dt, index = min(roots)
             return t_left + side * half + dt, index
-        bound = coef * flow.field_norm(zs[side]) * growth * half * half / 8.0
+        bound = coef.bound(flow, zs[side:side + 2], half)[0]
         unclear = np.minimum(lo, hi) <= bound
         if not np.any(unclear):
             continue

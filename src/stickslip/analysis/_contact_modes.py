@@ -53,13 +53,17 @@ class ModeSystem:
     def surfaces(self, z: FloatArray) -> tuple[FloatArray, FloatArray, list[str]]:
         """Event functions (normals, levels) positive while the mode holds, and their kinds.
 
-        In separation the damper's re-contact (``W - k_n q_n - c_n q_n'`` positive again while
-        the spring is compressed) is watched while the spring is compressed or that force is
-        still negative at ``z``; otherwise the spring's own re-contact comes first.
+        In separation after a lift-off by the damper the spring may still be compressed
+        (``W - k_n q_n > 0``): then the damper's re-contact (``W - k_n q_n - c_n q_n'``
+        positive again) and the spring's release (its free length passed, a switch to
+        separation again) are watched; once outside, the spring's re-contact, and the
+        damper's only while that force is still negative at ``z``.
         """
         tol = FORCE_TOLERANCE * abs(float(self.candidate[-1]))
-        watch = _value(self.candidate, z) < -tol or _value(self.compression, z) > 0.0
-        rows = [(r, k) for r, k in self.rows if k != "re-contact by the damper" or watch]
+        inside = _value(self.compression, z) > tol
+        watch = {"re-contact": not inside, "spring released": inside,
+                 "re-contact by the damper": inside or _value(self.candidate, z) < -tol}
+        rows = [(r, k) for r, k in self.rows if watch.get(k, True)]
         stacked = np.array([r for r, _ in rows])
         return stacked[:, :-1], stacked[:, -1], [k for _, k in rows]
 
@@ -204,7 +208,7 @@ class ContactSystem:
             new = SLIP_FORWARD
         elif kind == "breakaway backward":
             new = SLIP_BACKWARD
-        elif kind == "lift-off":
+        elif kind in ("lift-off", "spring released"):
             new = SEPARATED
         elif kind == "belt speed":
             new = self._stick_or_slip(z)
@@ -219,17 +223,36 @@ class ContactSystem:
         """Slip in the direction of ``V - p'`` (as ``velocity_mode`` gives it), or stick."""
         v_r = _value(self.mode(velocity_mode).relative_velocity, z)
         if abs(v_r) > VELOCITY_TOLERANCE * self.speed:
-            return SLIP_FORWARD if v_r > 0.0 else SLIP_BACKWARD
+            slip = SLIP_FORWARD if v_r > 0.0 else SLIP_BACKWARD
+            if self._consistent(slip, z):
+                return slip
         return self._stick_or_slip(z)
 
     def _stick_or_slip(self, z: FloatArray) -> int:
-        """At the belt speed: stick if the stick force is within ``mu_s N``, else slip its way."""
+        """At the belt speed: stick if the stick force is within ``mu_s N``, else slip its way.
+
+        A slip whose own relative velocity would at once point the other way (an undamped
+        massless element at a re-contact, where ``N`` and the cone start from zero) cannot
+        start: the contact point then sticks (Filippov's choice), rather than switching
+        between the two slips at one instant.
+        """
         stick = self.mode(STICK)
         z = self.enter(STICK, z)
         force, normal = _value(stick.belt_force, z), _value(stick.normal, z)
         if abs(force) <= self.mu_s * normal:
             return STICK
-        return SLIP_FORWARD if force > 0.0 else SLIP_BACKWARD
+        slip = SLIP_FORWARD if force > 0.0 else SLIP_BACKWARD
+        return slip if self._consistent(slip, z) else STICK
+
+    def _consistent(self, slip: int, z: FloatArray) -> bool:
+        """True when ``slip``'s relative velocity has its sign at ``z`` (or moves into it)."""
+        ms = self.mode(slip)
+        z = self.enter(slip, z)
+        sign = 1.0 if slip == SLIP_FORWARD else -1.0
+        v_r = sign * _value(ms.relative_velocity, z)
+        if abs(v_r) > VELOCITY_TOLERANCE * self.speed:
+            return v_r > 0.0
+        return sign * float(ms.relative_velocity[:-1] @ (ms.flow.a @ z + ms.flow.c)) >= 0.0
 
 
 def _build_mode(sys: ContactSystem, mode: int) -> ModeSystem:
@@ -298,10 +321,12 @@ def _build_mode(sys: ContactSystem, mode: int) -> ModeSystem:
                    (sys.mu_s * normal + belt, "breakaway backward")]
     elif mode != SEPARATED:
         events.append((s * relative, "belt speed"))
-    if nd is not None:
-        events += ([(normal, "lift-off")] if in_contact else
-                   [(-compression, "re-contact")]
-                   + ([(-candidate, "re-contact by the damper")] if cn > 0.0 else []))
+    if nd is not None and in_contact:  # N = 0, or (with a damper) the spring at its length
+        events += [(normal, "lift-off")] + ([(compression, "lift-off")] if cn > 0.0 else [])
+    elif nd is not None:
+        events += [(-compression, "re-contact")] + (
+            [(-candidate, "re-contact by the damper"), (compression, "spring released")]
+            if cn > 0.0 else [])
     flow = AffineFlow(rows[:, :d], rows[:, d])
     return ModeSystem(mode, flow, normal, belt, relative, tuple(events), compression, candidate,
                       _equilibrium(flow) if s != 0.0 else None)

@@ -10,8 +10,10 @@ Normal force
     In contact, ``N = W - k_n q_n - c_n q_n'`` and the force on ``n`` is ``-(k_n q_n +
     c_n q_n')`` (the preload and the contact's ``W`` cancel). In **separation** the contact
     carries nothing: no friction, and the force on ``n`` is the preload ``-W`` alone. The
-    contact is unilateral: it separates when ``N`` reaches zero (lift-off) and re-engages when
-    the spring is compressed again (``q_n < W / k_n``) with ``W - k_n q_n - c_n q_n' > 0``.
+    contact is unilateral: the force is ``max(0, W - k_n q_n - c_n q_n')`` while the spring
+    is compressed (``q_n < W / k_n``) and zero otherwise. It separates when ``N`` reaches zero
+    or (with a damper) when the spring reaches its free length (lift-off), and re-engages when
+    both hold again: the spring compressed and ``W - k_n q_n - c_n q_n' > 0``.
     The re-contact law: **no impact**. The contact is a spring, so the velocities are
     continuous through re-contact and the normal force starts from ``max(0, -c_n q_n')``
     (zero without a contact damper); no restitution coefficient is needed or used. Without a
@@ -35,8 +37,10 @@ Events are found on the exact flow by the graze-proof search of
 :mod:`stickslip.analysis._contact_events`; their kinds: ``breakaway forward`` and ``breakaway
 backward`` (``F = +-mu_s N`` in stick), ``belt speed`` (``v_r = 0`` in slip: stick when the
 stick force is within ``mu_s N``, else slip the other way), ``lift-off`` (``N = 0``),
-``re-contact`` (the spring compressed again) and ``re-contact by the damper`` (``N``
-positive again while the spring is still compressed).
+``re-contact`` (the spring compressed again), ``re-contact by the damper`` (``N``
+positive again while the spring is still compressed; outside it, no re-contact yet) and
+``spring released`` (in separation, the spring passes its free length: nothing changes but
+the re-contact watched next).
 
 Verdicts
     A periodic motion is recognised when the state at an event (a breakaway, a lift-off, ...)
@@ -89,6 +93,8 @@ MAX_PERIOD = 8
 REPEAT_TOLERANCE = 1e-9
 #: Default horizon in natural times ``1 / omega_ref`` of the tangential DOF.
 DEFAULT_HORIZON = 5000.0
+#: Most mode switches at one instant before the run stops (accumulating switches).
+MAX_AT_ONE_INSTANT = 20
 #: Default budget of sampled states over the whole run.
 MAX_SAMPLES = 20_000_000
 
@@ -267,7 +273,7 @@ def simulate_contact(system: ContactSystem, *, t_max: float | None = None,
         raise ValueError(f"initial state must be {system.n_state} finite numbers")
     mode = system.initial_mode(z)
     z = system.enter(mode, z)
-    t, used = 0.0, 0
+    t, used, instant = 0.0, 0, 0
     events: list[ContactEvent] = []
     seg: tuple[list[float], list[int], list[FloatArray]] = ([], [], [])
     returns: dict[str, list[tuple[float, FloatArray]]] = {}
@@ -303,8 +309,15 @@ def simulate_contact(system: ContactSystem, *, t_max: float | None = None,
         kind = kinds[found.index]
         new_mode, z = system.switch(mode, kind, found.z)
         events.append(ContactEvent(t, kind, mode, new_mode))
+        instant = instant + 1 if found.dt == 0.0 else 0
+        if instant > MAX_AT_ONE_INSTANT:
+            certificate = (f"{instant} mode switches at t = {t:.9g} s without time passing (the "
+                           "modes accumulate there); no verdict")
+            break
         previous = returns.setdefault(kind, [])
         repeat = _repeat(system, previous, z)
+        if repeat is not None and t - previous[-repeat][0] <= 0.0:
+            repeat = None  # the same instant: not a period
         previous.append((t, z.copy()))
         if repeat is not None:
             period = t - previous[-1 - repeat][0]
