@@ -11,6 +11,8 @@ Sources of the reference values:
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 import pytest
@@ -104,6 +106,30 @@ def test_a_massive_contact_point_and_an_undamped_element_run() -> None:
 
 # --- the independent oracle: rigid contact, normal DOF, lift-off (c_n = 0) -----------------
 
+def terminal(fun: Any, kind: str) -> Any:
+    """A solve_ivp event: terminal, crossing zero downwards, named ``kind``."""
+    fun.terminal, fun.direction, fun.kind = True, -1.0, kind
+    return fun
+
+
+def event_driven(rhs: Callable[[str], Any], events: Callable[[str], list[Any]],
+                 after: Callable[[str, np.ndarray], tuple[str, np.ndarray]], y: np.ndarray,
+                 t_end: float, atol: Any) -> list[tuple[str, float, np.ndarray]]:
+    """Run mode by mode with solve_ivp (DOP853, rtol 1e-11) from stick: ``(kind, t, state)``."""
+    mode, t, out = "stick", 0.0, []
+    while t < t_end:
+        sol = solve_ivp(rhs(mode), (t, t_end), y, method="DOP853", rtol=1e-11, atol=atol,
+                        events=events(mode))
+        if sol.status != 1:
+            break
+        hit = next(i for i, te in enumerate(sol.t_events) if te.size)
+        kind = events(mode)[hit].kind
+        t, y = float(sol.t_events[hit][0]), sol.y_events[hit][0].copy()
+        out.append((kind, t, y.copy()))
+        mode, y = after(kind, y)
+    return out
+
+
 def oracle(system: ContactSystem, t_end: float) -> list[tuple[str, float, np.ndarray]]:
     """Events ``(kind, t, state)`` of an event-driven solve_ivp run (diagonal mass, c_n = 0)."""
     m = np.diag(system.mass)
@@ -120,7 +146,7 @@ def oracle(system: ContactSystem, t_end: float) -> list[tuple[str, float, np.nda
             f[t_dof] += (1.0 if mode == "slip+" else -1.0) * system.mu_k * normal
         return f, normal
 
-    def rhs(mode: str):
+    def rhs(mode: str) -> Callable[[float, np.ndarray], np.ndarray]:
         def f(_t: float, y: np.ndarray) -> np.ndarray:
             force, _ = forces(y, mode)
             acc = force / m
@@ -129,10 +155,8 @@ def oracle(system: ContactSystem, t_end: float) -> list[tuple[str, float, np.nda
             return np.concatenate([y[2:], acc])
         return f
 
-    def events(mode: str) -> list:
-        def ev(fun, kind):
-            fun.terminal, fun.direction, fun.kind = True, -1.0, kind
-            return fun
+    def events(mode: str) -> list[Any]:
+        ev = terminal
         stick_force = lambda y: -forces(y, "stick")[0][t_dof]  # noqa: E731
         normal = lambda y: forces(y, mode)[1]  # noqa: E731
         if mode == "stick":
@@ -156,21 +180,14 @@ def oracle(system: ContactSystem, t_end: float) -> list[tuple[str, float, np.nda
             return "stick"
         return "slip+" if -force[t_dof] > 0 else "slip-"
 
-    y = system.startup_state()
-    mode, t, out = "stick", 0.0, []
-    while t < t_end:
-        sol = solve_ivp(rhs(mode), (t, t_end), y, method="DOP853", rtol=1e-11,
-                        atol=1e-12 * system.state_scale[:4], events=events(mode))
-        if sol.status != 1:
-            break
-        hit = next(i for i, te in enumerate(sol.t_events) if te.size)
-        kind = events(mode)[hit].kind
-        t, y = float(sol.t_events[hit][0]), sol.y_events[hit][0].copy()
-        out.append((kind, t, y.copy()))
+    def after(kind: str, y: np.ndarray) -> tuple[str, np.ndarray]:
         mode = {"break+": "slip+", "break-": "slip-", "lift-off": "sep"}.get(kind) or contact_mode(y)
         if mode == "stick":
             y[2 + t_dof] = speed
-    return out
+        return mode, y
+
+    return event_driven(rhs, events, after, system.startup_state(), t_end,
+                        1e-12 * system.state_scale[:4])
 
 
 def two_dof(k12: float, kn: float, speed: float) -> ContactSystem:
@@ -258,3 +275,58 @@ def test_a_root_between_samples_is_not_skipped(depth: float) -> None:
     expected = 1.0 - math.acos(1.0 - depth)
     # a touch is located to sqrt(eps) (1 - cos(t - 1) is rounding there), a crossing far better
     assert found.dt == pytest.approx(expected, abs=1e-9 if depth else 1e-7)
+
+
+def jenkins_oracle(lam: float, zeta: float, kt: float, ct: float, t_end: float
+                   ) -> list[tuple[str, float]]:
+    """Events of the 1 DOF slider (m = k = W = 1) on a massless Jenkins element, by solve_ivp.
+
+    State ``(x, v, e)``: in stick the point moves with the belt (``e' = v - V``) and the belt
+    force is ``F = -(k_t e + c_t e')``; in slip ``F = s mu_k`` and ``k_t e + c_t e' = -F``;
+    the point's velocity is ``v - e'``.
+    """
+    speed = (MU_S - MU_K) / lam
+
+    def e_rate(y: np.ndarray, mode: str) -> float:
+        if mode == "stick":
+            return y[1] - speed
+        return (-(1.0 if mode == "slip+" else -1.0) * MU_K - kt * y[2]) / ct
+
+    def belt(y: np.ndarray, mode: str) -> float:
+        return -(kt * y[2] + ct * e_rate(y, mode))
+
+    def rhs(mode: str) -> Callable[[float, np.ndarray], np.ndarray]:
+        return lambda _t, y: np.array([y[1], -y[0] - 2.0 * zeta * y[1] + belt(y, mode),
+                                       e_rate(y, mode)])
+
+    def events(mode: str) -> list[Any]:
+        ev = terminal
+        if mode == "stick":
+            return [ev(lambda _t, y: MU_S - belt(y, "stick"), "break+"),
+                    ev(lambda _t, y: MU_S + belt(y, "stick"), "break-")]
+        sign = 1.0 if mode == "slip+" else -1.0
+        return [ev(lambda _t, y: sign * (speed - (y[1] - e_rate(y, mode))), "belt speed")]
+
+    def after(kind: str, y: np.ndarray) -> tuple[str, np.ndarray]:
+        # massless: at the belt speed the stick force equals the slip force, inside the cone
+        return {"break+": "slip+", "break-": "slip-"}.get(kind, "stick"), y
+
+    run = event_driven(rhs, events, after, np.array([0.0, speed, 0.0]), t_end, 1e-13 * speed)
+    return [(kind, t) for kind, t, _ in run]
+
+
+@pytest.mark.parametrize(("lam", "verdict"), [(1.50, Verdict.STEADY_SLIDING),
+                                              (1.62, Verdict.STICK_SLIP)])
+def test_jenkins_element_agrees_with_a_solve_ivp_oracle(lam: float, verdict: Verdict) -> None:
+    # k_t / k = 10, contact damping ratio 0.3, zeta = 0.1: either side of the measured
+    # boundary lambda_c = 1.5568 (docs/brake_squeal.md), the oracle's events and period
+    kt, ct = 10.0, 0.6 * math.sqrt(10.0)
+    run = simulate_contact(slider(lam, 0.1, tangential_stiffness=kt, tangential_damping=ct))
+    assert run.verdict is verdict
+    ref = jenkins_oracle(lam, 0.1, kt, ct, run.t_end * (1.0 + 1e-9))
+    names = {"break+": "breakaway forward", "break-": "breakaway backward"}
+    assert [names.get(kind, kind) for kind, _ in ref] == [e.kind for e in run.events]
+    assert all(e.t == pytest.approx(t, rel=1e-8) for e, (_, t) in zip(run.events, ref, strict=True))
+    if verdict is Verdict.STICK_SLIP:
+        breaks = [t for kind, t in ref if kind == "break+"]
+        assert run.period_s == pytest.approx(breaks[-1] - breaks[-2], rel=1e-8)
