@@ -48,7 +48,8 @@ def load_machine_file(config: Path, *, normal_coupling: bool = False) -> Machine
 
     Every ``--config`` command passes here, so here a ``[contact]`` table or a ``[structure]
     normal_dof`` is refused (:data:`stickslip.model.contact.NOT_SUPPORTED`) unless the command
-    says it uses them (``normal_coupling=True``: ``stickslip stability``), rather than ignored.
+    says it uses them (``normal_coupling=True``: ``stickslip stability`` and ``stickslip
+    simulate``), rather than ignored.
     """
     from stickslip.io.machine_file import read_machine_file
     from stickslip.model.contact import NOT_SUPPORTED
@@ -162,27 +163,29 @@ def collect_inputs(flags: Mapping[str, Any], config: Path | None, *,
     return values
 
 
-def config_system(config: Path, flags: Mapping[str, Any] | None = None) -> PhysicalSystem:
+def config_system(config: Path, flags: Mapping[str, Any] | None = None, *,
+                  normal_coupling: bool = False) -> PhysicalSystem:
     """The paper's slider (rigid base or foundation) of a flat machine file, in SI.
 
     A file with a ``[structure]`` is refused with one line (its machine is
     :func:`config_machine`'s): a caller that needs the slider's ``m``, ``k``, ``c`` says so
-    instead of failing on a missing key.
+    instead of failing on a missing key. ``normal_coupling`` as :func:`load_machine_file`'s.
     """
     from stickslip.model.physical import PhysicalFoundation, PhysicalSystem
 
-    if load_machine_file(config).has_structure:
+    if load_machine_file(config, normal_coupling=normal_coupling).has_structure:
         raise BadInput(f"--config {str(config)!r} has a [structure]: this needs the paper's slider "
                        "(m, k, c; m_a, k_a, c_a)")
 
-    values = collect_inputs(flags or {}, config)
+    values = collect_inputs(flags or {}, config, normal_coupling=normal_coupling)
     foundation = (PhysicalFoundation(values["m_a"], values["k_a"], values["c_a"])
                   if "m_a" in values else None)
     try:
         return PhysicalSystem(mass=values["m"], stiffness=values["k"], damping=values["c"],
                               mu_s=values["mu_s"], mu_k=values["mu_k"], load=values["load"],
                               speed=values["speed"], foundation=foundation,
-                              friction=load_machine_file(config).friction())
+                              friction=load_machine_file(
+                                  config, normal_coupling=normal_coupling).friction())
     except ValueError as exc:
         label = f"--config {str(config)!r}"  # named once: the [friction] message names it already
         raise BadInput(str(exc) if str(exc).startswith(label) else f"{label}: {exc}") from None

@@ -36,7 +36,7 @@ T_MAX = Annotated[str | None, typer.Option(
     "default covers 100 natural times")]
 HISTORY_TIMES = Annotated[str | None, typer.Option(
     "--history-times", help="A:B:N: add `history` (t_s, x_m, v_m_s, mu, state) at N times from A "
-    "to B seconds (--config with a friction law with memory)")]
+    "to B seconds (--config with a friction law with memory or a [contact] machine)")]
 INITIAL_KICK = Annotated[float | None, typer.Option(
     "--initial-kick", help="F: start with the slip speed at (1 + F) V, the contact moving at -F V, "
     "positions and state of steady sliding (--config with a friction law with memory)")]
@@ -147,6 +147,9 @@ def simulate(
     gives period_s, amplitude_m (half the peak-to-peak displacement of the contact DOF) next to
     the dimensionless period, amplitude, lambda, zeta and gamma; --t-max and --initial stay
     dimensionless (tau = omega_n t, displacements in V / omega_n of the contact DOF).
+
+    A machine with its contact ([structure] normal_dof and [contact], docs/brake_squeal.md)
+    runs on the exact contact engine: stick, slip and separation; --json adds separated.
     """
     from stickslip.analysis.simulation import EngineOptions
     from stickslip.analysis.simulation import simulate as run_simulation
@@ -159,8 +162,19 @@ def simulate(
     if config is not None:
         from stickslip.cli.machine_config import load_machine_file
 
-        machine_file = load_machine_file(config)
+        machine_file = load_machine_file(config, normal_coupling=True)
+        if machine_file.has_contact and not machine_file.has_memory_law:
+            from stickslip.cli.contact_simulation import simulate_contact_command
+
+            simulate_contact_command(ctx, config, machine_file, t_max=t_max,
+                                     max_events=max_events, history_times=history_times,
+                                     plot=plot, json=json)
+            return
         if machine_file.has_memory_law:
+            if machine_file.has_contact:  # neither engine has both: one line
+                raise BadInput(f"{machine_file.label}: a [contact] (normal_dof, Jenkins element) "
+                               "runs with the Coulomb law (mu_s, mu_k) only, not with a friction "
+                               "law with memory; remove one of them")
             _simulate_memory(ctx, machine_file, t_max=t_max, history_times=history_times,
                              initial_kick=initial_kick, plot=plot, json=json)
             return
@@ -169,7 +183,9 @@ def simulate(
         if value is not None and not memory_law:
             raise BadInput(f"{name} works with a friction law with memory (--friction "
                            "rate-state:... or lugre:..., or --config with [friction] law = "
-                           "\"rate-state\" or \"lugre\")")
+                           "\"rate-state\" or \"lugre\")"
+                           + (" or a machine file with a [contact]"
+                              if name == "--history-times" else ""))
     if config is not None:
         run = configured_machine(config)
         structure, slider = run.structure, run.slider

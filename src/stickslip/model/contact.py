@@ -22,11 +22,19 @@ The structure's matrices hold the machine's own springs only; the contact adds i
 with ``q`` measured from the position where the contact spring carries exactly the preload
 (``q = 0``: ``N = load``). Friction is ``mu N`` while sliding and ``|F| <= mu_s N`` in stick.
 
+While in contact the contact is unilateral: it lifts off when ``N`` reaches zero (then no
+friction and no contact spring: **separation**) and re-engages, without impact (the contact
+is a spring: velocities are continuous), when the spring is compressed again. The Jenkins
+element (``tangential_stiffness``) puts a contact point between the slider and the belt: it
+sticks to the belt while the element's force is within ``mu_s N`` and slips at ``mu_k N``.
+
 This module holds the :class:`Contact` object (SI, checked at construction) and its reader
 from a TOML table, :func:`contact_from_table` (units as everywhere in machine files).
-Which commands use it: the complex-eigenvalue analysis of steady sliding
-(:mod:`stickslip.analysis.complex_eigenvalues`, ``stickslip stability``); the time-stepping
-engine does not yet, and every other command refuses such a machine in one line.
+Which commands use it: ``stickslip simulate`` (time histories with stick, slip and
+separation on the exact contact engine, :mod:`stickslip.analysis.contact_engine`; the
+Jenkins element too) and ``stickslip stability`` (the complex-eigenvalue analysis of steady
+sliding, :mod:`stickslip.analysis.complex_eigenvalues`; without the Jenkins element). Every
+other command refuses such a machine in one line (:data:`NOT_SUPPORTED`).
 """
 
 from __future__ import annotations
@@ -47,9 +55,10 @@ CONTACT_KEYS: dict[str, str] = {
     "mass": "mass",
 }
 
-#: The one line every command but ``stickslip stability`` gives for a machine with a contact.
-NOT_SUPPORTED = ("normal-load coupling is supported by `stickslip stability` only in this version "
-                 "([structure] normal_dof and the [contact] table); remove them to run this command")
+#: The one line every command but ``simulate`` and ``stability`` gives for a machine with a contact.
+NOT_SUPPORTED = ("a machine with its contact ([structure] normal_dof and the [contact] table) runs "
+                 "in `stickslip simulate` and `stickslip stability` only in this version; remove "
+                 "them to run this command")
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,96 @@
+"""``stickslip simulate --config`` with a machine's contact (normal DOF, separation, Jenkins).
+
+Reference values: the event-driven solve_ivp oracle of tests/test_contact_engine.py for the
+brake pad's period, and the paper's Eq. (34) for the rigid-contact limit.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+from tests.cli_helpers import run_cli
+
+#: examples/brake_pad (Hoffmann et al. 2002 minimal model) inline, at a slow belt.
+BRAKE_PAD = """mu_s = 0.5
+mu_k = 0.4
+load = "1 kN"
+speed = "2 cm/s"
+
+[structure]
+mass = [[0.1, 0.0], [0.0, 0.1]]
+stiffness = [[8e7, -1.5e7], [-1.5e7, 2.5e7]]
+damping = [[40.0, 0.0], [0.0, 4.0]]
+contact_dof = 0
+normal_dof = 1
+
+[contact]
+normal_stiffness = "5e7 N/m"
+"""
+
+
+def write(tmp_path: Path, text: str) -> str:
+    path = tmp_path / "machine.toml"
+    path.write_text(text)
+    return str(path)
+
+
+def one_error(err: str) -> str:
+    """The single error line (a first-run compile notice may precede it), no traceback."""
+    lines = [line for line in err.splitlines() if line.startswith("stickslip: error:")]
+    assert len(lines) == 1 and "Traceback" not in err, err
+    return lines[0]
+
+
+def test_brake_pad_stick_slip_with_separation_json(tmp_path: Path,
+                                                   capsys: pytest.CaptureFixture[str]) -> None:
+    # the period 0.0002497536798011929 s is the event-driven solve_ivp oracle's
+    # (tests/test_contact_engine.py, the same machine), to 1e-7
+    code, out, err = run_cli(["simulate", "--config", write(tmp_path, BRAKE_PAD), "--json",
+                              "--history-times", "0.0630:0.0638:161"], capsys)
+    assert code == 0, err
+    p = json.loads(out)
+    assert p["verdict"] == "stick-slip" and p["separated"] is True
+    assert p["period_s"] == pytest.approx(0.0002497536798011929, rel=1e-7)
+    assert p["amplitude_m"] > 0.0 and p["event_counts"]["lift-off"] > 0
+    history = p["history"]
+    assert len(history["t_s"]) == 161 and min(history["normal_force_N"]) == 0.0
+    assert "separation" in history["mode"] and "stick" in history["mode"]
+
+
+def test_paper_slider_with_a_stiff_damped_jenkins_element(tmp_path: Path,
+                                                          capsys: pytest.CaptureFixture[str]) -> None:
+    # m = 1 kg, k = 1 N/m, undamped, lambda = (mu_s - mu_k) W / (V sqrt(m k)) = 0.5: a stiff
+    # contact with damping ratio 0.3 gives Eq. (34)'s period 2 pi (1 + (lambda - atan lambda)
+    # / pi) s back to 1e-3
+    text = ('mu_s = 0.3\nmu_k = 0.2\nload = "1 N"\nspeed = "0.2 m/s"\nm = "1 kg"\nk = "1 N/m"\n'
+            'c = "0 N*s/m"\n\n[contact]\ntangential_stiffness = "1e4 N/m"\n'
+            'tangential_damping = "60 N*s/m"\n')
+    code, out, err = run_cli(["simulate", "--config", write(tmp_path, text), "--json"], capsys)
+    assert code == 0, err
+    p = json.loads(out)
+    period = 2.0 * math.pi * (1.0 + (0.5 - math.atan(0.5)) / math.pi)
+    assert p["verdict"] == "stick-slip" and p["separated"] is False
+    assert p["period_s"] == pytest.approx(period, rel=1e-3)
+
+
+@pytest.mark.parametrize(("change", "extra", "why"), [
+    (('normal_stiffness = "5e7 N/m"', 'normal_stiffness = "-5e7 N/m"'), [],
+     "normal_stiffness = -50000000.0 must be positive"),
+    (("[contact]", '[friction]\nlaw = "linear"\nslope = "0.1 s/m"\n\n[contact]'), [],
+     "takes the Coulomb law (mu_s, mu_k) only"),
+    (("[contact]", '[friction]\nlaw = "lugre"\n\n[contact]'), [],
+     "runs with the Coulomb law (mu_s, mu_k) only, not with a friction law with memory"),
+    (None, ["--plot", "x.png"], "--plot cannot be given with a [contact] machine"),
+    (None, ["--initial", "0,0,0,0"], "--initial cannot be given with a [contact] machine"),
+    (None, ["--t-max", "1 ms", "--history-times", "0:9:3"], "goes beyond the end of the run"),
+])
+def test_bad_input_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                               change: tuple[str, str] | None, extra: list[str], why: str) -> None:
+    text = BRAKE_PAD.replace(*change) if change else BRAKE_PAD
+    code, out, err = run_cli(["simulate", "--config", write(tmp_path, text), *extra], capsys)
+    assert code == 2 and out == ""
+    assert why in one_error(err)
