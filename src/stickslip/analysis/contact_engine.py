@@ -218,6 +218,11 @@ def contact_system(machine: Machine, contact: Contact | None, *,
     normal_dof : int, optional
         Index of the normal DOF in ``machine``'s matrices when they were reduced.
 
+    Returns
+    -------
+    ContactSystem
+        The machine's matrices (SI), its operating point and the contact's springs.
+
     Raises
     ------
     ValueError

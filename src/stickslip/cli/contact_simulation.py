@@ -59,7 +59,7 @@ def simulate_contact_command(ctx: typer.Context, config: Path, machine_file: Any
     """Run a contact machine and print the answer (``--json``: verdict, period_s, amplitude_m,
     separated, the last events, the machine; ``--history-times``: the time history)."""
     from stickslip.analysis.contact_engine import simulate_contact
-    from stickslip.cli.simulate_command import parse_history_times, parse_t_max
+    from stickslip.cli.time_options import parse_history_times, parse_t_max
 
     typed = [flag for name, flag in REFUSED.items()
              if getattr(ctx.get_parameter_source(name), "name", None) == "COMMANDLINE"]

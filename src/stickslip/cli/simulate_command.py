@@ -17,6 +17,7 @@ from stickslip.cli.console import (
     warn_fitted_range,
 )
 from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE, OVERWRITE
+from stickslip.cli.time_options import parse_history_times, parse_t_max
 
 if TYPE_CHECKING:
     from stickslip.cli.machine_config import ConfiguredMachine
@@ -40,54 +41,6 @@ HISTORY_TIMES = Annotated[str | None, typer.Option(
 INITIAL_KICK = Annotated[float | None, typer.Option(
     "--initial-kick", help="F: start with the slip speed at (1 + F) V, the contact moving at -F V, "
     "positions and state of steady sliding (--config with a friction law with memory)")]
-
-#: Most ``--history-times`` points.
-MAX_HISTORY_POINTS = 1_000_000
-
-
-def parse_history_times(text: str) -> Any:
-    """``A:B:N`` -> N equally spaced times from A to B seconds (numpy array)."""
-    import numpy as np
-
-    parts = text.split(":")
-    try:
-        if len(parts) != 3:
-            raise ValueError
-        a, b, n = float(parts[0]), float(parts[1]), int(parts[2])
-    except ValueError:
-        raise BadInput(f"--history-times {text!r} must be A:B:N (seconds from A to B, N points), "
-                       "e.g. 0:40:401") from None
-    if not (np.isfinite(a) and np.isfinite(b)) or a < 0.0 or b < a:
-        raise BadInput(f"--history-times {text!r}: need 0 <= A <= B (seconds)")
-    if not 1 <= n <= MAX_HISTORY_POINTS:
-        raise BadInput(f"--history-times {text!r}: N = {n} must be from 1 to {MAX_HISTORY_POINTS}")
-    return np.linspace(a, b, n)
-
-
-def parse_t_max(text: str | None, time_scale: float | None) -> float | None:
-    """``--t-max``: a bare number is dimensionless (returned as is); a time with units is turned
-    into tau with ``time_scale`` (s per unit tau; None: no machine file, refused)."""
-    if text is None:
-        return None
-    try:
-        value = float(text)
-    except ValueError:
-        value = None
-    if value is not None:  # checked by the engine's options, with their messages
-        return value
-    from stickslip.model.units import to_si
-
-    try:
-        seconds = to_si("time", text, source="--t-max")
-    except ValueError as exc:
-        raise BadInput(str(exc)) from None
-    if not seconds > 0.0:
-        raise BadInput(f"--t-max {text!r} must be positive")
-    if time_scale is None:
-        raise BadInput(f"--t-max {text!r}: a time with units needs --config (the machine's time "
-                       "scale); without it give dimensionless tau, e.g. --t-max 5000")
-    return seconds / time_scale
-
 
 def parse_initial(text: str, n_dof: int) -> InitialState | None:
     """``startup`` or ``2 n`` comma-separated numbers: positions then velocities."""
@@ -159,25 +112,10 @@ def simulate(
     refuse_mix(ctx, config)
     foundation = None
     run = None
-    if config is not None:
-        from stickslip.cli.machine_config import load_machine_file
-
-        machine_file = load_machine_file(config, normal_coupling=True)
-        if machine_file.has_contact and not machine_file.has_memory_law:
-            from stickslip.cli.contact_simulation import simulate_contact_command
-
-            simulate_contact_command(ctx, config, machine_file, t_max=t_max,
-                                     max_events=max_events, history_times=history_times,
-                                     plot=plot, json=json)
-            return
-        if machine_file.has_memory_law:
-            if machine_file.has_contact:  # neither engine has both: one line
-                raise BadInput(f"{machine_file.label}: a [contact] (normal_dof, Jenkins element) "
-                               "runs with the Coulomb law (mu_s, mu_k) only, not with a friction "
-                               "law with memory; remove one of them")
-            _simulate_memory(ctx, machine_file, t_max=t_max, history_times=history_times,
-                             initial_kick=initial_kick, plot=plot, json=json)
-            return
+    if config is not None and _ran_on_another_engine(
+            ctx, config, t_max=t_max, max_events=max_events, history_times=history_times,
+            initial_kick=initial_kick, plot=plot, json=json):
+        return
     memory_law = friction.strip().lower().startswith(("rate-state:", "lugre:"))
     for name, value in (("--history-times", history_times), ("--initial-kick", initial_kick)):
         if value is not None and not memory_law:
@@ -230,6 +168,31 @@ def simulate(
         print_json(payload)
         return
     _print_summary(payload)
+
+
+def _ran_on_another_engine(ctx: typer.Context, config: Path, *, t_max: str | None,
+                           max_events: int, history_times: str | None,
+                           initial_kick: float | None, plot: Path | None, json: bool) -> bool:
+    """Run a machine with a contact or a friction law with memory on its engine; True if so."""
+    from stickslip.cli.machine_config import load_machine_file
+
+    machine_file = load_machine_file(config, normal_coupling=True)
+    if machine_file.has_contact and not machine_file.has_memory_law:
+        from stickslip.cli.contact_simulation import simulate_contact_command
+
+        simulate_contact_command(ctx, config, machine_file, t_max=t_max,
+                                 max_events=max_events, history_times=history_times,
+                                 plot=plot, json=json)
+        return True
+    if machine_file.has_memory_law:
+        if machine_file.has_contact:  # neither engine has both: one line
+            raise BadInput(f"{machine_file.label}: a [contact] (normal_dof, Jenkins element) "
+                           "runs with the Coulomb law (mu_s, mu_k) only, not with a friction "
+                           "law with memory; remove one of them")
+        _simulate_memory(ctx, machine_file, t_max=t_max, history_times=history_times,
+                         initial_kick=initial_kick, plot=plot, json=json)
+        return True
+    return False
 
 
 def _refuse_exact_engine_options(ctx: typer.Context, plot: Path | None,
