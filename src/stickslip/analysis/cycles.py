@@ -125,6 +125,10 @@ class CycleSearch:
         }
 
 
+#: Breakaways each seeding run goes on for (its late states seed Newton's method too).
+SEED_BREAKAWAYS = 64
+
+
 def find_cycles(
     structure: Structure,
     slider: Slider,
@@ -187,9 +191,18 @@ def find_cycles(
     for _ in range(int(seeds)):
         starts.append(np.concatenate([rng.uniform(-box, box, n), rng.uniform(-box, 1.5, n)]))
     breakaways: list[FloatArray] = []
+    early = 2 * int(max_period) + 1
+    late: list[FloatArray] = []  # tried after every early state, so those keep their order
     for start in starts:
-        found = pmap.next_breakaways(start, 2 * max_period + 1)
-        breakaways += found[-max_period:] if found else []
+        # the states after a short transient (near unstable cycles the run passes) and, from
+        # the same run, after a long one: a cycle the runs approach slowly (multipliers near
+        # 1 in modulus) is reached only late (seen: |multipliers| 0.795 on a period-2 cycle)
+        found = pmap.next_breakaways(start, max(early, SEED_BREAKAWAYS))
+        if not found:
+            found = pmap.next_breakaways(start, early)  # fewer breakaways: steady sliding later
+        breakaways += found[early - int(max_period):early]
+        late += found[early:][-int(max_period):]
+    breakaways += late
     cycles: list[Cycle] = []
     # the section's two pieces: breakaways onto slip-I first (the paper's), then onto slip-II
     for direction, name in ((SLIP_I, "slip-I"), (SLIP_II, "slip-II")):
