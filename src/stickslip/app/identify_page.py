@@ -116,8 +116,8 @@ def show_identify_page() -> None:
     import streamlit as st
 
     from stickslip.app.figures import png
-    from stickslip.app.messages import show_error, show_unexpected, show_warning
-    from stickslip.app.workers import Busy, wait_for
+    from stickslip.app.messages import show_error, show_failure, show_warning
+    from stickslip.app.workers import wait_for
 
     st.title("Identify the machine from a measured record")
     st.caption("Upload a stick-slip record as CSV (time and the spring force and/or the slider "
@@ -140,14 +140,8 @@ def show_identify_page() -> None:
     try:
         result = wait_for(key, _fit_in_worker, content, name, known, law, columns,
                           what="Fitting the record")
-    except Busy as exc:
-        show_warning(str(exc))
-        return
-    except (ValueError, TimeoutError) as exc:
-        show_error(str(exc))
-        return
-    except Exception as exc:  # no traceback on the page (it names the server's files)
-        show_unexpected(exc, "The fit of this record")
+    except Exception as exc:
+        show_failure(exc, "The fit of this record")
         return
     for warning in result.warnings:
         show_warning(warning)

@@ -169,8 +169,8 @@ def show_machine_page() -> None:
     """Lay out the "your machine" page (Streamlit)."""
     import streamlit as st
 
-    from stickslip.app.messages import show_error, show_unexpected, show_warning
-    from stickslip.app.workers import Busy, wait_for
+    from stickslip.app.messages import show_failure
+    from stickslip.app.workers import wait_for
     from stickslip.plot.operating import machine_modes_plot
 
     st.title("Your machine: any linear structure, the contact on any DOF")
@@ -196,14 +196,8 @@ def show_machine_page() -> None:
         digest = files_digest(files)
         report = wait_for(("machine", digest, False), design_in_worker, machine, absorber,
                           reduction, False, what="Designing the machine")
-    except Busy as exc:
-        show_warning(str(exc))
-        return
-    except (ValueError, TimeoutError) as exc:
-        show_error(str(exc))
-        return
-    except Exception as exc:  # no traceback on the page (it names the server's files)
-        show_unexpected(exc, "The design of this machine")
+    except Exception as exc:
+        show_failure(exc, "The design of this machine")
         return
     st.subheader("Verdict at the operating point")
     st.text(report.summary())
@@ -220,12 +214,8 @@ def show_machine_page() -> None:
             try:
                 report = wait_for(("machine", digest, True), design_in_worker, machine,
                                   absorber, reduction, True, what="Searching the stick-slip absorber")
-            except Busy as exc:
-                show_warning(str(exc))
-            except (ValueError, TimeoutError) as exc:
-                show_error(str(exc))
-            except Exception as exc:  # no traceback on the page (it names the server's files)
-                show_unexpected(exc, "The stick-slip absorber search")
+            except Exception as exc:
+                show_failure(exc, "The stick-slip absorber search")
         st.dataframe(_absorber_table(report), key="absorber_table")
         st.caption(f"Absorber mass {report.absorbers[0].mass:.4g} kg on "
                    + ("the foundation (the machine mounted on it)"

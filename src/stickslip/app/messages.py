@@ -104,3 +104,27 @@ def show_unexpected(exc: BaseException, what: str, where: Any = None) -> None:
     logging.getLogger("stickslip.app").error("%s failed", what, exc_info=exc)
     show_error(f"{what} failed unexpectedly ({type(exc).__name__}: {exc}); the server's log "
                "has the details", where)
+
+
+def show_failure(exc: BaseException, what: str) -> None:
+    """A computation of the page failed: say so in the form its kind calls for.
+
+    Every worker busy (:class:`stickslip.app.workers.Busy`): a warning to try again; an input
+    the model refuses or a computation over its time limit (``ValueError``,
+    ``TimeoutError``): its one-line message; anything else: :func:`show_unexpected`.
+
+    Parameters
+    ----------
+    exc : BaseException
+        The exception caught.
+    what : str
+        What failed, e.g. "The fit of this record".
+    """
+    from stickslip.app.workers import Busy
+
+    if isinstance(exc, Busy):
+        show_warning(str(exc))
+    elif isinstance(exc, (ValueError, TimeoutError)):
+        show_error(str(exc))
+    else:  # no traceback on the page (it names the server's files)
+        show_unexpected(exc, what)
