@@ -4,13 +4,14 @@ Usage::
 
     .venv/bin/python benchmarks/bench_friction.py
 
-Measured on the 2-core development machine (numbers vary by about 20 % run to run)::
+Measured on the 2-core development machine on 2026-11-26 (the test suite running beside it;
+``simulate`` proves its stick-slip cycle, which visits every friction band the cycle crosses)::
 
-    linear, delta = 0.03            engine  0.51 ms  oracle 1.17 s  speed-up 2282x
-    stribeck, tolerance 1e-4        engine  2.29 ms  oracle 1.27 s  speed-up  554x
-    stribeck, tolerance 1e-6        engine 20.9 ms   oracle 1.39 s  speed-up   66x
-    rigid base map 1200 cells: linear 28967 cells/s, Coulomb 31334 cells/s
-    foundation map 1200 cells: linear  7399 cells/s, Coulomb  5410 cells/s
+    linear, delta = 0.03            engine    16.95 ms  oracle 3.40 s  speed-up 201x
+    stribeck, tolerance 1e-4        engine   453.10 ms  oracle 2.75 s  speed-up   6x
+    stribeck, tolerance 1e-6        engine 15414.40 ms  oracle 5.12 s  speed-up 0.3x
+    rigid base map 1200 cells: linear 37372 cells/s, Coulomb 39412 cells/s
+    foundation map 1200 cells: linear  9810 cells/s, Coulomb  9683 cells/s
 
 * Per run: the elastic foundation (zeta = 0.1, M = 1.5, K = 1, zeta_a = 0.5), lambda = 3,
   gamma = 2, from startup, with a linear law (delta = 0.03) and a Stribeck law
