@@ -419,8 +419,9 @@ def run_engine(structure: Structure, slider: Slider, initial: InitialState | Non
         The run, its stick-slip verdict a candidate (see below).
 
     A stick-slip verdict here is the engine's *candidate* (a breakaway state repeated to
-    ``cycle_tol``); :func:`simulate` proves it (:func:`_proven`). :func:`find_cycles`
-    starts runs on fixed points it proves itself.
+    ``cycle_tol``); :func:`simulate` proves it
+    (:func:`~stickslip.analysis.simulation.prove_run`). :func:`find_cycles` starts runs on
+    fixed points it proves itself.
     """
     if initial is None:
         initial = startup_state(structure, slider)

@@ -93,10 +93,10 @@ def simulate(
     friction_range(slider.lam, slider.gamma)  # 2 gamma lambda must not overflow (issue 12)
     if structure.contact_dof != 0:
         return _simulate_contact_first(structure, slider, initial, opts, record, run_to_t_max)
-    return _proven(run_engine(structure, slider, initial, opts, record, run_to_t_max), opts)
+    return prove_run(run_engine(structure, slider, initial, opts, record, run_to_t_max), opts)
 
 
-def _proven(result: SimulationResult, opts: EngineOptions) -> SimulationResult:
+def prove_run(result: SimulationResult, opts: EngineOptions) -> SimulationResult:
     """The run with its stick-slip candidate proven, corrected to the minimal period, or undetermined.
 
     One degree of freedom: the breakaway state is unique (``xi' = 1``, ``S = lambda``), so the
@@ -106,6 +106,19 @@ def _proven(result: SimulationResult, opts: EngineOptions) -> SimulationResult:
     excluded). When the proven period is the run's own, every number of the run stands (bit
     for bit); when it is shorter, the cycle's period, amplitude and stick ratio are those of
     an engine run started on the proven fixed point. Unproven: ``undetermined``.
+
+    Parameters
+    ----------
+    result : SimulationResult
+        A run of :func:`~stickslip.analysis.engine_run.run_engine` (contact on DOF 0).
+    opts : EngineOptions
+        Its engine options (the horizon of the proof's runs).
+
+    Returns
+    -------
+    SimulationResult
+        The run with its proof (``cycle_proof``), its cycle corrected to the minimal period, or
+        ``unproven-cycle`` (undetermined).
     """
     if result.status is not RunStatus.CERTIFIED_CYCLE or result.structure.n_dof < 2:
         return result

@@ -192,7 +192,8 @@ def basin(
     from contextlib import nullcontext
 
     from stickslip.cli.cleanup import UndoOnRefusal
-    from stickslip.cli.map_commands import _ProgressBar, _scheduler_context
+    from stickslip.cli.map_commands import _scheduler_context
+    from stickslip.cli.progress import ProgressBar
     from stickslip.io.lock import output_lock
     from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.store import discard_store
@@ -204,7 +205,7 @@ def basin(
     if out is not None:
         out.mkdir(parents=True, exist_ok=True)  # every check passed: writing starts
     with undo, output_lock(labels) if labels is not None else nullcontext(), reach:
-        with _ProgressBar(enabled, f"basin {len(states)} states", unit="samples") as bar:
+        with ProgressBar(enabled, f"basin {len(states)} states", unit="samples") as bar:
             result = basin_stability(structure, slider, states, options=options,
                                      execution=ExecutionOptions(backend=chosen, workers=workers,
                                                                 scheduler=scheduler, progress=bar,

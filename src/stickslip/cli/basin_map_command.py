@@ -74,7 +74,8 @@ def basin_map_command(
 
     from stickslip.cli.basin_command import parse_box
     from stickslip.cli.cleanup import UndoOnRefusal
-    from stickslip.cli.map_commands import _ProgressBar, grid_config
+    from stickslip.cli.map_commands import grid_config
+    from stickslip.cli.progress import ProgressBar
     from stickslip.io.lock import output_lock
     from stickslip.model._validate import random_seed
     from stickslip.sweep.basin import MAX_SAMPLES, check_box, check_map_work, state_names
@@ -108,7 +109,7 @@ def basin_map_command(
     if out is not None:
         out.parent.mkdir(parents=True, exist_ok=True)  # for the lock: writing starts
     with undo, output_lock(out) if out is not None else nullcontext():
-        with _ProgressBar(enabled, f"basin-map {shape[0]}x{shape[1]}, {samples} samples per cell") as bar:
+        with ProgressBar(enabled, f"basin-map {shape[0]}x{shape[1]}, {samples} samples per cell") as bar:
             result = basin_map(config.lam, config.zeta, config.dva, config.gamma, samples=samples,
                                box=intervals, seed=seed,
                                friction=law, deltas=config.delta,

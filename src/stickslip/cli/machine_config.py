@@ -64,13 +64,13 @@ def load_machine_file(config: Path, *, normal_coupling: bool = False) -> Machine
 
 
 def refuse_memory_law(machine_file: MachineFile) -> None:
-    """Commands other than ``simulate`` take the curve laws only: say so in one line."""
+    """Commands that take only the curve laws say so in one line."""
+    from stickslip.io.machine_file import memory_law_refusal
+
     if machine_file.has_memory_law:
         assert machine_file.friction_table is not None
-        raise BadInput(f"{machine_file.label}: [friction] law = "
-                       f"{machine_file.friction_table['law']!r} is a friction law with memory: "
-                       "`stickslip simulate --config` runs it; this command takes the curve laws "
-                       "(coulomb, linear, table, stribeck)")
+        raise BadInput(memory_law_refusal(f"{machine_file.label}: [friction]",
+                                          machine_file.friction_table["law"]))
 
 
 def refuse_mix(ctx: typer.Context, config: Path | None,

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import math
 import sys
-import time
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -40,6 +39,7 @@ from stickslip.cli.options import (
     SCHEDULER,
     SCHEDULER_TIMEOUT,
 )
+from stickslip.cli.progress import ProgressBar
 
 LAM_SPEC = Annotated[
     str,
@@ -109,56 +109,6 @@ def grid_config(lam: str | None, zeta: str, lam_spacing: str | None, zeta_spacin
 def store_path(out: Path) -> Path:
     """The resume store of an output file: ``OUT.parts`` next to it."""
     return out.with_name(out.name + ".parts")
-
-
-class _ProgressBar:
-    """A rich progress bar on stderr with cells per second and time left."""
-
-    def __init__(self, enabled: bool, label: str, unit: str = "cells") -> None:
-        self._unit = unit
-        self._bar: Any = None
-        self._task: Any = None
-        self._label = label
-        self._start_done = 0
-        self._started = 0.0
-        self.enabled = enabled
-
-    def __enter__(self) -> _ProgressBar:
-        if self.enabled:
-            from rich.console import Console
-            from rich.progress import (
-                BarColumn,
-                MofNCompleteColumn,
-                Progress,
-                TextColumn,
-                TimeRemainingColumn,
-            )
-
-            self._bar = Progress(
-                TextColumn("{task.description}"),
-                BarColumn(),
-                MofNCompleteColumn(),
-                TextColumn(f"{self._unit}  {{task.fields[rate]}} {self._unit}/s  left"),
-                TimeRemainingColumn(),
-                console=Console(stderr=True),
-            )
-            self._bar.__enter__()
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        if self._bar is not None:
-            self._bar.__exit__(*exc)
-
-    def __call__(self, done: int, total: int) -> None:
-        if self._bar is None:
-            return
-        now = time.perf_counter()
-        if self._task is None:
-            self._task = self._bar.add_task(self._label, total=total, completed=done, rate="-")
-            self._start_done, self._started = done, now
-            return
-        rate = (done - self._start_done) / max(now - self._started, 1e-9)
-        self._bar.update(self._task, completed=done, rate=f"{rate:,.0f}")
 
 
 def _check_existing_output(out: Path, fingerprint: str, overwrite: bool) -> bool:
@@ -281,7 +231,7 @@ def map_command(
             result = OccurrenceMap.from_netcdf(out)
         else:
             enabled = not json and sys.stderr.isatty()
-            with _ProgressBar(enabled, f"map {config.shape[0]}x{config.shape[1]}") as bar:
+            with ProgressBar(enabled, f"map {config.shape[0]}x{config.shape[1]}") as bar:
                 result = occurrence_map(config.lam, config.zeta, config.dva, config.gamma,
                                         options=config.options,
                                         friction=law, deltas=config.delta,
@@ -501,6 +451,22 @@ def operating_map_command(config: Path, speed: str | None, load: str | None, *, 
         if not (all(math.isfinite(x) for x in values) and min(values) > 0.0):
             raise BadInput(f"{flag} {text!r}: every value must be positive and finite [{unit}]")
         axes.append(axis)
+    from stickslip.cli.machine_config import load_machine_file
+
+    machine_file = load_machine_file(config)
+    if machine_file.has_memory_law:  # an eigenvalue map: no run, no horizon, in process
+        if t_max is not None:
+            raise BadInput(f"--t-max {t_max!r}: a map with a friction law with memory judges "
+                           "steady sliding by its eigenvalues and runs no simulation")
+        if chosen == "dask":
+            raise BadInput("--backend dask: a map with a friction law with memory is an "
+                           "eigenvalue map, computed in this process")
+        from stickslip.cli.memory_stability_commands import memory_map_command
+
+        memory_map_command(machine_file, config, np.asarray(axes[0].values),
+                           np.asarray(axes[1].values), out=out, csv=csv, plot=plot,
+                           overwrite=overwrite, json=json)
+        return
     n_cells = len(axes[0]) * len(axes[1])
     if n_cells > MAX_CELLS:
         raise BadInput(f"--speed x --load is {n_cells:,} operating points, more than {MAX_CELLS:,} "
@@ -529,7 +495,7 @@ def operating_map_command(config: Path, speed: str | None, load: str | None, *, 
             result = OperatingMap.from_netcdf(out)
         else:
             enabled = not json and sys.stderr.isatty()
-            with _ProgressBar(enabled, f"map {len(axes[0])}x{len(axes[1])} (V, W)") as bar:
+            with ProgressBar(enabled, f"map {len(axes[0])}x{len(axes[1])} (V, W)") as bar:
                 try:
                     result = operating_map(machine, axes[0], axes[1], options=options,
                                            execution=ExecutionOptions(

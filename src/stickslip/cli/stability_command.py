@@ -33,6 +33,11 @@ def stability(
     machine's damping and without damping (mode coalescence, flutter), the modes involved,
     and the speeds and loads (a decade either side) where steady sliding is unstable.
 
+    With a friction law with memory (rate-state, lugre) it gives the eigenvalues of steady
+    sliding with the state variable, the verdict, the critical stiffness (Hopf; Rice and
+    Ruina's k_c for a 1-DOF rate-and-state slider) and the critical speeds; --map draws the
+    growth rate over a decade of speed and load either side.
+
     The friction force mu N on contact_dof follows the normal force N = load - k_n q[normal_dof]
     of the contact spring: a non-symmetric stiffness entry mu k_n couples the modes.
 
@@ -47,6 +52,18 @@ def stability(
             check_figure_path(path, overwrite=overwrite)
     if plot is not None and map_plot is not None and Path(plot).resolve() == Path(map_plot).resolve():
         raise BadInput(f"--plot and --map name the same file {str(plot)!r}")
+    from stickslip.cli.machine_config import load_machine_file
+
+    memory_file = load_machine_file(config, normal_coupling=True)
+    if memory_file.has_memory_law:  # the linearisation with the state variable
+        from stickslip.cli.memory_stability_commands import memory_stability_command
+
+        if plot is not None:
+            raise BadInput("--plot draws the root locus over mu of the contact's complex-eigenvalue "
+                           "analysis; with a friction law with memory, --map draws the growth "
+                           "rate over speed and load")
+        memory_stability_command(memory_file, config, map_plot, json)
+        return
     result, ranges, machine, contact, index = _analyse(config, mu_max)
     payload = result.to_dict()
     payload.update({"config": str(config), "machine": machine.name,

@@ -76,6 +76,13 @@ class AbsorberSpec:
     attach_dof: int | None
 
 
+def memory_law_refusal(source: str, law: str) -> str:
+    """The one line of a command that takes only the curve laws, given a law with memory."""
+    return (f"{source} law = {law!r} is a friction law with memory: `stickslip simulate "
+            "--config`, `stability --config` and `map --config` run it; this command takes the "
+            "curve laws (coulomb, linear, table, stribeck)")
+
+
 @dataclass(frozen=True)
 class MachineFile:
     """A parsed machine file.
@@ -136,9 +143,7 @@ class MachineFile:
             return PhysicalFriction()
         source = f"{self.label}: [friction]"
         if self.has_memory_law:
-            raise ValueError(f"{source} law = {self.friction_table['law']!r} is a friction law with "
-                             "memory: `stickslip simulate --config` runs it; this command takes the "
-                             "curve laws (coulomb, linear, table, stribeck)")
+            raise ValueError(memory_law_refusal(source, self.friction_table['law']))
         columns = None
         if self.files is not None and "table" in self.friction_table:
             from stickslip.model.friction_input import friction_csv_columns

@@ -131,7 +131,7 @@ def prepare_certified(mass, damping, stiffness, lam, gamma, edges, intercepts, s
     prepared = prepare_bands(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
     radius, data = slip_trap_region(mass, damping, stiffness, lam, gamma, edges, intercepts,
                                     slopes, prepared)
-    return prepared[:21] + (radius, data)  # noqa: RUF005 (numba: no starred tuple display)
+    return prepared[:21] + (radius, data) + prepared[23:]  # noqa: RUF005 (numba: no starred tuple display)
 
 
 @njit(cache=True)

@@ -11,6 +11,16 @@ import numpy as np
 from numba import njit
 
 from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel is stamped with the whole kernel folder)
+from stickslip.kernel.cycle_balls import (
+    B_AMPLITUDE,
+    B_CYCLE_MAX_VELOCITY,
+    B_PERIOD,
+    B_STICK_PHASES,
+    B_STICK_RATIO,
+    B_XI_MAX,
+    B_XI_MIN,
+    ball_holding,
+)
 from stickslip.kernel.events import (
     end_range,
     event_free,
@@ -189,6 +199,24 @@ def _record_cycle(fsum, isum, ring_t, interval, newest, ring, k, j, i, diff, sca
 
 
 @njit(cache=True)
+def record_ball_cycle(fsum, isum, ball_data, p, t):
+    """Write the summary of a cycle certified by proven ball ``p``: the cycle's own numbers.
+
+    ``F_CYCLE_MISMATCH`` is NaN (no repeat was measured): a ball's certificate, told apart
+    from a repeat's (a mismatch, never NaN).
+    """
+    fsum[F_PERIOD] = ball_data[p, B_PERIOD]
+    fsum[F_AMPLITUDE] = ball_data[p, B_AMPLITUDE]
+    fsum[F_XI_MIN] = ball_data[p, B_XI_MIN]
+    fsum[F_XI_MAX] = ball_data[p, B_XI_MAX]
+    fsum[F_STICK_RATIO] = ball_data[p, B_STICK_RATIO]
+    fsum[F_CYCLE_MAX_VELOCITY] = ball_data[p, B_CYCLE_MAX_VELOCITY]
+    fsum[F_CYCLE_MISMATCH] = np.nan
+    isum[I_CYCLE_K] = np.int64(ball_data[p, B_STICK_PHASES])
+    fsum[F_T_CERTIFIED] = t
+
+
+@njit(cache=True)
 def record_state(kind, t, w, key, xmin, xmax, vmax, stick_time, rec_t, rec_z, rec_key, rec_span, n_rec,
                  max_period, cycle_tol, key_breaks, status, verdict, fsum, isum):
     """Record a state in its ring buffer and look back for a repeat: the one cycle search.
@@ -338,7 +366,7 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
     m = nz + 1
     (ahat, phi, hstep, sig_rows, f_start, f_sign, f_offset, stick_row, lyap, kappa, n_lyap,
      ev_count, ev_next, ev_vel, _eq_mode, z_eq, lyap_lo, lyap_hi, margin, sec_mode,
-     sec_event, trap_radius, trap_data) = prepared
+     sec_event, trap_radius, trap_data, ball_data, ball_norm) = prepared
     # the phase record grows by doubling up to its bound (one phase per event, plus the first):
     # sized for the bound at once it took max_events x 2n doubles, 0.5 GB for 300 DOF
     cap_max = max_events + 1 if record else 1
@@ -499,6 +527,12 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
                                   cur_stick, rec_t, rec_z, rec_key, rec_span, n_rec, max_period,
                                   cycle_tol, np.bool_(False), status, np.int64(STATUS_CYCLE), fsum,
                                   isum)
+            if status == STATUS_RUNNING and ball_data.shape[0] > 0:
+                # a proven contraction ball of a stable cycle (kernel.cycle_balls): certified
+                p = ball_holding(w, n, np.int64(0 if e_ev == 0 else 1), ball_data, ball_norm)[0]
+                if p >= 0:
+                    record_ball_cycle(fsum, isum, ball_data, p, t)
+                    status = STATUS_CYCLE
             cur_xmin = cur_xmax = w[0]
             cur_vmax = w[n]
             cur_stick = 0.0

@@ -25,6 +25,7 @@ import numpy as np
 from numba import njit
 
 from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel is stamped with the whole kernel folder)
+from stickslip.kernel.cycle_balls import no_balls
 from stickslip.kernel.linalg import (
     ORIGINAL_ARITHMETIC_DOF,
     copy_matrix,
@@ -218,7 +219,9 @@ def prepare_point(structure, mass, damping, stiffness, lam, gamma, edges, interc
     bands), the mode and event used as Poincare section (-1: none), and the slip trap region
     ``trap_radius (0,)``, ``trap_data (N_TRAP,)``: here always empty (no region), with
     ``trap_data[TRAP_ENERGY_RADIUS]`` the radius of the energy certificate's disk (0 when there
-    is none or ``n > 1``); :func:`stickslip.kernel.certificate.prepare_certified` fills it.
+    is none or ``n > 1``); :func:`stickslip.kernel.certificate.prepare_certified` fills it;
+    and the proven contraction balls of stick-slip cycles ``ball_data, ball_norm``
+    (:mod:`stickslip.kernel.cycle_balls`): here always empty, a basin fills them.
 
     The energy ``V = (q - q_eq)' K (q - q_eq)/2 + v' Mass v/2`` obeys
     ``dV/dt = -v' C v - sigma(u) v_0^2`` in slip-I with the secant slope
@@ -422,9 +425,10 @@ def prepare_point(structure, mass, damping, stiffness, lam, gamma, edges, interc
         trap_data[TRAP_ENERGY_RADIUS] = np.sqrt(mass[0, 0]) * margin[0]
         trap_data[TRAP_SQRT_K] = np.sqrt(stiffness[0, 0])
         trap_data[TRAP_SQRT_M] = np.sqrt(mass[0, 0])
+    ball_data, ball_norm = no_balls(n)
     return (ahat, phi, hstep, sig_rows, f_start, f_sign, f_offset, stick_row, lyap, kappa, n_lyap,
             ev_count, ev_next, ev_vel, eq_mode, z_eq, lyap_lo, lyap_hi, margin, sec_mode, sec_event,
-            trap_radius, trap_data)
+            trap_radius, trap_data, ball_data, ball_norm)
 
 
 @njit(cache=True)

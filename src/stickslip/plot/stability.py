@@ -17,6 +17,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
     from stickslip.analysis.complex_eigenvalue_maps import RootLocus, StabilityMap
+    from stickslip.sweep.memory_map import MemoryStabilityMap
 
 
 def root_locus_plot(data: RootLocus, *, ax: Sequence[Axes] | None = None,
@@ -110,4 +111,55 @@ def stability_map_plot(data: StabilityMap, *, ax: Axes | None = None, log_y: boo
         axis.set_yscale("log")
     if title:
         axis.set_title(title)
+    return PlotResult(fig, [axis], artists)
+
+
+def memory_map_plot(data: MemoryStabilityMap, *, ax: Axes | None = None,
+                    title: str | None = None) -> PlotResult:
+    """Growth rate of steady sliding over drive speed and normal load (friction with memory).
+
+    Color: the largest real part of the eigenvalues (1/s, symmetric logarithmic scale: the
+    rates span decades); the zero contour is the Hopf boundary; cells proven unstable are
+    hatched. Both axes are logarithmic when their values span more than a decade.
+
+    Parameters
+    ----------
+    data : MemoryStabilityMap
+        From :func:`stickslip.sweep.memory_map.memory_stability_map`.
+    ax : Axes, optional
+        Axes to draw into; new figure when None.
+    title : str, optional
+        Axes title (default: the law and the structure).
+
+    Returns
+    -------
+    PlotResult
+        One axes.
+    """
+    from matplotlib.colors import SymLogNorm
+
+    fig, axis = new_axes(ax)
+    growth = data.growth_rate.T  # rows: loads (y), columns: speeds (x)
+    limit = float(np.max(np.abs(growth))) or 1.0
+    linthresh = limit * 1e-3  # rates within a thousandth of the largest: the linear band
+    mesh = axis.pcolormesh(data.speed, data.load, growth, cmap="RdBu_r", shading="nearest",
+                           norm=SymLogNorm(linthresh, vmin=-limit, vmax=limit))
+    artists: list[Any] = [mesh]
+    grid_2d = data.speed.size > 1 and data.load.size > 1
+    if grid_2d and growth.min() < 0.0 < growth.max():
+        artists.append(axis.contour(data.speed, data.load, growth, levels=[0.0], colors="k",
+                                    linewidths=1.2))
+    unstable = (data.verdict == "unstable").T
+    if grid_2d and unstable.any():
+        artists.append(axis.contourf(data.speed, data.load, unstable.astype(float),
+                                     levels=[0.5, 1.5], colors="none", hatches=["//"]))
+    fig.colorbar(mesh, ax=axis, label=r"largest real part $\max\,\Re\,s$ [1/s] (> 0: unstable)")
+    axis.set_xlabel(r"drive speed $V$ [m/s]")
+    axis.set_ylabel(r"normal load $N$ [N]")
+    for values, set_scale in ((data.speed, axis.set_xscale), (data.load, axis.set_yscale)):
+        if values.size > 1 and values.min() > 0.0 and values.max() / values.min() > 10.0:
+            set_scale("log")
+    law = data.system.friction.to_dict().get("law", "memory")
+    axis.set_title(title or f"steady sliding with {law} friction ({data.system.n_dof} DOF): "
+                   "linear stability")
     return PlotResult(fig, [axis], artists)

@@ -20,7 +20,7 @@ import json
 import math
 import time
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -36,6 +36,7 @@ from stickslip.model._validate import random_seed
 from stickslip.model.initial import MAX_STATE
 from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
+from stickslip.sweep.basin_cycles import ProvenBalls, pilot_balls
 from stickslip.sweep.execution import ExecutionOptions, execution_from_keywords
 from stickslip.sweep.executors import (
     default_chunk_size,
@@ -317,6 +318,18 @@ class BasinSystem:
                    intercepts, slopes, kernel)
 
 
+    def with_balls(self, balls: ProvenBalls) -> BasinSystem:
+        """This system with the proven contraction balls of ``balls`` in its kernel data
+        (:mod:`stickslip.sweep.basin_cycles`); itself when there are none."""
+        if not len(balls):
+            return self
+        from stickslip.kernel.cycle_balls import with_balls
+
+        prepared, r_in, r_hi, escape_data = self.kernel
+        return replace(self, kernel=(with_balls(prepared, balls.data, balls.norm), r_in, r_hi,
+                                     escape_data))
+
+
 def run_state_batch(system: BasinSystem, states: FloatArray, options: EngineOptions,
                     n_threads: int | None = None) -> tuple[FloatArray, IntArray]:
     """Run ``system`` from every row of ``states`` on ``n_threads`` numba threads (all when None).
@@ -390,6 +403,9 @@ def basin_stability(
     # chunk (kernel.interrupt): it stops the run once the first chunk is kept
     with deferred_sigint() as sigint:
         system = BasinSystem.prepare(structure, slider, z0s.shape[0])
+        # N DOF: the stable cycles' proven balls, from the first states (basin_cycles)
+        balls = pilot_balls(structure, slider, z0s, opts)
+        system = system.with_balls(balls)
     n = z0s.shape[0]
     if chunk_size is None:
         chunk_size = default_chunk_size(n, backend) if backend == "dask" else THREADS_CHUNK
@@ -413,6 +429,8 @@ def basin_stability(
     batches = [(c, z0s[c.start:c.stop]) for c in missing]
     for chunk, f_chunk, i_chunk in execute(system, batches, opts, backend=backend, workers=run.workers,
                                            scheduler=run.scheduler, task=run_state_batch):
+        if structure.n_dof > 1:  # every label proven: the candidates a ball did not hold
+            balls.prove_candidates(z0s[chunk.start:chunk.stop], f_chunk, i_chunk)
         fsum[chunk.start:chunk.stop], isum[chunk.start:chunk.stop] = f_chunk, i_chunk
         if chunk_store is not None:
             chunk_store.save(chunk.index, f_chunk, i_chunk)
@@ -450,13 +468,21 @@ def write_labels(result: BasinResult, path: str | Path, rows: Sequence[Mapping[s
 
 
 def basin_configuration(structure: Structure, slider: Slider, options: EngineOptions) -> dict[str, Any]:
-    """The resolved configuration of a basin computation, JSON-ready (datasets, resume stores)."""
-    return {
+    """The resolved configuration of a basin computation, JSON-ready (datasets, resume stores).
+
+    With two or more degrees of freedom it says that stick-slip labels are proven
+    (:mod:`stickslip.sweep.basin_cycles`), so a store written when they were observed is not
+    resumed into a run that proves them.
+    """
+    configuration = {
         "lambda": slider.lam, "gamma": slider.gamma, "zeta": structure.zeta,
         "structure": structure.name, "mass": structure.mass.tolist(),
         "damping": structure.damping.tolist(), "stiffness": structure.stiffness.tolist(),
         "friction": slider.friction.to_dict(), "engine": options.to_dict(),
     }
+    if structure.n_dof > 1:
+        configuration["stick_slip_labels"] = "proven cycles"
+    return configuration
 
 
 #: Names that moved to :mod:`stickslip.sweep.basin_maps` (one system's basin here, maps there);

@@ -1,0 +1,205 @@
+"""Linear stability of steady sliding with friction with memory (analysis.memory_stability, issue 33).
+
+References, all closed forms derived independently of the code under test:
+
+* Rice and Ruina (1983): the 1-DOF rate-and-state slider is unstable for
+  ``k < k_c = N (b - a)/d_c (1 + m V^2/(N a d_c))``; solved for ``V`` it gives one critical
+  speed ``V_c^2 = (N a d_c/m)(k d_c/(N (b - a)) - 1)``, unstable above it.
+* LuGre (Canudas de Wit et al. 1995), linearised here by hand: with ``g`` the Stribeck curve
+  ``N (mu_c + (mu_s - mu_c) exp(-(v/v_s)^2))``, ``alpha = sigma0 V/g(V)`` and
+  ``beta = V g'(V)/g(V)``, the bristle obeys ``dz' = beta dv - alpha dz`` and the slider's
+  characteristic polynomial is ``m s^3 + (m alpha + sigma1 beta + sigma2) s^2 +
+  (k + sigma0 beta + sigma2 alpha) s + k alpha``; Routh-Hurwitz (``a2 a1 > a3 a0``, all
+  positive) decides stability.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+from scipy.optimize import brentq
+
+from stickslip.analysis.memory_stability import linear_spectrum, memory_stability, spectrum_sign
+from stickslip.cli.main import run
+from stickslip.io.machine_file import read_machine_file
+from stickslip.sweep.memory_map import memory_stability_map
+
+RATE_STATE = """
+load = "10 N"
+speed = "1 mm/s"
+m = "1 kg"
+k = "8000 N/m"
+
+[friction]
+law = "rate-state"
+a = 0.01
+b = 0.015
+d_c = "10 um"
+mu_ref = 0.6
+v_ref = "1 um/s"
+"""
+
+LUGRE = """
+[system]
+m = "1 kg"
+k = "2 N/m"
+load = "1 N"
+speed = "0.1 m/s"
+
+[friction]
+law = "lugre"
+sigma0 = "1e5 N/m"
+sigma1 = "316.22776601683796 N*s/m"
+sigma2 = "0.4 N*s/m"
+mu_c = 1.0
+mu_s = 1.5
+stribeck_velocity = "1 mm/s"
+"""
+
+
+def _system(tmp_path: Path, text: str):  # type: ignore[no-untyped-def]
+    path = tmp_path / "machine.toml"
+    path.write_text(text, encoding="utf-8")
+    return path, read_machine_file(path).memory_system()
+
+
+def _run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
+    try:
+        run(args)
+        code = 0
+    except SystemExit as exc:
+        code = int(exc.code or 0)
+    captured = capsys.readouterr()
+    return code, captured.out, captured.err
+
+
+def _k_c(load: float, speed: float) -> float:
+    """Rice and Ruina's k_c of RATE_STATE's slider (m = 1 kg, a = 0.01, b = 0.015, d_c = 10 um)."""
+    return load * 0.005 / 1e-5 * (1.0 + speed**2 / (load * 0.01 * 1e-5))
+
+
+def test_rate_state_critical_stiffness_and_speed(tmp_path: Path) -> None:
+    _, system = _system(tmp_path, RATE_STATE)
+    result = memory_stability(system)
+    assert result.verdict == "unstable"  # k = 8000 < k_c(1 mm/s) = 1e4 N/m
+    assert result.critical_stiffness == pytest.approx(1e4, rel=1e-10)
+    v_c = math.sqrt(10.0 * 0.01 * 1e-5 / 1.0 * (8000.0 * 1e-5 / (10.0 * 0.005) - 1.0))
+    assert result.critical_speeds == [pytest.approx(v_c, rel=1e-9)]
+    assert result.unstable_speeds[0][0] == pytest.approx(v_c, rel=1e-9)
+    assert result.to_dict()["rice_ruina"]["critical_speed_m_per_s"] == pytest.approx(v_c, rel=1e-14)
+
+
+def test_rate_state_map_matches_rice_ruina_everywhere(tmp_path: Path) -> None:
+    _, system = _system(tmp_path, RATE_STATE)
+    speeds, loads = np.geomspace(1e-5, 1e-1, 30), np.geomspace(1.0, 100.0, 20)
+    data = memory_stability_map(system, speeds, loads)
+    checked = 0
+    for i, v in enumerate(speeds):
+        for j, w in enumerate(loads):
+            k_c = _k_c(float(w), float(v))
+            if abs(8000.0 - k_c) <= 1e-6 * k_c:
+                continue  # on the boundary: either side within round-off
+            expected = "unstable" if 8000.0 < k_c else "stable"
+            assert data.verdict[i, j] == expected, (v, w, k_c, data.growth_rate[i, j])
+            checked += 1
+    assert checked == speeds.size * loads.size
+    assert 0.0 < data.fractions()["unstable"] < 1.0
+
+
+def _lugre_coefficients(speed: float) -> tuple[float, float, float, float]:
+    """``a3, a2, a1, a0`` of the hand-linearised LuGre slider (module notes)."""
+    m, k, load, s0, s1, s2, mu_c, mu_s, vs = 1.0, 2.0, 1.0, 1e5, math.sqrt(1e5), 0.4, 1.0, 1.5, 1e-3
+    g = load * (mu_c + (mu_s - mu_c) * math.exp(-(speed / vs) ** 2))
+    dg = load * (mu_s - mu_c) * math.exp(-(speed / vs) ** 2) * (-2.0 * speed / vs**2)
+    alpha, beta = s0 * speed / g, speed * dg / g
+    return m, m * alpha + s1 * beta + s2, k + s0 * beta + s2 * alpha, k * alpha
+
+
+def _lugre_hurwitz(speed: float) -> float:
+    """``a2 a1 - a3 a0``: with every coefficient positive, > 0 is stable (Routh-Hurwitz)."""
+    a3, a2, a1, a0 = _lugre_coefficients(speed)
+    return a2 * a1 - a3 * a0
+
+
+def _lugre_stable(speed: float) -> bool:
+    return min(_lugre_coefficients(speed)) > 0.0 and _lugre_hurwitz(speed) > 0.0
+
+
+def test_lugre_critical_speed_is_routh_hurwitz(tmp_path: Path) -> None:
+    _, system = _system(tmp_path, LUGRE)
+    result = memory_stability(system)
+    assert result.verdict == "stable"  # at 0.1 m/s the Stribeck slope has died out
+    # scanned from V/100 = 1 mm/s: the last crossing, where the Stribeck slope dies out
+    (v_c,) = result.critical_speeds
+    exact = brentq(_lugre_hurwitz, 2e-3, 1e-2, xtol=1e-16, rtol=1e-14)
+    assert v_c == pytest.approx(exact, rel=1e-8)
+    for speed in np.geomspace(1e-4, 1e-1, 37).tolist():  # below, in and above the Stribeck range
+        expected = -1 if _lugre_stable(speed) else 1
+        assert spectrum_sign(*linear_spectrum(system, speed)) == expected, speed
+
+
+def test_neutral_is_not_rounded() -> None:
+    values = np.array([-1.0 + 2j, 1e-15 - 2j])
+    assert spectrum_sign(values, np.array([1e-12, 1e-12])) == 0
+    assert spectrum_sign(values, np.array([1e-16, 1e-16])) == 1
+    assert spectrum_sign(np.array([-1.0 + 0j]), np.array([1e-12])) == -1
+
+
+def test_load_enters_the_map(tmp_path: Path) -> None:
+    """Each column of the map is the system at that load (k_c grows with N)."""
+    _, system = _system(tmp_path, RATE_STATE)
+    data = memory_stability_map(system, [1e-4], [5.0, 20.0])
+    for j, w in enumerate((5.0, 20.0)):
+        alone = memory_stability(replace(system, load=w), 1e-4)
+        assert data.growth_rate[0, j] == alone.growth_rate
+    assert list(data.verdict[0]) == ["stable", "unstable"]  # k_c(1e-4) = 2500 (1.02), 1e4 (1.005)
+
+
+def test_cli_stability_and_map(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path, _ = _system(tmp_path, RATE_STATE)
+    code, out, err = _run(["stability", "--config", str(path), "--json"], capsys)
+    assert code == 0, err
+    payload = json.loads(out)
+    assert payload["stable"] is False and payload["verdict"] == "unstable"
+    assert payload["critical_stiffness_N_per_m"] == pytest.approx(1e4, rel=1e-10)
+    assert len(payload["eigenvalues"]) == 3  # x, x' and the state variable
+    out_nc = tmp_path / "map.nc"
+    code, out, err = _run(["map", "--config", str(path), "--speed", "log:1e-5:1e-1:12",
+                           "--load", "log:1:100:9", "--out", str(out_nc), "--csv",
+                           str(tmp_path / "map.csv"), "--plot", str(tmp_path / "map.png"), "--json"],
+                          capsys)
+    assert code == 0, err
+    with xr.open_dataset(out_nc) as ds:
+        assert ds["growth_rate"].shape == (12, 9)
+        unstable = ds["stability"].values == 1
+    speeds, loads = np.geomspace(1e-5, 1e-1, 12), np.geomspace(1.0, 100.0, 9)
+    expected = 8000.0 < np.array([[_k_c(w, v) for w in loads] for v in speeds])
+    assert np.array_equal(unstable, expected)
+    assert (tmp_path / "map.png").stat().st_size > 0
+    assert len((tmp_path / "map.csv").read_text().splitlines()) == 1 + 12 * 9
+
+
+@pytest.mark.parametrize(("extra", "needle"), [
+    (["--t-max", "5"], "runs no simulation"),
+    (["--backend", "dask"], "eigenvalue map"),
+])
+def test_cli_map_refusals(tmp_path: Path, capsys: pytest.CaptureFixture[str], extra: list[str],
+                          needle: str) -> None:
+    path, _ = _system(tmp_path, RATE_STATE)
+    code, out, err = _run(["map", "--config", str(path), "--speed", "log:1e-5:1e-1:3", "--load",
+                           "1:2:2", "--out", str(tmp_path / "m.nc"), *extra], capsys)
+    assert code == 2 and out == "" and len(err.strip().splitlines()) == 1 and needle in err
+    assert not (tmp_path / "m.nc").exists()
+
+
+def test_cli_stability_plot_refused(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path, _ = _system(tmp_path, LUGRE)
+    code, out, err = _run(["stability", "--config", str(path), "--plot", str(tmp_path / "p.png")],
+                          capsys)
+    assert code == 2 and out == "" and "--map draws" in err and len(err.strip().splitlines()) == 1
