@@ -25,9 +25,11 @@ trap region, stickslip.kernel.certificate, and the slip escape region,
 stickslip.kernel.outer_certificate), with the trap region alone and with neither, and how
 many statuses agree with the run without them (all must). Then a foundation (2 DOF)
 basin with the same law (foundation mass and stiffness ratios 1, damping ratio 0.1; at most
-FOUNDATION_SAMPLES states: every 2-DOF state runs to its own verdict): samples/s only (the trap
+FOUNDATION_SAMPLES states: every 2-DOF state runs to its own verdict): samples/s (the trap
 region is 1-DOF; its baseline is the oracle), with its states, stick phases and share of the steps
-by verdict (where an N-DOF basin's time goes).
+by verdict (where an N-DOF basin's time goes), and its labels against long direct runs without
+the proven balls of stickslip.sweep.basin_cycles (ten times the horizon, every state), with the
+samples/s of that path in the same run. ``--only foundation`` runs that case alone.
 """
 
 from __future__ import annotations
@@ -44,16 +46,25 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the oracles live
 from tests.friction_oracle import friction_oracle_simulate
 from tests.oracle import oracle_simulate_structure
 
-from stickslip import Foundation, InitialState, Slider, Verdict, elastic_foundation, rigid_base
+from stickslip import (
+    Foundation,
+    InitialState,
+    Slider,
+    Verdict,
+    elastic_foundation,
+    rigid_base,
+    simulate,
+)
 from stickslip.analysis.simulation import EngineOptions
+from stickslip.analysis.verdict import verdict_codes
 from stickslip.kernel.batch import prepare_states, run_prepared_states
-from stickslip.kernel.engine import I_N_STEPS, I_N_STICK
+from stickslip.kernel.engine import I_N_STEPS, I_N_STICK, I_STATUS
 from stickslip.kernel.outer_certificate import ESCAPE_F_LO
 from stickslip.model.friction import CoulombFriction, StribeckFriction
-from stickslip.sweep.basin import BasinSystem, basin_stability, sample_box
+from stickslip.sweep.basin import BasinSystem, basin_stability, run_state_batch, sample_box
 
 HORIZON = 100.0
-FOUNDATION_SAMPLES = 2000
+FOUNDATION_SAMPLES = 20_000
 STICK = 2
 
 
@@ -74,6 +85,7 @@ def main() -> None:
     parser.add_argument("--samples", type=int, default=20_000)
     parser.add_argument("--oracle-samples", type=int, default=40)
     parser.add_argument("--repeats", type=int, default=3, help="engine runs per case (the best counts)")
+    parser.add_argument("--only", default=None, help="run only the case whose name starts with this")
     args = parser.parse_args()
     for name in ("samples", "oracle_samples", "repeats"):
         if getattr(args, name) < 1:
@@ -96,6 +108,8 @@ def main() -> None:
           f"stick-slip fraction  labels equal")
     ab_lines = []
     for name, structure, slider, box in cases:
+        if args.only is not None and not name.startswith(args.only):
+            continue
         n_samples = min(args.samples, FOUNDATION_SAMPLES) if structure.n_dof > 1 else args.samples
         states = sample_box(structure, slider, n_samples, box, seed=1)
         basin_stability(structure, slider, states[:64])  # compile / load the cache
@@ -114,10 +128,13 @@ def main() -> None:
         se = result.standard_errors["stick-slip"]
         print(f"{name:20s} {engine_rate:17,.0f} {oracle_rate:17,.1f} {engine_rate / oracle_rate:8,.0f}  "
               f"{fr:.4f} +- {se:.4f}      {agree}/{args.oracle_samples}", flush=True)
+        for i in np.flatnonzero([a != b for a, b in zip(labels, engine_labels, strict=True)]):
+            ab_lines.append(f"{name}: state {i} " + late_stick(structure, slider, states[i]))
         if name == "weak net damping":
             ab_lines.append(early_certificate_ab(structure, slider, states, args.repeats))
         if structure.n_dof > 1:
             ab_lines.append(f"{name}: " + work_by_verdict(result))
+            ab_lines.append(f"{name}: " + against_long_runs(structure, slider, states, result))
     for line in ab_lines:
         print(line)
 
@@ -138,6 +155,42 @@ def work_by_verdict(result) -> str:  # type: ignore[no-untyped-def]
                          f"{steps[mask].mean():,.0f} steps each, {steps[mask].sum() / steps.sum():.0%} "
                          "of the steps")
     return "; ".join(parts)
+
+
+def late_stick(structure, slider, state) -> str:  # type: ignore[no-untyped-def]
+    """Why a label differs from the oracle's: when the engine's run first sticks.
+
+    The oracle calls a state stick-slip when a stick phase starts within its horizon
+    (HORIZON); a state whose first stick phase comes later is steady sliding to it.
+    """
+    n = len(state) // 2
+    run = simulate(structure, slider, initial=InitialState(state[:n], state[n:]), record=True)
+    sticks = np.flatnonzero(np.asarray(run.segment_modes) == STICK)
+    first = float(run.segment_times[sticks[0]]) if sticks.size else float("nan")
+    return (f"differs from the oracle: the engine's run ({run.verdict.value}, certified at tau = "
+            f"{run.t_certified:.1f}) first sticks at tau = {first:.1f}, the oracle's horizon is "
+            f"{HORIZON:g}")
+
+
+def against_long_runs(structure, slider, states, result) -> str:  # type: ignore[no-untyped-def]
+    """The labels against long direct runs without proven balls, and the samples/s A/B.
+
+    Each state runs on the kernel alone (no ball: until its breakaway state repeats to
+    ``cycle_tol``, steady sliding by the Lyapunov bound) with ten times the horizon, the path
+    of the basin before its labels were proven; the labels must be equal.
+    """
+    opts = EngineOptions()
+    start = time.perf_counter()
+    plain = BasinSystem.prepare(structure, slider, len(states))
+    run_state_batch(plain, states, opts)
+    plain_rate = len(states) / (time.perf_counter() - start)
+    _, isum_long = run_state_batch(plain, states, EngineOptions(t_max=10.0 * opts.t_max))
+    labels = verdict_codes(isum_long[:, I_STATUS])
+    same = int(np.sum(labels == result.verdict))
+    return (f"labels equal to long direct runs (10x the horizon, no ball) on {same}/{len(states)} "
+            f"states; the kernel without balls (and without the pilot's proofs) "
+            f"{plain_rate:,.0f} samples/s, with them {len(states) / result.elapsed:,.0f} "
+            f"({len(states) / result.elapsed / plain_rate:.2f}x)")
 
 
 def early_certificate_ab(structure, slider, states, repeats: int) -> str:  # type: ignore[no-untyped-def]

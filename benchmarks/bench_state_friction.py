@@ -5,16 +5,24 @@ Usage::
     .venv/bin/python benchmarks/bench_state_friction.py
 
 Measured on the 2-core development machine, shared with other jobs (times vary by tens of
-per cent run to run)::
+per cent run to run; last run 2026-11-26 03:36)::
 
-    velocity step (quasi-static rate-and-state): engine rtol 1e-8, error 3.37e-07, 0.29 ms
-      scipy LSODA rtol 1e-09: error 9.89e-08, 5.4 ms, ratio 18.5x
-      scipy Radau rtol 1e-08: error 1.43e-07, 69.3 ms, ratio 238.4x
-    LuGre stick-slip (Canudas de Wit et al. 1995): engine rtol 1e-8, error 1.99e-06, 6.71 ms
-      scipy LSODA rtol 1e-10: error 1.62e-06, 226.9 ms, ratio 33.8x
-      scipy Radau rtol 1e-08: error 6.26e-07, 2352.6 ms, ratio 350.7x
+    rate-and-state stability map 100x100: engine 0.44 s (goal 60 s), baseline (Python right-hand
+      side, finite-difference Jacobian) 1.14 s, ratio 2.58x; same sign of the growth rate in
+      10000/10000 cells
+    velocity step (quasi-static rate-and-state): engine rtol 1e-8, error 3.37e-07, 0.58 ms
+      scipy LSODA rtol 1e-09: error 9.89e-08, 10.2 ms, ratio 17.7x
+      scipy Radau rtol 1e-08: error 1.43e-07, 61.5 ms, ratio 106.6x
+    LuGre stick-slip (Canudas de Wit et al. 1995): engine rtol 1e-8, error 1.99e-06, 9.05 ms
+      scipy LSODA rtol 1e-10: error 1.62e-06, 143.2 ms, ratio 15.8x
+      scipy Radau rtol 1e-08: error 6.26e-07, 1357.9 ms, ratio 150.0x
 
-Two runs (docs/friction_memory.md): a velocity step of the quasi-static rate-and-state slider
+First a 100 x 100 stability map of a 1-DOF rate-and-state slider (m = 1 kg, k = 8000 N/m,
+a = 0.01, b = 0.015, d_c = 10 um; speeds 1e-5 to 0.1 m/s, loads 1 to 100 N): the tool's map
+(exact Jacobians, eigenvalues with round-off bounds, any structure and law) against what a user
+writes by hand for this one law (a Python right-hand side, a central-difference Jacobian,
+``numpy.linalg.eigvals``); the signs of the growth rates must agree. Then
+two runs (docs/friction_memory.md): a velocity step of the quasi-static rate-and-state slider
 (1 -> 10 um/s at 10 s, 20 s) and the LuGre stick-slip example of Canudas de Wit et al. (1995),
 30 s from stick. The baseline is what ``rsfmodel`` does: scipy integrating a Python right-hand
 side (LSODA, the method of ``odeint``, and Radau with the analytic Jacobian in Python). Equal
@@ -165,7 +173,58 @@ def case(name: str, system: MemorySystem, make: Callable[[float], tuple[Rhs, Rhs
             print(f"  scipy {method:5s}: no rtol down to 1e-12 reached the engine's accuracy")
 
 
+#: The stability map's slider (docs/friction_memory.md): m = 1 kg, k = 8000 N/m, N = 10 N,
+#: a = 0.01, b = 0.015, d_c = 10 um (Rice and Ruina's k_c = 1e4 N/m at 1 mm/s).
+MAP_LAW = RateStateFriction(a=0.01, b=0.015, d_c=10e-6, mu_ref=0.6, v_ref=1e-6)
+MAP_SYSTEM = MemorySystem(np.array([[1.0]]), np.array([[0.0]]), np.array([[8000.0]]), 0, 10.0,
+                          MAP_LAW, SpeedSchedule.constant(1e-3))
+
+
+def baseline_growth(speed: float, load: float) -> float:
+    """What a user without the tool writes: the aging-law slider's right-hand side in Python
+    (classic form, y = (x, x', theta)), a central-difference Jacobian at steady sliding, eigvals."""
+    law, m, k = MAP_LAW, 1.0, 8000.0
+
+    def rhs(y: np.ndarray) -> np.ndarray:
+        x, v, theta = y
+        slip = speed - v
+        mu = law.mu_ref + law.a * math.log(slip / law.v_ref) + law.b * math.log(law.v_ref * theta / law.d_c)
+        return np.array([v, (load * mu - k * x) / m, 1.0 - slip * theta / law.d_c])
+
+    theta = law.d_c / speed
+    mu_ss = law.mu_ref + (law.a - law.b) * math.log(speed / law.v_ref)
+    y0 = np.array([load * mu_ss / k, 0.0, theta])
+    scale = np.array([abs(y0[0]), speed, theta])
+    jac = np.empty((3, 3))
+    for j in range(3):
+        h = 1e-6 * scale[j]
+        e = np.zeros(3)
+        e[j] = h
+        jac[:, j] = (rhs(y0 + e) - rhs(y0 - e)) / (2.0 * h)
+    return float(np.max(np.linalg.eigvals(jac).real))
+
+
+def stability_map_case(n_speed: int = 100, n_load: int = 100) -> None:
+    """A 10^4-cell rate-and-state stability map: the tool's against the baseline's, one run."""
+    from stickslip.sweep.memory_map import memory_stability_map
+
+    speeds, loads = np.geomspace(1e-5, 1e-1, n_speed), np.geomspace(1.0, 100.0, n_load)
+    memory_stability_map(MAP_SYSTEM, speeds[:2], loads[:2])  # compile / load the cache
+    start = time.perf_counter()
+    data = memory_stability_map(MAP_SYSTEM, speeds, loads)
+    engine = time.perf_counter() - start
+    start = time.perf_counter()
+    base = np.array([[baseline_growth(float(v), float(w)) for w in loads] for v in speeds])
+    baseline = time.perf_counter() - start
+    agree = int(np.sum((data.growth_rate > 0) == (base > 0)))
+    print(f"rate-and-state stability map {n_speed}x{n_load}: engine {engine:.2f} s "
+          f"(goal 60 s), baseline (Python right-hand side, finite-difference Jacobian) "
+          f"{baseline:.2f} s, ratio {baseline / engine:.2f}x; same sign of the growth rate in "
+          f"{agree}/{data.growth_rate.size} cells")
+
+
 def main() -> None:
+    stability_map_case()
     integrate_run(STEP, steady_state(STEP, 1e-6), 1.0)  # compile
     case("velocity step (quasi-static rate-and-state)", STEP, step_rhs,
          steady_state(STEP, 1e-6), 20.0, 201)

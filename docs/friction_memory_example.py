@@ -1,4 +1,4 @@
-"""The worked examples of docs/friction_memory.md: LuGre stick-slip, a velocity step, Rice-Ruina.
+"""The worked examples of docs/friction_memory.md: LuGre stick-slip, a velocity step, Rice-Ruina, a map.
 
 Run it from the repository root (it writes the figures next to this file and prints every
 number the page quotes):
@@ -111,6 +111,22 @@ def rice_ruina(out: Path) -> None:
     plt.close(fig)
 
 
+def stability_map(out: Path) -> None:
+    """The growth-rate map of the rate-and-state slider of the stability section, its critical speed."""
+    from stickslip.analysis.memory_stability import memory_stability, rice_ruina_critical_speed
+    from stickslip.sweep.memory_map import memory_stability_map
+
+    law = RateStateFriction(a=0.01, b=0.015, d_c=1e-5, mu_ref=0.6, v_ref=1e-6)
+    system = MemorySystem(np.array([[1.0]]), np.array([[0.0]]), np.array([[8000.0]]), 0, 10.0,
+                          law, SpeedSchedule.constant(1e-3))
+    result = memory_stability(system)
+    print(f"stability map slider: {result.verdict}, critical speeds {result.critical_speeds} m/s, "
+          f"closed form {rice_ruina_critical_speed(system)!r} m/s")
+    data = memory_stability_map(system, 1e-3 * np.logspace(-1.0, 1.0, 61),
+                                10.0 * np.logspace(-1.0, 1.0, 41))
+    data.plot().savefig(out / "memory_stability_map.png")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--out", type=Path, default=Path(__file__).parent / "figures")
@@ -119,6 +135,7 @@ def main() -> None:
     canudas_de_wit(args.out)
     velocity_step(args.out)
     rice_ruina(args.out)
+    stability_map(args.out)
 
 
 if __name__ == "__main__":

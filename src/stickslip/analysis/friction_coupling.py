@@ -230,31 +230,41 @@ def bounded_eigenvalues(a: FloatArray) -> tuple[ComplexArray, FloatArray]:
     """Eigenvalues of ``a`` with a first-order bound on each one's round-off error.
 
     LAPACK's eigenvalues are exact for a matrix within ``O(eps) ||a||`` of ``a``; an
-    eigenvalue moves by at most its condition number ``kappa = 1 / |y^H x|`` (unit left and
-    right eigenvectors ``y``, ``x``) times that: the bound is ``kappa 2 m eps ||a||_F`` for
-    an ``m x m`` matrix (Wilkinson; Golub and Van Loan, section 7.2.2). A matrix whose
-    entries differ by orders of magnitude should be balanced (a diagonal similarity) first.
+    eigenvalue moves by at most its condition number ``kappa = ||x|| ||y|| / |y^H x|`` (right
+    and left eigenvectors ``x``, ``y``) times that: the bound is ``kappa 2 m eps ||a||_F`` for
+    an ``m x m`` matrix (Wilkinson; Golub and Van Loan, section 7.2.2). With unit right
+    eigenvectors (the columns of ``X``) the left ones are the rows of ``X^-1`` scaled so that
+    ``y^H x = 1``, so ``kappa`` is the norm of a row of ``X^-1``. A matrix whose entries differ
+    by orders of magnitude should be balanced (a diagonal similarity) first.
 
     Parameters
     ----------
-    a : ndarray, shape (m, m)
-        Real matrix (1/s).
+    a : ndarray, shape (..., m, m)
+        Real matrices (1/s); a stack is done at once.
 
     Returns
     -------
-    values : ndarray of complex
+    values : ndarray of complex, shape (..., m)
         Sorted by imaginary part, then real part.
-    bounds : ndarray
+    bounds : ndarray, shape (..., m)
         Their error bounds (same unit).
     """
-    import scipy.linalg
-
-    values, left, right = scipy.linalg.eig(a, left=True, right=True)
-    dots = np.abs(np.einsum("ij,ij->j", left.conj(), right))
-    kappa = np.where(dots > 0.0, 1.0 / np.maximum(dots, 1e-300), np.inf)
-    bounds = kappa * 2 * a.shape[0] * np.finfo(float).eps * float(np.linalg.norm(a))
-    order = np.lexsort((values.real, values.imag))
-    return values[order], bounds[order]
+    if a.ndim > 2 and a.shape[0] == 0:
+        return np.zeros(a.shape[:-1], dtype=np.complex128), np.zeros(a.shape[:-1])
+    values, right = np.linalg.eig(a)
+    try:
+        kappa = np.linalg.norm(np.linalg.inv(right), axis=-1)
+    except np.linalg.LinAlgError:
+        if a.ndim > 2:  # one defective matrix in the stack: the others keep their bounds
+            parts = [bounded_eigenvalues(m) for m in a.reshape(-1, *a.shape[-2:])]
+            return (np.stack([p[0] for p in parts]).reshape(values.shape),
+                    np.stack([p[1] for p in parts]).reshape(values.shape))
+        kappa = np.full(values.shape, np.inf)  # defective: no bound, the eigenvalue is unreliable
+    kappa = np.where(np.isfinite(kappa), kappa, np.inf)
+    norm = np.linalg.norm(a, axis=(-2, -1))[..., None]
+    bounds = kappa * 2 * a.shape[-1] * np.finfo(float).eps * norm
+    order = np.lexsort((values.real, values.imag), axis=-1)
+    return np.take_along_axis(values, order, -1), np.take_along_axis(bounds, order, -1)
 
 
 def verdict_of(values: ComplexArray, bounds: FloatArray) -> int:

@@ -140,10 +140,30 @@ def steady_force(system: MemorySystem, speed: float) -> float:
     float
         The friction force, N.
     """
-    law = system.friction
+    return float(steady_forces(system, np.array([float(speed)]))[0])
+
+
+def steady_forces(system: MemorySystem, speeds: FloatArray) -> FloatArray:
+    """:func:`steady_force` at every speed of ``speeds`` (m/s), N (the law evaluated at once).
+
+    Parameters
+    ----------
+    system : MemorySystem
+        Structure, load, law and schedule (SI).
+    speeds : ndarray, shape (n,)
+        Drive speeds, m/s.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        The friction forces, N.
+    """
+    v = np.asarray(speeds, dtype=np.float64).ravel()
+    law, load = system.friction, system.load
     if isinstance(law, RateStateFriction):
-        return system.load * law.steady_mu(speed)
-    return law.steady_mu(speed, system.load) * system.load
+        psi = np.array([law.steady_state(float(x), load) for x in v.tolist()])
+        return load * np.asarray(law.mu(v, psi), dtype=np.float64)
+    return np.array([law.steady_mu(float(x), load) * load for x in v.tolist()])
 
 
 def steady_state(system: MemorySystem, speed: float) -> FloatArray:
@@ -161,21 +181,43 @@ def steady_state(system: MemorySystem, speed: float) -> FloatArray:
     ndarray
         The state ``y``.
     """
-    ks = kernel_system(system)
-    s = system.friction.steady_state(speed, system.load)
-    force = steady_force(system, speed)
+    return steady_states(system, np.array([float(speed)]))[0]
+
+
+def steady_states(system: MemorySystem, speeds: FloatArray) -> FloatArray:
+    """:func:`steady_state` at every speed of ``speeds`` (m/s), one row each.
+
+    The friction force is evaluated for all speeds at once and the springs' deflection is
+    ``F K^-1 e_c`` (one solve): stability maps take thousands of speeds.
+
+    Parameters
+    ----------
+    system : MemorySystem
+        Structure, load, law and schedule (SI).
+    speeds : ndarray, shape (n,)
+        Drive speeds, m/s.
+
+    Returns
+    -------
+    ndarray, shape (n, len(y))
+        The states ``y``.
+    """
+    v = np.asarray(speeds, dtype=np.float64).ravel()
+    law, load = system.friction, system.load
+    s = np.array([law.steady_state(float(x), load) for x in v.tolist()])
+    force = steady_forces(system, v)
     if system.quasi_static:
-        return np.array([force / system.stiffness[0, 0], s])
+        return np.column_stack([force / system.stiffness[0, 0], s])
     nd = system.n_dof
-    y = np.zeros(ks.n)
     e = np.zeros(nd)
     e[system.contact_dof] = 1.0
-    y[:nd] = np.linalg.solve(system.stiffness, force * e)
-    y[2 * nd] = s
+    y = np.zeros((v.size, 2 * nd + 1))  # (q, q', s): kernel_system's layout
+    y[:, :nd] = force[:, None] * np.linalg.solve(system.stiffness, e)[None, :]
+    y[:, 2 * nd] = s
     return y
 
 
-def state_scales(system: MemorySystem, speed: float) -> FloatArray:
+def state_scales(system: MemorySystem, speed: float, steady: FloatArray | None = None) -> FloatArray:
     """Natural size of each component of ``y``: positions, velocities (``V``), the state.
 
     Parameters
@@ -184,13 +226,15 @@ def state_scales(system: MemorySystem, speed: float) -> FloatArray:
         Structure, load, law and schedule (SI).
     speed : float
         Drive speed, m/s.
+    steady : ndarray, optional
+        :func:`steady_state` at ``speed`` when the caller has it already.
 
     Returns
     -------
     ndarray
         One positive scale per component of ``y`` (m, m/s, the state's unit).
     """
-    y = steady_state(system, speed)
+    y = steady_state(system, speed) if steady is None else steady
     law = system.friction
     s_scale = law.a if isinstance(law, RateStateFriction) else max(abs(y[-1]), 1e-300)
     if system.quasi_static:

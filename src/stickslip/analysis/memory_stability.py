@@ -4,7 +4,7 @@ Steady sliding at the drive speed ``V`` is the equilibrium ``y_ss`` of
 ``y' = f(y)`` (:func:`~stickslip.analysis.memory_friction.steady_state`): the contact at rest
 relative to the ground, the springs holding the steady friction force, the state variable at
 its steady value. Its linearisation ``delta' = J delta`` with the exact Jacobian ``J = df/dy``
-(:func:`~stickslip.analysis.memory_friction.jacobian_at`; structure *and* state variable) decides
+(:func:`stickslip.kernel.stiff.jacobian`; structure *and* state variable) decides
 local stability: every eigenvalue of ``J`` left of the imaginary axis, stable; one right of it,
 unstable (Lyapunov's indirect method). An eigenvalue within its round-off bound of the axis
 decides nothing: *neutral*, never rounded to either side.
@@ -40,11 +40,12 @@ from numpy.typing import NDArray
 from stickslip.analysis.friction_coupling import bounded_eigenvalues
 from stickslip.analysis.memory_friction import (
     hopf_stiffness,
-    jacobian_at,
+    kernel_system,
     rice_ruina_critical_stiffness,
     state_scales,
-    steady_state,
+    steady_states,
 )
+from stickslip.kernel import stiff
 from stickslip.model.state_friction import MemorySystem, RateStateFriction
 
 FloatArray = NDArray[np.float64]
@@ -75,10 +76,37 @@ def linear_spectrum(system: MemorySystem, speed: float) -> tuple[ComplexArray, F
     bounds : ndarray
         Their first-order round-off bounds.
     """
-    v = float(speed)
-    jac = jacobian_at(system, steady_state(system, v), v)
-    scale = state_scales(system, v)
-    return bounded_eigenvalues(jac * scale[None, :] / scale[:, None])
+    values, bounds = linear_spectra(system, np.array([float(speed)]))
+    return values[0], bounds[0]
+
+
+def linear_spectra(system: MemorySystem, speeds: FloatArray) -> tuple[ComplexArray, FloatArray]:
+    """:func:`linear_spectrum` at every speed of ``speeds``, the eigenproblems as one stack.
+
+    Parameters
+    ----------
+    system : MemorySystem
+        Structure, load and law (SI).
+    speeds : ndarray, shape (n,)
+        Drive speeds, m/s.
+
+    Returns
+    -------
+    values, bounds : ndarray, shape (n, m)
+        Eigenvalues (1/s) and their round-off bounds, one row per speed.
+    """
+    ks = kernel_system(system)
+    v_all = np.asarray(speeds, dtype=np.float64).ravel()
+    balanced = np.empty((v_all.size, ks.n, ks.n))
+    law_work = np.empty(stiff.N_LAW)
+    steady = steady_states(system, v_all)
+    for i, v in enumerate(v_all.tolist()):
+        y = np.ascontiguousarray(steady[i])
+        stiff.jacobian(ks.kind, ks.law, ks.p, ks.amat, ks.bvec, ks.iv, ks.is_, ks.kq, y, v,
+                       law_work, balanced[i])
+        scale = state_scales(system, v, y)
+        balanced[i] *= scale[None, :] / scale[:, None]
+    return bounded_eigenvalues(balanced)
 
 
 def spectrum_sign(values: ComplexArray, bounds: FloatArray) -> int:

@@ -83,7 +83,7 @@ def memory_map_command(machine_file: Any, config: Path, speeds: Any, loads: Any,
     if plot is not None:
         check_figure_path(plot, overwrite=overwrite)
     enabled = not json and sys.stderr.isatty()
-    with ProgressBar(enabled, f"stability map {len(speeds)}x{len(loads)} (V, W)", "rows") as bar:
+    with ProgressBar(enabled, f"stability map {len(speeds)}x{len(loads)} (V, W)", "loads") as bar:
         result = memory_stability_map(system, speeds, loads, progress=bar)
     out.parent.mkdir(parents=True, exist_ok=True)
     write_dataset(result.to_xarray(), out, overwrite=True)

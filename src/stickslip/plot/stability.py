@@ -120,7 +120,8 @@ def memory_map_plot(data: MemoryStabilityMap, *, ax: Axes | None = None,
 
     Color: the largest real part of the eigenvalues (1/s, symmetric logarithmic scale: the
     rates span decades); the zero contour is the Hopf boundary; cells proven unstable are
-    hatched. Both axes are logarithmic when their values span more than a decade.
+    hatched; a star marks the system's own speed and load. Both axes are logarithmic when
+    their values span more than a decade.
 
     Parameters
     ----------
@@ -153,6 +154,9 @@ def memory_map_plot(data: MemoryStabilityMap, *, ax: Axes | None = None,
     if grid_2d and unstable.any():
         artists.append(axis.contourf(data.speed, data.load, unstable.astype(float),
                                      levels=[0.5, 1.5], colors="none", hatches=["//"]))
+    artists += axis.plot([data.system.schedule.last], [data.system.load], marker="*", ms=12,
+                         color="gold", mec="k", ls="none", label="the file's operating point")
+    axis.legend(loc="lower left", fontsize="small", framealpha=0.9)
     fig.colorbar(mesh, ax=axis, label=r"largest real part $\max\,\Re\,s$ [1/s] (> 0: unstable)")
     axis.set_xlabel(r"drive speed $V$ [m/s]")
     axis.set_ylabel(r"normal load $N$ [N]")

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.memory_stability import VERDICTS, linear_spectrum, spectrum_sign
+from stickslip.analysis.memory_stability import VERDICTS, linear_spectra, spectrum_sign
 from stickslip.model.state_friction import MemorySystem
 
 FloatArray = NDArray[np.float64]
@@ -110,7 +110,7 @@ def memory_stability_map(system: MemorySystem, speeds: FloatArray, loads: FloatA
     speeds, loads : array_like
         Drive speeds (m/s) and normal loads (N), positive.
     progress : callable, optional
-        ``progress(done, total)`` after each speed row.
+        ``progress(done, total)`` after each load (a column of the map).
 
     Returns
     -------
@@ -123,12 +123,10 @@ def memory_stability_map(system: MemorySystem, speeds: FloatArray, loads: FloatA
         raise ValueError(f"{v_axis.size} x {w_axis.size} cells is more than {MAX_MAP_CELLS:,}")
     rates = np.empty((v_axis.size, w_axis.size))
     verdict = np.empty((v_axis.size, w_axis.size), dtype="<U8")
-    loaded = [replace(system, load=float(w)) for w in w_axis]
-    for i, v in enumerate(v_axis.tolist()):
-        for j, sys_w in enumerate(loaded):
-            values, bounds = linear_spectrum(sys_w, v)
-            rates[i, j] = float(np.max(values.real))
-            verdict[i, j] = VERDICTS[spectrum_sign(values, bounds)]
+    for j, w in enumerate(w_axis.tolist()):
+        values, bounds = linear_spectra(replace(system, load=w), v_axis)
+        rates[:, j] = np.max(values.real, axis=1)
+        verdict[:, j] = [VERDICTS[spectrum_sign(v, b)] for v, b in zip(values, bounds, strict=True)]
         if progress is not None:
-            progress(i + 1, v_axis.size)
+            progress(j + 1, w_axis.size)
     return MemoryStabilityMap(system, v_axis, w_axis, rates, verdict)
