@@ -65,3 +65,25 @@ def test_a_workers_stage_reaches_the_page() -> None:
     _until(lambda: workers.progress(key) == ("stage one", 7) or future.done(), "the stage")
     assert workers.progress(key) == ("stage one", 7)
     assert future.result(timeout=DEADLINE) == 11
+
+
+def test_the_progress_listener_keeps_running_jobs_only_and_ends_on_request() -> None:
+    """A report for a finished job is dropped (the table cannot grow without end) and the
+    listener returns when told to (its loop is bounded by the pool's life)."""
+    import queue
+
+    reports: queue.Queue[object] = queue.Queue()
+    running = ("listener-test", "running")
+    with workers._lock:
+        workers._jobs[running] = None  # type: ignore[assignment]
+    try:
+        reports.put((running, "stage", 3))
+        reports.put((("listener-test", "finished"), "late", 9))
+        reports.put(None)
+        workers._listen(reports)  # returns: the sentinel ended it
+        assert workers.progress(running) == ("stage", 3)
+        assert workers.progress(("listener-test", "finished")) is None
+    finally:
+        with workers._lock:
+            workers._jobs.pop(running, None)
+            workers._progress.pop(running, None)

@@ -42,6 +42,7 @@ _progress: dict[Hashable, tuple[str, int]] = {}
 _jobs: dict[Hashable, concurrent.futures.Future[Any]] = {}
 _results: collections.OrderedDict[Hashable, Any] = collections.OrderedDict()
 _worker_key: Hashable | None = None  # in a worker process: the job it runs
+_listener_queue: list[Any] = []  # the queue _listen reads (to send it the end)
 
 
 class Busy(RuntimeError):
@@ -73,11 +74,22 @@ def _run(key: Hashable, function: Callable[..., Any], args: tuple[Any, ...]) -> 
 
 
 def _listen(progress_queue: Any) -> None:
-    """Thread of the server process: copy the workers' reports into :data:`_progress`."""
+    """Thread of the server process: copy the workers' reports into :data:`_progress`.
+
+    It lives as long as the pool: :func:`_stop` sends ``None`` to end it. A report that arrives
+    after its job finished is dropped (the table holds running jobs only).
+    """
     while True:
-        key, stage, runs = progress_queue.get()
+        try:
+            item = progress_queue.get()
+        except (EOFError, OSError, ValueError):  # the queue closed under it: the server exits
+            return
+        if item is None:
+            return
+        key, stage, runs = item
         with _lock:
-            _progress[key] = (stage, runs)
+            if key in _jobs:
+                _progress[key] = (stage, runs)
 
 
 def _executor() -> concurrent.futures.ProcessPoolExecutor:
@@ -85,6 +97,7 @@ def _executor() -> concurrent.futures.ProcessPoolExecutor:
     if _pool is None:
         context = multiprocessing.get_context("spawn")  # no fork of a threaded server
         progress_queue = context.Queue()
+        _listener_queue.append(progress_queue)
         threading.Thread(target=_listen, args=(progress_queue,), daemon=True,
                          name="stickslip-progress").start()
         _pool = concurrent.futures.ProcessPoolExecutor(
@@ -98,6 +111,8 @@ def _stop() -> None:
     minutes), before the interpreter tears down the modules the pool's threads use."""
     if _pool is None:
         return
+    for queue in _listener_queue:
+        queue.put(None)
     processes = list(getattr(_pool, "_processes", {}).values())
     _pool.shutdown(wait=False, cancel_futures=True)
     for process in processes:
