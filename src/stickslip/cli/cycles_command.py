@@ -51,6 +51,12 @@ def cycles(
         raise BadInput(f"--max-period {max_period} must be from 1 to 8")
     run = None
     if config is not None:
+        from stickslip.cli.machine_config import load_machine_file
+
+        machine_file = load_machine_file(config)
+        if machine_file.has_memory_law:  # the stiff engine's runs from kicked starts
+            _memory_cycles(machine_file, config, json)
+            return
         run = configured_machine(config)
         structure, slider = run.structure, run.slider
     else:
@@ -73,6 +79,27 @@ def cycles(
         print_json(payload)
         return
     _print(payload)
+
+
+def _memory_cycles(machine_file: Any, config: Path, json: bool) -> None:
+    """``cycles --config`` for a friction law with memory (:func:`find_memory_cycles`)."""
+    from stickslip.analysis.memory_cycle_search import find_memory_cycles
+    from stickslip.cli.console import BadInput
+    from stickslip.cli.memory_stability_commands import memory_system
+
+    system = memory_system(machine_file)
+    if len(system.schedule.speeds) > 1:
+        raise BadInput(f"{machine_file.label}: speed is a schedule; cycles need one drive speed")
+    try:
+        result = find_memory_cycles(system)
+    except ValueError as exc:
+        raise BadInput(f"{machine_file.label}: {exc}") from None
+    payload = result.to_dict()
+    payload["config"] = str(config)
+    if json:
+        print_json(payload)
+        return
+    typer.echo(result.summary())
 
 
 def _print(p: dict[str, Any]) -> None:
