@@ -141,6 +141,14 @@ def basin(
     refuse_mix(ctx, config)
     run = None
     if config is not None:
+        from stickslip.cli.machine_config import load_machine_file
+
+        machine_file = load_machine_file(config)
+        if machine_file.has_memory_law:  # one stiff run per start, in SI
+            _memory_basin(ctx, machine_file, config, samples=samples, seed=seed, box=box,
+                          initial_states=initial_states, out=out, plot=plot,
+                          overwrite=overwrite, json=json, backend=backend or scheduler)
+            return
         run = configured_machine(config)
         # the engine's order: the contact DOF first (the presets are already so: no change)
         structure, _ = run.structure.contact_first()
@@ -227,6 +235,69 @@ def basin(
         print_json(payload)
         return
     _print_summary(payload)
+
+
+def _memory_basin(ctx: typer.Context, machine_file: Any, config: Path, *, samples: int, seed: int,
+                  box: str | None, initial_states: Path | None, out: Path | None,
+                  plot: Path | None, overwrite: bool, json: bool, backend: str | None) -> None:
+    """``basin --config`` for a friction law with memory (:func:`memory_basin`): starts ``x``
+    (m) and ``v`` (m/s) of the contact DOF, each run by the stiff engine; ``labels.csv``."""
+    import numpy as np
+    from click.core import ParameterSource
+
+    from stickslip.cli.memory_stability_commands import memory_system
+    from stickslip.cli.progress import ProgressBar
+    from stickslip.sweep.memory_basin import COLUMNS, memory_basin, sample_memory_box
+
+    if ctx.get_parameter_source("t_max") is ParameterSource.COMMANDLINE:
+        raise BadInput("--t-max is the dimensionless horizon of the curve laws; with friction "
+                       "with memory each start runs for simulate's default horizon")
+    if backend is not None:
+        raise BadInput("--backend/--scheduler: a basin with friction with memory runs its starts "
+                       "in this process")
+    if plot is not None:
+        raise BadInput("--plot: the basin picture is drawn for the curve laws; with friction with "
+                       "memory, --out DIR writes the starts and verdicts to DIR/labels.csv")
+    if box is not None and initial_states is not None:
+        raise BadInput("give either --box (sampling) or --initial-states, not both")
+    system = memory_system(machine_file)
+    labels = None if out is None else out / "labels.csv"
+    if labels is not None:
+        check_output_path(labels, overwrite=overwrite, option="--out")
+    try:
+        if initial_states is not None:
+            _, _, values = read_states(initial_states, list(COLUMNS))
+            states = np.array(values, dtype=np.float64)
+        else:
+            y_v = 0.5 * system.schedule.first
+            intervals = parse_box(box) if box is not None else {"v": (-y_v, y_v)}
+            states = sample_memory_box(system, samples, intervals, seed)
+        enabled = not json and sys.stderr.isatty()
+        with ProgressBar(enabled, f"basin {len(states)} starts (friction with memory)",
+                         unit="samples") as bar:
+            result = memory_basin(system, states, progress=bar)
+    except BadInput:
+        raise
+    except ValueError as exc:
+        raise BadInput(f"{machine_file.label}: {exc}") from None
+    payload = result.to_dict()
+    payload.update({"config": str(config), "labels": None})
+    if labels is not None:
+        labels.parent.mkdir(parents=True, exist_ok=True)
+        payload["labels"] = str(result.write_labels(labels))
+    if json:
+        print_json(payload)
+        return
+    fr, se = payload["fractions"], payload["standard_errors"]
+    parts = [f"{k} {fr[k]:.4f} +- {se[k]:.4f}" for k in fr if fr[k] > 0.0]
+    lines = [f"basin       {machine_file.label}: {system.n_dof} DOF, {system.friction.describe()}",
+             f"samples     {payload['n']} in {payload['elapsed_s']:.2f} s (one stiff run each)",
+             f"fractions   {', '.join(parts)} (binomial standard errors)"]
+    for why, count in payload["undetermined_by"].items():
+        lines.append(f"undecided   {count}: {why}")
+    if payload["labels"]:
+        lines.append(f"labels      {payload['labels']}")
+    typer.echo("\n".join(lines))
 
 
 def _need_distributed() -> None:
