@@ -203,3 +203,11 @@ def test_cli_stability_plot_refused(tmp_path: Path, capsys: pytest.CaptureFixtur
     code, out, err = _run(["stability", "--config", str(path), "--plot", str(tmp_path / "p.png")],
                           capsys)
     assert code == 2 and out == "" and "--map draws" in err and len(err.strip().splitlines()) == 1
+
+
+def test_cli_stability_refuses_a_contact_with_memory(tmp_path: Path,
+                                                     capsys: pytest.CaptureFixture[str]) -> None:
+    """A [contact] table beside a law with memory is refused, not ignored (no engine has both)."""
+    path, _ = _system(tmp_path, RATE_STATE + '\n[contact]\nnormal_stiffness = "1e5 N/m"\n')
+    code, out, err = _run(["stability", "--config", str(path)], capsys)
+    assert code == 2 and out == "" and "[contact]" in err and len(err.strip().splitlines()) == 1

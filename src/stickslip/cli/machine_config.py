@@ -73,6 +73,14 @@ def refuse_memory_law(machine_file: MachineFile) -> None:
                                           machine_file.friction_table["law"]))
 
 
+def refuse_contact_with_memory(machine_file: MachineFile) -> None:
+    """A ``[contact]`` and a law with memory in one file: one line (no engine has both)."""
+    if machine_file.has_memory_law and machine_file.has_contact:
+        raise BadInput(f"{machine_file.label}: a [contact] (normal_dof, Jenkins element) "
+                       "runs with the Coulomb law (mu_s, mu_k) only, not with a friction "
+                       "law with memory; remove one of them")
+
+
 def refuse_mix(ctx: typer.Context, config: Path | None,
                names: Sequence[str] = DIMENSIONLESS_OPTIONS) -> None:
     """Refuse options of ``names`` given on the command line together with ``--config``.

@@ -21,6 +21,9 @@ from stickslip.io.machine_file import MachineFile
 
 def memory_system(machine_file: MachineFile) -> Any:
     """The file's :class:`~stickslip.model.state_friction.MemorySystem`; a bad file is one line."""
+    from stickslip.cli.machine_config import refuse_contact_with_memory
+
+    refuse_contact_with_memory(machine_file)
     try:
         return machine_file.memory_system()
     except ValueError as exc:

@@ -185,10 +185,9 @@ def _ran_on_another_engine(ctx: typer.Context, config: Path, *, t_max: str | Non
                                  plot=plot, json=json)
         return True
     if machine_file.has_memory_law:
-        if machine_file.has_contact:  # neither engine has both: one line
-            raise BadInput(f"{machine_file.label}: a [contact] (normal_dof, Jenkins element) "
-                           "runs with the Coulomb law (mu_s, mu_k) only, not with a friction "
-                           "law with memory; remove one of them")
+        from stickslip.cli.machine_config import refuse_contact_with_memory
+
+        refuse_contact_with_memory(machine_file)  # neither engine has both: one line
         _simulate_memory(ctx, machine_file, t_max=t_max, history_times=history_times,
                          initial_kick=initial_kick, plot=plot, json=json)
         return True
