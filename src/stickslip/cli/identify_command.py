@@ -5,7 +5,7 @@ from __future__ import annotations
 import itertools
 import math
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
@@ -55,10 +55,20 @@ def _parse_table_speeds(text: str) -> list[float]:
 
 def identify(
     record: Annotated[Path, typer.Argument(help="CSV record: t and F and/or x (and v); see --columns")],
-    mass: Annotated[str, typer.Option("--mass", help="slider mass [kg]; units allowed, e.g. '2 kg'")],
     load: Annotated[str, typer.Option("--load", help="normal load W [N]; units allowed")],
-    speed: Annotated[str, typer.Option("--speed", help="belt or drive speed V [m/s]; units allowed")],
-    law: Annotated[str, typer.Option("--law", help="coulomb | linear | stribeck | table | auto")] = "coulomb",
+    mass: Annotated[str | None, typer.Option(
+        "--mass", help="slider mass [kg]; units allowed, e.g. '2 kg' (required but for "
+        "--law rate-state)")] = None,
+    speed: Annotated[str | None, typer.Option(
+        "--speed", help="belt or drive speed V [m/s]; units allowed (required but for "
+        "--law rate-state)")] = None,
+    law: Annotated[str, typer.Option(
+        "--law", help="coulomb | linear | stribeck | table | auto, or rate-state (a velocity-step "
+        "record: columns t, load-point displacement, mu; with --stiffness)")] = "coulomb",
+    stiffness: Annotated[str | None, typer.Option(
+        "--stiffness", help="--law rate-state: the machine stiffness k [N/m]; units allowed")] = None,
+    evolution: Annotated[str, typer.Option(
+        "--evolution", help="--law rate-state: aging | slip")] = "aging",
     columns: Annotated[
         str | None,
         typer.Option("--columns", help="roles of the columns: t,x,F (file order), "
@@ -88,6 +98,10 @@ def identify(
     Example: stickslip identify examples/rig_record.csv --mass "1 kg" --load "100 N" --speed "5 cm/s" --json
 
     Then: stickslip identify ... --write-config machine.toml; stickslip design --config machine.toml
+
+    A velocity-step record (rate-and-state: a, b, d_c, mu_ref of the quasi-static slider):
+
+    Example: stickslip identify steps.csv --law rate-state --stiffness "1e7 N/m" --load "1 kN" --json
     """
     from stickslip.analysis.identification import LAWS, check_known
     from stickslip.analysis.identification import identify as run_identify
@@ -95,6 +109,19 @@ def identify(
     from stickslip.io.record import parse_columns, read_columns_toml, read_record
     from stickslip.model.units import to_si
 
+    if law.strip().lower() == "rate-state":
+        _identify_rate_state(record, load=load, stiffness=stiffness, evolution=evolution,
+                             given={"--mass": mass, "--speed": speed, "--columns": columns,
+                                    "--fix": fix, "--table-speeds": table_speeds,
+                                    "--write-config": write_config, "--plot": plot},
+                             bootstrap=bootstrap, offset=offset, json=json)
+        return
+    if stiffness is not None:
+        raise BadInput("--stiffness is for --law rate-state (a velocity-step record)")
+    for flag, given in (("--mass", mass), ("--speed", speed)):
+        if given is None:
+            raise BadInput(f"{flag} is required (the slider's mass and the belt speed of the record)")
+    assert mass is not None and speed is not None
     known = {"m": to_si("m", mass, source="--mass"), "load": to_si("load", load),
              "speed": to_si("speed", speed)}
     for name, value in known.items():
@@ -154,6 +181,65 @@ def identify(
     for key in ("config", "plot"):
         if key in payload:
             typer.echo(f"{key:<8} {payload[key]}")
+
+
+def _identify_rate_state(record: Path, *, load: str, stiffness: str | None, evolution: str,
+                         given: dict[str, Any], bootstrap: int, offset: str, json: bool) -> None:
+    """``identify --law rate-state``: :func:`~stickslip.analysis.rate_state_fit.fit_rate_state`
+    on a CSV of time (s), load-point displacement (m) and friction coefficient, in that order
+    (a header line is skipped)."""
+    import numpy as np
+
+    from stickslip.analysis.rate_state_fit import fit_rate_state
+    from stickslip.model.units import to_si
+
+    for flag, value in given.items():
+        if value:
+            raise BadInput(f"{flag} is not used by --law rate-state (columns: t [s], load-point "
+                           "displacement [m], mu; options --stiffness, --load, --evolution)")
+    if bootstrap or offset != "auto":
+        raise BadInput("--bootstrap and --offset are not used by --law rate-state")
+    if stiffness is None:
+        raise BadInput("--law rate-state needs --stiffness (the machine stiffness k, e.g. '1e7 N/m')")
+    k = to_si("k", stiffness, source="--stiffness")
+    normal = to_si("load", load, source="--load")
+    for flag, value in (("--stiffness", k), ("--load", normal)):
+        if not value > 0.0:
+            raise BadInput(f"{flag} {value!r} must be positive")
+    if evolution not in ("aging", "slip"):
+        raise BadInput(f"--evolution {evolution!r} must be aging or slip")
+    try:
+        text = record.read_text(encoding="utf-8-sig")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise BadInput(f"record {str(record)!r}: cannot be read ({exc.__class__.__name__})") from None
+    rows: list[list[float]] = []
+    for number, line in enumerate(text.splitlines(), start=1):
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        parts = [p.strip() for p in line.split(",")]
+        try:
+            values = [float(p) for p in parts]
+        except ValueError:
+            if not rows and number == 1:
+                continue  # the header
+            raise BadInput(f"record {str(record)!r}, line {number}: not three numbers "
+                           "(t [s], load-point displacement [m], mu)") from None
+        if len(values) != 3:
+            raise BadInput(f"record {str(record)!r}, line {number}: {len(values)} columns, "
+                           "expected 3 (t [s], load-point displacement [m], mu)")
+        rows.append(values)
+    data = np.array(rows, dtype=np.float64).reshape(-1, 3)
+    try:
+        fit = fit_rate_state(data[:, 0], data[:, 1], data[:, 2], stiffness=k, load=normal,
+                             evolution=evolution)
+    except ValueError as exc:
+        raise BadInput(f"record {str(record)!r}: {exc}") from None
+    payload = fit.to_dict()
+    payload["record"] = str(record)
+    if json:
+        print_json(payload)
+        return
+    typer.echo(fit.summary())
 
 
 def register(app: typer.Typer) -> None:

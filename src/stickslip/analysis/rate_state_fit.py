@@ -1,0 +1,281 @@
+"""Rate-and-state parameters from a velocity-step record: the test rate-and-state laboratories run.
+
+The record holds, at times ``t`` (s), the load-point displacement ``x_lp`` (m) and the friction
+coefficient ``mu`` (shear over normal force). The load point moves at piecewise-constant speeds
+(the steps); the sample is the quasi-static spring-slider of the laboratories,
+``k (x_lp - x) = N mu`` with the machine's stiffness ``k`` (N/m) and normal load ``N`` (N) known,
+and the friction the regularised rate-and-state law of
+:class:`~stickslip.model.state_friction.RateStateFriction` with the aging or the slip law.
+
+The steps are read off the displacement: the speed of each sample interval,
+``(x_lp[i+1] - x_lp[i]) / (t[i+1] - t[i])``, starts a new step where it changes by more than
+:data:`STEP_CHANGE` of the larger of the two; each step's speed is its mean (its displacement over
+its duration). ``v_ref`` is the first step's speed, so ``mu_ref`` is the friction of steady
+sliding there.
+
+The fit. The unknowns are ``a``, ``b``, ``d_c`` (positive; fitted as logarithms) and
+``mu_ref``; the run starts from steady sliding at the first speed. The model is the stiff
+engine's run of the quasi-static slider through the steps
+(:func:`~stickslip.analysis.memory_friction.integrate_run`, ``rtol`` :data:`FIT_RTOL`), sampled
+at the record's times; the residuals ``mu_model - mu`` are minimised by
+``scipy.optimize.least_squares`` (trust-region reflective, finite-difference Jacobian) from
+:data:`STARTS` first guesses, the best kept. Standard errors are those of the linearised
+least-squares problem, ``sqrt(diag((J^T J)^-1) s^2)`` with ``s^2 = RSS / (n - p)``: exact for
+Gaussian noise in ``mu`` to first order. A parameter whose standard error exceeds its value, or a
+singular ``J^T J``, is reported *undetermined* (the record does not constrain it: for example
+a record with one step cannot tell ``b`` from ``d_c`` well when it is short).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from stickslip.analysis.memory_friction import integrate_run
+from stickslip.model.state_friction import MemorySystem, RateStateFriction, SpeedSchedule
+
+FloatArray = NDArray[np.float64]
+
+#: Relative change of the sample speed that starts a new load-point step.
+STEP_CHANGE = 0.05
+#: Relative tolerance of the model's runs (their error must stay below the finite-difference
+#: steps of the fit).
+FIT_RTOL = 1e-10
+#: First guesses ``(a, b/a, d_c in units of the record's slip per step)``.
+STARTS = ((0.01, 1.2, 0.05), (0.005, 0.8, 0.2), (0.02, 1.5, 0.01))
+#: Most function evaluations of one start.
+MAX_EVALUATIONS = 400
+NAMES = ("a", "b", "d_c", "mu_ref")
+
+
+def load_point_steps(t: FloatArray, x_lp: FloatArray) -> SpeedSchedule:
+    """The piecewise-constant load-point speeds of a record (module notes).
+
+    Parameters
+    ----------
+    t : ndarray
+        Times, s (strictly increasing, starting anywhere: the schedule starts at ``t[0]``).
+    x_lp : ndarray
+        Load-point displacement, m.
+
+    Returns
+    -------
+    SpeedSchedule
+        Step start times (from 0 at ``t[0]``) and speeds, m/s.
+    """
+    dt = np.diff(t)
+    speed = np.diff(x_lp) / dt
+    starts = [0]
+    for i in range(1, speed.size):
+        if abs(speed[i] - speed[i - 1]) > STEP_CHANGE * max(abs(speed[i]), abs(speed[i - 1])):
+            starts.append(i)
+    ends = [*starts[1:], speed.size]
+    times, speeds = [], []
+    for s, e in zip(starts, ends, strict=True):
+        v = (x_lp[e] - x_lp[s]) / (t[e] - t[s])
+        if not v > 0.0:
+            raise ValueError(f"the load point does not move forward from {t[s]:g} s to {t[e]:g} s "
+                             f"(speed {v:.3g} m/s): velocity steps need positive speeds")
+        times.append(float(t[s] - t[0]))
+        speeds.append(float(v))
+    return SpeedSchedule(tuple(times), tuple(speeds))
+
+
+def model_mu(t: FloatArray, schedule: SpeedSchedule, stiffness: float, load: float,
+             law: RateStateFriction) -> FloatArray:
+    """``mu`` of the quasi-static slider through ``schedule`` at the times ``t - t[0]``.
+
+    Parameters
+    ----------
+    t : ndarray
+        The record's times, s.
+    schedule : SpeedSchedule
+        Load-point steps (times from ``t[0]``).
+    stiffness, load : float
+        Machine stiffness (N/m) and normal load (N).
+    law : RateStateFriction
+        The law (``v_ref`` the first speed: steady sliding there at ``mu_ref``).
+
+    Returns
+    -------
+    ndarray
+        ``mu`` at every time (NaN where the run stopped).
+    """
+    system = MemorySystem(np.zeros((1, 1)), np.zeros((1, 1)), np.array([[stiffness]]), 0, load,
+                          law, schedule)
+    v1 = schedule.first
+    psi = law.steady_state(v1, load)
+    y0 = np.array([load * float(law.mu(v1, psi)) / stiffness, psi])
+    times = t - t[0]
+    run = integrate_run(system, y0, float(times[-1]), rtol=FIT_RTOL, history_times=times)
+    assert run.history is not None
+    return stiffness * run.history[:, 0] / load
+
+
+@dataclass
+class RateStateFit:
+    """A rate-and-state fit to a velocity-step record (see module notes).
+
+    Attributes
+    ----------
+    values, errors : dict
+        Fitted ``a``, ``b``, ``d_c`` (m), ``mu_ref`` and their standard errors.
+    undetermined : list of str
+        The parameters the record does not constrain (standard error above the value, or a
+        singular problem).
+    rms : float
+        Root-mean-square residual in ``mu``.
+    schedule : SpeedSchedule
+        The load-point steps read off the record.
+    evolution : str
+        ``aging`` or ``slip``.
+    """
+
+    values: dict[str, float]
+    errors: dict[str, float]
+    undetermined: list[str]
+    rms: float
+    schedule: SpeedSchedule = field(repr=False)
+    evolution: str
+    stiffness: float
+    load: float
+    n: int
+    t: FloatArray = field(repr=False)
+    mu: FloatArray = field(repr=False)
+    mu_fit: FloatArray = field(repr=False)
+
+    @property
+    def law(self) -> RateStateFriction:
+        """The fitted law (``v_ref`` the first step's speed)."""
+        return RateStateFriction(a=self.values["a"], b=self.values["b"], d_c=self.values["d_c"],
+                                 mu_ref=self.values["mu_ref"], v_ref=self.schedule.first,
+                                 evolution=self.evolution)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready (SI)."""
+        def num(x: float) -> float | None:
+            return float(x) if math.isfinite(x) else None
+        return {"law": "rate-state", "evolution": self.evolution,
+                "parameters": {k: num(v) for k, v in self.values.items()},
+                "standard_errors": {k: num(v) for k, v in self.errors.items()},
+                "undetermined": self.undetermined, "v_ref_m_per_s": self.schedule.first,
+                "rms_residual_mu": self.rms, "n_samples": self.n,
+                "steps": [[t, v] for t, v in zip(self.schedule.times, self.schedule.speeds,
+                                                 strict=True)],
+                "stiffness_N_per_m": self.stiffness, "load_N": self.load,
+                "model": "quasi-static spring-slider, regularised rate-and-state law"}
+
+    def summary(self) -> str:
+        """A few lines for the terminal."""
+        lines = [f"identify    rate-and-state ({self.evolution} law) from {self.n} samples, "
+                 f"{len(self.schedule.speeds)} load-point step(s), k {self.stiffness:.6g} N/m, "
+                 f"N {self.load:.6g} N"]
+        units = {"d_c": " m"}
+        for name in NAMES:
+            flag = "  UNDETERMINED" if name in self.undetermined else ""
+            lines.append(f"{name:<11} {self.values[name]:.6g}{units.get(name, '')} +- "
+                         f"{self.errors[name]:.2g}{flag}")
+        weakening = self.values["b"] > self.values["a"]
+        lines.append(f"b - a       {self.values['b'] - self.values['a']:.4g} "
+                     f"(velocity {'weakening' if weakening else 'strengthening'})")
+        lines.append(f"residual    rms {self.rms:.3g} in mu; v_ref {self.schedule.first:.6g} m/s "
+                     "(the first step)")
+        return "\n".join(lines)
+
+
+def fit_rate_state(t: FloatArray, x_lp: FloatArray, mu: FloatArray, *, stiffness: float,
+                   load: float, evolution: str = "aging") -> RateStateFit:
+    """Fit ``a``, ``b``, ``d_c`` and ``mu_ref`` to a velocity-step record (module notes).
+
+    Parameters
+    ----------
+    t, x_lp, mu : ndarray
+        Times (s, strictly increasing), load-point displacement (m) and friction coefficient.
+    stiffness : float
+        Machine stiffness, N/m (> 0).
+    load : float
+        Normal load, N (> 0).
+    evolution : str
+        ``aging`` or ``slip``.
+
+    Returns
+    -------
+    RateStateFit
+        Values, standard errors, the undetermined parameters and the fitted curve.
+    """
+    from scipy.optimize import least_squares
+
+    t = np.asarray(t, dtype=np.float64)
+    x_lp = np.asarray(x_lp, dtype=np.float64)
+    mu = np.asarray(mu, dtype=np.float64)
+    if not (t.ndim == 1 and t.size == x_lp.size == mu.size and t.size >= 8):
+        raise ValueError("the record needs at least 8 samples of t, load-point displacement and mu")
+    if not (np.all(np.isfinite(t)) and np.all(np.isfinite(x_lp)) and np.all(np.isfinite(mu))):
+        raise ValueError("the record holds a value that is not a finite number")
+    if not np.all(np.diff(t) > 0.0):
+        raise ValueError("the record's times must increase strictly")
+    if not (stiffness > 0.0 and math.isfinite(stiffness) and load > 0.0 and math.isfinite(load)):
+        raise ValueError(f"stiffness {stiffness!r} N/m and load {load!r} N must be positive")
+    if evolution not in ("aging", "slip"):
+        raise ValueError(f"evolution {evolution!r} must be 'aging' or 'slip'")
+    schedule = load_point_steps(t, x_lp)
+    slip_per_step = float(x_lp[-1] - x_lp[0]) / len(schedule.speeds)
+    mu0 = float(np.median(mu[: max(3, t.size // 50)]))
+
+    def law_of(p: FloatArray) -> RateStateFriction:
+        return RateStateFriction(a=math.exp(p[0]), b=math.exp(p[1]), d_c=math.exp(p[2]),
+                                 mu_ref=float(p[3]), v_ref=schedule.first, evolution=evolution)
+
+    def residuals(p: FloatArray) -> FloatArray:
+        try:
+            predicted = model_mu(t, schedule, stiffness, load, law_of(p))
+        except ValueError:
+            return np.full(t.size, 1e3)
+        r = predicted - mu
+        return np.where(np.isfinite(r), r, 1e3)
+
+    best = None
+    for a0, ratio, dc_frac in STARTS:
+        p0 = np.array([math.log(a0), math.log(a0 * ratio), math.log(dc_frac * slip_per_step), mu0])
+        try:
+            sol = least_squares(residuals, p0, method="trf", x_scale=np.array([1.0, 1.0, 1.0, 0.01]),
+                                diff_step=1e-6, max_nfev=MAX_EVALUATIONS)
+        except ValueError:
+            continue
+        if best is None or sol.cost < best.cost:
+            best = sol
+    if best is None:
+        raise ValueError("no start of the fit ran: check the record and the stiffness and load")
+    p = best.x
+    # d r / d a = (d r / d ln a) / a: the Jacobian in the parameters themselves
+    jac = best.jac / np.array([math.exp(p[0]), math.exp(p[1]), math.exp(p[2]), 1.0])[None, :]
+    dof = max(t.size - len(NAMES), 1)
+    s2 = 2.0 * best.cost / dof
+    values = dict(zip(NAMES, (math.exp(p[0]), math.exp(p[1]), math.exp(p[2]), float(p[3])),
+                      strict=True))
+    undetermined: list[str] = []
+    try:
+        norms = np.linalg.norm(jac, axis=0)
+        if not np.all(norms > 0.0):
+            raise np.linalg.LinAlgError  # a parameter the residuals do not depend on
+        gram = (jac / norms).T @ (jac / norms)  # columns scaled: the conditioning of the problem
+        if np.linalg.cond(gram) > 1e14:
+            raise np.linalg.LinAlgError
+        cov = np.linalg.inv(gram) / np.outer(norms, norms) * s2
+        errors = {name: math.sqrt(max(float(cov[i, i]), 0.0)) for i, name in enumerate(NAMES)}
+    except np.linalg.LinAlgError:
+        errors = {name: math.inf for name in NAMES}
+    for name in NAMES:
+        if not errors[name] <= abs(values[name]):
+            undetermined.append(name)
+    fitted = model_mu(t, schedule, stiffness, load, law_of(p))
+    rms = float(np.sqrt(np.mean((fitted - mu) ** 2)))
+    return RateStateFit(values, errors, undetermined, rms, schedule, evolution, stiffness, load,
+                        int(t.size), t, mu, fitted)
+
+
+__all__ = ["RateStateFit", "fit_rate_state", "load_point_steps", "model_mu"]
