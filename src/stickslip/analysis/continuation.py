@@ -49,6 +49,7 @@ from stickslip.analysis._periodic_sections import (
     AnySystem,
     ContinuationSystem,
     MachineSystem,
+    ScaledMachine,
     SlipSection,
     StickSlipSection,
     refined_root,
@@ -204,6 +205,27 @@ def continue_cycles(
     lo, hi = float(param_range[0]), float(param_range[1])
     if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
         raise ValueError(f"range {lo!r}:{hi!r} must be finite and increasing")
+    if isinstance(system, MachineSystem):  # SI: continued in units of the range (ScaledMachine)
+        scale = max(abs(lo), abs(hi))
+        scaled = _continue(ScaledMachine(system, scale), param, lo / scale, hi / scale,
+                           max_period, seeds, max_steps, n_points, options)
+        return _unscaled(scaled, system, (lo, hi), scale)
+    return _continue(system, param, lo, hi, max_period, seeds, max_steps, n_points, options)
+
+
+def _unscaled(result: ContinuationResult, system: MachineSystem, param_range: tuple[float, float],
+              scale: float) -> ContinuationResult:
+    """``result`` of a :class:`ScaledMachine` with every parameter value back in SI."""
+    branches = tuple(replace(b, points=tuple(replace(q, param=q.param * scale) for q in b.points))
+                     for b in result.branches)
+    events = tuple(replace(e, param=e.param * scale) for e in result.events)
+    return replace(result, system=system, param_range=param_range, branches=branches,
+                   steady_param=result.steady_param * scale, events=events)
+
+
+def _continue(system: AnySystem, param: str, lo: float, hi: float, max_period: int, seeds: int,
+              max_steps: int, n_points: int, options: EngineOptions | None) -> ContinuationResult:
+    """:func:`continue_cycles` on ``[lo, hi]`` of ``system`` as given (no rescaling)."""
     opts = options or EngineOptions()
     branches: list[Branch] = []
     events: list[Event] = []

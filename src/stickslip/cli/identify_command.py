@@ -53,6 +53,8 @@ def _parse_table_speeds(text: str) -> list[float]:
     return speeds
 
 
+# Over 120 lines: Typer declares each of the command's sixteen options in this signature (half
+# of its length) and the docstring is the help text; the body checks every input before any work.
 def identify(
     record: Annotated[Path, typer.Argument(help="CSV record: t and F and/or x (and v); see --columns")],
     load: Annotated[str, typer.Option("--load", help="normal load W [N]; units allowed")],
