@@ -119,3 +119,30 @@ def test_paper_slider_in_load_is_born_at_eq36_in_newtons(tmp_path: Path,
         assert ds["load"].attrs["units"] == "N" and ds["period_s"].attrs["units"] == "s"
         np.testing.assert_allclose(ds["amplitude_m"].values, [p["amplitude_m"] for p in branch["points"]],
                                    rtol=1e-12)
+
+
+def test_si_parameter_is_continued_at_the_scale_of_its_range() -> None:
+    """A 2-DOF modal machine in belt speed (mm/s): the branch crosses 1.3-2.5 mm/s within 60
+    steps, end to end (continued in SI units, the arclength was all coordinates: it stopped
+    at the step bound after a sliver of the range), and its period and amplitude at three
+    speeds are those of direct runs started on the branch's breakaway state
+    (:func:`stickslip.simulate`, the reference; from start-up this machine slides steadily at
+    1.3 mm/s: the cycle coexists with steady sliding)."""
+    from stickslip import InitialState, simulate
+    from stickslip.analysis.continuation import MachineSystem, continue_cycles
+    from stickslip.app.machine_page import MODE_INPUTS, machine_from_files, modes_machine_toml
+
+    raw = {key: default for key, (_, default) in MODE_INPUTS.items()}
+    machine, _, _ = machine_from_files({"m.toml": modes_machine_toml(raw).encode()})
+    result = continue_cycles(MachineSystem(machine), "speed", (1.3e-3, 2.5e-3), max_steps=60, seeds=4)
+    (branch,) = result.branches
+    assert branch.stop_reason == "backward: range-end; forward: range-end"
+    assert branch.points[0].param == 1.3e-3 and branch.points[-1].param == 2.5e-3
+    for point in (branch.points[0], branch.points[len(branch.points) // 2], branch.points[-1]):
+        structure, slider = machine.with_operating_point(speed=point.param).to_dimensionless()
+        n = structure.n_dof
+        run = simulate(structure, slider, record=False,
+                       initial=InitialState(point.state[:n], point.state[n:]))
+        assert run.cycle_length == 1
+        assert point.period == pytest.approx(run.period, rel=1e-7)
+        assert point.amplitude == pytest.approx(run.amplitude, rel=1e-6)

@@ -215,12 +215,20 @@ def continue_cycles(
 
 def _unscaled(result: ContinuationResult, system: MachineSystem, param_range: tuple[float, float],
               scale: float) -> ContinuationResult:
-    """``result`` of a :class:`ScaledMachine` with every parameter value back in SI."""
-    branches = tuple(replace(b, points=tuple(replace(q, param=q.param * scale) for q in b.points))
+    """``result`` of a :class:`ScaledMachine` with every parameter value back in SI (the
+    range's ends exactly: a branch that reaches an end lands on it)."""
+    lo, hi = param_range
+    ends = {result.param_range[0]: lo, result.param_range[1]: hi}
+
+    def back(p: float) -> float:
+        return ends.get(p, p * scale)
+
+    branches = tuple(replace(b, points=tuple(replace(q, param=back(q.param)) for q in b.points))
                      for b in result.branches)
-    events = tuple(replace(e, param=e.param * scale) for e in result.events)
+    events = tuple(replace(e, param=back(e.param)) for e in result.events)
+    steady = np.array([back(float(p)) for p in result.steady_param])
     return replace(result, system=system, param_range=param_range, branches=branches,
-                   steady_param=result.steady_param * scale, events=events)
+                   steady_param=steady, events=events)
 
 
 def _continue(system: AnySystem, param: str, lo: float, hi: float, max_period: int, seeds: int,
