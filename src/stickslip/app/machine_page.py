@@ -169,6 +169,7 @@ def show_machine_page() -> None:
     """Lay out the "your machine" page (Streamlit)."""
     import streamlit as st
 
+    from stickslip.app.machine_bifurcation import show_machine_bifurcation
     from stickslip.app.messages import show_failure
     from stickslip.app.workers import wait_for
     from stickslip.plot.operating import machine_modes_plot
@@ -226,6 +227,7 @@ def show_machine_page() -> None:
                    "(simulated onset, the machine's friction law).")
     payload = report.to_dict()
     st.pyplot(machine_modes_plot(machine, reduction=reduction).figure)
+    show_machine_bifurcation(machine, digest)
     st.download_button("Design report (JSON)", __import__("json").dumps(payload, indent=2, default=str),
                        file_name="stickslip-machine.json", mime="application/json",
                        key="download_machine_json")
