@@ -358,8 +358,10 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
     ``S = I + (f^+ - f^-) n^T / (n . f^-)`` at the event state, the final one with
     ``f^+ = 0``): ``X_i`` is the derivative of the map ``F_i`` from the start of phase ``i``
     to the start of the next. Over the tube ``||expm(A t) - expm(A t*)|| <= ||A|| T M(t*)
-    e^{||A|| T}``; ``f^+ - f^-`` moves by ``||A^+ - A^-|| Z_e`` and ``n . f^-`` by
-    ``||n^T A^-|| Z_e``, which bounds ``||S - S*||``: ``Delta_i >= ||X_i - X_i*||``.
+    e^{||A|| T}``; ``f^+ - f^-`` moves by ``||A^+ - A^-|| Z_e`` (at a friction-band edge by
+    ``||(A^+ - A^-) P|| Z_e``, ``P`` the projector onto the surface, which holds both event
+    points: zero to rounding for a continuous law) and ``n . f^-`` by ``||n^T A^-|| Z_e``,
+    which bounds ``||S - S*||``: ``Delta_i >= ||X_i - X_i*||``.
 
     Tight deviations. The phase starts lie on hyperplanes (the event surfaces), so the
     segment between two of them does too, and the mean value inequality gives
@@ -399,7 +401,14 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
         dp = float(np.linalg.norm(nv @ ph.a)) * z_event
         if abs(p_star) - dp <= 0.0:
             return Tube(False)
-        du = float(np.linalg.norm(ph.a_plus - ph.a)) * z_event
+        jump = ph.a_plus - ph.a
+        if not (ph.belt_decision or ph.breakaway):
+            # a friction-band edge: both event points lie on the surface n . z = g0, so
+            # (f+ - f-)(z) - (f+ - f-)(z*) = (A+ - A-) P (z - z*) with P the projector onto
+            # the surface (the law is continuous there: A+ - A- is in n's column alone, and
+            # (A+ - A-) P vanishes up to rounding)
+            jump = jump - np.outer(jump @ nv, nv) / float(nv @ nv)
+        du = float(np.linalg.norm(jump)) * z_event
         d_salt = n_norm * (du / (abs(p_star) - dp)
                            + float(np.linalg.norm(u_star)) * dp / ((abs(p_star) - dp) * abs(p_star)))
         d_exp = ph.norm_a * t_dev * float(ph.m_norm[-1]) * ext
