@@ -65,8 +65,9 @@ def identify(
         "--speed", help="belt or drive speed V [m/s]; units allowed (required but for "
         "--law rate-state)")] = None,
     law: Annotated[str, typer.Option(
-        "--law", help="coulomb | linear | stribeck | table | auto, or rate-state (a velocity-step "
-        "record: columns t, load-point displacement, mu; with --stiffness)")] = "coulomb",
+        "--law", help="coulomb | linear | stribeck | table | auto; rate-state (a velocity-step "
+        "record: columns t, load-point displacement, mu; with --stiffness) or lugre (columns t, "
+        "sliding velocity, friction force)")] = "coulomb",
     stiffness: Annotated[str | None, typer.Option(
         "--stiffness", help="--law rate-state: the machine stiffness k [N/m]; units allowed")] = None,
     evolution: Annotated[str, typer.Option(
@@ -104,6 +105,10 @@ def identify(
     A velocity-step record (rate-and-state: a, b, d_c, mu_ref of the quasi-static slider):
 
     Example: stickslip identify steps.csv --law rate-state --stiffness "1e7 N/m" --load "1 kN" --json
+
+    LuGre from imposed motion (t, sliding velocity, force):
+
+    Example: stickslip identify rig.csv --law lugre --load "1 N" --json
     """
     from stickslip.analysis.identification import LAWS, check_known
     from stickslip.analysis.identification import identify as run_identify
@@ -111,6 +116,13 @@ def identify(
     from stickslip.io.record import parse_columns, read_columns_toml, read_record
     from stickslip.model.units import to_si
 
+    if law.strip().lower() == "lugre":
+        _identify_lugre(record, load=load,
+                        given={"--mass": mass, "--speed": speed, "--columns": columns, "--fix": fix,
+                               "--table-speeds": table_speeds, "--write-config": write_config,
+                               "--plot": plot, "--stiffness": stiffness},
+                        bootstrap=bootstrap, offset=offset, json=json)
+        return
     if law.strip().lower() == "rate-state":
         _identify_rate_state(record, load=load, stiffness=stiffness, evolution=evolution,
                              given={"--mass": mass, "--speed": speed, "--columns": columns,
@@ -190,7 +202,6 @@ def _identify_rate_state(record: Path, *, load: str, stiffness: str | None, evol
     """``identify --law rate-state``: :func:`~stickslip.analysis.rate_state_fit.fit_rate_state`
     on a CSV of time (s), load-point displacement (m) and friction coefficient, in that order
     (a header line is skipped)."""
-    import numpy as np
 
     from stickslip.analysis.rate_state_fit import fit_rate_state
     from stickslip.model.units import to_si
@@ -210,6 +221,25 @@ def _identify_rate_state(record: Path, *, load: str, stiffness: str | None, evol
             raise BadInput(f"{flag} {value!r} must be positive")
     if evolution not in ("aging", "slip"):
         raise BadInput(f"--evolution {evolution!r} must be aging or slip")
+    data = _three_columns(record, "t [s], load-point displacement [m], mu")
+    try:
+        fit = fit_rate_state(data[:, 0], data[:, 1], data[:, 2], stiffness=k, load=normal,
+                             evolution=evolution)
+    except ValueError as exc:
+        raise BadInput(f"record {str(record)!r}: {exc}") from None
+    payload = fit.to_dict()
+    payload["record"] = str(record)
+    if json:
+        print_json(payload)
+        return
+    typer.echo(fit.summary())
+
+
+def _three_columns(record: Path, what: str) -> Any:
+    """The record's three numeric columns (a header line skipped), ``(n, 3)``; one line each
+    for an unreadable file or a bad row."""
+    import numpy as np
+
     try:
         text = record.read_text(encoding="utf-8-sig")
     except (OSError, UnicodeDecodeError) as exc:
@@ -224,16 +254,33 @@ def _identify_rate_state(record: Path, *, load: str, stiffness: str | None, evol
         except ValueError:
             if not rows and number == 1:
                 continue  # the header
-            raise BadInput(f"record {str(record)!r}, line {number}: not three numbers "
-                           "(t [s], load-point displacement [m], mu)") from None
+            raise BadInput(f"record {str(record)!r}, line {number}: not three numbers ({what})") from None
         if len(values) != 3:
             raise BadInput(f"record {str(record)!r}, line {number}: {len(values)} columns, "
-                           "expected 3 (t [s], load-point displacement [m], mu)")
+                           f"expected 3 ({what})")
         rows.append(values)
-    data = np.array(rows, dtype=np.float64).reshape(-1, 3)
+    return np.array(rows, dtype=np.float64).reshape(-1, 3)
+
+
+def _identify_lugre(record: Path, *, load: str, given: dict[str, Any], bootstrap: int,
+                    offset: str, json: bool) -> None:
+    """``identify --law lugre``: :func:`~stickslip.analysis.lugre_fit.fit_lugre` on a CSV of
+    time (s), sliding velocity (m/s) and friction force (N), in that order."""
+    from stickslip.analysis.lugre_fit import fit_lugre
+    from stickslip.model.units import to_si
+
+    for flag, value in given.items():
+        if value:
+            raise BadInput(f"{flag} is not used by --law lugre (columns: t [s], sliding velocity "
+                           "[m/s], friction force [N]; option --load)")
+    if bootstrap or offset != "auto":
+        raise BadInput("--bootstrap and --offset are not used by --law lugre")
+    normal = to_si("load", load, source="--load")
+    if not normal > 0.0:
+        raise BadInput(f"--load {normal!r} must be positive")
+    data = _three_columns(record, "t [s], sliding velocity [m/s], friction force [N]")
     try:
-        fit = fit_rate_state(data[:, 0], data[:, 1], data[:, 2], stiffness=k, load=normal,
-                             evolution=evolution)
+        fit = fit_lugre(data[:, 0], data[:, 1], data[:, 2], load=normal)
     except ValueError as exc:
         raise BadInput(f"record {str(record)!r}: {exc}") from None
     payload = fit.to_dict()
