@@ -1,13 +1,14 @@
 """``identify --law lugre``: the six LuGre parameters from imposed motion (issue 33, point 4).
 
-Reference: an independent integration. The force is computed by scipy's DOP853 (rtol 1e-12, steps of at most 0.1 ms)
-from the LuGre ODE of Canudas de Wit et al. (1995) with the paper's parameters (sigma0 = 1e5
-N/m, sigma1 = sqrt(1e5) N s/m, sigma2 = 0.4 N s/m, F_c = 1 N, F_s = 1.5 N, v_s = 1 mm/s) along
-a sinusoidal velocity of 1 cm/s amplitude (reversals: pre-sliding; and sliding through the
-Stribeck range), Gaussian noise of 0.01 N added; the fit, on its own exact-exponential
-integration, must land within four of its standard errors of the truth on every parameter.
-A record that never reverses (no pre-sliding) leaves the bristle parameters undetermined: other
-sigma0, sigma1 fit it to its noise (measured: sigma1 97 instead of 316 N s/m).
+Reference: an independent integration. The force is computed by scipy's DOP853 (rtol 1e-12,
+steps of at most 0.1 ms) from the LuGre ODE of Canudas de Wit et al. (1995) with the paper's
+parameters (sigma0 = 1e5 N/m, sigma1 = sqrt(1e5) N s/m, sigma2 = 0.4 N s/m, F_c = 1 N,
+F_s = 1.5 N, v_s = 1 mm/s) along a sinusoidal velocity of 1 cm/s amplitude (reversals:
+pre-sliding; and sliding through the Stribeck range), Gaussian noise of 0.01 N added; the fit,
+on its own exact-exponential integration, must land within four of its standard errors of the
+truth on every parameter. A record that never reverses (no pre-sliding) leaves the bristle
+parameters undetermined: other sigma0, sigma1 fit it to its noise (measured: sigma1 97
+instead of 316 N s/m).
 """
 
 from __future__ import annotations

@@ -19,8 +19,9 @@ best kept. Standard errors are those of the linearised problem (as for the rate-
 fit, :mod:`stickslip.analysis.rate_state_fit`); a parameter whose standard error exceeds its
 value is *undetermined*, and so are ``sigma0`` and ``sigma1`` whenever the velocity never
 reverses (no pre-sliding): the standard errors are local, and without a reversal other
-bristle parameters fit the record to its noise while their local errors look small. With the normal load the coefficients are ``mu_c = F_c / N`` and
-``mu_s = F_s / N``, the machine file's ``[friction] law = "lugre"``.
+bristle parameters fit the record to its noise while their local errors look small. With the
+normal load the coefficients are ``mu_c = F_c / N`` and ``mu_s = F_s / N``, the machine file's
+``[friction] law = "lugre"``.
 """
 
 from __future__ import annotations
