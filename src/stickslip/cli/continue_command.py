@@ -53,6 +53,14 @@ def continue_branches(
     from stickslip.model.friction_input import parse_friction
 
     refuse_mix(ctx, config)
+    if config is not None:
+        from stickslip.cli.machine_config import load_machine_file
+
+        machine_file = load_machine_file(config)
+        if machine_file.has_memory_law:  # shooting continuation in the drive speed
+            _memory_continuation(ctx, machine_file, param, range_, out=out, plot=plot,
+                                 overwrite=overwrite, json=json)
+            return
     allowed = PARAMETERS if config is None else tuple(MACHINE_PARAMETERS)
     if param not in allowed:
         raise BadInput(f"--param {param!r} is not one of {', '.join(allowed)}"
@@ -97,6 +105,43 @@ def continue_branches(
         print_json(payload)
         return
     _print(result.summary(), payload)
+
+
+def _memory_continuation(ctx: typer.Context, machine_file: Any, param: str, range_: str, *,
+                         out: Path | None, plot: Path | None, overwrite: bool, json: bool) -> None:
+    """``continue --config`` for a friction law with memory
+    (:func:`~stickslip.analysis.memory_continuation.continue_memory_orbits`)."""
+    from click.core import ParameterSource
+
+    from stickslip.analysis.memory_continuation import continue_memory_orbits
+    from stickslip.cli.memory_stability_commands import memory_system
+
+    if param != "speed":
+        raise BadInput(f"--param {param!r}: a machine with friction with memory is continued in "
+                       "the drive speed (--param speed)")
+    for name in ("seeds", "max_period", "max_steps"):
+        if ctx.get_parameter_source(name) is ParameterSource.COMMANDLINE:
+            raise BadInput(f"--{name.replace('_', '-')} is for the curve laws' continuation; with "
+                           "friction with memory the orbits are seeded by runs and shot")
+    if out is not None:
+        raise BadInput("--out: the netCDF file is written for the curve laws; with friction with "
+                       "memory --json holds the branches")
+    lo, hi = _parse_range(range_, "speed")
+    if plot is not None:
+        check_figure_path(plot, overwrite=overwrite)
+    system = memory_system(machine_file)
+    try:
+        result = continue_memory_orbits(system, (lo, hi))
+    except ValueError as exc:
+        raise BadInput(f"{machine_file.label}: {exc}") from None
+    payload = result.to_dict()
+    payload.update({"config": str(machine_file.label), "plot": None})
+    if plot is not None:
+        payload["plot"] = str(result.plot().savefig(plot))
+    if json:
+        print_json(payload)
+        return
+    typer.echo(result.summary() + (f"\nplot: {payload['plot']}" if payload["plot"] else ""))
 
 
 def _parse_range(text: str, quantity: str | None) -> tuple[float, float]:

@@ -14,6 +14,7 @@ from stickslip.plot.figure import PlotResult, new_axes
 
 if TYPE_CHECKING:
     from stickslip.analysis.continuation import ContinuationResult
+    from stickslip.analysis.memory_continuation import MemoryContinuation
 
 #: Colour per branch kind.
 KIND_COLORS = {"stick-slip": "black", "slip-oscillation": "tab:blue"}
@@ -156,3 +157,69 @@ def continuation_plot(
     # outside the axes: the legend never covers a branch
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small", frameon=False)
     return PlotResult(fig, [ax], artists)
+
+
+def memory_continuation_plot(data: MemoryContinuation, *, ax: Axes | None = None,
+                             title: str | None = None) -> PlotResult:
+    """Amplitude of the contact's periodic orbits against the drive speed (friction with memory).
+
+    Stable orbits solid, unstable dashed; steady sliding on the axis (solid grey where it is
+    stable, dashed red where not); the Hopf points starred and named. The speed axis is
+    logarithmic when the range spans more than a decade; the legend stands outside the axes.
+
+    Parameters
+    ----------
+    data : MemoryContinuation
+        From :func:`stickslip.analysis.memory_continuation.continue_memory_orbits`.
+    ax : Axes, optional
+        Axes to draw into; new figure when None.
+    title : str, optional
+        Axes title (default: the law and the structure).
+
+    Returns
+    -------
+    PlotResult
+        One axes.
+    """
+    fig, axis = new_axes(ax, figsize=(8.4, 4.6))
+    artists: list[Any] = []
+    labelled: set[str] = set()
+
+    def label(name: str) -> str | None:
+        if name in labelled:
+            return None
+        labelled.add(name)
+        return name
+
+    for branch in data.branches:
+        speeds = np.array([p.speed for p in branch.points])
+        amps = np.array([p.amplitude for p in branch.points])
+        stable = np.array([p.stable for p in branch.points])
+        for a, b, ok in _runs(stable):
+            name = "periodic orbit, " + ("stable" if ok else "unstable")
+            artists += axis.plot(speeds[a:b + 1], amps[a:b + 1], "-" if ok else "--", color="black",
+                                 lw=1.6, label=label(name))
+    for a, b, ok in _runs(np.asarray(data.steady_growth < 0.0)):
+        name = "steady sliding, " + ("stable" if ok else "unstable")
+        artists += axis.plot(data.steady_speed[a:b + 1], np.zeros(b + 1 - a),
+                             "-" if ok else "--", color="0.5" if ok else "tab:red", lw=2.5,
+                             label=label(name))
+    for v in data.hopf:
+        artists += axis.plot([v], [0.0], marker="*", ms=13, color="tab:blue", mec="k", ls="none",
+                             label=label("Hopf point"))
+        artists.append(axis.annotate(f"Hopf {v:.5g}", (v, 0.0), textcoords="offset points",
+                                     xytext=(4, 8), fontsize="small", color="tab:blue"))
+    lo, hi = data.speed_range
+    if hi / lo > 10.0:
+        from matplotlib.ticker import NullFormatter
+
+        axis.set_xscale("log")
+        axis.xaxis.set_minor_formatter(NullFormatter())  # labelled minor ticks overlap
+    axis.set_xlim(lo, hi)
+    axis.set_xlabel(PARAM_LABELS["speed"])
+    axis.set_ylabel(r"amplitude of $x_c$, $\frac{1}{2}$ peak to peak (m)")
+    law = data.system.friction.to_dict().get("law", "memory")
+    axis.set_title(title or f"{data.system.n_dof}-DOF machine, {law} friction, load "
+                   f"{data.system.load:g} N\nperiodic orbits against the drive speed")
+    axis.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small", frameon=False)
+    return PlotResult(fig, [axis], artists)

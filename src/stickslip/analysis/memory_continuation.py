@@ -1,0 +1,234 @@
+"""Periodic orbits of a machine with friction with memory, continued in the drive speed.
+
+The bifurcation diagram of ``stickslip continue --config`` for rate-and-state and LuGre:
+
+* **Hopf points**: the speeds where steady sliding changes stability, from its linearisation
+  with the state variable (:func:`stickslip.analysis.memory_stability.critical_speeds`, bisected
+  to 1e-10), with the growth rate along the range.
+* **Branches**: orbits found by runs from kicked steady sliding
+  (:func:`~stickslip.analysis.memory_cycle_search.find_memory_cycles`) at :data:`SEED_POINTS`
+  speeds of the range, each continued both ways in ``ln V`` by natural-parameter steps: at the
+  next speed, Newton shooting (:func:`~stickslip.analysis.memory_cycles.shoot_cycle`) from the
+  last orbit. A step that fails is halved; after a success the step grows by 1.5 up to
+  :data:`MAX_STEP` of the range. A branch stops at the range's end, or where the step falls
+  below :data:`MIN_STEP` of the range: an orbit that ceases to exist there (a fold, where the
+  stable branch meets an unstable one, or the orbit shrinking into a Hopf point), which
+  natural-parameter steps cannot pass; the stop is named with the speed.
+  Every point has its Floquet multipliers (stable: every nontrivial one inside the unit
+  circle) and its amplitude (half the peak-to-peak contact displacement over one period,
+  :data:`AMPLITUDE_SAMPLES` samples).
+
+Unstable orbits are continued where a branch carries them, not searched for (the seeds are
+stable orbits); what the diagram holds is what was found, and the summary says so.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from stickslip.analysis.memory_cycle_search import find_memory_cycles
+from stickslip.analysis.memory_cycles import PeriodicOrbit, shoot_cycle
+from stickslip.analysis.memory_friction import integrate_run, observables
+from stickslip.analysis.memory_stability import critical_speeds, growth_rate
+from stickslip.model.state_friction import MemorySystem, SpeedSchedule
+
+FloatArray = NDArray[np.float64]
+
+#: Speeds of the range (log-spaced, ends included) where orbits are searched for.
+SEED_POINTS = 3
+#: Kicks of those searches (stuck to the drive, and thrown forward).
+SEED_KICKS = (-1.0, 2.0)
+#: Largest and smallest step in ln V, as shares of the range's ln(B / A).
+MAX_STEP = 0.05
+MIN_STEP = 1e-4
+FIRST_STEP = 0.01
+#: Bound on the steps of one direction of one branch.
+MAX_STEPS = 400
+#: Samples of one period for the amplitude.
+AMPLITUDE_SAMPLES = 401
+#: Points of the growth-rate grid along the range.
+STEADY_POINTS = 101
+
+
+@dataclass(frozen=True)
+class OrbitPoint:
+    """One orbit on a branch (SI)."""
+
+    speed: float
+    period: float
+    amplitude: float
+    multipliers: NDArray[np.complex128] = field(repr=False)
+    orbit: PeriodicOrbit = field(repr=False)
+
+    @property
+    def stable(self) -> bool:
+        """Every nontrivial Floquet multiplier inside the unit circle."""
+        return bool(np.all(np.abs(self.multipliers) < 1.0))
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready."""
+        return {"speed_m_per_s": self.speed, "period_s": self.period, "amplitude_m": self.amplitude,
+                "stable": self.stable,
+                "multiplier_moduli": [float(abs(m)) for m in self.multipliers]}
+
+
+@dataclass(frozen=True)
+class OrbitBranch:
+    """A continued branch: its points in increasing speed and why each end stopped."""
+
+    points: tuple[OrbitPoint, ...]
+    low_end: str
+    high_end: str
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready."""
+        return {"low_end": self.low_end, "high_end": self.high_end,
+                "points": [p.to_dict() for p in self.points]}
+
+
+@dataclass(frozen=True)
+class MemoryContinuation:
+    """The diagram (see module notes)."""
+
+    system: MemorySystem = field(repr=False)
+    speed_range: tuple[float, float]
+    branches: tuple[OrbitBranch, ...]
+    hopf: tuple[float, ...]
+    steady_speed: FloatArray = field(repr=False)
+    steady_growth: FloatArray = field(repr=False)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready (SI), the keys of ``continue --config --json`` for a law with memory."""
+        return {"param": "speed", "param_units": "m/s", "range": list(self.speed_range),
+                "law": self.system.friction.to_dict(), "hopf_speeds_m_per_s": list(self.hopf),
+                "branches": [b.to_dict() for b in self.branches],
+                "steady": [{"speed": float(v), "growth_rate_per_s": float(g), "stable": bool(g < 0)}
+                           for v, g in zip(self.steady_speed, self.steady_growth, strict=True)],
+                "searched": "stable orbits from kicked steady sliding, continued both ways"}
+
+    def summary(self) -> str:
+        """A few lines: the Hopf points and each branch."""
+        lo, hi = self.speed_range
+        lines = [f"continuation in speed over [{lo:g}, {hi:g}] m/s (friction with memory): "
+                 f"{len(self.branches)} branch(es), {len(self.hopf)} Hopf point(s)"]
+        for v in self.hopf:
+            lines.append(f"  hopf at speed = {v:.10g} m/s (steady sliding changes stability)")
+        for i, b in enumerate(self.branches):
+            stable = sum(p.stable for p in b.points)
+            lines.append(f"  branch {i}: {len(b.points)} points, speed in "
+                         f"[{b.points[0].speed:.6g}, {b.points[-1].speed:.6g}] m/s, {stable} stable; "
+                         f"low end: {b.low_end}; high end: {b.high_end}")
+        lines.append("  searched: stable orbits from kicked steady sliding at "
+                     f"{SEED_POINTS} speeds, continued both ways")
+        return "\n".join(lines)
+
+    def plot(self, **kwargs: Any) -> Any:
+        """The diagram, a ``PlotResult`` (:func:`stickslip.plot.continuation.memory_continuation_plot`)."""
+        from stickslip.plot.continuation import memory_continuation_plot
+
+        return memory_continuation_plot(self, **kwargs)
+
+
+def _at_speed(system: MemorySystem, speed: float) -> MemorySystem:
+    return MemorySystem(system.mass, system.damping, system.stiffness, system.contact_dof,
+                        system.load, system.friction, SpeedSchedule.constant(float(speed)))
+
+
+def _point(system: MemorySystem, speed: float, orbit: PeriodicOrbit) -> OrbitPoint:
+    one = _at_speed(system, speed)
+    times = np.linspace(0.0, orbit.period, AMPLITUDE_SAMPLES)
+    run = integrate_run(one, orbit.y0, orbit.period, history_times=times)
+    assert run.history is not None
+    x = observables(one, run.history, np.full(times.size, speed))["x"]
+    amplitude = 0.5 * float(np.nanmax(x) - np.nanmin(x))
+    return OrbitPoint(speed, orbit.period, amplitude, orbit.multipliers, orbit)
+
+
+def _direction(system: MemorySystem, start: OrbitPoint, lo: float, hi: float, sign: int
+               ) -> tuple[list[OrbitPoint], str]:
+    """Continue from ``start`` towards ``hi`` (``sign = 1``) or ``lo`` (``-1``) in ln V."""
+    span = math.log(hi / lo)
+    step = FIRST_STEP * span
+    points: list[OrbitPoint] = []
+    at = start
+    for _ in range(MAX_STEPS):
+        end = hi if sign > 0 else lo
+        if at.speed == end:
+            return points, "range end"
+        log_next = math.log(at.speed) + sign * step
+        speed = end if (sign > 0) == (log_next >= math.log(end)) else math.exp(log_next)
+        orbit = shoot_cycle(_at_speed(system, speed), at.orbit.y0, at.period)
+        if orbit is None:
+            step *= 0.5
+            if step < MIN_STEP * span:
+                return points, (f"the orbit ceases to exist near {at.speed:.8g} m/s (a fold or a "
+                                "Hopf point: the step fell below its bound)")
+            continue
+        at = _point(system, speed, orbit)
+        points.append(at)
+        step = min(1.5 * step, MAX_STEP * span)
+    return points, "step bound"
+
+
+def _on_branch(system: MemorySystem, branches: list[OrbitBranch], point: OrbitPoint) -> bool:
+    """Whether ``point`` lies on a branch found before: shooting at its speed from the branch's
+    nearest orbit lands on the same orbit (period to 1e-6, amplitude to 1e-4)."""
+    for b in branches:
+        if not b.points[0].speed <= point.speed <= b.points[-1].speed:
+            continue
+        nearest = min(b.points, key=lambda p: abs(math.log(p.speed / point.speed)))
+        orbit = shoot_cycle(_at_speed(system, point.speed), nearest.orbit.y0, nearest.period)
+        if orbit is None or abs(orbit.period - point.period) > 1e-6 * point.period:
+            continue
+        if abs(_point(system, point.speed, orbit).amplitude - point.amplitude) <= (
+                1e-4 * max(point.amplitude, 1e-300)):
+            return True
+    return False
+
+
+def continue_memory_orbits(system: MemorySystem, speed_range: tuple[float, float]
+                           ) -> MemoryContinuation:
+    """The bifurcation diagram in drive speed of a machine with friction with memory.
+
+    Parameters
+    ----------
+    system : MemorySystem
+        The machine (SI, with the slider's mass); its own speed is not used.
+    speed_range : (float, float)
+        ``(A, B)``, ``0 < A < B``, m/s.
+
+    Returns
+    -------
+    MemoryContinuation
+        Hopf points, the growth rate of steady sliding along the range and the branches.
+    """
+    lo, hi = float(speed_range[0]), float(speed_range[1])
+    if not (0.0 < lo < hi and math.isfinite(hi)):
+        raise ValueError(f"speed range {lo!r}:{hi!r} m/s must be positive and increasing")
+    if system.quasi_static:
+        raise ValueError("the quasi-static slider (m = 0) cannot be kicked onto its orbits: "
+                         "continuation needs the slider's mass")
+    hopf, _ = critical_speeds(system, lo, hi)
+    grid = np.geomspace(lo, hi, STEADY_POINTS)
+    rates = np.array([growth_rate(system, float(v)) for v in grid])
+    branches: list[OrbitBranch] = []
+    for speed in np.geomspace(lo, hi, SEED_POINTS).tolist():
+        seeded = find_memory_cycles(_at_speed(system, speed), kicks=SEED_KICKS)
+        for cycle in seeded.cycles:
+            assert cycle.run.orbit is not None
+            start = _point(system, speed, cycle.run.orbit)
+            if _on_branch(system, branches, start):
+                continue
+            down, low_end = _direction(system, start, lo, hi, -1)
+            up, high_end = _direction(system, start, lo, hi, 1)
+            points = [*reversed(down), start, *up]
+            branches.append(OrbitBranch(tuple(points), low_end, high_end))
+    return MemoryContinuation(system, (lo, hi), tuple(branches), tuple(hopf), grid, rates)
+
+
+__all__ = ["MemoryContinuation", "OrbitBranch", "OrbitPoint", "continue_memory_orbits"]

@@ -1,0 +1,94 @@
+"""``continue --config`` with friction with memory (analysis.memory_continuation, issue 33).
+
+References: the 1-DOF rate-and-state slider (m 1 kg, k 8000 N/m, N 10 N, a 0.01, b 0.015,
+d_c 10 um) has one Hopf point, at the speed where Rice and Ruina's k_c(V) equals k:
+V_c^2 = (N a d_c / m)(k d_c / (N (b - a)) - 1) (tests/test_memory_stability.py). Its orbits
+are born there: the branch's low end is at V_c, its amplitude shrinks towards it and its
+period tends to 2 pi / omega of the critical eigenvalue pair of the linearisation (an
+independent path: eigenvalues, not shooting). Away from the Hopf point the branch's period is
+that of simulate_memory's run from a kicked start at that speed.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from stickslip.analysis.memory_continuation import continue_memory_orbits
+from stickslip.analysis.memory_simulation import simulate_memory
+from stickslip.analysis.memory_stability import linear_spectrum
+from stickslip.cli.main import run
+from stickslip.io.machine_file import read_machine_file
+from stickslip.model.state_friction import SpeedSchedule
+
+RATE_STATE = """
+load = "10 N"
+speed = "1 mm/s"
+m = "1 kg"
+k = "8000 N/m"
+
+[friction]
+law = "rate-state"
+a = 0.01
+b = 0.015
+d_c = "10 um"
+mu_ref = 0.6
+v_ref = "1 um/s"
+"""
+V_C = math.sqrt(10.0 * 0.01 * 1e-5 / 1.0 * (8000.0 * 1e-5 / (10.0 * 0.005) - 1.0))
+
+
+def _file(tmp_path: Path) -> Path:
+    path = tmp_path / "machine.toml"
+    path.write_text(RATE_STATE, encoding="utf-8")
+    return path
+
+
+def test_branch_is_born_at_the_rice_ruina_hopf_point(tmp_path: Path) -> None:
+    system = read_machine_file(_file(tmp_path)).memory_system()
+    result = continue_memory_orbits(system, (3e-4, 3e-3))
+    assert result.hopf == (pytest.approx(V_C, rel=1e-9),)
+    (branch,) = result.branches
+    first, last = branch.points[0], branch.points[-1]
+    assert first.speed == pytest.approx(V_C, rel=1e-3) and last.speed == 3e-3
+    assert branch.high_end == "range end" and "ceases to exist" in branch.low_end
+    assert first.amplitude < 0.1 * last.amplitude
+    values, _ = linear_spectrum(system, V_C)
+    omega = float(np.max(np.abs(values[np.argsort(-values.real)[:2]].imag)))
+    assert first.period == pytest.approx(2.0 * math.pi / omega, rel=0.01)
+    # away from the Hopf point: the orbit a run settles on from a kicked start
+    point = branch.points[len(branch.points) // 2]
+    at = replace(system, schedule=SpeedSchedule.constant(point.speed))
+    settled = simulate_memory(at, kick=2.0)
+    assert settled.period == pytest.approx(point.period, rel=1e-6)
+    assert all(p.stable for p in branch.points)  # supercritical: the orbits are stable
+
+
+def _run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
+    try:
+        run(args)
+        code = 0
+    except SystemExit as exc:
+        code = int(exc.code or 0)
+    captured = capsys.readouterr()
+    return code, captured.out, captured.err
+
+
+def test_cli(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path = _file(tmp_path)
+    code, out, err = _run(["continue", "--config", str(path), "--param", "speed", "--range",
+                           "1 mm/s:2 mm/s", "--plot", str(tmp_path / "c.png"), "--json"], capsys)
+    assert code == 0, err
+    payload = json.loads(out)
+    assert payload["hopf_speeds_m_per_s"] == [] and len(payload["branches"]) == 1
+    assert (tmp_path / "c.png").stat().st_size > 0
+    for extra, needle in ((["--param", "load", "--range", "1:2"], "drive speed"),
+                          (["--param", "speed", "--range", "1:2", "--seeds", "3"], "--seeds"),
+                          (["--param", "speed", "--range", "1:2", "--out", "x.nc"], "--out")):
+        code, out, err = _run(["continue", "--config", str(path), *extra], capsys)
+        assert code == 2 and out == "" and needle in err and len(err.strip().splitlines()) == 1
