@@ -37,10 +37,11 @@ B_XI_MAX = 6
 B_STICK_RATIO = 7
 B_CYCLE_MAX_VELOCITY = 8
 B_CENTER = 9
-#: The fraction of ``rho`` a state must be inside by: the breakaway state the run locates and
-#: the one the proof's return map locates differ by rounding (the proof's own round-off
-#: allowance covers its tube, not the membership test).
-B_INSIDE = 1.0 - 1e-9
+#: The share of ``rho`` a state must lie within: the breakaway state the run locates carries
+#: the rounding of its event location (about 1e-12 of the state, where balls are 1e-9 to 1e-1),
+#: which the proof's own round-off allowance covers for its tube, not for this membership
+#: test; a thousandth of the radius is far more than that rounding.
+B_INSIDE = 0.999
 
 
 @njit(cache=True)
