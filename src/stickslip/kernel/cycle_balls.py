@@ -16,8 +16,11 @@ instead of 8).
 
 Layout, one row per ball: ``ball_data[p]`` holds ``rho``, the section piece (0: onto slip-I,
 1: onto slip-II), ``q``, the cycle's period, amplitude, ``xi`` range, stick ratio and largest
-velocity (from a run on the fixed point), then ``b_hat`` (``2 n - 2`` numbers); ``ball_norm[p]``
-is ``C``. No rows: no ball (every map and 1-DOF run), and the run loop is the one before.
+velocity (from a run on the fixed point), ``||C||_2``, then ``b_hat`` (``2 n - 2`` numbers);
+``ball_norm[p]`` is ``C``. A state is taken to be in the ball when
+``||C (b - b_hat)|| + ||C|| STATE_ROUNDING max(1, max |w|) <= rho``: the located breakaway state
+carries the rounding of its event, which the membership must not rest on (balls range from
+1e-9 to 1e-1). No rows: no ball (every map and 1-DOF run), and the run loop is the one before.
 """
 
 from __future__ import annotations
@@ -36,12 +39,11 @@ B_XI_MIN = 5
 B_XI_MAX = 6
 B_STICK_RATIO = 7
 B_CYCLE_MAX_VELOCITY = 8
-B_CENTER = 9
-#: The share of ``rho`` a state must lie within: the breakaway state the run locates carries
-#: the rounding of its event location (about 1e-12 of the state, where balls are 1e-9 to 1e-1),
-#: which the proof's own round-off allowance covers for its tube, not for this membership
-#: test; a thousandth of the radius is far more than that rounding.
-B_INSIDE = 0.999
+B_C_NORM = 9
+B_CENTER = 10
+#: Relative rounding allowed on a located breakaway state (its scale ``max(1, max |w|)``): ten
+#: times the round-off allowance of the proof's tube (``_cycle_tube.ROUNDING``).
+STATE_ROUNDING = 1e-12
 
 
 @njit(cache=True)
@@ -56,6 +58,9 @@ def ball_holding(w, n, onto, ball_data, ball_norm):
     """Row of the first proven ball holding the breakaway state ``w`` (onto ``onto``: 0 slip-I,
     1 slip-II), and its ``||C (b - b_hat)|| / rho``; ``(-1, inf)`` when none does."""
     d = 2 * n - 2
+    scale = 1.0
+    for c in range(2 * n):
+        scale = max(scale, abs(w[c]))
     for p in range(ball_data.shape[0]):
         if ball_data[p, B_ONTO] != onto:
             continue
@@ -67,8 +72,9 @@ def ball_holding(w, n, onto, ball_data, ball_norm):
                 row += ball_norm[p, i, j] * (w[c] - ball_data[p, B_CENTER + j])
             acc += row * row
         rho = ball_data[p, B_RHO]
-        if acc <= (B_INSIDE * rho) ** 2:
-            return p, np.sqrt(acc) / rho
+        distance = np.sqrt(acc)
+        if distance + ball_data[p, B_C_NORM] * STATE_ROUNDING * scale <= rho:
+            return p, distance / rho
     return -1, np.inf
 
 

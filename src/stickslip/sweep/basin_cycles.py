@@ -107,6 +107,7 @@ class ProvenBalls:
         row[cb.B_XI_MIN], row[cb.B_XI_MAX] = proven.xi_range
         row[cb.B_STICK_RATIO] = proven.stick_ratio
         row[cb.B_CYCLE_MAX_VELOCITY] = proven.cycle_max_velocity
+        row[cb.B_C_NORM] = float(np.linalg.norm(proof.norm_matrix, 2))
         row[cb.B_CENTER:] = center
         self.data = np.vstack([self.data, row[None, :]])
         self.norm = np.concatenate([self.norm, proof.norm_matrix[None, :, :]])
