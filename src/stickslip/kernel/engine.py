@@ -216,6 +216,21 @@ def record_ball_cycle(fsum, isum, ball_data, p, t):
     fsum[F_T_CERTIFIED] = t
 
 
+@njit(cache=True, inline="never")
+def ball_status(w, n, e_ev, ball_data, ball_norm, fsum, isum, t):
+    """At a breakaway: ``STATUS_CYCLE`` (its summary written) when a proven contraction ball
+    of a stable cycle holds the state (:mod:`stickslip.kernel.cycle_balls`), else running.
+
+    Kept out of the run loop (``inline="never"``): the loop's machine code stays what it was
+    for the maps, which have no ball.
+    """
+    p = ball_holding(w, n, np.int64(0 if e_ev == 0 else 1), ball_data, ball_norm)[0]
+    if p < 0:
+        return STATUS_RUNNING
+    record_ball_cycle(fsum, isum, ball_data, p, t)
+    return STATUS_CYCLE
+
+
 @njit(cache=True)
 def record_state(kind, t, w, key, xmin, xmax, vmax, stick_time, rec_t, rec_z, rec_key, rec_span, n_rec,
                  max_period, cycle_tol, key_breaks, status, verdict, fsum, isum):
@@ -527,12 +542,8 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
                                   cur_stick, rec_t, rec_z, rec_key, rec_span, n_rec, max_period,
                                   cycle_tol, np.bool_(False), status, np.int64(STATUS_CYCLE), fsum,
                                   isum)
-            if status == STATUS_RUNNING and ball_data.shape[0] > 0:
-                # a proven contraction ball of a stable cycle (kernel.cycle_balls): certified
-                p = ball_holding(w, n, np.int64(0 if e_ev == 0 else 1), ball_data, ball_norm)[0]
-                if p >= 0:
-                    record_ball_cycle(fsum, isum, ball_data, p, t)
-                    status = STATUS_CYCLE
+            if ball_data.shape[0] > 0 and status == STATUS_RUNNING:
+                status = ball_status(w, n, e_ev, ball_data, ball_norm, fsum, isum, t)
             cur_xmin = cur_xmax = w[0]
             cur_vmax = w[n]
             cur_stick = 0.0

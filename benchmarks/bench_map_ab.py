@@ -1,0 +1,101 @@
+"""Benchmark: the paper's map, this tree against another commit's, in one run (A/B, bit for bit).
+
+    .venv/bin/python benchmarks/bench_map_ab.py --commit fb2436e [--n 200] [--repeats 3]
+
+The other commit's ``src`` is extracted with ``git archive`` into a cache folder (its numba
+cache kept there) and imported in a subprocess; both build the paper's Fig. 8b map (lambda
+log 0.1-50 x zeta 0.005-0.4, ``--n`` x ``--n`` cells, the optimal foundation of Eqs. (28)-(30),
+gamma = 2) with ``stickslip.occurrence_map`` on two numba threads, best of ``--repeats`` after
+an untimed warm-up map in each of ``--rounds`` processes per side (interleaved: old, new, new,
+old, ...), and the verdict, stick count, period, amplitude and stick ratio
+arrays are compared bit for bit. ``bench_map.py`` holds the A/B against the kernel from before
+the friction laws (its runner calls that commit's internal kernel); this one uses the public
+API, so any commit since then is a baseline.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+
+RUNNER = r"""
+import sys, time, numpy as np
+from stickslip import occurrence_map
+from stickslip.sweep.execution import ExecutionOptions
+n, repeats = int(sys.argv[1]), int(sys.argv[2])
+lams, zetas = np.geomspace(0.1, 50.0, n), np.linspace(0.005, 0.4, n)
+def run(l, z):
+    return occurrence_map(l, z, "optimal", 2.0,
+                          execution=ExecutionOptions(backend="threads", workers=2))
+run(lams[:2], zetas[:2])
+best = np.inf
+for _ in range(repeats):
+    t0 = time.perf_counter(); m = run(lams, zetas); best = min(best, time.perf_counter() - t0)
+ds = m.dataset
+names = ("verdict", "n_stick", "period", "amplitude", "stick_ratio")
+np.savez(sys.argv[3], seconds=best, **{k: ds[k].values for k in names})
+"""
+
+
+def sources(commit: str) -> Path:
+    """The ``src`` folder of ``commit``, extracted once into a cache folder."""
+    folder = Path(tempfile.gettempdir()) / f"stickslip-ab-{commit}"
+    if not (folder / "src" / "stickslip").is_dir():
+        folder.mkdir(parents=True, exist_ok=True)
+        archive = subprocess.run(["git", "-C", str(ROOT), "archive", commit, "src"], check=True,
+                                 capture_output=True).stdout
+        subprocess.run(["tar", "-x", "-C", str(folder)], input=archive, check=True)
+    return folder / "src"
+
+
+def timed(src: Path, n: int, repeats: int, out: Path) -> dict[str, np.ndarray]:
+    env = {**os.environ, "PYTHONPATH": str(src)}
+    subprocess.run([sys.executable, "-c", RUNNER, str(n), str(repeats), str(out)], check=True,
+                   env=env, cwd=out.parent)
+    with np.load(out) as data:
+        return {k: data[k] for k in data.files}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--commit", required=True, help="the baseline commit (any since 6c94c46)")
+    parser.add_argument("--n", type=int, default=200)
+    parser.add_argument("--repeats", type=int, default=3, help="timed maps per process")
+    parser.add_argument("--rounds", type=int, default=2, help="processes per side, interleaved")
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        # interleaved rounds (old, new, new, old, ...): a machine that speeds up or slows down
+        # during the run favours neither; each side keeps its best
+        old = new = None
+        for round_ in range(args.rounds):
+            order = ("old", "new") if round_ % 2 == 0 else ("new", "old")
+            for side in order:
+                src = sources(args.commit) if side == "old" else ROOT / "src"
+                got = timed(src, args.n, args.repeats, Path(tmp) / f"{side}{round_}.npz")
+                best = old if side == "old" else new
+                if best is None or float(got["seconds"]) < float(best["seconds"]):
+                    if side == "old":
+                        old = got
+                    else:
+                        new = got
+        assert old is not None and new is not None
+    cells = args.n * args.n
+    same = all(np.array_equal(old[k], new[k], equal_nan=True)
+               for k in ("verdict", "n_stick", "period", "amplitude", "stick_ratio"))
+    print(f"paper's map {args.n}x{args.n} (Fig. 8b, optimal foundation, 2 threads, best of "
+          f"{args.repeats} x {args.rounds} rounds): commit {args.commit} "
+          f"{cells / float(old['seconds']):,.0f} cells/s, "
+          f"this tree {cells / float(new['seconds']):,.0f} cells/s, this/old "
+          f"{float(old['seconds']) / float(new['seconds']):.2f}x; bit-identical: {same}")
+
+
+if __name__ == "__main__":
+    main()
