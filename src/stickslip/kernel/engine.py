@@ -11,16 +11,7 @@ import numpy as np
 from numba import njit
 
 from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel is stamped with the whole kernel folder)
-from stickslip.kernel.cycle_balls import (
-    B_AMPLITUDE,
-    B_CYCLE_MAX_VELOCITY,
-    B_PERIOD,
-    B_STICK_PHASES,
-    B_STICK_RATIO,
-    B_XI_MAX,
-    B_XI_MIN,
-    ball_holding,
-)
+from stickslip.kernel import cycle_balls as cb
 from stickslip.kernel.events import (
     end_range,
     event_free,
@@ -205,26 +196,22 @@ def record_ball_cycle(fsum, isum, ball_data, p, t):
     ``F_CYCLE_MISMATCH`` is NaN (no repeat was measured): a ball's certificate, told apart
     from a repeat's (a mismatch, never NaN).
     """
-    fsum[F_PERIOD] = ball_data[p, B_PERIOD]
-    fsum[F_AMPLITUDE] = ball_data[p, B_AMPLITUDE]
-    fsum[F_XI_MIN] = ball_data[p, B_XI_MIN]
-    fsum[F_XI_MAX] = ball_data[p, B_XI_MAX]
-    fsum[F_STICK_RATIO] = ball_data[p, B_STICK_RATIO]
-    fsum[F_CYCLE_MAX_VELOCITY] = ball_data[p, B_CYCLE_MAX_VELOCITY]
+    fsum[F_PERIOD] = ball_data[p, cb.B_PERIOD]
+    fsum[F_AMPLITUDE] = ball_data[p, cb.B_AMPLITUDE]
+    fsum[F_XI_MIN] = ball_data[p, cb.B_XI_MIN]
+    fsum[F_XI_MAX] = ball_data[p, cb.B_XI_MAX]
+    fsum[F_STICK_RATIO] = ball_data[p, cb.B_STICK_RATIO]
+    fsum[F_CYCLE_MAX_VELOCITY] = ball_data[p, cb.B_CYCLE_MAX_VELOCITY]
     fsum[F_CYCLE_MISMATCH] = np.nan
-    isum[I_CYCLE_K] = np.int64(ball_data[p, B_STICK_PHASES])
+    isum[I_CYCLE_K] = np.int64(ball_data[p, cb.B_STICK_PHASES])
     fsum[F_T_CERTIFIED] = t
 
 
 @njit(cache=True, inline="never")
 def ball_status(w, n, e_ev, ball_data, ball_norm, fsum, isum, t):
-    """At a breakaway: ``STATUS_CYCLE`` (its summary written) when a proven contraction ball
-    of a stable cycle holds the state (:mod:`stickslip.kernel.cycle_balls`), else running.
-
-    Kept out of the run loop (``inline="never"``): the loop's machine code stays what it was
-    for the maps, which have no ball.
-    """
-    p = ball_holding(w, n, np.int64(0 if e_ev == 0 else 1), ball_data, ball_norm)[0]
+    """At a breakaway: ``STATUS_CYCLE`` (summary written) when a proven ball holds the state
+    (:mod:`stickslip.kernel.cycle_balls`), else running; out of the run loop, as maps have none."""
+    p = cb.ball_holding(w, n, np.int64(0 if e_ev == 0 else 1), ball_data, ball_norm)[0]
     if p < 0:
         return STATUS_RUNNING
     record_ball_cycle(fsum, isum, ball_data, p, t)
