@@ -16,26 +16,10 @@ import numpy as np
 import pytest
 
 from stickslip.analysis.memory_simulation import initial_state, simulate_memory
-from stickslip.cli.main import run
 from stickslip.io.machine_file import read_machine_file
 from stickslip.sweep.memory_basin import memory_basin, sample_memory_box
-
-LUGRE = """
-[system]
-m = "1 kg"
-k = "2 N/m"
-load = "1 N"
-speed = "0.1 m/s"
-
-[friction]
-law = "lugre"
-sigma0 = "1e5 N/m"
-sigma1 = "316.22776601683796 N*s/m"
-sigma2 = "0.4 N*s/m"
-mu_c = 1.0
-mu_s = 1.5
-stribeck_velocity = "1 mm/s"
-"""
+from tests.cli_helpers import run_cli
+from tests.memory_machines import LUGRE
 
 
 def _file(tmp_path: Path) -> Path:
@@ -43,15 +27,6 @@ def _file(tmp_path: Path) -> Path:
     path.write_text(LUGRE, encoding="utf-8")
     return path
 
-
-def _run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
-    try:
-        run(args)
-        code = 0
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    captured = capsys.readouterr()
-    return code, captured.out, captured.err
 
 
 def test_starts_labelled_as_kicked_runs(tmp_path: Path) -> None:
@@ -78,7 +53,7 @@ def test_cli_contract(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> Non
     starts = tmp_path / "starts.csv"
     x = float(initial_state(read_machine_file(path).memory_system())[0][0])
     starts.write_text(f"x,v\n{x!r},0.1\n{x!r},-0.025\n", encoding="utf-8")
-    code, out, err = _run(["basin", "--config", str(path), "--initial-states", str(starts),
+    code, out, err = run_cli(["basin", "--config", str(path), "--initial-states", str(starts),
                            "--out", str(tmp_path / "b"), "--json"], capsys)
     assert code == 0, err
     payload = json.loads(out)
@@ -95,6 +70,6 @@ def test_cli_contract(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> Non
 ])
 def test_cli_refusals(tmp_path: Path, capsys: pytest.CaptureFixture[str], extra: list[str],
                       needle: str) -> None:
-    code, out, err = _run(["basin", "--config", str(_file(tmp_path)), "--samples", "2", *extra],
+    code, out, err = run_cli(["basin", "--config", str(_file(tmp_path)), "--samples", "2", *extra],
                           capsys)
     assert code == 2 and out == "" and needle in err and len(err.strip().splitlines()) == 1

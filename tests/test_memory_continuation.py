@@ -22,24 +22,11 @@ import pytest
 from stickslip.analysis.memory_continuation import continue_memory_orbits
 from stickslip.analysis.memory_simulation import simulate_memory
 from stickslip.analysis.memory_stability import linear_spectrum
-from stickslip.cli.main import run
 from stickslip.io.machine_file import read_machine_file
 from stickslip.model.state_friction import SpeedSchedule
+from tests.cli_helpers import run_cli
+from tests.memory_machines import RATE_STATE
 
-RATE_STATE = """
-load = "10 N"
-speed = "1 mm/s"
-m = "1 kg"
-k = "8000 N/m"
-
-[friction]
-law = "rate-state"
-a = 0.01
-b = 0.015
-d_c = "10 um"
-mu_ref = 0.6
-v_ref = "1 um/s"
-"""
 V_C = math.sqrt(10.0 * 0.01 * 1e-5 / 1.0 * (8000.0 * 1e-5 / (10.0 * 0.005) - 1.0))
 
 
@@ -69,19 +56,10 @@ def test_branch_is_born_at_the_rice_ruina_hopf_point(tmp_path: Path) -> None:
     assert all(p.stable for p in branch.points)  # supercritical: the orbits are stable
 
 
-def _run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
-    try:
-        run(args)
-        code = 0
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    captured = capsys.readouterr()
-    return code, captured.out, captured.err
-
 
 def test_cli(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     path = _file(tmp_path)
-    code, out, err = _run(["continue", "--config", str(path), "--param", "speed", "--range",
+    code, out, err = run_cli(["continue", "--config", str(path), "--param", "speed", "--range",
                            "1 mm/s:2 mm/s", "--plot", str(tmp_path / "c.png"), "--json"], capsys)
     assert code == 0, err
     payload = json.loads(out)
@@ -90,5 +68,5 @@ def test_cli(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     for extra, needle in ((["--param", "load", "--range", "1:2"], "drive speed"),
                           (["--param", "speed", "--range", "1:2", "--seeds", "3"], "--seeds"),
                           (["--param", "speed", "--range", "1:2", "--out", "x.nc"], "--out")):
-        code, out, err = _run(["continue", "--config", str(path), *extra], capsys)
+        code, out, err = run_cli(["continue", "--config", str(path), *extra], capsys)
         assert code == 2 and out == "" and needle in err and len(err.strip().splitlines()) == 1

@@ -16,25 +16,9 @@ from pathlib import Path
 import pytest
 
 from stickslip.analysis.memory_cycle_search import find_memory_cycles
-from stickslip.cli.main import run
 from stickslip.io.machine_file import read_machine_file
-
-LUGRE = """
-[system]
-m = "1 kg"
-k = "2 N/m"
-load = "1 N"
-speed = "0.1 m/s"
-
-[friction]
-law = "lugre"
-sigma0 = "1e5 N/m"
-sigma1 = "316.22776601683796 N*s/m"
-sigma2 = "0.4 N*s/m"
-mu_c = 1.0
-mu_s = 1.5
-stribeck_velocity = "1 mm/s"
-"""
+from tests.cli_helpers import run_cli
+from tests.memory_machines import LUGRE
 
 
 def _file(tmp_path: Path, text: str) -> Path:
@@ -42,15 +26,6 @@ def _file(tmp_path: Path, text: str) -> Path:
     path.write_text(text, encoding="utf-8")
     return path
 
-
-def _run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
-    try:
-        run(args)
-        code = 0
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    captured = capsys.readouterr()
-    return code, captured.out, captured.err
 
 
 def test_lugre_bistable_point(tmp_path: Path) -> None:
@@ -66,7 +41,7 @@ def test_lugre_bistable_point(tmp_path: Path) -> None:
 
 def test_cli_contract(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     path = _file(tmp_path, LUGRE)
-    code, out, err = _run(["cycles", "--config", str(path), "--json"], capsys)
+    code, out, err = run_cli(["cycles", "--config", str(path), "--json"], capsys)
     assert code == 0, err
     payload = json.loads(out)
     assert payload["n_cycles"] == 1
@@ -78,7 +53,7 @@ def test_cli_contract(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> Non
 def test_cli_refuses_a_schedule_and_the_quasi_static_slider(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     schedule = LUGRE.replace('speed = "0.1 m/s"', 'speed = [["0 s", "0.1 m/s"], ["5 s", "0.2 m/s"]]')
-    code, out, err = _run(["cycles", "--config", str(_file(tmp_path, schedule))], capsys)
+    code, out, err = run_cli(["cycles", "--config", str(_file(tmp_path, schedule))], capsys)
     assert code == 2 and out == "" and "one drive speed" in err and len(err.strip().splitlines()) == 1
     quasi = """
 [system]
@@ -95,5 +70,5 @@ d_c = "10 um"
 mu_ref = 0.6
 v_ref = "1 um/s"
 """
-    code, out, err = _run(["cycles", "--config", str(_file(tmp_path, quasi))], capsys)
+    code, out, err = run_cli(["cycles", "--config", str(_file(tmp_path, quasi))], capsys)
     assert code == 2 and out == "" and "quasi-static" in err and len(err.strip().splitlines()) == 1

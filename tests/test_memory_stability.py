@@ -26,41 +26,10 @@ import xarray as xr
 from scipy.optimize import brentq
 
 from stickslip.analysis.memory_stability import linear_spectrum, memory_stability, spectrum_sign
-from stickslip.cli.main import run
 from stickslip.io.machine_file import read_machine_file
 from stickslip.sweep.memory_map import memory_stability_map
-
-RATE_STATE = """
-load = "10 N"
-speed = "1 mm/s"
-m = "1 kg"
-k = "8000 N/m"
-
-[friction]
-law = "rate-state"
-a = 0.01
-b = 0.015
-d_c = "10 um"
-mu_ref = 0.6
-v_ref = "1 um/s"
-"""
-
-LUGRE = """
-[system]
-m = "1 kg"
-k = "2 N/m"
-load = "1 N"
-speed = "0.1 m/s"
-
-[friction]
-law = "lugre"
-sigma0 = "1e5 N/m"
-sigma1 = "316.22776601683796 N*s/m"
-sigma2 = "0.4 N*s/m"
-mu_c = 1.0
-mu_s = 1.5
-stribeck_velocity = "1 mm/s"
-"""
+from tests.cli_helpers import run_cli
+from tests.memory_machines import LUGRE, RATE_STATE
 
 
 def _system(tmp_path: Path, text: str):  # type: ignore[no-untyped-def]
@@ -68,15 +37,6 @@ def _system(tmp_path: Path, text: str):  # type: ignore[no-untyped-def]
     path.write_text(text, encoding="utf-8")
     return path, read_machine_file(path).memory_system()
 
-
-def _run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
-    try:
-        run(args)
-        code = 0
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    captured = capsys.readouterr()
-    return code, captured.out, captured.err
 
 
 def _k_c(load: float, speed: float) -> float:
@@ -163,14 +123,14 @@ def test_load_enters_the_map(tmp_path: Path) -> None:
 
 def test_cli_stability_and_map(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     path, _ = _system(tmp_path, RATE_STATE)
-    code, out, err = _run(["stability", "--config", str(path), "--json"], capsys)
+    code, out, err = run_cli(["stability", "--config", str(path), "--json"], capsys)
     assert code == 0, err
     payload = json.loads(out)
     assert payload["stable"] is False and payload["verdict"] == "unstable"
     assert payload["critical_stiffness_N_per_m"] == pytest.approx(1e4, rel=1e-10)
     assert len(payload["eigenvalues"]) == 3  # x, x' and the state variable
     out_nc = tmp_path / "map.nc"
-    code, out, err = _run(["map", "--config", str(path), "--speed", "log:1e-5:1e-1:12",
+    code, out, err = run_cli(["map", "--config", str(path), "--speed", "log:1e-5:1e-1:12",
                            "--load", "log:1:100:9", "--out", str(out_nc), "--csv",
                            str(tmp_path / "map.csv"), "--plot", str(tmp_path / "map.png"), "--json"],
                           capsys)
@@ -192,7 +152,7 @@ def test_cli_stability_and_map(tmp_path: Path, capsys: pytest.CaptureFixture[str
 def test_cli_map_refusals(tmp_path: Path, capsys: pytest.CaptureFixture[str], extra: list[str],
                           needle: str) -> None:
     path, _ = _system(tmp_path, RATE_STATE)
-    code, out, err = _run(["map", "--config", str(path), "--speed", "log:1e-5:1e-1:3", "--load",
+    code, out, err = run_cli(["map", "--config", str(path), "--speed", "log:1e-5:1e-1:3", "--load",
                            "1:2:2", "--out", str(tmp_path / "m.nc"), *extra], capsys)
     assert code == 2 and out == "" and len(err.strip().splitlines()) == 1 and needle in err
     assert not (tmp_path / "m.nc").exists()
@@ -200,7 +160,7 @@ def test_cli_map_refusals(tmp_path: Path, capsys: pytest.CaptureFixture[str], ex
 
 def test_cli_stability_plot_refused(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     path, _ = _system(tmp_path, LUGRE)
-    code, out, err = _run(["stability", "--config", str(path), "--plot", str(tmp_path / "p.png")],
+    code, out, err = run_cli(["stability", "--config", str(path), "--plot", str(tmp_path / "p.png")],
                           capsys)
     assert code == 2 and out == "" and "--map draws" in err and len(err.strip().splitlines()) == 1
 
@@ -209,5 +169,5 @@ def test_cli_stability_refuses_a_contact_with_memory(tmp_path: Path,
                                                      capsys: pytest.CaptureFixture[str]) -> None:
     """A [contact] table beside a law with memory is refused, not ignored (no engine has both)."""
     path, _ = _system(tmp_path, RATE_STATE + '\n[contact]\nnormal_stiffness = "1e5 N/m"\n')
-    code, out, err = _run(["stability", "--config", str(path)], capsys)
+    code, out, err = run_cli(["stability", "--config", str(path)], capsys)
     assert code == 2 and out == "" and "[contact]" in err and len(err.strip().splitlines()) == 1

@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from stickslip.analysis.fit_statistics import checked_record, linearised_errors
 from stickslip.kernel.lugre_response import lugre_force
 
 FloatArray = NDArray[np.float64]
@@ -141,15 +142,7 @@ def fit_lugre(t: FloatArray, v: FloatArray, force: FloatArray, *, load: float | 
     """
     from scipy.optimize import least_squares
 
-    t = np.ascontiguousarray(t, dtype=np.float64)
-    v = np.ascontiguousarray(v, dtype=np.float64)
-    force = np.ascontiguousarray(force, dtype=np.float64)
-    if not (t.ndim == 1 and t.size == v.size == force.size and t.size >= 12):
-        raise ValueError("the record needs at least 12 samples of t, v and F")
-    if not (np.all(np.isfinite(t)) and np.all(np.isfinite(v)) and np.all(np.isfinite(force))):
-        raise ValueError("the record holds a value that is not a finite number")
-    if not np.all(np.diff(t) > 0.0):
-        raise ValueError("the record's times must increase strictly")
+    t, v, force = checked_record((t, v, force), 12, "t, v and F")
     v_max = float(np.max(np.abs(v)))
     if not v_max > 0.0:
         raise ValueError("the velocity is zero throughout: nothing slides, nothing to fit")
@@ -189,19 +182,7 @@ def fit_lugre(t: FloatArray, v: FloatArray, force: FloatArray, *, load: float | 
     jac[:, 3] = jac_log[:, 3] / values["F_c"] - d_excess
     jac[:, 4] = d_excess
     jac[:, 5] = jac_log[:, 5] / values["v_s"]
-    dof = max(t.size - len(NAMES), 1)
-    s2 = 2.0 * best.cost / dof
-    try:
-        norms = np.linalg.norm(jac, axis=0)
-        if not np.all(norms > 0.0):
-            raise np.linalg.LinAlgError
-        gram = (jac / norms).T @ (jac / norms)
-        if np.linalg.cond(gram) > 1e14:
-            raise np.linalg.LinAlgError
-        cov = np.linalg.inv(gram) / np.outer(norms, norms) * s2
-        errors = {name: math.sqrt(max(float(cov[i, i]), 0.0)) for i, name in enumerate(NAMES)}
-    except np.linalg.LinAlgError:
-        errors = {name: math.inf for name in NAMES}
+    errors = linearised_errors(jac, float(best.cost), NAMES)
     undetermined = [name for name in NAMES if not errors[name] <= abs(values[name])]
     if not np.any(np.sign(v[:-1]) * np.sign(v[1:]) < 0.0):
         # no reversal, no pre-sliding: the bristles act only through the lag of sliding, and

@@ -35,6 +35,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from stickslip.analysis.fit_statistics import checked_record, linearised_errors
 from stickslip.analysis.memory_friction import integrate_run
 from stickslip.model.state_friction import MemorySystem, RateStateFriction, SpeedSchedule
 
@@ -209,15 +210,7 @@ def fit_rate_state(t: FloatArray, x_lp: FloatArray, mu: FloatArray, *, stiffness
     """
     from scipy.optimize import least_squares
 
-    t = np.asarray(t, dtype=np.float64)
-    x_lp = np.asarray(x_lp, dtype=np.float64)
-    mu = np.asarray(mu, dtype=np.float64)
-    if not (t.ndim == 1 and t.size == x_lp.size == mu.size and t.size >= 8):
-        raise ValueError("the record needs at least 8 samples of t, load-point displacement and mu")
-    if not (np.all(np.isfinite(t)) and np.all(np.isfinite(x_lp)) and np.all(np.isfinite(mu))):
-        raise ValueError("the record holds a value that is not a finite number")
-    if not np.all(np.diff(t) > 0.0):
-        raise ValueError("the record's times must increase strictly")
+    t, x_lp, mu = checked_record((t, x_lp, mu), 8, "t, load-point displacement and mu")
     if not (stiffness > 0.0 and math.isfinite(stiffness) and load > 0.0 and math.isfinite(load)):
         raise ValueError(f"stiffness {stiffness!r} N/m and load {load!r} N must be positive")
     if evolution not in ("aging", "slip"):
@@ -253,22 +246,10 @@ def fit_rate_state(t: FloatArray, x_lp: FloatArray, mu: FloatArray, *, stiffness
     p = best.x
     # d r / d a = (d r / d ln a) / a: the Jacobian in the parameters themselves
     jac = best.jac / np.array([math.exp(p[0]), math.exp(p[1]), math.exp(p[2]), 1.0])[None, :]
-    dof = max(t.size - len(NAMES), 1)
-    s2 = 2.0 * best.cost / dof
     values = dict(zip(NAMES, (math.exp(p[0]), math.exp(p[1]), math.exp(p[2]), float(p[3])),
                       strict=True))
+    errors = linearised_errors(jac, float(best.cost), NAMES)
     undetermined: list[str] = []
-    try:
-        norms = np.linalg.norm(jac, axis=0)
-        if not np.all(norms > 0.0):
-            raise np.linalg.LinAlgError  # a parameter the residuals do not depend on
-        gram = (jac / norms).T @ (jac / norms)  # columns scaled: the conditioning of the problem
-        if np.linalg.cond(gram) > 1e14:
-            raise np.linalg.LinAlgError
-        cov = np.linalg.inv(gram) / np.outer(norms, norms) * s2
-        errors = {name: math.sqrt(max(float(cov[i, i]), 0.0)) for i, name in enumerate(NAMES)}
-    except np.linalg.LinAlgError:
-        errors = {name: math.inf for name in NAMES}
     for name in NAMES:
         if not errors[name] <= abs(values[name]):
             undetermined.append(name)
