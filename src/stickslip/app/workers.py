@@ -82,7 +82,7 @@ def _listen(progress_queue: Any) -> None:
     while True:
         try:
             item = progress_queue.get()
-        except (EOFError, OSError, ValueError):  # the queue closed under it: the server exits
+        except (EOFError, OSError, ValueError, TypeError):  # the queue closed: the server exits
             return
         if item is None:
             return
