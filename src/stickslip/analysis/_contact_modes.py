@@ -12,7 +12,7 @@ State layout: ``q`` (n, m), ``q'`` (n, m/s), then with a Jenkins element its ext
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -110,7 +110,8 @@ class ContactSystem:
     tangential_stiffness: float | None = None
     tangential_damping: float = 0.0
     contact_mass: float | None = None
-    _modes: dict[int, ModeSystem] = field(default_factory=dict, compare=False, repr=False)
+    _modes: dict[int, ModeSystem] = field(default_factory=dict, init=False, compare=False,
+                                          repr=False)
 
     def __post_init__(self) -> None:
         n = self.mass.shape[0]
@@ -169,6 +170,17 @@ class ContactSystem:
         if self.contact_mass is not None:
             z[-1] = self.speed
         return z
+
+    def at(self, *, speed: float | None = None, load: float | None = None,
+           mu_s: float | None = None, mu_k: float | None = None) -> ContactSystem:
+        """The same machine at another operating point (belt speed m/s, preload N, friction).
+
+        A new system with its own mode cache (the modes depend on every one of these).
+        """
+        changes = {name: float(value) for name, value in
+                   (("speed", speed), ("load", load), ("mu_s", mu_s), ("mu_k", mu_k))
+                   if value is not None}
+        return replace(self, **changes)
 
     def mode(self, mode: int) -> ModeSystem:
         """The affine system of ``mode`` (built once)."""
