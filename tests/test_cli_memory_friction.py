@@ -155,10 +155,15 @@ def test_bad_input_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str
 
 def test_other_commands_say_where_memory_laws_run(tmp_path: Path,
                                                   capsys: pytest.CaptureFixture[str]) -> None:
-    path = _file(tmp_path, LUGRE)
-    code, out, err = _run(["design", "--config", str(path), "--json"], capsys)
+    # tune tunes an absorber for the curve laws only (design takes the memory laws)
+    text = LUGRE.replace('[system]\nm = "1 kg"\nk = "2 N/m"\n', "").replace(
+        "[friction]", "[structure]\nmass = [[1.0]]\nstiffness = [[2.0]]\ncontact_dof = 0\n\n"
+        "[absorber]\nmass = \"0.1 kg\"\nattach_dof = 0\n\n[friction]")
+    path = _file(tmp_path, text)
+    code, out, err = _run(["tune", "--config", str(path), "--json"], capsys)
     assert code == 2 and out == ""
-    assert "simulate --config" in err and len(err.strip().splitlines()) == 1
+    assert "simulate --config" in err and "`design`" in err
+    assert len(err.strip().splitlines()) == 1
 
 
 def test_old_options_refused_next_to_memory_laws(tmp_path: Path,

@@ -177,10 +177,10 @@ class ContactSystem:
 
         A new system with its own mode cache (the modes depend on every one of these).
         """
-        changes = {name: float(value) for name, value in
-                   (("speed", speed), ("load", load), ("mu_s", mu_s), ("mu_k", mu_k))
-                   if value is not None}
-        return replace(self, **changes)
+        return replace(self, speed=self.speed if speed is None else float(speed),
+                       load=self.load if load is None else float(load),
+                       mu_s=self.mu_s if mu_s is None else float(mu_s),
+                       mu_k=self.mu_k if mu_k is None else float(mu_k))
 
     def mode(self, mode: int) -> ModeSystem:
         """The affine system of ``mode`` (built once)."""

@@ -31,7 +31,8 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -202,16 +203,68 @@ def critical_speeds(system: MemorySystem, low: float, high: float, points: int =
     unstable : list of (float, float)
         The ranges where the growth rate is positive (ends at the critical speeds or the scan).
     """
+    return sign_changes(lambda v: growth_rate(system, v), low, high, points)
+
+
+def critical_loads(system: MemorySystem, speed: float, low: float, high: float,
+                   points: int = SPEED_POINTS) -> tuple[list[float], list[tuple[float, float]]]:
+    """Normal loads in ``[low, high]`` where steady sliding at ``speed`` changes stability.
+
+    The load scales the friction force (``N mu``), so it moves the friction's negative
+    stiffness and damping against the structure's: the same scan and bisection as
+    :func:`critical_speeds`, along ``N``.
+
+    Parameters
+    ----------
+    system : MemorySystem
+        Structure, load and law (SI).
+    speed : float
+        Drive speed, m/s.
+    low, high : float
+        The normal loads scanned, N (``0 < low < high``).
+    points : int
+        Points of the logarithmic scan.
+
+    Returns
+    -------
+    critical : list of float
+        Every sign change of the growth rate, bisected to :data:`SPEED_RTOL` (relative), N.
+    unstable : list of (float, float)
+        The load ranges where the growth rate is positive, N.
+    """
+    return sign_changes(lambda w: growth_rate(replace(system, load=w), speed), low, high, points)
+
+
+def sign_changes(rate: Callable[[float], float], low: float, high: float, points: int
+                 ) -> tuple[list[float], list[tuple[float, float]]]:
+    """Sign changes of ``rate`` on a logarithmic scan of ``[low, high]``, each bisected.
+
+    Parameters
+    ----------
+    rate : callable
+        The growth rate (1/s) at a parameter value.
+    low, high : float
+        The scanned range (``0 < low < high``), in the parameter's unit.
+    points : int
+        Points of the logarithmic scan.
+
+    Returns
+    -------
+    critical : list of float
+        The sign changes, bisected in log scale to :data:`SPEED_RTOL` (relative).
+    unstable : list of (float, float)
+        The ranges where ``rate`` is positive (ends at the sign changes or the scan's ends).
+    """
     grid = np.geomspace(low, high, int(points))
-    rates = np.array([growth_rate(system, float(v)) for v in grid])
+    rates = np.array([rate(float(x)) for x in grid])
     critical: list[float] = []
     for i in np.flatnonzero(np.sign(rates[:-1]) != np.sign(rates[1:])).tolist():
         lo, hi, r_lo = float(grid[i]), float(grid[i + 1]), rates[i]
-        for _ in range(200):  # bounded: each halves the bracket in log speed
+        for _ in range(200):  # bounded: each halves the bracket in log scale
             if hi - lo <= SPEED_RTOL * hi:
                 break
             mid = math.sqrt(lo * hi)
-            r_mid = growth_rate(system, mid)
+            r_mid = rate(mid)
             if np.sign(r_mid) == np.sign(r_lo):
                 lo, r_lo = mid, r_mid
             else:
@@ -220,7 +273,7 @@ def critical_speeds(system: MemorySystem, low: float, high: float, points: int =
     unstable: list[tuple[float, float]] = []
     edges = [float(grid[0]), *critical, float(grid[-1])]
     for a, b in itertools.pairwise(edges):
-        if growth_rate(system, math.sqrt(a * b)) > 0.0:
+        if rate(math.sqrt(a * b)) > 0.0:
             unstable.append((a, b))
     return critical, unstable
 

@@ -130,6 +130,13 @@ def design(
     options = _engine_options(t_max)
     flags = {"m": m, "k": k, "c": c, "mu_s": mu_s, "mu_k": mu_k, "load": load, "speed": speed,
              "m_a": m_a, "k_a": k_a, "c_a": c_a}
+    if config is not None and load_machine_file(config).has_memory_law:
+        given = [f"--{name.replace('_', '-')}" for name, value in flags.items() if value is not None]
+        given += [flag for flag, value in (("--t-max", t_max), ("--max-foundation-deflection",
+                                                                max_foundation_deflection))
+                  if value is not None]
+        memory_design_command(config, given, json=json)
+        return
     if config is not None and _has_structure(config):
         with DesignProgress(not json and sys.stderr.isatty()) as bar:
             machine_report, reduction = design_machine_file(flags, config, stick_slip=stick_slip_optimum,
@@ -167,6 +174,31 @@ def design(
         print_json(payload)
         return
     typer.echo(format_report(payload))
+
+
+def memory_design_command(config: Path, given: list[str], *, json: bool) -> None:
+    """``design --config`` for a friction law with memory
+    (:func:`~stickslip.analysis.memory_design.memory_design`): the runs from stick and from near
+    steady sliding, the linear verdict, the critical stiffness, speeds and loads."""
+    from stickslip.analysis.memory_design import memory_design
+    from stickslip.cli.memory_stability_commands import memory_system
+
+    machine_file = load_machine_file(config)
+    if given:
+        raise BadInput(f"{machine_file.label}: {', '.join(given)} cannot be given with a friction "
+                       "law with memory: change the machine file (each run has simulate's "
+                       "default horizon; simulate --config --t-max runs longer)")
+    system = memory_system(machine_file)
+    with DesignProgress(not json and sys.stderr.isatty()) as bar:
+        bar("linearisation, two runs", 0)
+        report = memory_design(system)
+    payload = report.to_dict()
+    payload.update({"config": str(config), "machine": machine_file.label})
+    if json:
+        print_json(payload)
+        return
+    typer.echo(f"machine     {config}: {system.n_dof} DOF, contact_dof "
+               f"{system.contact_dof}\nverdict     {report.verdict}\n" + report.summary())
 
 
 def _engine_options(t_max: float | None) -> EngineOptions:

@@ -79,8 +79,8 @@ class AbsorberSpec:
 def memory_law_refusal(source: str, law: str) -> str:
     """The one line of a command that takes only the curve laws, given a law with memory."""
     return (f"{source} law = {law!r} is a friction law with memory: `stickslip simulate "
-            "--config`, `stability`, `map`, `cycles`, `basin` and `continue --config` run it; this "
-            "command takes the curve laws (coulomb, linear, table, stribeck)")
+            "--config`, `stability`, `map`, `design`, `cycles`, `basin` and `continue --config` run "
+            "it; this command takes the curve laws (coulomb, linear, table, stribeck)")
 
 
 @dataclass(frozen=True)
