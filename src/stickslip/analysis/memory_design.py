@@ -159,6 +159,22 @@ class MemoryDesign:
         return "\n".join(lines)
 
 
+def startup_kick(system: MemorySystem) -> float:
+    """The kick of the start-up run: ``-1`` (stuck to the drive), rate-and-state ``-1 + 1e-3``.
+
+    Parameters
+    ----------
+    system : MemorySystem
+        The machine (its law decides, module notes).
+
+    Returns
+    -------
+    float
+        The kick ``F`` of :func:`~stickslip.analysis.memory_simulation.simulate_memory`.
+    """
+    return -1.0 + (STARTUP_SLIP if isinstance(system.friction, RateStateFriction) else 0.0)
+
+
 def memory_design(system: MemorySystem, *, t_max: float | None = None) -> MemoryDesign:
     """Verdicts, critical speeds and loads of a machine with a friction law with memory.
 
@@ -180,8 +196,8 @@ def memory_design(system: MemorySystem, *, t_max: float | None = None) -> Memory
     spread = 10.0 ** SPEED_DECADES
     loads, unstable = critical_loads(system, stability.speed, system.load / spread,
                                      system.load * spread)
-    kick = -1.0 + (STARTUP_SLIP if isinstance(system.friction, RateStateFriction) else 0.0)
-    startup = None if system.quasi_static else simulate_memory(system, t_max=t_max, kick=kick)
+    startup = (None if system.quasi_static
+               else simulate_memory(system, t_max=t_max, kick=startup_kick(system)))
     nudged = simulate_memory(system, t_max=t_max, kick=0.0 if system.quasi_static else NUDGE)
     if not all(math.isfinite(w) for w in loads):
         raise ValueError("a critical load is not finite")

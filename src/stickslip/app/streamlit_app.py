@@ -14,7 +14,9 @@ The friction law while sliding (issue 10, point 5) is chosen in the sidebar: ``c
 paper's), ``linear`` (slope in s/m), ``stribeck`` or ``table`` (an uploaded CSV with columns
 ``v`` [m/s] and ``mu``); its fields are the keys of the ``[friction]`` table of the TOML used by
 ``stickslip design`` (:class:`~stickslip.model.physical.PhysicalFriction`, units parsed by
-``to_si``). The design report's stability section is shown as a table.
+``to_si``). The design report's stability section is shown as a table. The laws with memory
+(``rate-state``, ``lugre``) show what ``stickslip design --config`` gives for them instead
+(:mod:`stickslip.app.memory_page`).
 
 This module is the page only; the inputs (:mod:`stickslip.app.inputs`), the cached
 computations (:mod:`stickslip.app.computations`), the figures (:mod:`stickslip.app.figures`)
@@ -64,6 +66,7 @@ from stickslip.app.inputs import (
     si_key,
     system_from_key,
 )
+from stickslip.app.memory_inputs import MEMORY_FIELDS, MEMORY_INPUTS, MEMORY_LAWS
 from stickslip.app.messages import show_error, show_warning
 from stickslip.io.provenance import package_version
 from stickslip.model.initial import STARTUP_DESCRIPTION
@@ -112,8 +115,15 @@ def _input_widgets() -> dict[str, str]:
     side.caption("coulomb: μ = μk (the paper's); linear: μ = μk − σ v_r; stribeck: falls from "
                  "μ0 to μk around v_s; table: a measured curve μ(v). The [friction] table of "
                  "'stickslip design'.")
-    law = side.selectbox("Friction law", FRICTION_LAWS, key="friction_law")
+    law = side.selectbox("Friction law", (*FRICTION_LAWS, *MEMORY_LAWS), key="friction_law")
     raw["friction_law"] = str(law)
+    if law in MEMORY_LAWS:
+        side.caption("A law with memory carries its own friction coefficients: the μs and μk "
+                     "fields above are not used. The [friction] table of a machine file.")
+        for key in MEMORY_FIELDS[str(law)]:
+            label, default = MEMORY_INPUTS[key]
+            raw[key] = side.text_input(label, value=default, key=key)
+        return raw
     for key in FRICTION_FIELDS[str(law)]:
         label, default = FRICTION_INPUTS[key]
         _, unit, what = FRICTION_QUANTITIES[key]
@@ -390,6 +400,11 @@ def main() -> None:
                f"by certified simulation. stickslip {package_version()}; initial condition: "
                f"{STARTUP_DESCRIPTION}.")
     raw = _input_widgets()
+    if raw["friction_law"] in MEMORY_LAWS:
+        from stickslip.app.memory_page import show_memory_results
+
+        show_memory_results(raw)
+        return
     system, errors = parse_inputs(raw)
     if system is None:
         for line in errors:
