@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -177,7 +178,7 @@ class ContactSystem:
 
         A new system with its own mode cache (the modes depend on every one of these).
         """
-        changes = {name: float(value) for name, value in
+        changes: dict[str, Any] = {name: float(value) for name, value in
                    (("speed", speed), ("load", load), ("mu_s", mu_s), ("mu_k", mu_k))
                    if value is not None}
         return replace(self, **changes)
