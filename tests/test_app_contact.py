@@ -19,6 +19,7 @@ from stickslip.app.machine_contact import (
     APPLIES,
     contact_machine,
     history_window,
+    plain_title,
     simulate_in_worker,
     stability_in_worker,
     stability_refusal,
@@ -107,3 +108,17 @@ def test_the_info_line_names_the_analyses_that_apply() -> None:
     for words in ("complex-eigenvalue analysis", "time history", "design", "absorbers",
                   "bifurcation diagram"):
         assert words in APPLIES
+
+
+def test_a_machine_name_with_dollars_draws_as_typed() -> None:
+    """A ``[structure] name`` is the user's text: Matplotlib must not read it as mathtext."""
+    import io
+
+    from stickslip.plot.contact_history import contact_history_plot
+
+    name = r"pad $\frac$ x"  # as mathtext this fails to parse (checked: ParseSyntaxException)
+    history = {"t_s": [0.0, 1.0], "tangential_m": [0.0, 1.0], "normal_force_N": [1.0, 0.0],
+               "mode": ["stick", "separation"]}
+    result = contact_history_plot(history, title=plain_title(name))
+    result.figure.savefig(io.BytesIO(), format="png")
+    assert result.figure.get_suptitle() == r"pad \$\frac\$ x"

@@ -227,6 +227,11 @@ def critical_line(critical: Mapping[str, Any]) -> str:
     return f"{critical['mu']:.8g} ({critical['kind']}{where}; mode{plural} {modes})"
 
 
+def plain_title(text: str) -> str:
+    """``text`` for a Matplotlib title: every ``$`` escaped, so no mathtext is read from it."""
+    return text.replace("$", r"\$")
+
+
 def verdict_text(verdict: str) -> str:
     """The stability verdict as the command prints it (``UNSTABLE`` in capitals)."""
     return verdict.upper() if verdict == "unstable" else verdict
@@ -236,24 +241,24 @@ def show_contact_machine(machine_file: Any, digest: str) -> None:
     """Lay out the machine page of a machine with its contact (Streamlit)."""
     import streamlit as st
 
-    from stickslip.app.messages import show_failure
+    from stickslip.app.messages import literal_markdown, show_failure, show_info
     from stickslip.app.workers import wait_for
 
-    st.info(APPLIES)
+    show_info(APPLIES)
     try:
         cm = contact_machine(machine_file)
     except Exception as exc:
         show_failure(exc, "Reading this machine")
         return
-    st.caption(f"{cm.machine.name}: {cm.machine.n_dof} DOF, contact on DOF "
+    st.caption(literal_markdown(f"{cm.machine.name}: {cm.machine.n_dof} DOF, contact on DOF "
                f"{cm.machine.contact_dof}, normal DOF "
                f"{'-' if cm.normal_index is None else cm.normal_index}"
-               + ("" if cm.reduction is None else f" ({cm.reduction.summary()})"))
+               + ("" if cm.reduction is None else f" ({cm.reduction.summary()})")))
     payload: dict[str, Any] = {"machine": cm.machine.name}
     st.subheader("Steady sliding: complex-eigenvalue analysis")
     refusal = stability_refusal(cm)
-    if refusal is not None:
-        st.info(refusal)
+    if refusal is not None:  # the command's refusal, as information (the file name literal)
+        show_info(refusal)
     else:
         try:
             result, locus = wait_for(("contact-stability", digest), stability_in_worker, cm,
@@ -296,7 +301,7 @@ def _show_stability(result: Any, locus: Any, name: str) -> dict[str, Any]:
         f"critical mu {critical_line(data['critical'])}",
         f"undamped    {critical_line(data['critical_undamped'])}"]))
     st.dataframe(modes_table(data), key="contact_modes_table")
-    st.pyplot(root_locus_plot(locus, title=name).figure)
+    st.pyplot(root_locus_plot(locus, title=plain_title(name)).figure)
     return dict(data)
 
 
@@ -317,6 +322,7 @@ def _show_run(run: ContactHistory) -> dict[str, Any]:
             f"events      {p['n_events']} ({counts}) up to t = {p['t_end_s']:.6g} s\n"
             "amplitude   half the peak-to-peak displacement of the contact DOF over the last "
             "period")
-    st.pyplot(contact_history_plot(run.history, title=f"{p['machine']}: the last periods",
+    st.pyplot(contact_history_plot(run.history,
+                                   title=f"{plain_title(str(p['machine']))}: the last periods",
                                    period_s=p["period_s"]).figure)
     return dict(p)
