@@ -255,6 +255,7 @@ def show_contact_machine(machine_file: Any, digest: str) -> None:
                f"{'-' if cm.normal_index is None else cm.normal_index}"
                + ("" if cm.reduction is None else f" ({cm.reduction.summary()})")))
     payload: dict[str, Any] = {"machine": cm.machine.name}
+    _queue_run(("contact-run", digest), cm)  # behind the analysis, while the page draws it
     st.subheader("Steady sliding: complex-eigenvalue analysis")
     refusal = stability_refusal(cm)
     if refusal is not None:  # the command's refusal, as information (the file name literal)
@@ -277,6 +278,18 @@ def show_contact_machine(machine_file: Any, digest: str) -> None:
                        __import__("json").dumps(payload, indent=2, default=str),
                        file_name="stickslip-contact.json", mime="application/json",
                        key="download_contact_json")
+
+
+def _queue_run(key: tuple[str, str], cm: ContactMachine) -> None:
+    """Start the time history in the worker now, unless it is kept or the server is busy
+    (then :func:`~stickslip.app.workers.wait_for` says so when the page asks for it)."""
+    from stickslip.app.workers import Busy, result, submit
+
+    if result(key) is None:
+        try:
+            submit(key, simulate_in_worker, cm)
+        except Busy:
+            pass
 
 
 def _show_stability(result: Any, locus: Any, name: str) -> dict[str, Any]:
