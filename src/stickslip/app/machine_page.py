@@ -85,18 +85,11 @@ def machine_from_files(files: Mapping[str, bytes], toml_name: str | None = None)
         by its base name, never a path of the server; the limits of an upload are
         :data:`~stickslip.io.machine_file.UPLOAD_MAX_MB` and ``UPLOAD_MAX_DOF``).
     """
-    from stickslip.io.machine_file import machine_from_file, read_machine_file
+    from stickslip.io.machine_file import machine_from_file
     from stickslip.model.inputs import quantities_to_si
 
-    if toml_name is None:
-        tomls = [name for name in files if name.lower().endswith(".toml")]
-        if len(tomls) != 1:
-            raise ValueError(f"upload exactly one machine .toml file with its matrices "
-                             f"(got {len(tomls)})")
-        toml_name = tomls[0]
-    toml_name = Path(toml_name).name
-    machine_file = read_machine_file(Path(toml_name), label=f"machine file {toml_name!r}",
-                                     files=files)
+    machine_file = uploaded_machine_file(files, toml_name)
+    toml_name = Path(machine_file.path).name
     if not machine_file.has_structure:
         raise ValueError(f"machine file {toml_name!r} has no [structure] table: the paper's "
                          "slider is entered on the main page")
@@ -109,6 +102,38 @@ def machine_from_files(files: Mapping[str, bytes], toml_name: str | None = None)
     machine, reduction = machine_from_file(machine_file, values)
     absorber = machine_file.absorber()
     return machine, absorber, reduction
+
+
+def uploaded_machine_file(files: Mapping[str, bytes], toml_name: str | None = None) -> Any:
+    """The uploaded machine TOML, read (not yet its matrices): one ``.toml`` among ``files``.
+
+    Parameters
+    ----------
+    files : mapping
+        File name -> content, by base name.
+    toml_name : str, optional
+        Which file is the machine TOML (default: the one ``.toml`` among them).
+
+    Returns
+    -------
+    MachineFile
+        Named ``machine file 'NAME'`` in messages; it may name only ``files``.
+
+    Raises
+    ------
+    ValueError
+        One line: no or several TOML files, or the reader's message.
+    """
+    from stickslip.io.machine_file import read_machine_file
+
+    if toml_name is None:
+        tomls = [name for name in files if name.lower().endswith(".toml")]
+        if len(tomls) != 1:
+            raise ValueError(f"upload exactly one machine .toml file with its matrices "
+                             f"(got {len(tomls)})")
+        toml_name = tomls[0]
+    toml_name = Path(toml_name).name
+    return read_machine_file(Path(toml_name), label=f"machine file {toml_name!r}", files=files)
 
 
 def machine_design(machine: Any, absorber: Any, reduction: Any, *, stick_slip: bool = False,
@@ -170,6 +195,7 @@ def show_machine_page() -> None:
     import streamlit as st
 
     from stickslip.app.machine_bifurcation import show_machine_bifurcation
+    from stickslip.app.machine_contact import show_contact_machine
     from stickslip.app.messages import show_failure
     from stickslip.app.workers import wait_for
     from stickslip.plot.operating import machine_modes_plot
@@ -189,6 +215,10 @@ def show_machine_page() -> None:
                 st.info("Nothing is computed until the machine .toml and its files are uploaded.")
                 return
             files = {str(u.name): u.getvalue() for u in uploads}
+            machine_file = uploaded_machine_file(files)
+            if machine_file.has_contact:  # its own analyses, each with its own messages
+                show_contact_machine(machine_file, files_digest(files))
+                return
         else:
             raw = {key: st.text_input(label, value=default, key=f"machine_{key}")
                    for key, (label, default) in MODE_INPUTS.items()}

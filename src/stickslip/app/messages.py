@@ -87,6 +87,13 @@ def show_warning(message: str, where: Any = None) -> None:
     (where or st).warning(literal_markdown(sanitised(message)))
 
 
+def show_info(message: str, where: Any = None) -> None:
+    """Show ``message`` in a blue box, as :func:`show_error` does (sanitised, literal)."""
+    import streamlit as st
+
+    (where or st).info(literal_markdown(sanitised(message)))
+
+
 def show_unexpected(exc: BaseException, what: str, where: Any = None) -> None:
     """An error nobody foresaw: its traceback goes to the server's log, one line to the page.
 

@@ -85,15 +85,14 @@ def _analyse(config: Path, mu_max: float) -> tuple[Any, Any, Any, Any, int | Non
     from stickslip.analysis.complex_eigenvalues import complex_eigenvalue_analysis
     from stickslip.cli.machine_config import collect_inputs, config_system, load_machine_file
     from stickslip.io.machine_file import machine_from_file
+    from stickslip.model.contact import NO_STABILITY_WITH_COMPLIANCE
     from stickslip.model.machine import machine_from_physical_system
 
     machine_file = load_machine_file(config, normal_coupling=True)
     try:
         contact = machine_file.contact()
         if contact is not None and contact.has_tangential_compliance:
-            raise ValueError(f"{machine_file.label}: [contact] tangential_stiffness: the tangential "
-                             "contact compliance is not in the complex-eigenvalue analysis of this "
-                             "version (remove it for stability)")
+            raise ValueError(f"{machine_file.label}: {NO_STABILITY_WITH_COMPLIANCE}")
         if machine_file.has_structure:
             values = collect_inputs({}, config, normal_coupling=True)
             machine, reduction = machine_from_file(machine_file, values, normal_coupling=True)

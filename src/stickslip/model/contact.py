@@ -60,6 +60,12 @@ NOT_SUPPORTED = ("a machine with its contact ([structure] normal_dof and the [co
                  "in `stickslip simulate` and `stickslip stability` only in this version; remove "
                  "them to run this command")
 
+#: Why ``stickslip stability`` (and the web app's machine page) has no analysis of a Jenkins
+#: element: the sentence both say, after the file's name.
+NO_STABILITY_WITH_COMPLIANCE = ("[contact] tangential_stiffness: the tangential contact compliance "
+                                "is not in the complex-eigenvalue analysis of this version "
+                                "(remove it for stability)")
+
 
 @dataclass(frozen=True)
 class Contact:
