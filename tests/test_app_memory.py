@@ -86,7 +86,7 @@ def test_memory_history_plot_axes_in_si() -> None:
 
     history = {"t_s": [0.0, 1.0, 2.0], "x_m": [0.0, 0.1, 0.2],
                "slip_speed_m_s": [0.0, 0.05, 0.1], "mu": [1.5, 1.2, 1.0]}
-    fig, axes, artists = memory_history_plot(history, drive_speed=0.1, title="t")
+    _, axes, artists = memory_history_plot(history, drive_speed=0.1, title="t")
     labels = [a.get_ylabel() for a in axes] + [axes[-1].get_xlabel()]
     assert labels[0].endswith("[m]") and labels[1].endswith("[m/s]") and labels[3].endswith("[s]")
     assert len(artists) == 4  # three curves and the drive speed

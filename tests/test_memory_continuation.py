@@ -27,6 +27,7 @@ from stickslip.model.state_friction import SpeedSchedule
 from tests.cli_helpers import run_cli
 from tests.memory_machines import RATE_STATE
 
+ROOT = Path(__file__).resolve().parents[1]
 V_C = math.sqrt(10.0 * 0.01 * 1e-5 / 1.0 * (8000.0 * 1e-5 / (10.0 * 0.005) - 1.0))
 
 
@@ -70,3 +71,34 @@ def test_cli(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
                           (["--param", "speed", "--range", "1:2", "--out", "x.nc"], "--out")):
         code, out, err = run_cli(["continue", "--config", str(path), *extra], capsys)
         assert code == 2 and out == "" and needle in err and len(err.strip().splitlines()) == 1
+
+
+def test_lugre_subcritical_hopf_gives_the_unstable_orbit_that_bounds_steady_sliding() -> None:
+    # Canudas de Wit et al.'s (1995) LuGre slider (examples/friction_memory/lugre.toml): steady
+    # sliding becomes stable at the Hopf point V_H = 2.986 mm/s (tests/test_memory_stability.py,
+    # Routh-Hurwitz) while stick-slip goes on above it (bistable), so the Hopf point is
+    # subcritical: the orbit born there is unstable and exists above V_H. Checks independent
+    # of the continuation: its period tends to 2 pi / omega of the critical eigenvalue pair,
+    # and it separates the basins: a start just inside it (towards steady sliding) ends at
+    # steady sliding, one just outside ends on the stick-slip cycle.
+    system = read_machine_file(ROOT / "examples" / "friction_memory" / "lugre.toml").memory_system()
+    result = continue_memory_orbits(system, (2e-3, 5e-3))
+    (v_h,) = result.hopf
+    unstable = [b for b in result.branches if not any(p.stable for p in b.points)]
+    assert len(unstable) == 1
+    points = unstable[0].points
+    assert min(p.speed for p in points) == pytest.approx(v_h, rel=5e-3)
+    assert all(p.speed > v_h for p in points)
+    first = min(points, key=lambda p: p.speed)
+    values, _ = linear_spectrum(system, v_h)
+    omega = float(np.max(values.imag))
+    assert first.period == pytest.approx(2.0 * math.pi / omega, rel=0.01)
+    point = points[len(points) // 2]
+    at = replace(system, schedule=SpeedSchedule.constant(point.speed))
+    from stickslip.analysis.memory_friction import steady_state
+
+    y_ss = steady_state(at, point.speed)
+    inside = simulate_memory(at, initial=y_ss + 0.9 * (point.orbit.y0 - y_ss))
+    outside = simulate_memory(at, initial=y_ss + 1.1 * (point.orbit.y0 - y_ss))
+    assert inside.verdict.value == "steady-sliding"
+    assert outside.verdict.value == "stick-slip"

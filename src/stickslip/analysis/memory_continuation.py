@@ -7,19 +7,24 @@ The bifurcation diagram of ``stickslip continue --config`` for rate-and-state an
   to 1e-10), with the growth rate along the range.
 * **Branches**: orbits found by runs from kicked steady sliding
   (:func:`~stickslip.analysis.memory_cycle_search.find_memory_cycles`) at :data:`SEED_POINTS`
-  speeds of the range, each continued both ways in ``ln V`` by natural-parameter steps: at the
-  next speed, Newton shooting (:func:`~stickslip.analysis.memory_cycles.shoot_cycle`) from the
-  last orbit. A step that fails is halved; after a success the step grows by 1.5 up to
-  :data:`MAX_STEP` of the range. A branch stops at the range's end, or where the step falls
-  below :data:`MIN_STEP` of the range: an orbit that ceases to exist there (a fold, where the
-  stable branch meets an unstable one, or the orbit shrinking into a Hopf point), which
-  natural-parameter steps cannot pass; the stop is named with the speed.
+  speeds of the range, and the orbit born at each Hopf point that no such branch reached
+  (:func:`~stickslip.analysis.memory_arclength.hopf_seed`: shooting from the critical
+  eigenvector just beside the Hopf point; at a subcritical Hopf point this is the *unstable*
+  orbit that bounds the basin of steady sliding). Each is continued both ways by
+  pseudo-arclength steps in ``(orbit, ln V)``
+  (:mod:`stickslip.analysis.memory_arclength`), which pass folds (named with their speed). A
+  failed step is halved; after a success the step grows by 1.5 up to :data:`MAX_STEP` of the
+  range. A branch stops at the range's end, or where the step falls below :data:`MIN_STEP` of
+  the range: where the orbit shrinks into a Hopf point, or turns sharper than the smallest
+  step follows (with LuGre's stiff bristles a stick-slip orbit ends at a corner where its
+  stick phase vanishes, a fold too sharp for the steps); the stop is named with the speed.
   Every point has its Floquet multipliers (stable: every nontrivial one inside the unit
   circle) and its amplitude (half the peak-to-peak contact displacement over one period,
   :data:`AMPLITUDE_SAMPLES` samples).
 
-Unstable orbits are continued where a branch carries them, not searched for (the seeds are
-stable orbits); what the diagram holds is what was found, and the summary says so.
+Unstable orbits are found where a Hopf point gives birth to them or a fold turns a branch
+into them; an unstable orbit connected to neither is not searched for, and the summary says
+what was searched.
 """
 
 from __future__ import annotations
@@ -31,9 +36,22 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from stickslip.analysis.memory_arclength import (
+    FOLD_MIN_SIZE,
+    SectionOrbit,
+    arclength_step,
+    fold_speed,
+    hopf_seed,
+    tangent_at,
+)
 from stickslip.analysis.memory_cycle_search import find_memory_cycles
 from stickslip.analysis.memory_cycles import PeriodicOrbit, shoot_cycle
-from stickslip.analysis.memory_friction import integrate_run, observables
+from stickslip.analysis.memory_friction import (
+    integrate_run,
+    observables,
+    state_scales,
+    steady_state,
+)
 from stickslip.analysis.memory_stability import critical_speeds, growth_rate
 from stickslip.model.state_friction import MemorySystem, SpeedSchedule
 
@@ -49,6 +67,13 @@ MIN_STEP = 1e-4
 FIRST_STEP = 0.01
 #: Bound on the steps of one direction of one branch.
 MAX_STEPS = 400
+#: What the diagram searched, in its output.
+SEARCHED = (f"stable orbits from kicked steady sliding at {SEED_POINTS} speeds, and the orbit "
+            "born at each Hopf point no branch reached (stable or not), each continued both "
+            "ways by pseudo-arclength steps")
+#: A start this close (ratio of speeds) beyond a branch's end is checked against it too (a
+#: Hopf seed lies just beyond the last point continued towards its Hopf point).
+ON_BRANCH_MARGIN = 1.05
 #: Samples of one period for the amplitude.
 AMPLITUDE_SAMPLES = 401
 #: Points of the growth-rate grid along the range.
@@ -84,10 +109,12 @@ class OrbitBranch:
     points: tuple[OrbitPoint, ...]
     low_end: str
     high_end: str
+    folds: tuple[float, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready."""
         return {"low_end": self.low_end, "high_end": self.high_end,
+                "folds_m_per_s": list(self.folds),
                 "points": [p.to_dict() for p in self.points]}
 
 
@@ -109,7 +136,7 @@ class MemoryContinuation:
                 "branches": [b.to_dict() for b in self.branches],
                 "steady": [{"speed": float(v), "growth_rate_per_s": float(g), "stable": bool(g < 0)}
                            for v, g in zip(self.steady_speed, self.steady_growth, strict=True)],
-                "searched": "stable orbits from kicked steady sliding, continued both ways"}
+                "searched": SEARCHED}
 
     def summary(self) -> str:
         """A few lines: the Hopf points and each branch."""
@@ -120,11 +147,12 @@ class MemoryContinuation:
             lines.append(f"  hopf at speed = {v:.10g} m/s (steady sliding changes stability)")
         for i, b in enumerate(self.branches):
             stable = sum(p.stable for p in b.points)
+            speeds = [p.speed for p in b.points]
+            folds = "".join(f"; fold at {v:.8g} m/s" for v in b.folds)
             lines.append(f"  branch {i}: {len(b.points)} points, speed in "
-                         f"[{b.points[0].speed:.6g}, {b.points[-1].speed:.6g}] m/s, {stable} stable; "
-                         f"low end: {b.low_end}; high end: {b.high_end}")
-        lines.append("  searched: stable orbits from kicked steady sliding at "
-                     f"{SEED_POINTS} speeds, continued both ways")
+                         f"[{min(speeds):.6g}, {max(speeds):.6g}] m/s, {stable} stable{folds}; "
+                         f"one end: {b.low_end}; other end: {b.high_end}")
+        lines.append(f"  searched: {SEARCHED}")
         return "\n".join(lines)
 
     def plot(self, **kwargs: Any) -> Any:
@@ -150,45 +178,94 @@ def _point(system: MemorySystem, speed: float, orbit: PeriodicOrbit) -> OrbitPoi
 
 
 def _direction(system: MemorySystem, start: OrbitPoint, lo: float, hi: float, sign: int
-               ) -> tuple[list[OrbitPoint], str]:
-    """Continue from ``start`` towards ``hi`` (``sign = 1``) or ``lo`` (``-1``) in ln V."""
+               ) -> tuple[list[OrbitPoint], str, list[float]]:
+    """Continue from ``start`` by pseudo-arclength steps, leaving it towards ``hi`` (``sign =
+    1``) or ``lo`` (``-1``): the points, why the direction stopped, and the folds passed."""
+
+    def system_at(speed: float) -> MemorySystem:
+        return _at_speed(system, speed)
+
     span = math.log(hi / lo)
+    tangent = tangent_at(system_at, start.orbit.y0, start.speed, start.period, sign)
+    if tangent is None:
+        return [], f"no return to the section near {start.speed:.8g} m/s", []
+    scale = state_scales(system_at(start.speed), start.speed)
+    size = float(np.max(np.abs(start.orbit.y0 - steady_state(system_at(start.speed), start.speed))
+                        / scale))
+    at = SectionOrbit(start.speed, start.orbit.y0, start.period, start.multipliers, tangent, size)
     step = FIRST_STEP * span
     points: list[OrbitPoint] = []
-    at = start
+    folds: list[float] = []
+    trail = [(0.0, math.log(start.speed))]  # (arclength, ln V) of the points so far
+    s = 0.0
     for _ in range(MAX_STEPS):
-        end = hi if sign > 0 else lo
-        if at.speed == end:
-            return points, "range end"
-        log_next = math.log(at.speed) + sign * step
-        speed = end if (sign > 0) == (log_next >= math.log(end)) else math.exp(log_next)
-        orbit = shoot_cycle(_at_speed(system, speed), at.orbit.y0, at.period)
-        if orbit is None:
+        nxt = arclength_step(system_at, at, step)
+        if nxt is None:
             step *= 0.5
             if step < MIN_STEP * span:
-                return points, (f"the orbit ceases to exist near {at.speed:.8g} m/s (a fold or a "
-                                "Hopf point: the step fell below its bound)")
+                return points, (f"the orbit ceases to exist near {at.speed:.8g} m/s (it shrinks "
+                                "into a Hopf point, or turns sharper than the smallest step "
+                                "follows)"), folds
             continue
-        at = _point(system, speed, orbit)
-        points.append(at)
+        if not lo <= nxt.speed <= hi:  # land on the range's end by a shooting there
+            end = hi if nxt.speed > hi else lo
+            orbit = shoot_cycle(_at_speed(system, end), at.y0, at.period)
+            if orbit is not None:
+                points.append(_point(system, end, orbit))
+            return points, "range end", folds
+        s += step
+        trail.append((s, math.log(nxt.speed)))
+        if nxt.tangent[-1] * at.tangent[-1] < 0.0 and min(at.size, nxt.size) >= FOLD_MIN_SIZE:
+            # dp/ds changed sign away from a Hopf point: a fold passed
+            if len(trail) >= 3:
+                folds.append(fold_speed(trail[-3:]))
+            else:
+                folds.append(math.exp(max(trail, key=lambda q: sign * q[1])[1]))
+        orbit = PeriodicOrbit(nxt.y0, nxt.period, 0.0, nxt.multipliers, complex(1.0), 0)
+        points.append(_point(system, nxt.speed, orbit))
+        at = nxt
         step = min(1.5 * step, MAX_STEP * span)
-    return points, "step bound"
+    return points, "step bound", folds
 
 
 def _on_branch(system: MemorySystem, branches: list[OrbitBranch], point: OrbitPoint) -> bool:
     """Whether ``point`` lies on a branch found before: shooting at its speed from the branch's
     nearest orbit lands on the same orbit (period to 1e-6, amplitude to 1e-4)."""
     for b in branches:
-        if not b.points[0].speed <= point.speed <= b.points[-1].speed:
+        speeds = [p.speed for p in b.points]
+        if not min(speeds) * ON_BRANCH_MARGIN ** -1 <= point.speed <= max(speeds) * ON_BRANCH_MARGIN:
             continue
         nearest = min(b.points, key=lambda p: abs(math.log(p.speed / point.speed)))
         orbit = shoot_cycle(_at_speed(system, point.speed), nearest.orbit.y0, nearest.period)
         if orbit is None or abs(orbit.period - point.period) > 1e-6 * point.period:
             continue
+        scale = state_scales(_at_speed(system, point.speed), point.speed)
+        if float(np.max(np.abs(orbit.y0 - point.orbit.y0) / scale)) <= 1e-4:
+            return True  # the same start on the section
         if abs(_point(system, point.speed, orbit).amplitude - point.amplitude) <= (
                 1e-4 * max(point.amplitude, 1e-300)):
             return True
     return False
+
+
+def _add_branch(system: MemorySystem, branches: list[OrbitBranch], start: OrbitPoint, lo: float,
+                hi: float) -> None:
+    """Continue ``start`` both ways and add its branch, unless it lies on one found before."""
+    if _on_branch(system, branches, start):
+        return
+    down, low_end, low_folds = _direction(system, start, lo, hi, -1)
+    up, high_end, high_folds = _direction(system, start, lo, hi, 1)
+    points = [*reversed(down), start, *up]
+    branches.append(OrbitBranch(tuple(points), low_end, high_end,
+                                tuple(sorted(low_folds + high_folds))))
+
+
+def _reaches(branch: OrbitBranch, hopf: float) -> bool:
+    """Whether ``branch`` ends at the Hopf point ``hopf`` (m/s): an end point within 1 % of
+    its speed, with an amplitude below 1 % of the branch's largest."""
+    largest = max(p.amplitude for p in branch.points)
+    return any(abs(math.log(p.speed / hopf)) < 0.01 and p.amplitude < 0.01 * largest
+               for p in (branch.points[0], branch.points[-1]))
 
 
 def continue_memory_orbits(system: MemorySystem, speed_range: tuple[float, float]
@@ -221,13 +298,13 @@ def continue_memory_orbits(system: MemorySystem, speed_range: tuple[float, float
         seeded = find_memory_cycles(_at_speed(system, speed), kicks=SEED_KICKS)
         for cycle in seeded.cycles:
             assert cycle.run.orbit is not None
-            start = _point(system, speed, cycle.run.orbit)
-            if _on_branch(system, branches, start):
-                continue
-            down, low_end = _direction(system, start, lo, hi, -1)
-            up, high_end = _direction(system, start, lo, hi, 1)
-            points = [*reversed(down), start, *up]
-            branches.append(OrbitBranch(tuple(points), low_end, high_end))
+            _add_branch(system, branches, _point(system, speed, cycle.run.orbit), lo, hi)
+    for speed in hopf:  # the orbit born at each Hopf point no branch reached, stable or not
+        if any(_reaches(b, speed) for b in branches):
+            continue
+        found = hopf_seed(lambda v: _at_speed(system, v), speed)
+        if found is not None and lo <= found[0] <= hi:
+            _add_branch(system, branches, _point(system, found[0], found[1]), lo, hi)
     return MemoryContinuation(system, (lo, hi), tuple(branches), tuple(hopf), grid, rates)
 
 
