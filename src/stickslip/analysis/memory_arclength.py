@@ -20,8 +20,9 @@ unstable orbit magnifies the run's own error by its largest Floquet multiplier, 
 whose multiplier grows to the thousands ends where that error exceeds the tolerance;
 accepting a residual of the tolerance times the multiplier was tried on the LuGre slider's
 unstable branch and gave erratic periods there.) A failed correction halves ``h``, a success
-grows it by 1.5 up to the bound. A **fold** is where ``dp/ds`` (the tangent's last component) changes sign between
-two points; its speed is the vertex of the parabola through the three points around it.
+grows it by 1.5 up to the bound. A **fold** is where ``dp/ds`` (the tangent's last
+component) changes sign between two points; its speed is the vertex of the parabola through
+the three points around it.
 """
 
 from __future__ import annotations
