@@ -243,8 +243,8 @@ def hopf_seed(system_at: Callable[[float], MemorySystem], speed: float
     side for a supercritical one). Its start on the section ``q_c' = 0`` (``y_ss`` lies on it:
     the contact is at rest in steady sliding) is the phase ``theta`` with
     ``Re(phi_c e^{i theta}) = 0`` crossing upwards, scaled so that the contact's velocity
-oscillates by a share of ``V`` (:data:`HOPF_AMPLITUDES`: the linear regime needs it below
-``V``, or the slip speed reverses). Newton shooting
+    oscillates by a share of ``V`` (:data:`HOPF_AMPLITUDES`: the linear regime needs it below
+    ``V``, or the slip speed reverses). Newton shooting
     (:func:`~stickslip.analysis.memory_cycles.shoot_cycle`) from that guess is tried at
     :data:`HOPF_OFFSETS` on both sides and :data:`HOPF_AMPLITUDES`, the first orbit that is
     not steady sliding kept.
