@@ -143,7 +143,17 @@ def basin(
     if config is not None:
         from stickslip.cli.machine_config import load_machine_file
 
-        machine_file = load_machine_file(config)
+        machine_file = load_machine_file(config, normal_coupling=True)
+        if machine_file.has_contact and not machine_file.has_memory_law:
+            from stickslip.cli.contact_commands import contact_basin_command
+
+            contact_basin_command(ctx, config, machine_file, samples=samples, seed=seed, box=box,
+                                  initial_states=initial_states, t_max=t_max, workers=workers,
+                                  out=out, overwrite=overwrite, json=json)
+            return
+        from stickslip.cli.machine_config import refuse_contact_with_memory
+
+        refuse_contact_with_memory(machine_file)
         if machine_file.has_memory_law:  # one stiff run per start, in SI
             _memory_basin(ctx, machine_file, config, samples=samples, seed=seed, box=box,
                           initial_states=initial_states, out=out, plot=plot,

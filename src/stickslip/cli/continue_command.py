@@ -10,6 +10,10 @@ import typer
 from stickslip.cli.console import BadInput, check_figure_path, check_output_path, parse_dva, print_json
 from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE, OVERWRITE, PLOT
 
+#: ``--points`` typed for a machine without a contact.
+POINTS_REFUSED = ("--points is for a [contact] machine (followed by runs); other machines are "
+                  "continued by steps (--max-steps)")
+
 
 def continue_branches(
     ctx: typer.Context,
@@ -30,7 +34,11 @@ def continue_branches(
     seeds: Annotated[int, typer.Option("--seeds", help="random starts of the cycle search")] = 12,
     max_period: Annotated[int, typer.Option("--max-period", help="longest cycle, in stick phases")] = 2,
     max_steps: Annotated[int, typer.Option("--max-steps", help="steps per branch (bound)")] = 400,
-    out: Annotated[Path | None, typer.Option("--out", help="write the branches as netCDF here")] = None,
+    points: Annotated[int | None, typer.Option(
+        "--points", help="with a [contact] machine: parameter values, log-spaced, ends included "
+        "(default 25)")] = None,
+    out: Annotated[Path | None, typer.Option("--out", help="write the branches as netCDF here (a "
+                                             "[contact] machine: .csv or .json)")] = None,
     plot: PLOT = None,
     overwrite: OVERWRITE = False,
     json: JSON = False,
@@ -40,6 +48,9 @@ def continue_branches(
     Example: stickslip continue --param lam --range 0.5:5 --zeta 0.1 --dva none --json
 
     Your machine: stickslip continue --config machine.toml --param speed --range '1 mm/s:20 mm/s'
+
+    With a [contact] (attractors followed by runs): stickslip continue --config machine.toml
+    --param speed --range '1 cm/s:10 cm/s' --points 25 --out branches.csv --plot branches.png
     """
     from stickslip.analysis.continuation import (
         MACHINE_PARAMETERS,
@@ -56,11 +67,24 @@ def continue_branches(
     if config is not None:
         from stickslip.cli.machine_config import load_machine_file
 
-        machine_file = load_machine_file(config)
+        machine_file = load_machine_file(config, normal_coupling=True)
+        if machine_file.has_contact and not machine_file.has_memory_law:
+            from stickslip.cli.contact_commands import contact_continue_command
+
+            contact_continue_command(ctx, config, machine_file, param, range_, points=points,
+                                     out=out, plot=plot, overwrite=overwrite, json=json)
+            return
+        from stickslip.cli.machine_config import refuse_contact_with_memory
+
+        refuse_contact_with_memory(machine_file)
+        if points is not None:
+            raise BadInput(POINTS_REFUSED)
         if machine_file.has_memory_law:  # shooting continuation in the drive speed
             _memory_continuation(ctx, machine_file, param, range_, out=out, plot=plot,
                                  overwrite=overwrite, json=json)
             return
+    if points is not None:
+        raise BadInput(POINTS_REFUSED)
     allowed = PARAMETERS if config is None else tuple(MACHINE_PARAMETERS)
     if param not in allowed:
         raise BadInput(f"--param {param!r} is not one of {', '.join(allowed)}"
