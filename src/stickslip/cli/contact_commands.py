@@ -100,9 +100,7 @@ def contact_basin_command(ctx: typer.Context, config: Path, machine_file: Any, *
             _, _, values = read_states(initial_states, list(names))
             starts = np.array(values, dtype=np.float64)
         else:
-            intervals = default_box(system)
-            if box is not None:
-                intervals.update(parse_box(box))
+            intervals = parse_box(box) if box is not None else default_box(system)
             starts = sample_contact_box(system, samples, intervals, seed)
         with _bar(json, f"basin {len(starts)} starts (contact)", "samples") as bar:
             result = contact_basin(system, starts, t_max=horizon, workers=workers or DEFAULT_WORKERS,

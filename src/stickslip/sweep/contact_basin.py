@@ -10,7 +10,8 @@ preload):
 * ``v``: the contact DOF's velocity (m/s);
 * ``y``: the normal DOF's displacement (m, positive away from the belt), with a normal DOF.
 
-The default box (:func:`default_box`): ``x* +- V / omega_ref`` (the engine's length unit),
+A box names some of these columns (an unnamed one keeps its base value); without one, the
+default box (:func:`default_box`): ``x* +- V / omega_ref`` (the engine's length unit),
 ``v`` from ``-V`` to ``V`` and, with a normal DOF, ``y* +- 0.5 N_0 / k_n`` (half the steady
 compression of the contact spring). Each start is run to its verdict by
 :func:`~stickslip.analysis.contact_engine.simulate_contact` in a bounded pool of worker
