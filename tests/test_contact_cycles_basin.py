@@ -167,7 +167,7 @@ def test_continuation_plot_has_si_labels_and_takes_an_axes() -> None:
     assert result.plot(ax=ax).axes[0] is ax
 
 
-@pytest.mark.slow  # starting worker processes: 10-30 s on a shared machine
+# starting two pools of worker processes: 6.5 s alone on the machine
 def test_a_pool_gives_the_same_outcomes_and_ends_its_workers_on_ctrl_c() -> None:
     # two worker processes (pool forced by a zero threshold) against this process
     jobs = [(slider(0.05), None), (slider(0.03), None), (slider(0.08), None)]

@@ -26,7 +26,6 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -125,10 +124,8 @@ class ContactContinuation:
                             "stick_phases_per_period": o.stick_phases})
         return out
 
-    def write_csv(self, path: str | Path) -> Path:
-        """The rows as CSV (atomic; empty cells where there is no period)."""
-        from stickslip.io.atomic import atomic_write_text
-
+    def to_csv(self) -> str:
+        """The rows as CSV text (empty cells where there is no period)."""
         rows = self.rows()
         names = list(rows[0])
         lines = [",".join(names)]
@@ -136,8 +133,7 @@ class ContactContinuation:
             lines.append(",".join("" if r[k] is None else
                                   (repr(r[k]) if isinstance(r[k], float) else str(r[k]).lower()
                                    if isinstance(r[k], bool) else str(r[k])) for k in names))
-        atomic_write_text(path, "\n".join(lines) + "\n")
-        return Path(path)
+        return "\n".join(lines) + "\n"
 
     def summary(self) -> str:
         """A few lines: the points and the branches."""
