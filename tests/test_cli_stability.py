@@ -93,15 +93,18 @@ def test_bad_contact_is_refused_in_one_line(tmp_path: Path, capsys: pytest.Captu
     assert str(path) in err
 
 
-@pytest.mark.parametrize("command", ["cycles", "basin", "design", "continue"])
-def test_other_commands_refuse_normal_coupling(command: str, capsys: pytest.CaptureFixture[str]) -> None:
+# cycles, basin and continue run a contact machine (tests/test_contact_cycles_basin.py)
+@pytest.mark.parametrize("command", ["design", "map"])
+def test_other_commands_refuse_normal_coupling(command: str, tmp_path: Path,
+                                               capsys: pytest.CaptureFixture[str]) -> None:
     args = [command, "--config", str(BRAKE_PAD / "machine.toml")]
-    if command == "continue":
-        args += ["--param", "speed", "--range", "1:2"]
+    if command == "map":
+        args += ["--speed", "1:2:3", "--load", "10:20:3", "--out", str(tmp_path / "m.nc")]
     code, out, err = run_cli(args, capsys)
     assert code == 2, (out, err)
     assert err.count("\n") == 1
-    assert "runs in `stickslip simulate` and `stickslip stability` only in this version" in err
+    assert ("runs in `stickslip simulate`, `stability`, `cycles`, `basin` and `continue` only "
+            "in this version") in err
 
 
 def test_a_file_without_contact_reads_as_before_and_a_contact_table_alone_is_refused(
@@ -111,8 +114,8 @@ def test_a_file_without_contact_reads_as_before_and_a_contact_table_alone_is_ref
     flat = tmp_path / "flat.toml"
     flat.write_text('mu_s = 0.5\nmu_k = 0.4\nload = "1 kN"\nspeed = "1 m/s"\nm = "1 kg"\n'
                     'k = "1e6 N/m"\nc = "40 N*s/m"\n\n[contact]\ntangential_stiffness = "1e8 N/m"\n')
-    code, _, err = run_cli(["cycles", "--config", str(flat)], capsys)
-    assert code == 2 and "`stickslip simulate` and `stickslip stability` only" in err
+    code, _, err = run_cli(["design", "--config", str(flat)], capsys)
+    assert code == 2 and "`cycles`, `basin` and `continue` only" in err
 
 
 def test_flat_machine_without_contact_has_no_coupling(tmp_path: Path,
@@ -149,7 +152,7 @@ def test_the_apps_machine_builder_refuses_normal_coupling_too() -> None:
 
     machine_file = read_machine_file(BRAKE_PAD / "machine.toml")
     values = {"mu_s": 0.5, "mu_k": 0.4, "load": 1000.0, "speed": 5.0}
-    with pytest.raises(ValueError, match="`stickslip simulate` and `stickslip stability` only"):
+    with pytest.raises(ValueError, match="`cycles`, `basin` and `continue` only"):
         machine_from_file(machine_file, values)
     machine, reduction = machine_from_file(machine_file, values, normal_coupling=True)
     assert machine.n_dof == 2 and reduction is None

@@ -143,7 +143,15 @@ def basin(
     if config is not None:
         from stickslip.cli.machine_config import load_machine_file
 
-        machine_file = load_machine_file(config)
+        machine_file = load_machine_file(config, normal_coupling=True)
+        if machine_file.has_contact and not machine_file.has_memory_law:
+            _contact_basin(ctx, config, machine_file, samples=samples, seed=seed, box=box,
+                           initial_states=initial_states, t_max=t_max, workers=workers,
+                           out=out, overwrite=overwrite, json=json)
+            return
+        from stickslip.cli.machine_config import refuse_contact_with_memory
+
+        refuse_contact_with_memory(machine_file)
         if machine_file.has_memory_law:  # one stiff run per start, in SI
             _memory_basin(ctx, machine_file, config, samples=samples, seed=seed, box=box,
                           initial_states=initial_states, out=out, plot=plot,
@@ -235,6 +243,78 @@ def basin(
         print_json(payload)
         return
     _print_summary(payload)
+
+
+def _contact_basin(ctx: typer.Context, config: Path, machine_file: Any, *, samples: int,
+                   seed: int, box: str | None, initial_states: Path | None, t_max: float,
+                   workers: int | None, out: Path | None, overwrite: bool, json: bool) -> None:
+    """``basin --config`` with a contact (:func:`contact_basin`): ``labels.csv`` under --out."""
+    import numpy as np
+
+    from stickslip.cli.contact_commands import DEFAULT_WORKERS, progress_bar, refuse_options, typed_options
+    from stickslip.cli.contact_simulation import contact_run_system
+    from stickslip.sweep.contact_basin import (
+        columns,
+        contact_basin,
+        default_box,
+        sample_contact_box,
+    )
+
+    refuse_options(ctx, ("backend", "scheduler", "plot"), "basin")
+    if box is not None and initial_states is not None:
+        raise BadInput("give either --box (sampling) or --initial-states, not both")
+    if workers is not None and not 1 <= workers <= 64:
+        raise BadInput(f"--workers {workers} must be from 1 to 64")
+    if not t_max > 0.0:
+        raise BadInput(f"--t-max {t_max:g} must be positive (natural times of the contact DOF)")
+    labels = None if out is None else out / "labels.csv"
+    if labels is not None:
+        check_output_path(labels, overwrite=overwrite, option="--out")
+    system, machine = contact_run_system(config, machine_file)
+    typed_t_max = bool(typed_options(ctx, ("t_max",)))
+    horizon = t_max / system.omega_ref if typed_t_max else None
+    names = columns(system)
+    try:
+        if initial_states is not None:
+            _, _, values = read_states(initial_states, list(names))
+            starts = np.array(values, dtype=np.float64)
+        else:
+            intervals = parse_box(box) if box is not None else default_box(system)
+            starts = sample_contact_box(system, samples, intervals, seed)
+        with progress_bar(json, f"basin {len(starts)} starts (contact)", "samples") as bar:
+            result = contact_basin(system, starts, t_max=horizon, workers=workers or DEFAULT_WORKERS,
+                                   progress=bar)
+    except BadInput:
+        raise
+    except ValueError as exc:
+        raise BadInput(f"{machine_file.label}: {exc}") from None
+    payload = result.to_dict()
+    payload.update({"config": str(config), "machine": machine.name, "labels": None,
+                    "t_max_s": horizon})
+    if labels is not None:
+        from stickslip.io.lock import output_lock
+
+        labels.parent.mkdir(parents=True, exist_ok=True)
+        with output_lock(labels):
+            payload["labels"] = str(result.write_labels(labels))
+    if json:
+        print_json(payload)
+        return
+    fr, se = payload["fractions"], payload["standard_errors"]
+    parts = [f"{k} {fr[k]:.4f} +- {se[k]:.4f}" for k in fr if fr[k] > 0.0]
+    lines = [f"basin       {machine.name}: {system.n_dof} DOF, contact on DOF "
+             f"{system.tangential_dof}, starts around {payload['base']} over "
+             f"{', '.join(names)} (SI)",
+             f"samples     {payload['n']} in {payload['elapsed_s']:.2f} s (one engine run each)",
+             f"fractions   {', '.join(parts)} (binomial standard errors)"]
+    for kind, (lo, hi) in payload["period_range_s"].items():
+        lines.append(f"periods     {kind}: {lo:.6g} to {hi:.6g} s")
+    for why, count in payload["undetermined_by"].items():
+        lines.append(f"undecided   {count}: {why}")
+    lines.append("verdicts    periodic ones observed (a state repeated to 1e-9), not proven")
+    if payload["labels"]:
+        lines.append(f"labels      {payload['labels']}")
+    typer.echo("\n".join(lines))
 
 
 def _memory_basin(ctx: typer.Context, machine_file: Any, config: Path, *, samples: int, seed: int,

@@ -10,6 +10,10 @@ import typer
 from stickslip.cli.console import BadInput, check_figure_path, check_output_path, parse_dva, print_json
 from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE, OVERWRITE, PLOT
 
+#: ``--points`` typed for a machine without a contact.
+POINTS_REFUSED = ("--points is for a [contact] machine (followed by runs); other machines are "
+                  "continued by steps (--max-steps)")
+
 
 def continue_branches(
     ctx: typer.Context,
@@ -30,7 +34,11 @@ def continue_branches(
     seeds: Annotated[int, typer.Option("--seeds", help="random starts of the cycle search")] = 12,
     max_period: Annotated[int, typer.Option("--max-period", help="longest cycle, in stick phases")] = 2,
     max_steps: Annotated[int, typer.Option("--max-steps", help="steps per branch (bound)")] = 400,
-    out: Annotated[Path | None, typer.Option("--out", help="write the branches as netCDF here")] = None,
+    points: Annotated[int | None, typer.Option(
+        "--points", help="with a [contact] machine: parameter values, log-spaced, ends included "
+        "(default 25)")] = None,
+    out: Annotated[Path | None, typer.Option("--out", help="write the branches as netCDF here (a "
+                                             "[contact] machine: .csv or .json)")] = None,
     plot: PLOT = None,
     overwrite: OVERWRITE = False,
     json: JSON = False,
@@ -40,6 +48,9 @@ def continue_branches(
     Example: stickslip continue --param lam --range 0.5:5 --zeta 0.1 --dva none --json
 
     Your machine: stickslip continue --config machine.toml --param speed --range '1 mm/s:20 mm/s'
+
+    With a [contact] (attractors followed by runs): stickslip continue --config machine.toml
+    --param speed --range '1 cm/s:10 cm/s' --points 25 --out branches.csv --plot branches.png
     """
     from stickslip.analysis.continuation import (
         MACHINE_PARAMETERS,
@@ -56,11 +67,22 @@ def continue_branches(
     if config is not None:
         from stickslip.cli.machine_config import load_machine_file
 
-        machine_file = load_machine_file(config)
+        machine_file = load_machine_file(config, normal_coupling=True)
+        if machine_file.has_contact and not machine_file.has_memory_law:
+            _contact_continuation(ctx, config, machine_file, param, range_, points=points,
+                                  out=out, plot=plot, overwrite=overwrite, json=json)
+            return
+        from stickslip.cli.machine_config import refuse_contact_with_memory
+
+        refuse_contact_with_memory(machine_file)
+        if points is not None:
+            raise BadInput(POINTS_REFUSED)
         if machine_file.has_memory_law:  # shooting continuation in the drive speed
             _memory_continuation(ctx, machine_file, param, range_, out=out, plot=plot,
                                  overwrite=overwrite, json=json)
             return
+    if points is not None:
+        raise BadInput(POINTS_REFUSED)
     allowed = PARAMETERS if config is None else tuple(MACHINE_PARAMETERS)
     if param not in allowed:
         raise BadInput(f"--param {param!r} is not one of {', '.join(allowed)}"
@@ -105,6 +127,64 @@ def continue_branches(
         print_json(payload)
         return
     _print(result.summary(), payload)
+
+
+def _contact_continuation(ctx: typer.Context, config: Path, machine_file: Any, param: str,
+                          range_: str, *, points: int | None, out: Path | None,
+                          plot: Path | None, overwrite: bool, json: bool) -> None:
+    """``continue --config`` with a contact (:func:`continue_contact`): ``--out`` .csv or .json."""
+    from stickslip.analysis.contact_continuation import (
+        DEFAULT_POINTS,
+        MAX_POINTS,
+        PARAMETERS,
+        continue_contact,
+    )
+    from stickslip.cli.contact_commands import DEFAULT_WORKERS, progress_bar, refuse_options
+    from stickslip.cli.contact_simulation import contact_run_system
+    from stickslip.io.atomic import atomic_write_text
+
+    refuse_options(ctx, ("seeds", "max_period", "max_steps"), "continue")
+    if param not in PARAMETERS:
+        raise BadInput(f"--param {param!r}: a [contact] machine is continued in "
+                       f"{' or '.join(PARAMETERS)} (--param speed or --param load)")
+    lo, hi = _parse_range(range_, param)
+    if not lo > 0.0:
+        raise BadInput(f"--range {range_!r}: {param} must be positive")
+    n = DEFAULT_POINTS if points is None else points
+    if not 2 <= n <= MAX_POINTS:
+        raise BadInput(f"--points {n} must be from 2 to {MAX_POINTS}")
+    if out is not None:
+        if out.suffix.lower() not in (".csv", ".json"):
+            raise BadInput(f"--out {str(out)!r} must end in .csv or .json with a [contact] machine")
+        check_output_path(out, overwrite=overwrite, option="--out")
+    if plot is not None:
+        check_figure_path(plot, overwrite=overwrite)
+    system, machine = contact_run_system(config, machine_file)
+    try:
+        with progress_bar(json, f"continue {param}: {2 * n} runs") as bar:
+            result = continue_contact(system, param, (lo, hi), points=n,
+                                      workers=DEFAULT_WORKERS, progress=bar)
+    except ValueError as exc:
+        raise BadInput(f"{machine_file.label}: {exc}") from None
+    payload = result.to_dict()
+    payload.update({"config": str(config), "machine": machine.name, "out": None, "plot": None})
+    if out is not None:
+        if out.suffix.lower() == ".csv":
+            atomic_write_text(out, result.to_csv())
+        else:
+            import json as json_module
+
+            atomic_write_text(out, json_module.dumps(result.to_dict(), allow_nan=False) + "\n")
+        payload["out"] = str(out)
+    if plot is not None:
+        payload["plot"] = str(result.plot().savefig(plot))
+    if json:
+        print_json(payload)
+        return
+    lines = [f"machine     {machine.name}: {system.n_dof} DOF, contact on DOF "
+             f"{system.tangential_dof}", result.summary()]
+    lines += [f"{key}: {payload[key]}" for key in ("out", "plot") if payload[key]]
+    typer.echo("\n".join(lines))
 
 
 def _memory_continuation(ctx: typer.Context, machine_file: Any, param: str, range_: str, *,

@@ -53,7 +53,13 @@ def cycles(
     if config is not None:
         from stickslip.cli.machine_config import load_machine_file
 
-        machine_file = load_machine_file(config)
+        machine_file = load_machine_file(config, normal_coupling=True)
+        if machine_file.has_contact and not machine_file.has_memory_law:
+            from stickslip.cli.contact_commands import contact_cycles_command
+
+            contact_cycles_command(ctx, config, machine_file, json=json)
+            return
+        _refuse_contact(machine_file)
         if machine_file.has_memory_law:  # the stiff engine's runs from kicked starts
             _memory_cycles(machine_file, config, json)
             return
@@ -79,6 +85,13 @@ def cycles(
         print_json(payload)
         return
     _print(payload)
+
+
+def _refuse_contact(machine_file: Any) -> None:
+    """A contact beside a law with memory: one line (no engine has both)."""
+    from stickslip.cli.machine_config import refuse_contact_with_memory
+
+    refuse_contact_with_memory(machine_file)
 
 
 def _memory_cycles(machine_file: Any, config: Path, json: bool) -> None:

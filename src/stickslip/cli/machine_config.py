@@ -48,8 +48,8 @@ def load_machine_file(config: Path, *, normal_coupling: bool = False) -> Machine
 
     Every ``--config`` command passes here, so here a ``[contact]`` table or a ``[structure]
     normal_dof`` is refused (:data:`stickslip.model.contact.NOT_SUPPORTED`) unless the command
-    says it uses them (``normal_coupling=True``: ``stickslip stability`` and ``stickslip
-    simulate``), rather than ignored.
+    says it uses them (``normal_coupling=True``: ``stickslip stability``, ``simulate``,
+    ``cycles``, ``basin`` and ``continue``), rather than ignored.
     """
     from stickslip.io.machine_file import read_machine_file
     from stickslip.model.contact import NOT_SUPPORTED

@@ -32,9 +32,12 @@ This module holds the :class:`Contact` object (SI, checked at construction) and 
 from a TOML table, :func:`contact_from_table` (units as everywhere in machine files).
 Which commands use it: ``stickslip simulate`` (time histories with stick, slip and
 separation on the exact contact engine, :mod:`stickslip.analysis.contact_engine`; the
-Jenkins element too) and ``stickslip stability`` (the complex-eigenvalue analysis of steady
-sliding, :mod:`stickslip.analysis.complex_eigenvalues`; without the Jenkins element). Every
-other command refuses such a machine in one line (:data:`NOT_SUPPORTED`).
+Jenkins element too), ``stickslip stability`` (the complex-eigenvalue analysis of steady
+sliding, :mod:`stickslip.analysis.complex_eigenvalues`; without the Jenkins element) and
+``stickslip cycles``, ``basin`` and ``continue`` (runs of the contact engine:
+:mod:`stickslip.analysis.contact_cycles`, :mod:`stickslip.sweep.contact_basin`,
+:mod:`stickslip.analysis.contact_continuation`). Every other command refuses such a machine in
+one line (:data:`NOT_SUPPORTED`).
 """
 
 from __future__ import annotations
@@ -57,8 +60,8 @@ CONTACT_KEYS: dict[str, str] = {
 
 #: The one line every command but ``simulate`` and ``stability`` gives for a machine with a contact.
 NOT_SUPPORTED = ("a machine with its contact ([structure] normal_dof and the [contact] table) runs "
-                 "in `stickslip simulate` and `stickslip stability` only in this version; remove "
-                 "them to run this command")
+                 "in `stickslip simulate`, `stability`, `cycles`, `basin` and `continue` only in "
+                 "this version; remove them to run this command")
 
 #: Why ``stickslip stability`` (and the web app's machine page) has no analysis of a Jenkins
 #: element: the sentence both say, after the file's name.

@@ -1,0 +1,67 @@
+"""``cycles``, ``basin`` and ``continue`` with ``--config`` for a machine with its contact.
+
+A machine file's ``[structure] normal_dof`` and ``[contact]`` table (or a flat file's paper
+slider with a ``[contact] tangential_stiffness``) run on the exact contact engine
+(:mod:`stickslip.analysis.contact_engine`). Its periodic verdicts are observed (a state
+repeated to 1e-9), not proven; every answer says so.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Any
+
+import typer
+
+from stickslip.cli.console import BadInput, print_json
+
+#: Worker processes by default (the engine holds the GIL; a pool only for costly runs).
+DEFAULT_WORKERS = 2
+
+
+def typed_options(ctx: typer.Context, names: tuple[str, ...]) -> list[str]:
+    """The options among ``names`` given on the command line, as flags."""
+    from click.core import ParameterSource
+
+    return [f"--{n.replace('_', '-')}" for n in names
+            if ctx.get_parameter_source(n) is ParameterSource.COMMANDLINE]
+
+
+def refuse_options(ctx: typer.Context, names: tuple[str, ...], command: str) -> None:
+    """Options that the contact engine does not take, typed: one line."""
+    typed = typed_options(ctx, names)
+    if typed:
+        raise BadInput(f"{', '.join(typed)} cannot be given to `{command}` with a [contact] "
+                       "machine (it runs the exact contact engine)")
+
+
+def progress_bar(json: bool, label: str, unit: str = "runs") -> Any:
+    """The progress bar on a terminal (not with --json)."""
+    from stickslip.cli.progress import ProgressBar
+
+    return ProgressBar(not json and sys.stderr.isatty(), label, unit=unit)
+
+
+def contact_cycles_command(ctx: typer.Context, config: Path, machine_file: Any, *,
+                           json: bool) -> None:
+    """``cycles --config`` with a contact (:func:`find_contact_cycles`)."""
+    from stickslip.analysis.contact_cycles import find_contact_cycles
+    from stickslip.cli.contact_simulation import contact_run_system
+
+    refuse_options(ctx, ("seeds", "max_period", "seed"), "cycles")
+    system, machine = contact_run_system(config, machine_file)
+    try:
+        with progress_bar(json, "cycles: 8 starts") as bar:
+            result = find_contact_cycles(system, workers=DEFAULT_WORKERS, progress=bar)
+    except ValueError as exc:
+        raise BadInput(f"{machine_file.label}: {exc}") from None
+    payload = result.to_dict()
+    payload.update({"config": str(config), "machine": machine.name, "n_dof": system.n_dof,
+                    "contact_dof": system.tangential_dof, "normal_dof": system.normal_dof})
+    if json:
+        print_json(payload)
+        return
+    typer.echo(f"machine     {machine.name}: {system.n_dof} DOF, contact on DOF "
+               f"{system.tangential_dof}, normal DOF "
+               f"{'-' if system.normal_dof is None else system.normal_dof}\n" + result.summary())
