@@ -180,7 +180,7 @@ class ContactSystem:
         changes = {name: float(value) for name, value in
                    (("speed", speed), ("load", load), ("mu_s", mu_s), ("mu_k", mu_k))
                    if value is not None}
-        return replace(self, **changes)
+        return replace(self, **changes)  # type: ignore[arg-type]
 
     def mode(self, mode: int) -> ModeSystem:
         """The affine system of ``mode`` (built once)."""
