@@ -17,7 +17,9 @@ from __future__ import annotations
 
 import math
 import multiprocessing
+import os
 import signal
+import sys
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -98,9 +100,23 @@ def run_point(system: ContactSystem, speed: float, load: float, t_max: float | N
                         bool(run.separated), run.certificate, len(run.events))
 
 
-def _ignore_sigint() -> None:
-    """Pool initializer: Ctrl-C is the parent's to handle (it ends the workers)."""
+def _init_worker() -> None:
+    """Pool initializer: Ctrl-C is the parent's to handle (it ends the workers).
+
+    A forked worker also gets stdout and stderr objects of its own (on the same descriptors):
+    the parent's may have been locked by another of its threads (a progress bar's refresh) at
+    the fork, and a warning written through them would then wait forever.
+    """
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    for name in ("stdout", "stderr"):
+        stream = getattr(sys, f"__{name}__", None)
+        try:
+            fd = stream.fileno() if stream is not None else None
+        except (OSError, ValueError):
+            fd = None
+        if fd is not None:
+            fresh = os.fdopen(os.dup(fd), "w", buffering=1, closefd=True)
+            setattr(sys, name, fresh)
 
 
 def _run_indexed(job: tuple[int, ContactSystem, float, float, float | None, int]
@@ -188,7 +204,7 @@ class ContactPool:
             return [p for p in out if p is not None]
         if self._pool is None:
             self._pool = multiprocessing.get_context(START_METHOD).Pool(
-                self.workers, initializer=_ignore_sigint)
+                self.workers, initializer=_init_worker)
         tasks = [(i, self.system, v, w, self.t_max, self.max_events)
                  for i, (v, w) in enumerate(jobs)]
         for done, (i, point) in enumerate(self._pool.imap_unordered(_run_indexed, tasks), start=1):

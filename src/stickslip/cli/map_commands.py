@@ -189,7 +189,7 @@ def map_command(
     A machine with a [contact] (normal_dof, Jenkins element): each cell is one run of the
     contact engine from start-up (verdict, period, amplitude, separation), in --workers
     processes (default 2). A run costs what one `simulate --config` costs: about 0.05 s for the
-    paper's slider on a Jenkins element, 1 to 10 s for the brake pad (examples/brake_pad).
+    paper's slider on a Jenkins element, 5 to 20 s for the brake pad (examples/brake_pad).
     """
     from stickslip.cli.machine_config import refuse_mix, require_dimensionless
 
@@ -368,7 +368,7 @@ def boundary_command(
 
     A machine with a [contact]: the belt speed (or load) where its start-up verdict changes, by
     a log-spaced scan and bisection of each change, runs in --workers processes (default 2;
-    about 30 runs, 0.05 s each for the paper's slider on a Jenkins element, seconds each for
+    about 30 runs, 0.05 s each for the paper's slider on a Jenkins element, 5 to 20 s each for
     the brake pad):
 
     Example: stickslip boundary --config machine.toml --param speed --range "1 cm/s:1 m/s" --json

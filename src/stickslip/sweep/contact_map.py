@@ -137,8 +137,8 @@ class ContactMap:
         return (f"map {self.speed.size}x{self.load.size} (V, W) {self.machine.get('name')}: V "
                 f"{self.speed.min():.4g} to {self.speed.max():.4g} m/s, W {self.load.min():.4g} to "
                 f"{self.load.max():.4g} N: {parts}; separated in {float(np.mean(self.separated)):.1%}"
-                f"\ncomputed    {self.verdict.size} contact-engine runs in {self.elapsed_s:.2f} s "
-                f"({self.elapsed_s / n:.3g} s per run, wall time)")
+                f"\ncomputed    {self.verdict.size} contact-engine runs in {self.elapsed_s:.2f} s, "
+                f"{n / max(self.elapsed_s, 1e-9):.3g} runs/s")
 
     def plot(self, **kwargs: Any) -> Any:
         """The verdict map, a ``PlotResult`` (:func:`stickslip.plot.contact_map.contact_map_plot`)."""
