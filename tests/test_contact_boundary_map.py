@@ -286,3 +286,34 @@ def test_contact_map_plot_draws_separation(tmp_path: Path) -> None:
     assert labels == ["steady-sliding", "stick-slip", "slip-oscillation", "separated"]
     assert data.fractions()["stick-slip"] == 0.5
     assert result.savefig(tmp_path / "p.png").stat().st_size > 0
+
+
+def test_bisection_splits_at_a_third_verdict_and_stops_at_an_undetermined_one(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    # the search alone, on made-up verdict zones (no engine): stick-slip below 0.028 m/s,
+    # slip-oscillation up to 0.029 (between two scan values: met by the first midpoint),
+    # steady sliding up to 0.2, undetermined up to 0.3, stick-slip above
+    from stickslip.analysis import contact_pool
+    from stickslip.analysis.contact_boundary import contact_boundary
+    from stickslip.analysis.contact_engine import ContactSystem
+    from stickslip.analysis.verdict import Verdict
+
+    def zones(system: object, speed: float, load: float, *_: object) -> contact_pool.ContactPoint:
+        edges = [(0.028, Verdict.STICK_SLIP), (0.029, Verdict.SLIP_OSCILLATION),
+                 (0.2, Verdict.STEADY_SLIDING), (0.3, Verdict.UNDETERMINED)]
+        verdict = next((v for edge, v in edges if speed < edge), Verdict.STICK_SLIP)
+        return contact_pool.ContactPoint(speed, load, verdict, math.nan, math.nan, False, "", 0)
+
+    monkeypatch.setattr(contact_pool, "run_point", zones)
+    system = ContactSystem(np.eye(1), np.array([[0.2]]), np.eye(1), 0, None, 1.0, 0.2, 0.3, 0.2)
+    result = contact_boundary(system, "speed", 0.01, 1.0, n_scan=12, rtol=1e-4, workers=1)
+    found = [(c.below.value, c.above.value, c.is_boundary) for c in result.crossings]
+    assert found == [("stick-slip", "slip-oscillation", True),
+                     ("slip-oscillation", "steady-sliding", True),
+                     ("steady-sliding", "undetermined", False),
+                     ("undetermined", "stick-slip", False)]
+    assert result.crossings[0].value == pytest.approx(0.028, rel=1e-4)
+    assert result.crossings[1].value == pytest.approx(0.029, rel=1e-4)
+    assert [c.value for c in result.crossings[2:]] == [None, None]
+    assert all(c.bracket[0] < 0.2 < c.bracket[1] or c.bracket[0] < 0.3 < c.bracket[1]
+               for c in result.crossings[2:])

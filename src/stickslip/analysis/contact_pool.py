@@ -251,27 +251,5 @@ def run_points(system: ContactSystem, points: Sequence[tuple[float, float]], *,
         return pool.run(jobs, progress)
 
 
-def describe_cost(points: Sequence[ContactPoint], elapsed: float) -> dict[str, Any]:
-    """Runs, wall time and events of a batch, for reports.
-
-    Parameters
-    ----------
-    points : sequence of ContactPoint
-        The runs.
-    elapsed : float
-        Wall time of the batch, s.
-
-    Returns
-    -------
-    dict
-        ``n_runs``, ``elapsed_s``, ``seconds_per_run`` (wall time over runs) and
-        ``max_events`` (the most mode switches of one run).
-    """
-    n = len(points)
-    return {"n_runs": n, "elapsed_s": float(elapsed),
-            "seconds_per_run": float(elapsed) / n if n else None,
-            "max_events": max((p.n_events for p in points), default=0)}
-
-
-__all__ = ["DEFAULT_WORKERS", "MAX_POINTS", "ContactPoint", "ContactPool", "describe_cost", "run_point",
-           "run_points"]
+__all__ = ["DEFAULT_WORKERS", "MAX_POINTS", "START_METHOD", "ContactPoint", "ContactPool",
+           "run_point", "run_points"]
