@@ -93,18 +93,16 @@ def test_bad_contact_is_refused_in_one_line(tmp_path: Path, capsys: pytest.Captu
     assert str(path) in err
 
 
-# cycles, basin and continue run a contact machine (tests/test_contact_cycles_basin.py)
-@pytest.mark.parametrize("command", ["design", "map"])
-def test_other_commands_refuse_normal_coupling(command: str, tmp_path: Path,
-                                               capsys: pytest.CaptureFixture[str]) -> None:
-    args = [command, "--config", str(BRAKE_PAD / "machine.toml")]
-    if command == "map":
-        args += ["--speed", "1:2:3", "--load", "10:20:3", "--out", str(tmp_path / "m.nc")]
-    code, out, err = run_cli(args, capsys)
+# every command but the absorber tuning runs a contact machine (tests/test_contact_*.py)
+def test_tune_refuses_normal_coupling(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path = _copy(tmp_path, extra="")
+    text = path.read_text()
+    path.write_text(text.replace("[contact]", '[absorber]\nmass = "0.01 kg"\nattach_dof = 0\n\n'
+                                 "[contact]"))
+    code, out, err = run_cli(["tune", "--config", str(path)], capsys)
     assert code == 2, (out, err)
     assert err.count("\n") == 1
-    assert ("runs in `stickslip simulate`, `stability`, `cycles`, `basin` and `continue` only "
-            "in this version") in err
+    assert "assumes a rigid contact" in err and "`design`, `map`, `boundary`" in err
 
 
 def test_a_file_without_contact_reads_as_before_and_a_contact_table_alone_is_refused(
@@ -152,7 +150,7 @@ def test_the_apps_machine_builder_refuses_normal_coupling_too() -> None:
 
     machine_file = read_machine_file(BRAKE_PAD / "machine.toml")
     values = {"mu_s": 0.5, "mu_k": 0.4, "load": 1000.0, "speed": 5.0}
-    with pytest.raises(ValueError, match="`cycles`, `basin` and `continue` only"):
+    with pytest.raises(ValueError, match="assumes a rigid contact"):
         machine_from_file(machine_file, values)
     machine, reduction = machine_from_file(machine_file, values, normal_coupling=True)
     assert machine.n_dof == 2 and reduction is None

@@ -29,11 +29,13 @@ DOCS = ROOT / "docs"
 
 #: Substrings of the sample commands that run for more than a few seconds (slow marker): the
 #: Dask basin, the basin maps, 40,000 disturbed starts, the Stribeck cycle search, the maps of
-#: hundreds to thousands of cells, the brake-pad eigenvalue analysis, time histories and cycles
-#: (10-40 s each on this project's loaded 2-core machine; the pad's 8 cycle starts 2.4 min).
+#: hundreds to thousands of cells, the brake-pad eigenvalue analysis, time histories, cycles
+#: and boundary (10-40 s each on this project's loaded 2-core machine; the pad's 8 cycle starts
+#: 2.4 min), the contact machines' maps (a minute or more).
 HEAVY = ("--backend dask", "basin-map", "--samples 40000", "stribeck:vs=0.3333", "map --lam",
          "stability --config", "simulate --config examples/brake_pad",
-         "cycles --config examples/brake_pad")
+         "cycles --config examples/brake_pad", "map --config examples/brake_pad",
+         "boundary --config examples/brake_pad", "map --config examples/jenkins_boundary")
 
 
 @dataclass(frozen=True)

@@ -27,15 +27,16 @@ from stickslip.analysis.frequency_response import response_curves
 from stickslip.analysis.simulation import EngineOptions, SimulationResult, simulate
 from stickslip.analysis.theory import optimal_foundation_fit
 from stickslip.model import Slider, elastic_foundation, rigid_base
-from stickslip.plot import absorber, basin, design, maps, simulation
+from stickslip.plot import absorber, basin, contact_map, design, maps, simulation
 from stickslip.plot.figure import PlotResult
 from stickslip.reproduction.steps_design import EXAMPLE
 from stickslip.sweep import stick_slip_boundary
 from stickslip.sweep.basin import BasinResult, basin_stability, sample_box
 from stickslip.sweep.basin_maps import BasinMap, basin_map
+from stickslip.sweep.contact_map import ContactMap
 from stickslip.sweep.occurrence import OccurrenceMap, occurrence_map
 
-PLOT_MODULES: tuple[ModuleType, ...] = (simulation, absorber, maps, design, basin)
+PLOT_MODULES: tuple[ModuleType, ...] = (simulation, absorber, maps, design, basin, contact_map)
 # arguments that select the data and may be given by position (everything else keyword-only)
 DATA_ARGUMENTS = {"optimal_parameter_plot": 2, "analytic_curves_plot": 2}
 
@@ -111,7 +112,16 @@ def cases(run: SimulationResult, curve: TuningCurve, occurrence: OccurrenceMap, 
         "design_flowchart_plot": (design.design_flowchart_plot, (report,), 1),
         "basin_plot": (basin.basin_plot, (basin_result,), 1),
         "basin_map_plot": (basin.basin_map_plot, (basin_grid,), 1),
+        "contact_map_plot": (contact_map.contact_map_plot, (_contact_grid(),), 1),
     }
+
+
+def _contact_grid() -> ContactMap:
+    """A 2 x 2 contact map (no run: the plot's data only)."""
+    return ContactMap(np.array([0.01, 0.1]), np.array([1.0, 2.0]),
+                      np.array([[1, 1], [0, 3]], dtype=np.int8), np.full((2, 2), np.nan),
+                      np.full((2, 2), np.nan), np.array([[False, True], [False, True]]),
+                      {"name": "probe"})
 
 
 def _public_plot_functions() -> dict[str, Callable[..., Any]]:

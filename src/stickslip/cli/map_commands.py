@@ -185,12 +185,26 @@ def map_command(
     at (V, W):
 
     Example: stickslip map --config machine.toml --speed log:1e-4:0.1:40 --load 10:1000:40 --out vw.nc
+
+    A machine with a [contact] (normal_dof, Jenkins element): each cell is one run of the
+    contact engine from start-up (verdict, period, amplitude, separation), in --workers
+    processes (default 2). A run costs what one `simulate --config` costs: about 0.05 s for the
+    paper's slider on a Jenkins element, 5 to 20 s for the brake pad (examples/brake_pad).
     """
     from stickslip.cli.machine_config import refuse_mix, require_dimensionless
 
     refuse_mix(ctx, machine_file, ("lam", "zeta", "lam_spacing", "zeta_spacing", "dva", "k_scale",
                              "gamma", "friction", "delta"))
     if machine_file is not None:
+        from stickslip.cli.machine_config import load_machine_file
+
+        found = load_machine_file(machine_file, normal_coupling=True)
+        if found.has_contact:  # contact-engine runs in worker processes
+            from stickslip.cli.contact_map_commands import contact_map_command
+
+            contact_map_command(ctx, machine_file, found, speed, load, out=out, t_max=t_max,
+                                csv=csv, plot=plot, overwrite=overwrite, json=json, workers=workers)
+            return
         operating_map_command(machine_file, speed, load, out=out, t_max=t_max, csv=csv, plot=plot,
                               overwrite=overwrite, json=json,
                               execution=(backend, workers, scheduler, chunk_size, scheduler_timeout))
@@ -308,7 +322,10 @@ def _print_map_summary(p: dict[str, Any]) -> None:
 
 
 def boundary_command(
-    zeta: ZETA_SPEC,
+    ctx: typer.Context,
+    zeta: Annotated[str | None, typer.Option(
+        "--zeta", help="zeta grid: start:stop:n, log:start:stop:n or v1,v2,... (>= 0); "
+        "required without --config")] = None,
     zeta_spacing: ZETA_SPACING = None,
     dva: DVA = "none",
     k_scale: K_SCALE = 1.0,
@@ -316,8 +333,11 @@ def boundary_command(
     t_max: T_MAX = None,
     lam_min: Annotated[float, typer.Option("--lam-min", help="lower end of the lambda scan")] = 0.01,
     lam_max: Annotated[float, typer.Option("--lam-max", help="upper end of the lambda scan")] = 100.0,
-    scan: Annotated[int, typer.Option("--scan", help="log-spaced scan points along lambda")] = 48,
-    rtol: Annotated[float, typer.Option("--rtol", help="relative tolerance of each crossing")] = 1e-6,
+    scan: Annotated[int, typer.Option(
+        "--scan", help="log-spaced scan points along lambda (with --config: along --param, "
+        "default 12)")] = 48,
+    rtol: Annotated[float, typer.Option(
+        "--rtol", help="relative tolerance of each crossing (with --config: default 1e-3)")] = 1e-6,
     workers: WORKERS = None,
     out: Annotated[
         Path | None, typer.Option("--out", help="also write the result as netCDF (.nc)")
@@ -331,12 +351,43 @@ def boundary_command(
         str, typer.Option("--criterion", help="startup (the run from start-up, the paper's) or "
                           "existence (a stick-slip cycle exists, whatever the start)")
     ] = "startup",
+    machine_file: Annotated[Path | None, typer.Option(
+        "--config", help="machine.toml with a [contact] (normal_dof, Jenkins element): the "
+        "critical belt speed or load of its start-up runs instead; not with --zeta, --dva, "
+        "--gamma, --friction, --criterion, --lam-min, --lam-max")] = None,
+    param: Annotated[str | None, typer.Option(
+        "--param", help="with --config: speed (belt speed) or load (preload); default speed")] = None,
+    range_text: Annotated[str | None, typer.Option(
+        "--range", help="with --config: A:B with units, e.g. \"1 cm/s:1 m/s\" (a bare number is "
+        "SI); default a decade either side of the file's value")] = None,
     json: JSON = False,
 ) -> None:
     """Critical lambda against zeta: every verdict change, bisected to --rtol (Fig. 11a).
 
     Example: stickslip boundary --zeta 0.01:0.4:8 --dva none --friction linear:0.02 --json
+
+    A machine with a [contact]: the belt speed (or load) where its start-up verdict changes, by
+    a log-spaced scan and bisection of each change, runs in --workers processes (default 2;
+    about 30 runs, 0.05 s each for the paper's slider on a Jenkins element, 5 to 20 s each for
+    the brake pad):
+
+    Example: stickslip boundary --config machine.toml --param speed --range "1 cm/s:1 m/s" --json
     """
+    from stickslip.cli.machine_config import refuse_mix, require_dimensionless
+
+    refuse_mix(ctx, machine_file, ("zeta", "zeta_spacing", "dva", "k_scale", "gamma", "friction",
+                                   "criterion", "lam_min", "lam_max"))
+    if machine_file is not None:
+        from stickslip.cli.contact_map_commands import contact_boundary_command
+
+        contact_boundary_command(ctx, machine_file, param=param, range_text=range_text, scan=scan,
+                                 rtol=rtol, t_max=t_max, workers=workers, json=json)
+        return
+    if param is not None or range_text is not None:
+        raise BadInput("--param and --range search a machine file: give them with --config "
+                       "machine.toml")
+    require_dimensionless(zeta=zeta)
+    assert zeta is not None
     from stickslip.sweep.boundary import stick_slip_boundary
     from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.executors import check_backend

@@ -53,4 +53,6 @@ class ProgressBar:
             self._start_done, self._started = done, now
             return
         rate = (done - self._start_done) / max(now - self._started, 1e-9)
-        self._bar.update(self._task, completed=done, rate=f"{rate:,.0f}")
+        # the total may grow (a boundary search opens brackets as it goes)
+        self._bar.update(self._task, completed=done, total=total,
+                         rate=f"{rate:,.0f}" if rate >= 10.0 else f"{rate:.2g}")

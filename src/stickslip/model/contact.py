@@ -60,8 +60,9 @@ CONTACT_KEYS: dict[str, str] = {
 
 #: The one line every command but ``simulate`` and ``stability`` gives for a machine with a contact.
 NOT_SUPPORTED = ("a machine with its contact ([structure] normal_dof and the [contact] table) runs "
-                 "in `stickslip simulate`, `stability`, `cycles`, `basin` and `continue` only in "
-                 "this version; remove them to run this command")
+                 "in `stickslip simulate`, `stability`, `design`, `map`, `boundary`, `cycles`, "
+                 "`basin` and `continue`; this command (absorber tuning) assumes a rigid contact: "
+                 "remove them to run it")
 
 #: Why ``stickslip stability`` (and the web app's machine page) has no analysis of a Jenkins
 #: element: the sentence both say, after the file's name.

@@ -1,0 +1,255 @@
+"""Many contact-engine runs of one machine at other operating points, in a bounded process pool.
+
+The contact engine (:func:`stickslip.analysis.contact_engine.simulate_contact`) is pure Python
+and holds the GIL, so its runs are spread over worker *processes* (:data:`START_METHOD`), each
+running one operating point after another. A batch of one run, or a pool of one worker, runs
+in this process instead. The workers ignore SIGINT:
+a Ctrl-C reaches the parent alone, which ends every worker (``terminate``) before the
+``KeyboardInterrupt`` goes on, so no worker prints a traceback or outlives the command. With
+one worker the runs happen in this process, one after the other.
+
+Each run starts from the machine's start-up state (:meth:`ContactSystem.startup_state`) at
+``system.at(speed=V, load=W)`` and gives a :class:`ContactPoint`: verdict, period (s),
+amplitude (m), separation.
+"""
+
+from __future__ import annotations
+
+import math
+import multiprocessing
+import os
+import signal
+import sys
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from stickslip.analysis._contact_modes import ContactSystem
+from stickslip.analysis.verdict import Verdict
+
+#: Most runs of one call (each is a full contact-engine run).
+MAX_POINTS = 100_000
+#: Default number of worker processes.
+DEFAULT_WORKERS = 2
+#: How workers start: ``fork`` where there is one (a worker is ready in milliseconds and the
+#: parent runs no threads of its own that the runs need), else ``spawn`` (each worker imports
+#: the package first, 1.5 s or more).
+START_METHOD = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
+
+
+@dataclass(frozen=True)
+class ContactPoint:
+    """The answer of one run at an operating point (SI).
+
+    Attributes
+    ----------
+    speed, load : float
+        Belt speed ``V`` (m/s) and preload ``W`` (N) of the run.
+    verdict : Verdict
+        ``stick-slip``, ``slip-oscillation``, ``steady-sliding`` or ``undetermined``.
+    period_s, amplitude_m : float
+        Period (s) and half peak-to-peak displacement of the contact DOF (m); NaN without a
+        repeating motion.
+    separated : bool
+        True when the contact lifted off at least once.
+    certificate : str
+        How the verdict was decided, or why there is none.
+    n_events : int
+        Mode switches of the run.
+    """
+
+    speed: float
+    load: float
+    verdict: Verdict
+    period_s: float
+    amplitude_m: float
+    separated: bool
+    certificate: str
+    n_events: int
+
+
+def run_point(system: ContactSystem, speed: float, load: float, t_max: float | None = None,
+              max_events: int = 100_000) -> ContactPoint:
+    """One run of ``system.at(speed=speed, load=load)`` from its start-up state.
+
+    Parameters
+    ----------
+    system : ContactSystem
+        The machine (SI).
+    speed, load : float
+        Belt speed (m/s) and preload (N), positive.
+    t_max : float, optional
+        Horizon in natural times ``1 / omega_ref`` of the contact DOF (default that of
+        :func:`~stickslip.analysis.contact_engine.simulate_contact`, 5000).
+    max_events : int
+        Bound on mode switches.
+
+    Returns
+    -------
+    ContactPoint
+        The verdict, period (s), amplitude (m) and separation.
+    """
+    from stickslip.analysis.contact_engine import simulate_contact
+
+    moved = system.at(speed=speed, load=load)
+    horizon = None if t_max is None else t_max / moved.omega_ref
+    run = simulate_contact(moved, t_max=horizon, max_events=max_events)
+    return ContactPoint(float(speed), float(load), run.verdict,
+                        math.nan if run.period_s is None else float(run.period_s),
+                        math.nan if run.amplitude_m is None else float(run.amplitude_m),
+                        bool(run.separated), run.certificate, len(run.events))
+
+
+def _init_worker() -> None:
+    """Pool initializer: Ctrl-C is the parent's to handle (it ends the workers).
+
+    A forked worker also gets stdout and stderr objects of its own (on the same descriptors):
+    the parent's may have been locked by another of its threads (a progress bar's refresh) at
+    the fork, and a warning written through them would then wait forever.
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    for name in ("stdout", "stderr"):
+        stream = getattr(sys, f"__{name}__", None)
+        try:
+            fd = stream.fileno() if stream is not None else None
+        except (OSError, ValueError):
+            fd = None
+        if fd is not None:
+            fresh = os.fdopen(os.dup(fd), "w", buffering=1, closefd=True)
+            setattr(sys, name, fresh)
+
+
+def _run_indexed(job: tuple[int, ContactSystem, float, float, float | None, int]
+                 ) -> tuple[int, ContactPoint]:
+    index, system, speed, load, t_max, max_events = job
+    return index, run_point(system, speed, load, t_max, max_events)
+
+
+def _check_points(points: Sequence[tuple[float, float]]) -> list[tuple[float, float]]:
+    jobs = [(float(v), float(w)) for v, w in points]
+    if len(jobs) > MAX_POINTS:
+        raise ValueError(f"{len(jobs):,} runs is more than {MAX_POINTS:,}")
+    if any(not (math.isfinite(v) and math.isfinite(w) and v > 0.0 and w > 0.0) for v, w in jobs):
+        raise ValueError("every speed (m/s) and load (N) must be positive and finite")
+    return jobs
+
+
+class ContactPool:
+    """Worker processes that run one machine at many operating points (a context manager).
+
+    The processes start at the first batch of more than one run and serve every later batch;
+    leaving the ``with`` block, normally or by an exception (a Ctrl-C), ends them.
+
+    Parameters
+    ----------
+    system : ContactSystem
+        The machine (SI).
+    workers : int
+        Worker processes (1: every run in this process).
+    t_max : float, optional
+        Horizon of each run in natural times of the contact DOF.
+    max_events : int
+        Bound on mode switches of each run.
+    """
+
+    def __init__(self, system: ContactSystem, *, workers: int = DEFAULT_WORKERS,
+                 t_max: float | None = None, max_events: int = 100_000) -> None:
+        if isinstance(workers, bool) or int(workers) != workers or workers < 1:
+            raise ValueError(f"workers = {workers!r} must be a whole number >= 1")
+        self.system = system.at()  # without the caller's mode cache: small to send
+        self.workers = int(workers)
+        self.t_max = t_max
+        self.max_events = max_events
+        self._pool: Any = None
+
+    def __enter__(self) -> ContactPool:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def close(self) -> None:
+        """End the worker processes (a running run is stopped)."""
+        if self._pool is not None:
+            pool, self._pool = self._pool, None
+            pool.terminate()
+            pool.join()
+
+    def run(self, points: Sequence[tuple[float, float]],
+            progress: Callable[[int, int], None] | None = None) -> list[ContactPoint]:
+        """Run the machine at every ``(speed, load)`` of ``points`` (m/s, N).
+
+        Parameters
+        ----------
+        points : sequence of (float, float)
+            Belt speeds (m/s) and preloads (N), each positive and finite.
+        progress : callable, optional
+            ``progress(done, total)`` after each finished run.
+
+        Returns
+        -------
+        list of ContactPoint
+            In the order of ``points``.
+        """
+        jobs = _check_points(points)
+        total = len(jobs)
+        if progress is not None:
+            progress(0, total)
+        out: list[ContactPoint | None] = [None] * total
+        if self.workers == 1 or total <= 1:
+            for i, (v, w) in enumerate(jobs):
+                out[i] = run_point(self.system, v, w, self.t_max, self.max_events)
+                if progress is not None:
+                    progress(i + 1, total)
+            return [p for p in out if p is not None]
+        if self._pool is None:
+            self._pool = multiprocessing.get_context(START_METHOD).Pool(
+                self.workers, initializer=_init_worker)
+        tasks = [(i, self.system, v, w, self.t_max, self.max_events)
+                 for i, (v, w) in enumerate(jobs)]
+        for done, (i, point) in enumerate(self._pool.imap_unordered(_run_indexed, tasks), start=1):
+            out[i] = point
+            if progress is not None:
+                progress(done, total)
+        return [p for p in out if p is not None]
+
+
+def run_points(system: ContactSystem, points: Sequence[tuple[float, float]], *,
+               workers: int = DEFAULT_WORKERS, t_max: float | None = None,
+               max_events: int = 100_000,
+               progress: Callable[[int, int], None] | None = None) -> list[ContactPoint]:
+    """Run the machine at every ``(speed, load)`` of ``points``, ``workers`` runs at a time.
+
+    Parameters
+    ----------
+    system : ContactSystem
+        The machine (SI).
+    points : sequence of (float, float)
+        Belt speeds (m/s) and preloads (N), each positive and finite.
+    workers : int
+        Worker processes (1: in this process); see :class:`ContactPool`.
+    t_max : float, optional
+        Horizon of each run in natural times of the contact DOF.
+    max_events : int
+        Bound on mode switches of each run.
+    progress : callable, optional
+        ``progress(done, total)`` after each finished run.
+
+    Returns
+    -------
+    list of ContactPoint
+        In the order of ``points``.
+
+    Raises
+    ------
+    ValueError
+        Too many points, a speed or load that is not positive and finite, ``workers < 1``.
+    """
+    jobs = _check_points(points)
+    with ContactPool(system, workers=min(int(workers), max(1, len(jobs))), t_max=t_max,
+                     max_events=max_events) as pool:
+        return pool.run(jobs, progress)
+
+
+__all__ = ["DEFAULT_WORKERS", "MAX_POINTS", "START_METHOD", "ContactPoint", "ContactPool",
+           "run_point", "run_points"]
