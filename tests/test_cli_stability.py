@@ -112,8 +112,8 @@ def test_a_file_without_contact_reads_as_before_and_a_contact_table_alone_is_ref
     flat = tmp_path / "flat.toml"
     flat.write_text('mu_s = 0.5\nmu_k = 0.4\nload = "1 kN"\nspeed = "1 m/s"\nm = "1 kg"\n'
                     'k = "1e6 N/m"\nc = "40 N*s/m"\n\n[contact]\ntangential_stiffness = "1e8 N/m"\n')
-    code, _, err = run_cli(["design", "--config", str(flat)], capsys)
-    assert code == 2 and "`cycles`, `basin` and `continue` only" in err
+    code, _, err = run_cli(["tune", "--config", str(flat)], capsys)
+    assert code == 2 and "assumes a rigid contact" in err
 
 
 def test_flat_machine_without_contact_has_no_coupling(tmp_path: Path,

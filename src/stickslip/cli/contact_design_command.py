@@ -23,8 +23,9 @@ NO_ABSORBER = ("the [absorber] is not tuned with a contact in this version (its 
                "[structure] matrices to assess it here")
 
 
-def contact_variants(config: Path, machine_file: Any) -> tuple[dict[str, Any], list[str]]:
-    """The contact systems to assess, by name, and the report's notes."""
+def contact_variants(config: Path, machine_file: Any
+                     ) -> tuple[dict[str, Any], list[str], dict[str, Any] | None]:
+    """The contact systems to assess, by name, the report's notes and the foundation (SI)."""
     from dataclasses import replace
 
     from stickslip.analysis.contact_engine import contact_system
@@ -37,7 +38,7 @@ def contact_variants(config: Path, machine_file: Any) -> tuple[dict[str, Any], l
     if machine_file.has_structure:
         system, _ = contact_run_system(config, machine_file)
         notes = [NO_ABSORBER] if machine_file.absorber_table is not None else []
-        return {"machine": system}, notes
+        return {"machine": system}, notes, None
     physical = config_system(config, normal_coupling=True)
     contact = machine_file.contact()
 
@@ -49,16 +50,19 @@ def contact_variants(config: Path, machine_file: Any) -> tuple[dict[str, Any], l
 
     rigid = replace(physical, foundation=None)
     if physical.foundation is not None:
-        return {"rigid base": with_contact(rigid),
-                "given foundation": with_contact(physical)}, []
+        f = physical.foundation
+        return ({"rigid base": with_contact(rigid), "given foundation": with_contact(physical)},
+                [], {"source": "given", "m_a": f.m_a, "k_a": f.k_a, "c_a": f.c_a})
     zeta = rigid.damping / (2.0 * (rigid.mass * rigid.stiffness) ** 0.5)
     recommended = foundation_to_physical(optimal_foundation_fit(zeta), rigid.mass, rigid.stiffness)
     note = (f"recommended foundation: m_a={recommended.m_a:.4g} kg, k_a={recommended.k_a:.4g} N/m, "
             f"c_a={recommended.c_a:.4g} N s/m, tuned by Eqs. 28-30 for the rigid contact and "
             "assessed here with the contact")
-    return {"rigid base": with_contact(rigid),
-            "recommended foundation": with_contact(replace(physical, foundation=recommended))
-            }, [note]
+    foundation = {"source": "recommended: Eqs. 28-30 for the rigid contact",
+                  "m_a": recommended.m_a, "k_a": recommended.k_a, "c_a": recommended.c_a}
+    return ({"rigid base": with_contact(rigid),
+             "recommended foundation": with_contact(replace(physical, foundation=recommended))},
+            [note], foundation)
 
 
 def contact_design_command(config: Path, machine_file: Any, given: list[str], *,
@@ -70,13 +74,13 @@ def contact_design_command(config: Path, machine_file: Any, given: list[str], *,
     if given:
         raise BadInput(f"{machine_file.label}: {', '.join(given)} cannot be given with a "
                        "[contact]: change the machine file")
-    systems, notes = contact_variants(config, machine_file)
+    systems, notes, foundation = contact_variants(config, machine_file)
     stability = _stability(config, machine_file)
     with DesignProgress(not json and sys.stderr.isatty()) as bar:
         report = design_contact(systems, notes=tuple(notes), progress=bar)
     payload = report.to_dict()
     payload.update({"config": str(config), "machine": machine_file.label,
-                    "stability": stability})
+                    "stability": stability, "foundation": foundation})
     if json:
         print_json(payload)
         return

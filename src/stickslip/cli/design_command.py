@@ -130,11 +130,17 @@ def design(
     options = _engine_options(t_max)
     flags = {"m": m, "k": k, "c": c, "mu_s": mu_s, "mu_k": mu_k, "load": load, "speed": speed,
              "m_a": m_a, "k_a": k_a, "c_a": c_a}
+    given = [f"--{name.replace('_', '-')}" for name, value in flags.items() if value is not None]
+    given += [flag for flag, value in (("--t-max", t_max), ("--max-foundation-deflection",
+                                                            max_foundation_deflection))
+              if value is not None]
+    if config is not None and load_machine_file(config, normal_coupling=True).has_contact:
+        from stickslip.cli.contact_design_command import contact_design_command
+
+        contact_design_command(config, load_machine_file(config, normal_coupling=True), given,
+                               json=json)
+        return
     if config is not None and load_machine_file(config).has_memory_law:
-        given = [f"--{name.replace('_', '-')}" for name, value in flags.items() if value is not None]
-        given += [flag for flag, value in (("--t-max", t_max), ("--max-foundation-deflection",
-                                                                max_foundation_deflection))
-                  if value is not None]
         memory_design_command(config, given, json=json)
         return
     if config is not None and _has_structure(config):
