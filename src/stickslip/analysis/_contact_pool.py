@@ -1,28 +1,25 @@
 """Many runs of the contact engine, in a bounded pool of worker processes, summarised.
 
 The engine (:func:`~stickslip.analysis.contact_engine.simulate_contact`) is pure Python and
-holds the GIL, so independent runs go to processes (``spawn``: no fork of a threaded parent).
-A worker ignores SIGINT: a Ctrl-C reaches the parent alone, which cancels the waiting runs,
-ends its workers and raises ``KeyboardInterrupt`` (the command line prints one line, exit
-130). Each run comes back as a small picklable :class:`ContactOutcome` (not the whole run,
-whose mode cache is large).
+holds the GIL, so independent runs go to worker processes
+(:class:`~stickslip.analysis.contact_pool.WorkerPool`, the contact commands' one pool: its
+workers ignore SIGINT, and a Ctrl-C in the parent ends them before the ``KeyboardInterrupt``
+goes on; the command line prints one line, exit 130). Each run comes back as a small
+picklable :class:`ContactOutcome` (not the whole run, whose mode cache is large).
 """
 
 from __future__ import annotations
 
-import concurrent.futures
-import multiprocessing
-import signal
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from stickslip.analysis._contact_modes import STICK, ContactSystem
 from stickslip.analysis.contact_engine import ContactRun, simulate_contact
+from stickslip.analysis.contact_pool import WorkerPool
 
 FloatArray = NDArray[np.float64]
 
@@ -96,11 +93,6 @@ def run_one(system: ContactSystem, initial: FloatArray | None, t_max: float | No
                                       initial=initial))
 
 
-def _quiet_worker() -> None:
-    """A worker leaves Ctrl-C to its parent (no traceback per process)."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-
-
 def run_many(jobs: Sequence[tuple[ContactSystem, FloatArray | None]], *,
              t_max: float | None = None, max_events: int = 100_000, workers: int = 1,
              progress: Callable[[int, int], None] | None = None,
@@ -108,49 +100,26 @@ def run_many(jobs: Sequence[tuple[ContactSystem, FloatArray | None]], *,
     """Run every ``(system, initial state)`` job; outcomes in the jobs' order.
 
     ``workers = 1`` runs in this process. With more, the first job runs here and is timed: when
-    the others would take longer than ``pool_threshold`` seconds here, they go to a pool of
-    ``workers`` processes (at most one per job), else they run here too (cheap runs: a pool
-    would cost more to start than it saves). ``progress(done, total)`` after each run.
+    the others would take longer than ``pool_threshold`` seconds here, they go to the worker
+    processes of :class:`~stickslip.analysis.contact_pool.WorkerPool` (at most one per job),
+    else they run here too (cheap runs: a pool would cost more to start than it saves).
+    ``progress(done, total)`` after each run.
     """
     if isinstance(workers, bool) or not 1 <= int(workers) <= MAX_WORKERS:
         raise ValueError(f"workers = {workers!r} must be from 1 to {MAX_WORKERS}")
     total = len(jobs)
-    out: list[ContactOutcome | None] = [None] * total
+    out: list[ContactOutcome] = []
     if progress is not None:
         progress(0, total)
     began = time.perf_counter()
     for i, (system, z) in enumerate(jobs):
         if i == 1 and int(workers) > 1 and (time.perf_counter() - began) * (total - 1) > pool_threshold:
             break
-        out[i] = run_one(system, z, t_max, max_events)
+        out.append(run_one(system, z, t_max, max_events))
         if progress is not None:
             progress(i + 1, total)
     else:
-        return [o for o in out if o is not None]
-    first = 1
-    context = multiprocessing.get_context("spawn")
-    pool = concurrent.futures.ProcessPoolExecutor(min(int(workers), total - first), mp_context=context,
-                                                  initializer=_quiet_worker)
-    try:
-        # a fresh copy of each system: its mode cache stays behind
-        futures = {pool.submit(run_one, system.at(), z, t_max, max_events): i
-                   for i, (system, z) in enumerate(jobs) if i >= first}
-        for done, future in enumerate(concurrent.futures.as_completed(futures), start=first + 1):
-            out[futures[future]] = future.result()
-            if progress is not None:
-                progress(done, total)
-    except BaseException:
-        _end(pool)
-        raise
-    pool.shutdown(wait=True)
-    return [o for o in out if o is not None]
-
-
-def _end(pool: Any) -> None:
-    """Cancel what waits and end the workers now (Ctrl-C or a failed run)."""
-    processes = list((getattr(pool, "_processes", None) or {}).values())
-    pool.shutdown(wait=False, cancel_futures=True)
-    for process in processes:
-        process.terminate()
-    for process in processes:
-        process.join(timeout=10)
+        return out
+    rest = [(system.at(), z, t_max, max_events) for system, z in jobs[1:]]  # no mode caches
+    with WorkerPool(min(int(workers), len(rest))) as pool:
+        return out + pool.map(run_one, rest, progress, done=1, total=total)

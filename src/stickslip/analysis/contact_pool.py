@@ -119,12 +119,6 @@ def _init_worker() -> None:
             setattr(sys, name, fresh)
 
 
-def _run_indexed(job: tuple[int, ContactSystem, float, float, float | None, int]
-                 ) -> tuple[int, ContactPoint]:
-    index, system, speed, load, t_max, max_events = job
-    return index, run_point(system, speed, load, t_max, max_events)
-
-
 def _check_points(points: Sequence[tuple[float, float]]) -> list[tuple[float, float]]:
     jobs = [(float(v), float(w)) for v, w in points]
     if len(jobs) > MAX_POINTS:
@@ -132,6 +126,87 @@ def _check_points(points: Sequence[tuple[float, float]]) -> list[tuple[float, fl
     if any(not (math.isfinite(v) and math.isfinite(w) and v > 0.0 and w > 0.0) for v, w in jobs):
         raise ValueError("every speed (m/s) and load (N) must be positive and finite")
     return jobs
+
+
+class WorkerPool:
+    """A bounded pool of worker processes for contact-engine jobs (a context manager).
+
+    The processes start (:data:`START_METHOD`, :func:`_init_worker`) at the first batch of
+    more than one job and serve every later batch; leaving the ``with`` block, normally or by
+    an exception (a Ctrl-C), ends them (``terminate``). One worker, or a batch of one job, runs
+    in this process. The one home of the contact commands' processes (maps, boundaries,
+    cycles, basins, continuation).
+
+    Parameters
+    ----------
+    workers : int
+        Worker processes (1: every job in this process).
+    """
+
+    def __init__(self, workers: int = DEFAULT_WORKERS) -> None:
+        if isinstance(workers, bool) or int(workers) != workers or workers < 1:
+            raise ValueError(f"workers = {workers!r} must be a whole number >= 1")
+        self.workers = int(workers)
+        self._pool: Any = None
+
+    def __enter__(self) -> WorkerPool:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def close(self) -> None:
+        """End the worker processes (a running job is stopped)."""
+        if self._pool is not None:
+            pool, self._pool = self._pool, None
+            pool.terminate()
+            pool.join()
+
+    def map(self, function: Callable[..., Any], jobs: Sequence[tuple[Any, ...]],
+            progress: Callable[[int, int], None] | None = None, done: int = 0,
+            total: int | None = None) -> list[Any]:
+        """``function(*job)`` for every job, in the jobs' order.
+
+        Parameters
+        ----------
+        function : callable
+            A module-level function (picklable), run in the workers.
+        jobs : sequence of tuple
+            Its arguments, one tuple per job (picklable).
+        progress : callable, optional
+            ``progress(done + finished, total)`` after each finished job.
+        done, total : int
+            Jobs finished before this batch and in all (default: this batch's count).
+
+        Returns
+        -------
+        list
+            The results.
+        """
+        count = len(jobs)
+        total = done + count if total is None else total
+        out: list[Any] = [None] * count
+        if self.workers == 1 or count <= 1:
+            for i, job in enumerate(jobs):
+                out[i] = function(*job)
+                if progress is not None:
+                    progress(done + i + 1, total)
+            return out
+        if self._pool is None:
+            self._pool = multiprocessing.get_context(START_METHOD).Pool(
+                self.workers, initializer=_init_worker)
+        tasks = [(i, function, job) for i, job in enumerate(jobs)]
+        for finished, (i, value) in enumerate(self._pool.imap_unordered(_call_indexed, tasks),
+                                              start=1):
+            out[i] = value
+            if progress is not None:
+                progress(done + finished, total)
+        return out
+
+
+def _call_indexed(task: tuple[int, Callable[..., Any], tuple[Any, ...]]) -> tuple[int, Any]:
+    index, function, job = task
+    return index, function(*job)
 
 
 class ContactPool:
@@ -154,13 +229,15 @@ class ContactPool:
 
     def __init__(self, system: ContactSystem, *, workers: int = DEFAULT_WORKERS,
                  t_max: float | None = None, max_events: int = 100_000) -> None:
-        if isinstance(workers, bool) or int(workers) != workers or workers < 1:
-            raise ValueError(f"workers = {workers!r} must be a whole number >= 1")
         self.system = system.at()  # without the caller's mode cache: small to send
-        self.workers = int(workers)
         self.t_max = t_max
         self.max_events = max_events
-        self._pool: Any = None
+        self._workers = WorkerPool(workers)
+
+    @property
+    def workers(self) -> int:
+        """Worker processes."""
+        return self._workers.workers
 
     def __enter__(self) -> ContactPool:
         return self
@@ -170,10 +247,7 @@ class ContactPool:
 
     def close(self) -> None:
         """End the worker processes (a running run is stopped)."""
-        if self._pool is not None:
-            pool, self._pool = self._pool, None
-            pool.terminate()
-            pool.join()
+        self._workers.close()
 
     def run(self, points: Sequence[tuple[float, float]],
             progress: Callable[[int, int], None] | None = None) -> list[ContactPoint]:
@@ -191,27 +265,10 @@ class ContactPool:
         list of ContactPoint
             In the order of ``points``.
         """
-        jobs = _check_points(points)
-        total = len(jobs)
+        jobs = [(self.system, v, w, self.t_max, self.max_events) for v, w in _check_points(points)]
         if progress is not None:
-            progress(0, total)
-        out: list[ContactPoint | None] = [None] * total
-        if self.workers == 1 or total <= 1:
-            for i, (v, w) in enumerate(jobs):
-                out[i] = run_point(self.system, v, w, self.t_max, self.max_events)
-                if progress is not None:
-                    progress(i + 1, total)
-            return [p for p in out if p is not None]
-        if self._pool is None:
-            self._pool = multiprocessing.get_context(START_METHOD).Pool(
-                self.workers, initializer=_init_worker)
-        tasks = [(i, self.system, v, w, self.t_max, self.max_events)
-                 for i, (v, w) in enumerate(jobs)]
-        for done, (i, point) in enumerate(self._pool.imap_unordered(_run_indexed, tasks), start=1):
-            out[i] = point
-            if progress is not None:
-                progress(done, total)
-        return [p for p in out if p is not None]
+            progress(0, len(jobs))
+        return self._workers.map(run_point, jobs, progress)
 
 
 def run_points(system: ContactSystem, points: Sequence[tuple[float, float]], *,
@@ -252,4 +309,4 @@ def run_points(system: ContactSystem, points: Sequence[tuple[float, float]], *,
 
 
 __all__ = ["DEFAULT_WORKERS", "MAX_POINTS", "START_METHOD", "ContactPoint", "ContactPool",
-           "run_point", "run_points"]
+           "WorkerPool", "run_point", "run_points"]

@@ -69,7 +69,7 @@ def contact_design_command(config: Path, machine_file: Any, given: list[str], *,
                            json: bool) -> None:
     """Print (or ``--json``) the contact machine's design report."""
     from stickslip.analysis.contact_design import design_contact
-    from stickslip.cli.design_command import DesignProgress
+    from stickslip.cli.progress import DesignProgress
 
     if given:
         raise BadInput(f"{machine_file.label}: {', '.join(given)} cannot be given with a "

@@ -56,3 +56,37 @@ class ProgressBar:
         # the total may grow (a boundary search opens brackets as it goes)
         self._bar.update(self._task, completed=done, total=total,
                          rate=f"{rate:,.0f}" if rate >= 10.0 else f"{rate:.2g}")
+
+
+class DesignProgress:
+    """The design procedure's progress on stderr: its stage, the simulations made, the time spent.
+
+    Drawn with rich as the map command's bar is, and only on a terminal; the stage count is
+    open-ended (each search stops when it has bracketed its onset), so it shows runs, not a
+    fraction.
+    """
+
+    def __init__(self, enabled: bool) -> None:
+        self.enabled = enabled
+        self._bar: Any = None
+        self._task: Any = None
+
+    def __enter__(self) -> DesignProgress:
+        if self.enabled:
+            from rich.console import Console
+            from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+
+            self._bar = Progress(SpinnerColumn(), TextColumn("design: {task.description}"),
+                                 TextColumn("{task.completed:.0f} runs"), TimeElapsedColumn(),
+                                 console=Console(stderr=True), transient=True)
+            self._bar.__enter__()
+            self._task = self._bar.add_task("starting", total=None)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self._bar is not None:
+            self._bar.__exit__(*exc)
+
+    def __call__(self, stage: str, runs: int) -> None:
+        if self._bar is not None:
+            self._bar.update(self._task, description=stage, completed=runs)
