@@ -73,3 +73,24 @@ def test_design_flags_refused_with_memory(tmp_path: Path,
         lines = [line for line in err.splitlines() if line.startswith("stickslip: error:")]
         assert code != 0 and out == "" and len(lines) == 1 and "Traceback" not in err
         assert extra[0] in lines[0] and "friction law with memory" in lines[0]
+
+
+def test_boundary_config_with_memory_is_rice_ruina(tmp_path: Path,
+                                                   capsys: pytest.CaptureFixture[str]) -> None:
+    # the 1-DOF rate-and-state slider: k = k_c(V) gives V_c^2 = (N a d_c/m)(k d_c/(N (b - a)) - 1)
+    # (Rice and Ruina 1983), unstable above it; along the load N_c = 6 N (first test above)
+    k, m, a, b, d_c, n = 8000.0, 1.0, 0.01, 0.015, 1e-5, 10.0
+    v_c = (n * a * d_c / m * (k * d_c / (n * (b - a)) - 1.0)) ** 0.5
+    path = str(machine_file(tmp_path, RATE_STATE))
+    code, out, err = run_cli(["boundary", "--config", path, "--json"], capsys)
+    assert code == 0, err
+    (crossing,) = json.loads(out)["crossings"]
+    assert crossing["value_SI"] == pytest.approx(v_c, rel=1e-9)
+    assert (crossing["below"], crossing["above"]) == ("stable", "unstable")
+    code, out, err = run_cli(["boundary", "--config", path, "--param", "load", "--range",
+                              "1 N:100 N", "--json"], capsys)
+    assert code == 0, err
+    (crossing,) = json.loads(out)["crossings"]
+    assert crossing["value_SI"] == pytest.approx(6.0, rel=1e-9)
+    code, out, err = run_cli(["boundary", "--config", path, "--rtol", "1e-3"], capsys)
+    assert code == 2 and "--rtol" in err and len(err.strip().splitlines()) == 1

@@ -147,22 +147,14 @@ def contact_map_command(ctx: typer.Context, config: Path, machine_file: MachineF
                                              if payload[key]))
 
 
-def _parse_range(text: str | None, param: str, value: float) -> tuple[float, float]:
-    """``--range A:B`` with units (a bare number is SI); default a decade either side."""
-    from stickslip.model.units import to_si
+def decade_range(text: str | None, param: str, value: float) -> tuple[float, float]:
+    """``--range A:B`` with units (a bare number is SI); default a decade either side of
+    ``value``."""
+    from stickslip.cli.options import parse_range
 
     if text is None:
         return value / 10.0, value * 10.0
-    parts = text.split(":")
-    if len(parts) != 2:
-        raise BadInput(f"--range {text!r} must be A:B, e.g. \"1 cm/s:1 m/s\" or 0.01:1 (SI)")
-    try:
-        lo, hi = (to_si(param, part.strip(), source="--range") for part in parts)
-    except ValueError as exc:
-        raise BadInput(str(exc)) from None
-    if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo < hi):
-        raise BadInput(f"--range {text!r} must be positive and finite with A < B")
-    return lo, hi
+    return parse_range(text, param, positive=True)
 
 
 def contact_boundary_command(ctx: typer.Context, config: Path, *, param: str | None,
@@ -195,7 +187,7 @@ def contact_boundary_command(ctx: typer.Context, config: Path, *, param: str | N
         raise BadInput(f"--rtol {rtol!r} must be between 0 and 1")
     n_workers, horizon = _workers(workers), _t_max(t_max)
     system, machine = contact_system_of(config, machine_file)
-    lo, hi = _parse_range(range_text, param, system.speed if param == "speed" else system.load)
+    lo, hi = decade_range(range_text, param, system.speed if param == "speed" else system.load)
     from stickslip.cli.progress import ProgressBar
 
     enabled = not json and sys.stderr.isatty()

@@ -8,7 +8,7 @@ from typing import Annotated, Any
 import typer
 
 from stickslip.cli.console import BadInput, check_figure_path, check_output_path, parse_dva, print_json
-from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE, OVERWRITE, PLOT
+from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE, OVERWRITE, PLOT, parse_range
 
 #: ``--points`` typed for a machine without a contact.
 POINTS_REFUSED = ("--points is for a [contact] machine (followed by runs); other machines are "
@@ -87,7 +87,7 @@ def continue_branches(
     if param not in allowed:
         raise BadInput(f"--param {param!r} is not one of {', '.join(allowed)}"
                        + ("" if config is None else " (a machine file's parameters)"))
-    lo, hi = _parse_range(range_, param if config is not None else None)
+    lo, hi = parse_range(range_, param if config is not None else None)
     if not 1 <= seeds <= 10_000:
         raise BadInput(f"--seeds {seeds} must be from 1 to 10000")
     if not 1 <= max_period <= 8:
@@ -147,7 +147,7 @@ def _contact_continuation(ctx: typer.Context, config: Path, machine_file: Any, p
     if param not in PARAMETERS:
         raise BadInput(f"--param {param!r}: a [contact] machine is continued in "
                        f"{' or '.join(PARAMETERS)} (--param speed or --param load)")
-    lo, hi = _parse_range(range_, param)
+    lo, hi = parse_range(range_, param, positive=True)
     if not lo > 0.0:
         raise BadInput(f"--range {range_!r}: {param} must be positive")
     n = DEFAULT_POINTS if points is None else points
@@ -206,7 +206,7 @@ def _memory_continuation(ctx: typer.Context, machine_file: Any, param: str, rang
     if out is not None:
         raise BadInput("--out: the netCDF file is written for the curve laws; with friction with "
                        "memory --json holds the branches")
-    lo, hi = _parse_range(range_, "speed")
+    lo, hi = parse_range(range_, "speed", positive=True)
     if plot is not None:
         check_figure_path(plot, overwrite=overwrite)
     system = memory_system(machine_file)
@@ -222,25 +222,6 @@ def _memory_continuation(ctx: typer.Context, machine_file: Any, param: str, rang
         print_json(payload)
         return
     typer.echo(result.summary() + (f"\nplot: {payload['plot']}" if payload["plot"] else ""))
-
-
-def _parse_range(text: str, quantity: str | None) -> tuple[float, float]:
-    """``A:B`` as two floats, ``A < B``; with a machine quantity each end may carry a unit
-    (converted to SI, its dimension checked)."""
-    from stickslip.model.units import to_si
-
-    lo_text, sep, hi_text = text.partition(":")
-    try:
-        if quantity is None:
-            lo, hi = float(lo_text), float(hi_text)
-        else:
-            lo, hi = (to_si(quantity, part.strip(), source="--range") for part in (lo_text, hi_text))
-    except ValueError as exc:
-        detail = "two numbers" if quantity is None else f"two values of {quantity} ({exc})"
-        raise BadInput(f"--range {text!r} must be A:B with {detail}") from None
-    if not sep or not lo < hi:
-        raise BadInput(f"--range {text!r} must be A:B with A < B")
-    return lo, hi
 
 
 def _print(summary: str, payload: dict[str, Any]) -> None:

@@ -353,7 +353,8 @@ def boundary_command(
     ] = "startup",
     machine_file: Annotated[Path | None, typer.Option(
         "--config", help="machine.toml with a [contact] (normal_dof, Jenkins element): the "
-        "critical belt speed or load of its start-up runs instead; not with --zeta, --dva, "
+        "critical belt speed or load of its start-up runs instead; with a friction law with "
+        "memory, where steady sliding changes stability (eigenvalues); not with --zeta, --dva, "
         "--gamma, --friction, --criterion, --lam-min, --lam-max")] = None,
     param: Annotated[str | None, typer.Option(
         "--param", help="with --config: speed (belt speed) or load (preload); default speed")] = None,
@@ -372,11 +373,22 @@ def boundary_command(
     the brake pad):
 
     Example: stickslip boundary --config machine.toml --param speed --range "1 cm/s:1 m/s" --json
+
+    A friction law with memory (rate-and-state, LuGre): the speeds or loads where steady
+    sliding changes stability, from its eigenvalues (structure and state variable), each
+    bisected to 1e-10 over two decades either side (or --range; --scan points, default 161).
     """
     from stickslip.cli.machine_config import refuse_mix, require_dimensionless
 
     refuse_mix(ctx, machine_file, ("zeta", "zeta_spacing", "dva", "k_scale", "gamma", "friction",
                                    "criterion", "lam_min", "lam_max"))
+    if machine_file is not None:
+        from stickslip.cli.memory_stability_commands import has_memory_law, memory_boundary
+
+        if has_memory_law(machine_file):
+            memory_boundary(ctx, machine_file, param=param, range_text=range_text, scan=scan,
+                            json=json)
+            return
     if machine_file is not None:
         from stickslip.cli.contact_map_commands import contact_boundary_command
 

@@ -101,3 +101,97 @@ def memory_map_command(machine_file: Any, config: Path, speeds: Any, loads: Any,
         return
     typer.echo(result.summary())
     typer.echo(f"dataset     {out}")
+
+
+def memory_boundary_command(machine_file: MachineFile, config: Path, *, param: str,
+                            bounds: tuple[float, float] | None, scan: int | None,
+                            json: bool) -> None:
+    """``boundary --config`` for a law with memory: the speeds or loads where steady sliding
+    changes stability (its eigenvalues with the state variable), each bisected to 1e-10.
+
+    ``bounds``: the range scanned (SI; default two decades either side of the file's value);
+    ``scan``: its log-spaced points (default that of ``stability``).
+    """
+    import math
+
+    from stickslip.analysis.memory_stability import (
+        SPEED_DECADES,
+        SPEED_POINTS,
+        SPEED_RTOL,
+        critical_loads,
+        critical_speeds,
+    )
+
+    system = memory_system(machine_file)
+    speed = system.schedule.last
+    value = speed if param == "speed" else system.load
+    spread = 10.0 ** SPEED_DECADES
+    lo, hi = bounds if bounds is not None else (value / spread, value * spread)
+    points = SPEED_POINTS if scan is None else int(scan)
+    if param == "speed":
+        critical, unstable = critical_speeds(system, lo, hi, points)
+    else:
+        critical, unstable = critical_loads(system, speed, lo, hi, points)
+    unit = "m/s" if param == "speed" else "N"
+
+    def side(x: float) -> str:
+        return "unstable" if any(a <= x <= b for a, b in unstable) else "stable"
+
+    crossings = [{"param": param, "value_SI": v,
+                  "below": side(v * (1.0 - 1e-6)), "above": side(v * (1.0 + 1e-6)),
+                  "kind": "boundary", "converged": True} for v in critical]
+    payload = {"config": str(config), "machine": machine_file.label, "param": param, "unit": unit,
+               "range_SI": [lo, hi], "n_scan": points, "rtol": SPEED_RTOL,
+               ("load_SI" if param == "speed" else "speed_SI"):
+                   system.load if param == "speed" else speed,
+               "crossings": crossings, "unstable_ranges_SI": [list(r) for r in unstable],
+               "criterion": "linear stability of steady sliding (eigenvalues of the structure "
+                            "and the state variable); a local verdict"}
+    if json:
+        print_json(payload)
+        return
+    held = (f"load {system.load:.6g} N" if param == "speed" else f"speed {speed:.6g} m/s")
+    lines = [f"boundary    {machine_file.label}: steady sliding's stability along the {param} "
+             f"({held}), {points} log-spaced points from {lo:.4g} to {hi:.4g} {unit}"]
+    for c in crossings:
+        lines.append(f"  {param} = {c['value_SI']:.10g} {unit}: {c['below']} below, "
+                     f"{c['above']} above")
+    if not crossings:
+        lines.append(f"  none: steady sliding is {side(math.sqrt(lo * hi))} over the whole range")
+    lines.append("  (a local verdict: a start stuck to the drive may still stick-slip where steady "
+                 "sliding is stable; stickslip design --config runs it)")
+    typer.echo("\n".join(lines))
+
+
+def has_memory_law(config: Path) -> bool:
+    """True for a file whose friction law has memory (and no contact)."""
+    from stickslip.cli.machine_config import load_machine_file
+
+    machine_file = load_machine_file(config, normal_coupling=True)
+    return machine_file.has_memory_law and not machine_file.has_contact
+
+
+def memory_boundary(ctx: typer.Context, config: Path, *, param: str | None,
+                    range_text: str | None, scan: int, json: bool) -> None:
+    """``boundary --config`` for a friction law with memory (an eigenvalue search)."""
+    from stickslip.cli.contact_commands import typed_options
+    from stickslip.cli.machine_config import load_machine_file
+    from stickslip.cli.options import parse_range
+
+    typed = typed_options(ctx, ("out", "plot", "rtol", "t_max", "workers"))
+    if typed:
+        raise BadInput(f"{', '.join(typed)} cannot be given with a friction law with memory: "
+                       "boundary --config bisects the eigenvalues' sign changes to 1e-10 and "
+                       "runs no simulation")
+    param = "speed" if param is None else param
+    if param not in ("speed", "load"):
+        raise BadInput(f"--param {param!r} must be speed or load")
+    machine_file = load_machine_file(config)
+    bounds = None
+    if range_text is not None:
+        bounds = parse_range(range_text, param, positive=True)
+    points = scan if typed_options(ctx, ("scan",)) else None
+    if points is not None and not 2 <= points <= 10_000:
+        raise BadInput(f"--scan {points} must be from 2 to 10000")
+    memory_boundary_command(machine_file, config, param=param, bounds=bounds, scan=points,
+                            json=json)

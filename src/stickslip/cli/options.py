@@ -43,3 +43,28 @@ SCHEDULER = Annotated[
 SCHEDULER_TIMEOUT = Annotated[
     float, typer.Option("--scheduler-timeout", help="seconds allowed to reach the --scheduler (default 10)")
 ]
+
+
+def parse_range(text: str, quantity: str | None, *, positive: bool = False) -> tuple[float, float]:
+    """``--range A:B`` as two floats, ``A < B``; with a machine quantity (``speed``, ``load``,
+    ...) each end may carry a unit (converted to SI, its dimension checked); ``positive``:
+    both ends positive and finite. One line naming the value when it is wrong."""
+    import math
+
+    from stickslip.cli.console import BadInput
+    from stickslip.model.units import to_si
+
+    lo_text, sep, hi_text = text.partition(":")
+    try:
+        if quantity is None:
+            lo, hi = float(lo_text), float(hi_text)
+        else:
+            lo, hi = (to_si(quantity, part.strip(), source="--range") for part in (lo_text, hi_text))
+    except ValueError as exc:
+        detail = "two numbers" if quantity is None else f"two values of {quantity} ({exc})"
+        raise BadInput(f"--range {text!r} must be A:B with {detail}") from None
+    if not sep or ":" in hi_text or not lo < hi:
+        raise BadInput(f"--range {text!r} must be A:B with A < B")
+    if positive and not (math.isfinite(lo) and math.isfinite(hi) and lo > 0.0):
+        raise BadInput(f"--range {text!r} must be positive and finite with A < B")
+    return lo, hi
