@@ -90,3 +90,20 @@ def test_memory_history_plot_axes_in_si() -> None:
     labels = [a.get_ylabel() for a in axes] + [axes[-1].get_xlabel()]
     assert labels[0].endswith("[m]") and labels[1].endswith("[m/s]") and labels[3].endswith("[s]")
     assert len(artists) == 4  # three curves and the drive speed
+
+
+def test_machine_page_path_for_an_uploaded_memory_law_file(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    # what the machine page runs in its worker for an uploaded LuGre file: design's report
+    from stickslip.app.machine_page import uploaded_machine_file
+    from stickslip.app.memory_page import memory_report
+
+    text = (ROOT / "examples" / "friction_memory" / "lugre.toml").read_bytes()
+    machine_file = uploaded_machine_file({"machine.toml": text})
+    assert machine_file.has_memory_law and not machine_file.has_contact
+    payload, image = memory_report(machine_file.memory_system())
+    expected = _cli_design("lugre.toml", capsys)
+    assert payload["verdict"] == expected["verdict"] == "stick-slip"
+    assert payload["startup"]["period_s"] == pytest.approx(
+        expected["startup"]["period_s"], rel=1e-12)  # type: ignore[index]
+    assert image[:8] == b"\x89PNG\r\n\x1a\n"

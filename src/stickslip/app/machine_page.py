@@ -219,6 +219,11 @@ def show_machine_page() -> None:
             if machine_file.has_contact:  # its own analyses, each with its own messages
                 show_contact_machine(machine_file, files_digest(files))
                 return
+            if machine_file.has_memory_law:  # the design report of its own law
+                from stickslip.app.memory_page import show_memory_machine
+
+                show_memory_machine(machine_file, files_digest(files))
+                return
         else:
             raw = {key: st.text_input(label, value=default, key=f"machine_{key}")
                    for key, (label, default) in MODE_INPUTS.items()}

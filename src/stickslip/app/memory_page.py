@@ -20,6 +20,7 @@ import streamlit as st
 from stickslip.app.figures import fmt, png
 from stickslip.app.memory_inputs import memory_key, parse_memory_inputs
 from stickslip.app.messages import show_error
+from stickslip.model.state_friction import MemorySystem
 
 #: Samples of the start-up run's time history.
 HISTORY_SAMPLES = 1500
@@ -30,13 +31,19 @@ PERIODS_SHOWN = 3
 @st.cache_data(max_entries=32, show_spinner=False)
 def memory_design_report(key: tuple[tuple[str, str], ...]) -> tuple[dict[str, Any], bytes]:
     """The design report (JSON-ready) and the start-up run's figure (PNG) of the inputs ``key``."""
+    system, errors = parse_memory_inputs(dict(key))
+    if system is None:
+        raise ValueError("; ".join(errors))
+    return memory_report(system)
+
+
+def memory_report(system: MemorySystem) -> tuple[dict[str, Any], bytes]:
+    """The design report (JSON-ready) and the start-up run's figure (PNG) of ``system``
+    (module-level: the machine page runs it in its worker process)."""
     from stickslip.analysis.memory_design import memory_design, startup_kick
     from stickslip.analysis.memory_simulation import simulate_memory
     from stickslip.plot.memory_history import memory_history_plot
 
-    system, errors = parse_memory_inputs(dict(key))
-    if system is None:
-        raise ValueError("; ".join(errors))
     report = memory_design(system)
     payload = report.to_dict()
     kick = 0.0 if system.quasi_static else startup_kick(system)
@@ -62,6 +69,28 @@ def show_memory_results(raw: Mapping[str, str]) -> None:
         return
     with st.spinner("Linearisation, critical speeds and loads, two runs ..."):
         p, image = memory_design_report(memory_key(raw))
+    show_memory_report(p, image)
+
+
+def show_memory_machine(machine_file: Any, digest: str) -> None:
+    """The machine page's report for an uploaded machine file with a law with memory."""
+    from stickslip.app.messages import show_failure
+    from stickslip.app.workers import wait_for
+
+    try:
+        system = machine_file.memory_system()
+        p, image = wait_for(("memory", digest), memory_report, system,
+                            what="Designing the machine with friction with memory")
+    except Exception as exc:
+        show_failure(exc, "The design of this machine")
+        return
+    st.caption(f"{system.n_dof} DOF, contact on DOF {system.contact_dof}; the report of "
+               "'stickslip design --config' for a friction law with memory.")
+    show_memory_report(p, image)
+
+
+def show_memory_report(p: dict[str, Any], image: bytes) -> None:
+    """Lay out a memory-law design report (its JSON payload) and its figure."""
     st.subheader("Does it stick-slip?")
     st.caption(p["friction"])
     cols = st.columns(3)
