@@ -38,6 +38,7 @@ from stickslip.analysis.memory_cycles import (
     MIN_ORBIT_SIZE,
     SHOOTING_TOLERANCE,
     PeriodicOrbit,
+    flow,
     return_map,
     shoot_cycle,
 )
@@ -79,14 +80,6 @@ def _residual(system_at: Callable[[float], MemorySystem], y: FloatArray, speed: 
     return return_map(system, y, speed, min_time=0.2 * period, t_limit=5.0 * period)
 
 
-def _flow(system: MemorySystem, y: FloatArray, speed: float) -> FloatArray:
-    ks = kernel_system(system)
-    f = np.empty(ks.n)
-    stiff.rhs(ks.kind, ks.law, ks.p, ks.amat, ks.bvec, ks.iv, ks.is_, ks.kq,
-              np.ascontiguousarray(y, dtype=np.float64), float(speed), np.empty(stiff.N_LAW), f)
-    return f
-
-
 def _system_jacobian(system_at: Callable[[float], MemorySystem], y: FloatArray, speed: float,
                      period: float, scale: FloatArray
                      ) -> tuple[FloatArray, FloatArray, FloatArray, float] | None:
@@ -99,7 +92,7 @@ def _system_jacobian(system_at: Callable[[float], MemorySystem], y: FloatArray, 
     if ret is None or shifted is None:
         return None
     y1, phi, t_ret = ret
-    f1 = _flow(system, y1, speed)
+    f1 = flow(system, y1, speed)
     g = np.zeros(y.size)
     g[iv] = 1.0
     proj = np.eye(y.size) - np.outer(f1, g) / float(g @ f1)

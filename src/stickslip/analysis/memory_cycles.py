@@ -142,7 +142,23 @@ def _section_gradient(system: MemorySystem, y: FloatArray, speed: float) -> Floa
     return g
 
 
-def _flow(system: MemorySystem, y: FloatArray, speed: float) -> FloatArray:
+def flow(system: MemorySystem, y: FloatArray, speed: float) -> FloatArray:
+    """The vector field ``y' = f(y)`` at ``y`` for the drive speed ``speed`` (m/s).
+
+    Parameters
+    ----------
+    system : MemorySystem
+        Structure, load and law (SI).
+    y : ndarray
+        State.
+    speed : float
+        Drive speed, m/s.
+
+    Returns
+    -------
+    ndarray
+        ``f(y)``, in the state's units per second.
+    """
     ks = kernel_system(system)
     f = np.empty(ks.n)
     stiff.rhs(ks.kind, ks.law, ks.p, ks.amat, ks.bvec, ks.iv, ks.is_, ks.kq,
@@ -202,7 +218,7 @@ def shoot_cycle(system: MemorySystem, y_start: FloatArray, period_guess: float, 
             others = np.delete(mult, k)
             others = others[np.argsort(-np.abs(others))]
             return PeriodicOrbit(y, period, residual, others, trivial, it)
-        f1 = _flow(system, y1, v)
+        f1 = flow(system, y1, v)
         g = _section_gradient(system, y1, v)
         proj = np.eye(y.size) - np.outer(f1, g) / float(g @ f1)
         dp = proj @ phi
@@ -220,4 +236,4 @@ def shoot_cycle(system: MemorySystem, y_start: FloatArray, period_guess: float, 
 
 
 
-__all__ = ["PeriodicOrbit", "return_map", "shoot_cycle"]
+__all__ = ["PeriodicOrbit", "flow", "return_map", "shoot_cycle"]

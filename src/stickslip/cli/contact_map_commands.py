@@ -22,12 +22,10 @@ import typer
 
 from stickslip.cli.console import (
     BadInput,
-    check_figure_path,
-    check_output_path,
-    flag_error,
     print_json,
 )
 from stickslip.cli.contact_commands import typed_options
+from stickslip.cli.options import check_map_outputs
 from stickslip.io.machine_file import MachineFile
 
 #: Default scan points and tolerance of ``boundary --config``.
@@ -90,38 +88,22 @@ def contact_map_command(ctx: typer.Context, config: Path, machine_file: MachineF
 
     from stickslip.io.lock import output_lock
     from stickslip.sweep.contact_map import MAX_CONTACT_CELLS, contact_map
-    from stickslip.sweep.grid import Axis
 
     typed = typed_options(ctx, ("backend", "scheduler", "chunk_size", "scheduler_timeout"))
     if typed:
         raise BadInput(f"{', '.join(typed)} cannot be given for a [contact] machine: its cells "
                        "are contact-engine runs in worker processes on this machine (--workers N)")
-    if speed is None or load is None:
-        raise BadInput("map --config needs --speed (m/s) and --load (N) grids, e.g. "
-                       "--speed log:1e-3:1:20 --load 10:1000:10")
-    axes = []
-    for flag, text, unit in (("--speed", speed, "m/s"), ("--load", load, "N")):
-        try:
-            axis = Axis.parse(text, flag.lstrip("-"))
-        except ValueError as exc:
-            raise flag_error(flag, text, exc) from None
-        values = np.asarray(axis.values, dtype=np.float64)
-        if not (np.all(np.isfinite(values)) and values.min() > 0.0):
-            raise BadInput(f"{flag} {text!r}: every value must be positive and finite [{unit}]")
-        axes.append(values)
+    from stickslip.cli.options import operating_axes
+
+    axes = [np.asarray(a.values, dtype=np.float64)
+            for a in operating_axes(speed, load, "--speed log:1e-3:1:20 --load 10:1000:10")]
     n_cells = axes[0].size * axes[1].size
     if n_cells > MAX_CONTACT_CELLS:
         raise BadInput(f"--speed x --load is {n_cells:,} operating points, more than "
                        f"{MAX_CONTACT_CELLS:,} (each is a full contact-engine run); use fewer")
     n_workers, horizon = _workers(workers), _t_max(t_max)
     system, machine = contact_system_of(config, machine_file)
-    if out.suffix.lower() != ".nc":
-        raise BadInput(f"output file {str(out)!r} must end in .nc (netCDF)")
-    check_output_path(out, overwrite=overwrite, option="--out")
-    if csv is not None:
-        check_output_path(csv, overwrite=overwrite, option="--csv")
-    if plot is not None:
-        check_figure_path(plot, overwrite=overwrite)
+    check_map_outputs(out, csv, plot, overwrite)
     from stickslip.cli.progress import ProgressBar
 
     enabled = not json and sys.stderr.isatty()

@@ -276,7 +276,6 @@ def _scheduler_context(scheduler: str | None, timeout: float) -> Any:
     bound (``stickslip.scheduler-timeout``), or a no-op context without a scheduler.
     """
     import contextlib
-    import math
 
     if not (timeout > 0.0 and math.isfinite(timeout)):
         raise BadInput(f"--scheduler-timeout {timeout!r} must be a positive number of seconds")
@@ -492,7 +491,6 @@ def operating_map_command(config: Path, speed: str | None, load: str | None, *, 
     from stickslip.io.netcdf import write_dataset
     from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.executors import check_backend
-    from stickslip.sweep.grid import Axis
     from stickslip.sweep.operating_map import MAX_CELLS, OperatingMap, operating_fingerprint, operating_map
     from stickslip.sweep.store import StoreMismatch, discard_store
 
@@ -501,19 +499,9 @@ def operating_map_command(config: Path, speed: str | None, load: str | None, *, 
     if chunk_size is not None and chunk_size < 1:
         raise BadInput(f"--chunk-size {chunk_size} must be at least 1")
 
-    if speed is None or load is None:
-        raise BadInput("map --config needs --speed (m/s) and --load (N) grids, e.g. "
-                       "--speed log:1e-4:0.1:40 --load 10:1000:40")
-    axes = []
-    for flag, text, unit in (("--speed", speed, "m/s"), ("--load", load, "N")):
-        try:
-            axis = Axis.parse(text, flag.lstrip("-"))
-        except ValueError as exc:
-            raise flag_error(flag, text, exc) from None
-        values = axis.values
-        if not (all(math.isfinite(x) for x in values) and min(values) > 0.0):
-            raise BadInput(f"{flag} {text!r}: every value must be positive and finite [{unit}]")
-        axes.append(axis)
+    from stickslip.cli.options import operating_axes
+
+    axes = operating_axes(speed, load, "--speed log:1e-4:0.1:40 --load 10:1000:40")
     from stickslip.cli.machine_config import load_machine_file
 
     machine_file = load_machine_file(config)

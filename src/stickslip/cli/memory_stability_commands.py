@@ -15,7 +15,8 @@ from typing import Any
 
 import typer
 
-from stickslip.cli.console import BadInput, check_figure_path, check_output_path, print_json
+from stickslip.cli.console import BadInput, print_json
+from stickslip.cli.options import check_map_outputs
 from stickslip.io.machine_file import MachineFile
 
 
@@ -78,13 +79,7 @@ def memory_map_command(machine_file: Any, config: Path, speeds: Any, loads: Any,
         raise BadInput(f"--speed x --load is {n_cells:,} operating points, more than "
                        f"{MAX_MAP_CELLS:,}; use fewer points")
     system = memory_system(machine_file)
-    if out.suffix.lower() != ".nc":
-        raise BadInput(f"output file {str(out)!r} must end in .nc (netCDF)")
-    check_output_path(out, overwrite=overwrite, option="--out")
-    if csv is not None:
-        check_output_path(csv, overwrite=overwrite, option="--csv")
-    if plot is not None:
-        check_figure_path(plot, overwrite=overwrite)
+    check_map_outputs(out, csv, plot, overwrite)
     enabled = not json and sys.stderr.isatty()
     with ProgressBar(enabled, f"stability map {len(speeds)}x{len(loads)} (V, W)", "loads") as bar:
         result = memory_stability_map(system, speeds, loads, progress=bar)

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
@@ -68,3 +68,41 @@ def parse_range(text: str, quantity: str | None, *, positive: bool = False) -> t
     if positive and not (math.isfinite(lo) and math.isfinite(hi) and lo > 0.0):
         raise BadInput(f"--range {text!r} must be positive and finite with A < B")
     return lo, hi
+
+
+def operating_axes(speed: str | None, load: str | None, example: str) -> list[Any]:
+    """``map --config``'s ``--speed`` and ``--load`` grids (:class:`~stickslip.sweep.grid.Axis`),
+    every value positive and finite; one line naming the flag otherwise (``example``: grids
+    to suggest when one is missing)."""
+    import math
+
+    from stickslip.cli.console import BadInput, flag_error
+    from stickslip.sweep.grid import Axis
+
+    if speed is None or load is None:
+        raise BadInput(f"map --config needs --speed (m/s) and --load (N) grids, e.g. {example}")
+    axes = []
+    for flag, text, unit in (("--speed", speed, "m/s"), ("--load", load, "N")):
+        try:
+            axis = Axis.parse(text, flag.lstrip("-"))
+        except ValueError as exc:
+            raise flag_error(flag, text, exc) from None
+        values = axis.values
+        if not (all(math.isfinite(x) for x in values) and min(values) > 0.0):
+            raise BadInput(f"{flag} {text!r}: every value must be positive and finite [{unit}]")
+        axes.append(axis)
+    return axes
+
+
+def check_map_outputs(out: Path, csv: Path | None, plot: Path | None, overwrite: bool) -> None:
+    """``--out`` (netCDF), ``--csv`` and ``--plot`` of ``map --config`` checked before any work:
+    one line naming the file when it is wrong or exists without ``--overwrite``."""
+    from stickslip.cli.console import BadInput, check_figure_path, check_output_path
+
+    if out.suffix.lower() != ".nc":
+        raise BadInput(f"output file {str(out)!r} must end in .nc (netCDF)")
+    check_output_path(out, overwrite=overwrite, option="--out")
+    if csv is not None:
+        check_output_path(csv, overwrite=overwrite, option="--csv")
+    if plot is not None:
+        check_figure_path(plot, overwrite=overwrite)
