@@ -169,7 +169,9 @@ def test_continuation_plot_has_si_labels_and_takes_an_axes() -> None:
 
 # starting two pools of worker processes: 6.5 s alone on the machine
 def test_a_pool_gives_the_same_outcomes_and_ends_its_workers_on_ctrl_c() -> None:
-    # two worker processes (pool forced by a zero threshold) against this process
+    # two worker processes (pool forced by a zero threshold) against this process; processes
+    # other tests of the session started (the app's worker) are not this pool's
+    before = set(multiprocessing.active_children())
     jobs = [(slider(0.05), None), (slider(0.03), None), (slider(0.08), None)]
     here = run_many(jobs, workers=1)
     pooled = run_many(jobs, workers=2, pool_threshold=0.0)
@@ -181,7 +183,7 @@ def test_a_pool_gives_the_same_outcomes_and_ends_its_workers_on_ctrl_c() -> None
 
     with pytest.raises(KeyboardInterrupt):
         run_many(jobs * 3, workers=2, pool_threshold=0.0, progress=interrupt)
-    assert multiprocessing.active_children() == []
+    assert set(multiprocessing.active_children()) <= before
 
 
 @pytest.mark.parametrize(("args", "why"), [
