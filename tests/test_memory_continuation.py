@@ -73,6 +73,7 @@ def test_cli(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
         assert code == 2 and out == "" and needle in err and len(err.strip().splitlines()) == 1
 
 
+@pytest.mark.slow  # 35-50 s: two continuations and two stiff runs (default run under 10 min)
 def test_lugre_subcritical_hopf_gives_the_unstable_orbit_that_bounds_steady_sliding() -> None:
     # Canudas de Wit et al.'s (1995) LuGre slider (examples/friction_memory/lugre.toml): steady
     # sliding becomes stable at the Hopf point V_H = 2.986 mm/s (tests/test_memory_stability.py,
