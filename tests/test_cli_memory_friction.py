@@ -16,23 +16,7 @@ from pathlib import Path
 import pytest
 
 from stickslip.cli.main import run
-
-LUGRE = """
-[system]
-m = "1 kg"
-k = "2 N/m"
-load = "1 N"
-speed = "0.1 m/s"
-
-[friction]
-law = "lugre"
-sigma0 = "1e5 N/m"
-sigma1 = "316.22776601683796 N*s/m"
-sigma2 = "0.4 N*s/m"
-mu_c = 1.0
-mu_s = 1.5
-stribeck_velocity = "1 mm/s"
-"""
+from tests.memory_machines import LUGRE
 
 QUASI_STATIC = """
 [system]
