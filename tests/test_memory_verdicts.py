@@ -97,6 +97,24 @@ def test_rate_state_stick_slip_cycle_is_certified() -> None:
     assert again[2] == pytest.approx(orbit.period, rel=1e-6)
 
 
+@pytest.mark.parametrize("stiffness_factor", [0.8, 0.25])
+def test_a_start_at_zero_slip_speed_leaves_it(stiffness_factor: float) -> None:
+    # --initial-kick -1: the contact moves with the surface (slip speed 0, where the regularised
+    # law gives mu = 0) under the spring force of steady sliding. The slider must slip at once
+    # and reach the cycle that a kick of 0.5 reaches (both stable: one attractor, Gu et al.
+    # 1984). Its first slip speeds (1e-26 m/s and up, dF/dv ~ 1e26 N s/m) are far below the
+    # round-off of V; the engine once stayed at q_c' = V for the whole horizon.
+    law = RateStateFriction(a=0.01, b=0.015, d_c=1e-5, mu_ref=0.6, v_ref=1e-6)
+    k_c = mf.rice_ruina_critical_stiffness(10.0, 0.01, 0.015, 1e-5, 1.0, 1e-3)
+    system = _slider(law, m=1.0, k=stiffness_factor * k_c, load=10.0, speed=1e-3)
+    kicked = ms.simulate_memory(system, kick=0.5)
+    stuck = ms.simulate_memory(system, kick=-1.0)
+    assert stuck.verdict is kicked.verdict, stuck.reason
+    assert kicked.verdict in (Verdict.STICK_SLIP, Verdict.SLIP_OSCILLATION)
+    assert stuck.period == pytest.approx(kicked.period, rel=1e-6)
+    assert stuck.amplitude == pytest.approx(kicked.amplitude, rel=1e-5)
+
+
 def test_stable_steady_sliding_is_reached() -> None:
     law = RateStateFriction(a=0.01, b=0.015, d_c=1e-5, mu_ref=0.6, v_ref=1e-6)
     k_c = mf.rice_ruina_critical_stiffness(1.0, 0.01, 0.015, 1e-5, 1.0, 1e-5)

@@ -13,18 +13,10 @@ LuGre) none of those closed forms holds, so the design answers with the machine'
 - **two runs** at the operating point (:func:`~stickslip.analysis.memory_simulation.simulate_memory`):
   one from the start stuck to the drive (kick ``F = -1``: the slider moves with the drive
   while its position and state are those of steady sliding, the analogue of the paper's
-  start-up, from stick; for rate-and-state at a slip speed of :data:`STARTUP_SLIP` times ``V``
-  instead, see below) and one from steady sliding nudged off it (kick :data:`NUDGE`). A
+  start-up, from stick) and one from steady sliding nudged off it (kick :data:`NUDGE`). A
   stable steady sliding with a stick-slip start-up is bistable: a large disturbance starts
   stick-slip, a small one dies out. The quasi-static slider (``m = 0``) has no velocity to
   kick: its one run starts at steady sliding.
-
-Why rate-and-state does not start at slip speed 0: the slip speed is ``V - q_c'``, a
-difference of two velocities, so a creeping slip below the round-off of ``V`` (about
-``1e-16 V``) is exactly 0, where the regularised law's friction is exactly 0 and its slope
-``N a exp(psi/a)/(2 v_ref)`` enormous: the implicit engine then holds the slider on the drive
-indefinitely (a creep it cannot resolve) instead of letting it break away. A start at
-``1e-3 V`` is the same stuck slider to every practical purpose and runs.
 
 A foundation or absorber in the machine file is part of the structure, so everything above
 is the machine *with* it; the foundation the paper tunes (Eqs. 28-30) is not proposed here,
@@ -45,12 +37,14 @@ from stickslip.analysis.memory_stability import (
     critical_loads,
     memory_stability,
 )
-from stickslip.model.state_friction import MemorySystem, RateStateFriction
+from stickslip.model.state_friction import MemorySystem
 
+#: The kick of the start-up run: stuck to the drive (slip speed 0), for every law. Rate-and-state
+#: friction starts there too: the engine carries the slip speed itself, so the creep of a stuck
+#: slider far below the round-off of ``V`` is resolved (:mod:`stickslip.kernel.stiff_system`).
+STARTUP_KICK = -1.0
 #: The kick of the run from near steady sliding: the contact starts at ``(1 - NUDGE) V``.
 NUDGE = 0.01
-#: The start-up's slip speed for rate-and-state, in units of ``V`` (module notes).
-STARTUP_SLIP = 1e-3
 
 #: The sentence the report gives instead of a tuned foundation.
 NO_FOUNDATION = ("the foundation of the paper's procedure (Eqs. 28-30) is tuned for the Coulomb "
@@ -159,22 +153,6 @@ class MemoryDesign:
         return "\n".join(lines)
 
 
-def startup_kick(system: MemorySystem) -> float:
-    """The kick of the start-up run: ``-1`` (stuck to the drive), rate-and-state ``-1 + 1e-3``.
-
-    Parameters
-    ----------
-    system : MemorySystem
-        The machine (its law decides, module notes).
-
-    Returns
-    -------
-    float
-        The kick ``F`` of :func:`~stickslip.analysis.memory_simulation.simulate_memory`.
-    """
-    return -1.0 + (STARTUP_SLIP if isinstance(system.friction, RateStateFriction) else 0.0)
-
-
 def memory_design(system: MemorySystem, *, t_max: float | None = None) -> MemoryDesign:
     """Verdicts, critical speeds and loads of a machine with a friction law with memory.
 
@@ -197,7 +175,7 @@ def memory_design(system: MemorySystem, *, t_max: float | None = None) -> Memory
     loads, unstable = critical_loads(system, stability.speed, system.load / spread,
                                      system.load * spread)
     startup = (None if system.quasi_static
-               else simulate_memory(system, t_max=t_max, kick=startup_kick(system)))
+               else simulate_memory(system, t_max=t_max, kick=STARTUP_KICK))
     nudged = simulate_memory(system, t_max=t_max, kick=0.0 if system.quasi_static else NUDGE)
     if not all(math.isfinite(w) for w in loads):
         raise ValueError("a critical load is not finite")

@@ -40,13 +40,13 @@ def memory_design_report(key: tuple[tuple[str, str], ...]) -> tuple[dict[str, An
 def memory_report(system: MemorySystem) -> tuple[dict[str, Any], bytes]:
     """The design report (JSON-ready) and the start-up run's figure (PNG) of ``system``
     (module-level: the machine page runs it in its worker process)."""
-    from stickslip.analysis.memory_design import memory_design, startup_kick
+    from stickslip.analysis.memory_design import STARTUP_KICK, memory_design
     from stickslip.analysis.memory_simulation import simulate_memory
     from stickslip.plot.memory_history import memory_history_plot
 
     report = memory_design(system)
     payload = report.to_dict()
-    kick = 0.0 if system.quasi_static else startup_kick(system)
+    kick = 0.0 if system.quasi_static else STARTUP_KICK
     run = report.startup if report.startup is not None else report.nudged
     span = (PERIODS_SHOWN * run.period if math.isfinite(run.period)
             else 0.2 * run.t_end)

@@ -63,10 +63,19 @@ from stickslip.kernel.stiff_laws import (
     law_values,
     quasi_static_speed,
 )
-
-#: System kinds.
-KIND_DYNAMIC = 0
-KIND_QUASI_STATIC = 1
+from stickslip.kernel.stiff_system import (
+    KIND_DYNAMIC,
+    KIND_QUASI_STATIC,
+    contact_speed,
+    jacobian,
+    jacobian_derivative_times,
+    rhs,
+    slip_speed,
+    swap_slip_form,
+    system_jacobian,
+    system_jacobian_derivative_times,
+    system_rhs,
+)
 
 #: Run statuses.
 STATUS_DONE = 0
@@ -83,108 +92,6 @@ EVENT_BISECTIONS = 60
 SAFETY = 0.9
 FAC_MIN = 0.2
 FAC_MAX = 6.0
-
-@njit(cache=True)
-def contact_speed(kind: int, law: int, p: np.ndarray, kq: float, iv: int, y: np.ndarray,
-                  speed: float) -> float:
-    """The contact's velocity ``q_c'`` (m/s, ground frame): the section function."""
-    if kind == KIND_QUASI_STATIC:
-        v, _, _ = quasi_static_speed(p, kq, y[0], y[1])
-        return speed - v
-    return y[iv]
-
-
-@njit(cache=True)
-def rhs(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
-        is_: int, kq: float, y: np.ndarray, speed: float, lv: np.ndarray, f: np.ndarray) -> None:
-    """``f = y'`` at ``y`` for drive speed ``speed`` (m/s); ``lv`` receives the law's values."""
-    n = y.shape[0]
-    if kind == KIND_QUASI_STATIC:
-        v, _, _ = quasi_static_speed(p, kq, y[0], y[1])
-        law_values(law, p, v, y[1], lv)
-        f[0] = speed - v
-        f[1] = lv[L_G]
-        return
-    v = speed - y[iv]
-    law_values(law, p, v, y[is_], lv)
-    for i in range(n):
-        acc = 0.0
-        for j in range(n):
-            acc += amat[i, j] * y[j]
-        f[i] = acc + bvec[i] * lv[L_F]
-    f[is_] = lv[L_G]
-
-
-@njit(cache=True)
-def jacobian(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
-             is_: int, kq: float, y: np.ndarray, speed: float, lv: np.ndarray,
-             jac: np.ndarray) -> None:
-    """The exact Jacobian ``df/dy`` at ``y``."""
-    n = y.shape[0]
-    if kind == KIND_QUASI_STATIC:
-        v, vx, vp = quasi_static_speed(p, kq, y[0], y[1])
-        law_values(law, p, v, y[1], lv)
-        jac[0, 0] = -vx
-        jac[0, 1] = -vp
-        jac[1, 0] = lv[L_GV] * vx
-        jac[1, 1] = lv[L_GV] * vp + lv[L_GS]
-        return
-    v = speed - y[iv]
-    law_values(law, p, v, y[is_], lv)
-    for i in range(n):
-        for j in range(n):
-            jac[i, j] = amat[i, j]
-    for i in range(n):
-        jac[i, iv] -= bvec[i] * lv[L_FV]
-        jac[i, is_] += bvec[i] * lv[L_FS]
-    jac[is_, iv] = -lv[L_GV]
-    jac[is_, is_] = lv[L_GS]
-
-
-@njit(cache=True)
-def jacobian_derivative_times(kind: int, law: int, p: np.ndarray, amat: np.ndarray,
-                              bvec: np.ndarray, iv: int, is_: int, kq: float, y: np.ndarray,
-                              speed: float, u: np.ndarray, phi: np.ndarray, lv: np.ndarray,
-                              out: np.ndarray) -> None:
-    """``out = (dJ/dy . u) Phi``: the lower-left block of the augmented system's Jacobian."""
-    n = y.shape[0]
-    if kind == KIND_QUASI_STATIC:
-        scale = 0.0
-        for i in range(n):
-            scale = max(scale, abs(u[i]) / (1.0 + abs(y[i])))
-        if scale == 0.0:
-            out[:, :] = 0.0
-            return
-        eps = 1e-6 / scale
-        yp = y + eps * u
-        ym = y - eps * u
-        jp = np.empty((n, n))
-        jm = np.empty((n, n))
-        jacobian(kind, law, p, amat, bvec, iv, is_, kq, yp, speed, lv, jp)
-        jacobian(kind, law, p, amat, bvec, iv, is_, kq, ym, speed, lv, jm)
-        d = (jp - jm) / (2.0 * eps)
-        for i in range(n):
-            for j in range(n):
-                acc = 0.0
-                for k in range(n):
-                    acc += d[i, k] * phi[k, j]
-                out[i, j] = acc
-        return
-    v = speed - y[iv]
-    law_values(law, p, v, y[is_], lv)
-    dv = -u[iv]
-    ds = u[is_]
-    af = lv[L_FVV] * dv + lv[L_FVS] * ds
-    bf = lv[L_FVS] * dv + lv[L_FSS] * ds
-    ag = lv[L_GVV] * dv + lv[L_GVS] * ds
-    bg = lv[L_GVS] * dv + lv[L_GSS] * ds
-    for j in range(n):
-        rf = -af * phi[iv, j] + bf * phi[is_, j]
-        rg = -ag * phi[iv, j] + bg * phi[is_, j]
-        for i in range(n):
-            out[i, j] = bvec[i] * rf
-        out[is_, j] = rg
-
 
 @njit(cache=True)
 def lu_factor(a: np.ndarray, piv: np.ndarray) -> bool:
@@ -244,9 +151,9 @@ def _aug_rhs(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndar
     """Right-hand side of the augmented system ``z = (y, vec Phi)``: ``(f(y), J(y) Phi)``."""
     y = z[:n]
     f = out[:n]
-    rhs(kind, law, p, amat, bvec, iv, is_, kq, y, speed, lv, f)
+    system_rhs(kind, law, p, amat, bvec, iv, is_, kq, y, speed, True, lv, f)
     if with_phi:
-        jacobian(kind, law, p, amat, bvec, iv, is_, kq, y, speed, lv, jw)
+        system_jacobian(kind, law, p, amat, bvec, iv, is_, kq, y, speed, True, lv, jw)
         phi = z[n:].reshape((n, n))
         dphi = out[n:].reshape((n, n))
         for i in range(n):
@@ -266,8 +173,8 @@ def _stage_solve(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.
     ry = r[:n]
     lu_solve(lu, piv, ry)
     if with_phi:
-        jacobian_derivative_times(kind, law, p, amat, bvec, iv, is_, kq, z0[:n], speed, ry,
-                                  z0[n:].reshape((n, n)), lv, hw)
+        system_jacobian_derivative_times(kind, law, p, amat, bvec, iv, is_, kq, z0[:n], speed,
+                                         True, ry, z0[n:].reshape((n, n)), lv, hw)
         rphi = r[n:].reshape((n, n))
         col = np.empty(n)
         for j in range(n):
@@ -352,10 +259,35 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
 
     Notes
     -----
-    Why this function is longer than the house's 120 lines: the six stages of RODAS4, its
+    The dynamic form is integrated in the slip form (:mod:`stickslip.kernel.stiff_system`):
+    ``z``, ``z_out`` and ``cross_z`` are converted on the way in and out, so callers see the
+    state form; the slip speed keeps full relative precision inside the call.
+
+    Why the integrator is longer than the house's 120 lines: the six stages of RODAS4, its
     dense output, the section search and the step-size controller share the stage vectors
     of one step; split into compiled helpers they would pass a dozen arrays per call.
     """
+    slip = kind == KIND_DYNAMIC
+    if slip:
+        swap_slip_form(z, n, iv, speed)
+    status, t, h = _integrate_slip_form(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, t0,
+                                        t1, speed, rtol, atol, phi_rtol, h_start, max_steps,
+                                        t_out, z_out, stop_at_section, section_after, cross_t,
+                                        cross_z, reversal_t, stats)
+    if slip:
+        swap_slip_form(z, n, iv, speed)
+    return status, t, h
+
+
+@njit(cache=True)
+def _integrate_slip_form(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
+                         is_: int, kq: float, z: np.ndarray, n: int, with_phi: bool, t0: float, t1: float,
+                         speed: float, rtol: float, atol: np.ndarray, phi_rtol: float, h_start: float,
+                         max_steps: int,
+                         t_out: np.ndarray, z_out: np.ndarray, stop_at_section: bool, section_after: float,
+                         cross_t: np.ndarray, cross_z: np.ndarray, reversal_t: np.ndarray,
+                         stats: np.ndarray) -> tuple[int, float, float]:
+    """:func:`integrate` on ``z`` in the slip form (dynamic) or the quasi-static form."""
     nz = z.shape[0]
     lv = np.empty(N_LAW)
     jac = np.empty((n, n))
@@ -383,18 +315,22 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
     io = 0
     while io < n_out and t_out[io] < t0:
         io += 1
+    slip = kind == KIND_DYNAMIC
     while io < n_out and t_out[io] == t0:
         z_out[io, :] = z
+        if slip:
+            swap_slip_form(z_out[io, :], n, iv, speed)
         io += 1
     n_cross_buf = cross_t.shape[0]
-    sec_prev = contact_speed(kind, law, p, kq, iv, z[:n], speed)
+    slip_prev = slip_speed(kind, p, kq, iv, z[:n])
+    sec_prev = speed - slip_prev
     h = h_start
     if h <= 0.0:
         _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, z, n, False, speed, lv, jw, dz)
         d0 = 0.0
         d1 = 0.0
         for i in range(n):
-            sc = atol[i] + rtol * abs(z[i])
+            sc = atol[i] + rtol * abs(speed - z[i] if slip and i == iv else z[i])
             d0 += (z[i] / sc) ** 2
             d1 += (dz[i] / sc) ** 2
         d0 = math.sqrt(d0 / n)
@@ -409,7 +345,7 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
         if t + h >= t1 or (t1 - (t + h)) < 1e-12 * span:
             h = t1 - t
         y0 = z[:n]
-        jacobian(kind, law, p, amat, bvec, iv, is_, kq, y0, speed, lv, jac)
+        system_jacobian(kind, law, p, amat, bvec, iv, is_, kq, y0, speed, True, lv, jac)
         for i in range(n):
             for j in range(n):
                 lu[i, j] = -jac[i, j]
@@ -461,7 +397,10 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
                 finite = False
         if finite:
             for i in range(n):
-                sc = atol[i] + rtol * max(abs(z[i]), abs(znew[i]))
+                if slip and i == iv:  # the state form's scale, |q_c'|
+                    sc = atol[i] + rtol * max(abs(speed - z[i]), abs(speed - znew[i]))
+                else:
+                    sc = atol[i] + rtol * max(abs(z[i]), abs(znew[i]))
                 err += (k6[i] / sc) ** 2
             count = n
             if with_phi and phi_rtol > 0.0:
@@ -486,6 +425,7 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
             stop = False
             # section crossings: sample the dense output, bisect the first sign change upwards
             prev_val = sec_prev
+            prev_slip = slip_prev
             prev_th = 0.0
             for js in range(1, EVENT_SAMPLES + 2):
                 th = js / (EVENT_SAMPLES + 1.0)
@@ -494,20 +434,22 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
                         zd[i] = znew[i]
                 else:
                     dense_value(z, znew, c3, c4, th, zd)
-                val = contact_speed(kind, law, p, kq, iv, zd[:n], speed)
+                vs = slip_speed(kind, p, kq, iv, zd[:n])
+                val = speed - vs
                 if val < stats[4]:
                     stats[4] = val
                 if val > stats[5]:
                     stats[5] = val
-                if (prev_val < speed) != (val < speed):
-                    # slip reversal: the slip speed V - q_c' changes sign
+                if (prev_slip > 0.0) != (vs > 0.0) and prev_slip != 0.0 and vs != 0.0:
+                    # slip reversal: the slip speed V - q_c' changes sign (a start at exactly
+                    # zero slip is not one)
                     lo = prev_th
                     hi = th
-                    below = prev_val < speed
+                    below = prev_slip > 0.0
                     for _b in range(EVENT_BISECTIONS):
                         mid = 0.5 * (lo + hi)
                         dense_value(z, znew, c3, c4, mid, zd)
-                        if (contact_speed(kind, law, p, kq, iv, zd[:n], speed) < speed) == below:
+                        if (slip_speed(kind, p, kq, iv, zd[:n]) > 0.0) == below:
                             lo = mid
                         else:
                             hi = mid
@@ -526,7 +468,7 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
                     for _b in range(EVENT_BISECTIONS):
                         mid = 0.5 * (lo + hi)
                         dense_value(z, znew, c3, c4, mid, zd)
-                        if contact_speed(kind, law, p, kq, iv, zd[:n], speed) < 0.0:
+                        if speed - slip_speed(kind, p, kq, iv, zd[:n]) < 0.0:
                             lo = mid
                         else:
                             hi = mid
@@ -537,10 +479,14 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
                         cross_t[nc] = tc
                         for i in range(cross_z.shape[1]):
                             cross_z[nc, i] = zd[i]
+                        if slip:
+                            swap_slip_form(cross_z[nc, :], n, iv, speed)
                     stats[3] += 1.0
                     if stop_at_section and tc > section_after:
                         while io < n_out and t_out[io] <= tc:
                             dense_value(z, znew, c3, c4, (t_out[io] - t) / h, z_out[io, :])
+                            if slip:
+                                swap_slip_form(z_out[io, :], n, iv, speed)
                             io += 1
                         for i in range(nz):
                             z[i] = zd[i]
@@ -549,13 +495,18 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
                         stop = True
                         break
                 prev_val = val
+                if vs != 0.0:
+                    prev_slip = vs
                 prev_th = th
             if stop:
                 return STATUS_SECTION, tc, h
             while io < n_out and t_out[io] <= t_new:
                 dense_value(z, znew, c3, c4, (t_out[io] - t) / h, z_out[io, :])
+                if slip:
+                    swap_slip_form(z_out[io, :], n, iv, speed)
                 io += 1
             sec_prev = prev_val
+            slip_prev = prev_slip
             for i in range(nz):
                 z[i] = znew[i]
             t = t_new
