@@ -93,7 +93,7 @@ SAFETY = 0.9
 FAC_MIN = 0.2
 FAC_MAX = 6.0
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def lu_factor(a: np.ndarray, piv: np.ndarray) -> bool:
     """In-place LU with partial pivoting; False when singular."""
     n = a.shape[0]
@@ -122,7 +122,7 @@ def lu_factor(a: np.ndarray, piv: np.ndarray) -> bool:
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def lu_solve(lu: np.ndarray, piv: np.ndarray, b: np.ndarray) -> None:
     """Solve in place with the factors of :func:`lu_factor`."""
     n = lu.shape[0]
@@ -144,7 +144,7 @@ def lu_solve(lu: np.ndarray, piv: np.ndarray, b: np.ndarray) -> None:
         b[i] = acc / lu[i, i]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _aug_rhs(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
              is_: int, kq: float, z: np.ndarray, n: int, with_phi: bool, speed: float,
              lv: np.ndarray, jw: np.ndarray, out: np.ndarray) -> None:
@@ -164,7 +164,7 @@ def _aug_rhs(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndar
                 dphi[i, j] = acc
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _stage_solve(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
                  is_: int, kq: float, z0: np.ndarray, n: int, with_phi: bool, speed: float,
                  lu: np.ndarray, piv: np.ndarray, lv: np.ndarray, hw: np.ndarray,
@@ -295,12 +295,9 @@ def _integrate_slip_form(kind: int, law: int, p: np.ndarray, amat: np.ndarray, b
     piv = np.empty(n, dtype=np.int64)
     jw = np.empty((n, n))
     hw = np.empty((n, n))
-    k1 = np.empty(nz)
-    k2 = np.empty(nz)
-    k3 = np.empty(nz)
-    k4 = np.empty(nz)
-    k5 = np.empty(nz)
-    k6 = np.empty(nz)
+    ks = np.empty((rodas.STAGES, nz))
+    f0 = np.empty(nz)
+    fresh = False
     zt = np.empty(nz)
     dz = np.empty(nz)
     znew = np.empty(nz)
@@ -344,8 +341,10 @@ def _integrate_slip_form(kind: int, law: int, p: np.ndarray, amat: np.ndarray, b
     for _attempt in range(max_steps):
         if t + h >= t1 or (t1 - (t + h)) < 1e-12 * span:
             h = t1 - t
-        y0 = z[:n]
-        system_jacobian(kind, law, p, amat, bvec, iv, is_, kq, y0, speed, True, lv, jac)
+        if not fresh:  # the Jacobian and f at z are kept through rejected attempts
+            system_jacobian(kind, law, p, amat, bvec, iv, is_, kq, z[:n], speed, True, lv, jac)
+            _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lv, jw, f0)
+            fresh = True
         for i in range(n):
             for j in range(n):
                 lu[i, j] = -jac[i, j]
@@ -353,42 +352,25 @@ def _integrate_slip_form(kind: int, law: int, p: np.ndarray, amat: np.ndarray, b
         if not lu_factor(lu, piv):
             h *= 0.5
             continue
-        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lv, jw, dz)
-        for i in range(nz):
-            k1[i] = dz[i]
-        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k1)
-        for i in range(nz):
-            zt[i] = z[i] + rodas.A21 * k1[i]
-        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
-        for i in range(nz):
-            k2[i] = dz[i] + rodas.C21 * k1[i] / h
-        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k2)
-        for i in range(nz):
-            zt[i] = z[i] + rodas.A31 * k1[i] + rodas.A32 * k2[i]
-        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
-        for i in range(nz):
-            k3[i] = dz[i] + (rodas.C31 * k1[i] + rodas.C32 * k2[i]) / h
-        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k3)
-        for i in range(nz):
-            zt[i] = z[i] + rodas.A41 * k1[i] + rodas.A42 * k2[i] + rodas.A43 * k3[i]
-        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
-        for i in range(nz):
-            k4[i] = dz[i] + (rodas.C41 * k1[i] + rodas.C42 * k2[i] + rodas.C43 * k3[i]) / h
-        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k4)
-        for i in range(nz):
-            zt[i] = z[i] + rodas.A51 * k1[i] + rodas.A52 * k2[i] + rodas.A53 * k3[i] + rodas.A54 * k4[i]
-        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
-        for i in range(nz):
-            k5[i] = dz[i] + (rodas.C51 * k1[i] + rodas.C52 * k2[i] + rodas.C53 * k3[i]
-                             + rodas.C54 * k4[i]) / h
-        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k5)
-        for i in range(nz):
-            zt[i] += k5[i]
-        _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
-        for i in range(nz):
-            k6[i] = dz[i] + (rodas.C61 * k1[i] + rodas.C62 * k2[i] + rodas.C63 * k3[i]
-                             + rodas.C64 * k4[i] + rodas.C65 * k5[i]) / h
-        _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv, hw, k6)
+        for st in range(rodas.STAGES):
+            for i in range(nz):
+                acc = z[i]
+                for jk in range(st):
+                    acc += rodas.A_STAGE[st, jk] * ks[jk, i]
+                zt[i] = acc
+            if st == 0:
+                for i in range(nz):
+                    dz[i] = f0[i]
+            else:
+                _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, zt, n, with_phi, speed, lv, jw, dz)
+            for i in range(nz):
+                acc = 0.0
+                for jk in range(st):
+                    acc += rodas.C_STAGE[st, jk] * ks[jk, i]
+                ks[st, i] = dz[i] + acc / h
+            _stage_solve(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lu, piv, lv,
+                         hw, ks[st])
+        k6 = ks[rodas.STAGES - 1]
         err = 0.0
         finite = True
         for i in range(nz):
@@ -417,10 +399,13 @@ def _integrate_slip_form(kind: int, law: int, p: np.ndarray, amat: np.ndarray, b
         if err <= 1.0:
             # accepted: dense output, events, outputs
             for i in range(nz):
-                c3[i] = (rodas.D21 * k1[i] + rodas.D22 * k2[i] + rodas.D23 * k3[i] + rodas.D24 * k4[i]
-                         + rodas.D25 * k5[i])
-                c4[i] = (rodas.D31 * k1[i] + rodas.D32 * k2[i] + rodas.D33 * k3[i] + rodas.D34 * k4[i]
-                         + rodas.D35 * k5[i])
+                a3 = 0.0
+                a4 = 0.0
+                for jk in range(rodas.STAGES - 1):
+                    a3 += rodas.D2[jk] * ks[jk, i]
+                    a4 += rodas.D3[jk] * ks[jk, i]
+                c3[i] = a3
+                c4[i] = a4
             t_new = t + h
             stop = False
             # section crossings: sample the dense output, bisect the first sign change upwards
@@ -510,6 +495,7 @@ def _integrate_slip_form(kind: int, law: int, p: np.ndarray, amat: np.ndarray, b
             for i in range(nz):
                 z[i] = znew[i]
             t = t_new
+            fresh = False
             stats[0] += 1.0
             stats[2] = h
             # predictive controller (Gustafsson), as in Hairer & Wanner's rodas.f

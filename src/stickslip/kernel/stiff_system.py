@@ -73,7 +73,7 @@ def swap_slip_form(z: np.ndarray, n: int, iv: int, speed: float) -> None:
             z[n + iv * n + j] = -z[n + iv * n + j]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def system_rhs(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
                is_: int, kq: float, y: np.ndarray, speed: float, slip_form: bool,
                lv: np.ndarray, f: np.ndarray) -> None:
@@ -109,7 +109,7 @@ def rhs(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, 
     system_rhs(kind, law, p, amat, bvec, iv, is_, kq, y, speed, False, lv, f)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def system_jacobian(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray,
                     iv: int, is_: int, kq: float, y: np.ndarray, speed: float, slip_form: bool,
                     lv: np.ndarray, jac: np.ndarray) -> None:
@@ -148,7 +148,7 @@ def jacobian(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndar
     system_jacobian(kind, law, p, amat, bvec, iv, is_, kq, y, speed, False, lv, jac)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def system_jacobian_derivative_times(kind: int, law: int, p: np.ndarray, amat: np.ndarray,
                                      bvec: np.ndarray, iv: int, is_: int, kq: float,
                                      y: np.ndarray, speed: float, slip_form: bool, u: np.ndarray,

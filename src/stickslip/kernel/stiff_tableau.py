@@ -8,6 +8,10 @@ the last stage point plus the last stage, whose value is also the error estimate
 
 from __future__ import annotations
 
+import numpy as np
+
+#: Stages.
+STAGES = 6
 GAM = 0.25
 A21 = 1.544
 A31 = 0.9466785280815826
@@ -45,3 +49,27 @@ D33 = 16.43084320892478
 D34 = 24.76722511418386
 D35 = -6.594389125716872
 
+
+#: The same coefficients as arrays, one row per stage ``s = 0..5`` for a loop over the stages:
+#: stage ``s`` is evaluated at ``y + sum_j A_STAGE[s, j] k_j`` and its right-hand side is
+#: ``f + sum_j C_STAGE[s, j] k_j / h`` (``j < s``); stage 6's point is stage 5's plus ``k_5``
+#: (the method is stiffly accurate). The dense output's ``c3 = sum_j D2[j] k_j`` and
+#: ``c4 = sum_j D3[j] k_j`` (``j < 5``).
+A_STAGE = np.array([
+    [0.0, 0.0, 0.0, 0.0, 0.0],
+    [A21, 0.0, 0.0, 0.0, 0.0],
+    [A31, A32, 0.0, 0.0, 0.0],
+    [A41, A42, A43, 0.0, 0.0],
+    [A51, A52, A53, A54, 0.0],
+    [A51, A52, A53, A54, 1.0],
+])
+C_STAGE = np.array([
+    [0.0, 0.0, 0.0, 0.0, 0.0],
+    [C21, 0.0, 0.0, 0.0, 0.0],
+    [C31, C32, 0.0, 0.0, 0.0],
+    [C41, C42, C43, 0.0, 0.0],
+    [C51, C52, C53, C54, 0.0],
+    [C61, C62, C63, C64, C65],
+])
+D2 = np.array([D21, D22, D23, D24, D25])
+D3 = np.array([D31, D32, D33, D34, D35])
