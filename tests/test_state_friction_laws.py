@@ -153,10 +153,21 @@ def test_speed_schedule() -> None:
                           ([["0 s", "1 um/s"], ["0 s", "2 um/s"]], "must increase"),
                           ([["0 s", "-1 um/s"]], "must be positive"),
                           ([["0 s"]], "must be a pair"),
-                          ([["0 s", "1 kg"]], "wrong unit")]:
+                          ([["0 s", "1 kg"]], "wrong unit"),
+                          ([["0 s", "0 um/s"], ["1 s", "1 um/s"]], "first and the last"),
+                          ([["0 s", "1 um/s"], ["1 s", "0 um/s"]], "first and the last"),
+                          ([["0 s", "1 um/s"], ["1 s", "-1 um/s"], ["2 s", "1 um/s"]],
+                           "may hold at 0 between two slides")]:
         with pytest.raises(ValueError) as info:
             speed_schedule_from_config(value, source="speed")
         assert needle in str(info.value), str(info.value)
+
+
+def test_speed_schedule_holds_between_slides() -> None:
+    # slide-hold-slide, the healing test of rate-and-state laboratories (Dieterich 1972)
+    sched = speed_schedule_from_config([["0 s", "10 um/s"], ["5 s", "0 um/s"],
+                                        ["15 s", "10 um/s"]], source="speed")
+    assert sched.speeds == pytest.approx((1e-5, 0.0, 1e-5))
 
 
 def test_dimensionless_command_line_syntax() -> None:

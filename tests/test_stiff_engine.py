@@ -9,6 +9,11 @@
   ``expm(J t) e`` (scipy.linalg.expm of the kernel's Jacobian), to ``O(eps)``.
 * The variational equations integrated with the orbit give ``dy(t)/dy(0)``: against central
   differences of runs.
+* A slide-hold-slide of the quasi-static slider (aging law) against scipy's Radau at rtol 1e-12
+  on an independent right-hand side ``x' = V(t) - v``, ``v = 2 v_ref exp(-psi/a)
+  sinh(k x/(N a))``, ``psi' = (b/d_c)(v_ref exp((mu_ref - psi)/b) - |v|)`` (Ruina 1983's
+  quasi-static slider; the hold at ``V = 0`` lets the state heal, ``theta`` growing about one
+  second per second while the slider barely creeps).
 """
 
 from __future__ import annotations
@@ -149,3 +154,45 @@ def test_variational_equations_match_differences() -> None:
         # Phi[i, j] in units of scale_i / scale_j; the difference quotient itself is good to
         # about rtol / 1e-5 = 1e-6 (the runs' error over the step h)
         assert np.max(np.abs(phi[:, j] - column) * scale[j] / scale) < 1e-5, j
+
+
+def test_slide_hold_slide_matches_an_independent_integration() -> None:
+    law = RateStateFriction(a=0.01, b=0.012, d_c=1e-5, mu_ref=0.6, v_ref=1e-6)
+    load, k = 10.0, 1e5
+    schedule = SpeedSchedule((0.0, 5.0, 15.0), (1e-5, 0.0, 1e-5))
+    system = MemorySystem(np.array([[0.0]]), np.array([[0.0]]), np.array([[k]]), 0, load, law,
+                          schedule)
+    times = np.linspace(0.0, 25.0, 51)
+    y0 = mf.steady_state(system, 1e-5)
+    run = mf.integrate_run(system, y0, 25.0, history_times=times)
+    assert run.status == stiff.STATUS_DONE and run.history is not None
+
+    def velocity(x: float, psi: float) -> float:
+        return 2.0 * law.v_ref * math.exp(-psi / law.a) * math.sinh(k * x / (load * law.a))
+
+    rows = [y0]
+    y = y0
+    for i, speed in enumerate(schedule.speeds):
+        t0 = schedule.times[i]
+        t1 = schedule.times[i + 1] if i + 1 < len(schedule.times) else 25.0
+
+        def f(_t: float, z: np.ndarray, speed: float = speed) -> np.ndarray:
+            v = velocity(z[0], z[1])
+            return np.array([speed - v, (law.b / law.d_c)
+                             * (law.v_ref * math.exp((law.mu_ref - z[1]) / law.b) - abs(v))])
+
+        inside = times[(times > t0) & (times <= t1)]
+        sol = scipy.integrate.solve_ivp(f, (t0, t1), y, method="Radau", rtol=1e-12,
+                                        atol=[1e-18, 1e-14], t_eval=inside, dense_output=True)
+        assert sol.success
+        rows += list(sol.y.T)
+        y = sol.sol(t1)
+    reference = np.array(rows)
+    scale = mf.state_scales(system, 1e-5)
+    err = float(np.max(np.abs(run.history - reference) / scale))
+    print(f"slide-hold-slide: largest scaled error {err:.2e}")
+    assert err < 100.0 * mf.DEFAULT_RTOL  # the stated accuracy of the engine (above)
+    # the hold heals: theta = (d_c/v_ref) exp((psi - mu_ref)/b) grows by about the hold's 10 s
+    theta = law.theta(reference[:, 1])
+    hold_end = int(np.searchsorted(times, 15.0))
+    assert 8.0 < theta[hold_end] - theta[int(np.searchsorted(times, 5.0))] < 10.0

@@ -31,6 +31,7 @@ frequency ``omega_c = (V/d_c) sqrt((b - a)/a)``.
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -421,12 +422,14 @@ def integrate_run(system: MemorySystem, y0: FloatArray, t_max: float, *,
     steps = rejected = reversals = 0
     status = stiff.STATUS_DONE
     t = 0.0
-    steady = steady_states(system, np.asarray(sched.speeds, dtype=np.float64))
+    # a hold (speed 0) keeps the scales of the slide before it: steady sliding at 0 has none
+    scale_speeds = list(itertools.accumulate(sched.speeds, lambda prev, v: v if v > 0.0 else prev))
+    steady = steady_states(system, np.asarray(scale_speeds, dtype=np.float64))
     for i, speed in enumerate(sched.speeds):
         t_end = min(sched.times[i + 1], t_max) if i + 1 < len(sched.times) else t_max
         if t_end <= t:
             break
-        atol = rtol * state_scales(system, speed, steady[i])
+        atol = rtol * state_scales(system, scale_speeds[i], steady[i])
         stats = np.array([0.0, 0.0, 0.0, 0.0, math.inf, -math.inf, 0.0])
         last = i + 1 == len(sched.speeds)
         status, t, _h = stiff.integrate(ks.kind, ks.law, ks.p, ks.amat, ks.bvec, ks.iv, ks.is_,

@@ -268,7 +268,8 @@ class SpeedSchedule:
     times : tuple of float
         Start times of the steps, s, strictly increasing, ``times[0] = 0``.
     speeds : tuple of float
-        Drive speeds, m/s (> 0).
+        Drive speeds, m/s: the first and the last > 0, those between >= 0 (0 is a hold, as in
+        the slide-hold-slide tests of rate-and-state laboratories).
     """
 
     times: tuple[float, ...]
@@ -276,7 +277,8 @@ class SpeedSchedule:
 
     def __post_init__(self) -> None:
         times = tuple(finite("schedule time", t) for t in self.times)
-        speeds = tuple(positive("speed", v) for v in self.speeds)
+        speeds = tuple(positive("speed", v) if i in (0, len(self.speeds) - 1) or v != 0.0
+                       else 0.0 for i, v in enumerate(self.speeds))
         if not times or len(times) != len(speeds):
             raise ValueError(f"a speed schedule needs as many times as speeds, got {len(times)} "
                              f"and {len(speeds)}")

@@ -181,18 +181,26 @@ def speed_schedule_from_config(value: Any, *, source: str) -> SpeedSchedule:
             raise ValueError(f"{source}[{i}] = {row!r} must be a pair [time, speed], e.g. "
                              "[\"10 s\", \"10 um/s\"]")
         times.append(to_si("time", row[0], source=f"{source}[{i}] time ="))
-        speeds.append(_positive_speed(to_si("speed", row[1], source=f"{source}[{i}] speed ="),
-                                      row[1], f"{source}[{i}] speed"))
+        speed = to_si("speed", row[1], source=f"{source}[{i}] speed =")
+        if 0 < i < len(value) - 1 and speed == 0.0:
+            speeds.append(speed)  # a hold (slide-hold-slide): only between slides
+            continue
+        speeds.append(_positive_speed(speed, row[1], f"{source}[{i}] speed", in_schedule=True))
     try:
         return SpeedSchedule(tuple(times), tuple(speeds))
     except ValueError as exc:
         raise ValueError(f"{source}: {exc}") from None
 
 
-def _positive_speed(v: float, raw: Any, source: str) -> float:
-    if not v > 0.0:
-        raise ValueError(f"{source} = {raw!r} must be positive (the drive moves forwards)")
-    return v
+def _positive_speed(v: float, raw: Any, source: str, *, in_schedule: bool = False) -> float:
+    if v > 0.0:
+        return v
+    if in_schedule and v == 0.0:
+        raise ValueError(f"{source} = {raw!r}: the first and the last speed of a schedule must be "
+                         "positive (runs start from steady sliding at the first, verdicts are "
+                         "about the last); 0, a hold, only between two slides")
+    hold = "; a schedule may hold at 0 between two slides" if in_schedule else ""
+    raise ValueError(f"{source} = {raw!r} must be positive (the drive moves forwards){hold}")
 
 
 #: Flat keys a machine file with a memory law may give.
