@@ -31,7 +31,6 @@ frequency ``omega_c = (V/d_c) sqrt((b - a)/a)``.
 
 from __future__ import annotations
 
-import itertools
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -423,7 +422,9 @@ def integrate_run(system: MemorySystem, y0: FloatArray, t_max: float, *,
     status = stiff.STATUS_DONE
     t = 0.0
     # a hold (speed 0) keeps the scales of the slide before it: steady sliding at 0 has none
-    scale_speeds = list(itertools.accumulate(sched.speeds, lambda prev, v: v if v > 0.0 else prev))
+    scale_speeds: list[float] = []
+    for v in sched.speeds:
+        scale_speeds.append(v if v > 0.0 else scale_speeds[-1])  # the first speed is positive
     steady = steady_states(system, np.asarray(scale_speeds, dtype=np.float64))
     for i, speed in enumerate(sched.speeds):
         t_end = min(sched.times[i + 1], t_max) if i + 1 < len(sched.times) else t_max
