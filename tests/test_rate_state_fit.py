@@ -96,3 +96,38 @@ def test_cli(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
         assert code == 2 and out == "" and needle in err and len(err.strip().splitlines()) == 1
     code, _, err = _run(["identify", str(path), "--load", "1 kN", "--speed", "1 m/s"], capsys)
     assert code == 2 and "--mass is required" in err
+
+
+def test_slide_hold_slide_is_read_and_fitted() -> None:
+    # Slide 10 s at 1 um/s, hold 20 s (the load point stopped), slide again: the healing test
+    # (Dieterich 1972). The hold is read off the displacement as one step of speed 0, and the
+    # fit of the synthetic record (the truth at rtol 1e-12, noise 1e-4) finds the truth within
+    # four of its standard errors, as for velocity steps.
+    t = np.linspace(0.0, 40.0, 801)
+    x_lp = np.where(t < 10.0, 1e-6 * t, np.where(t < 30.0, 1e-5, 1e-5 + 1e-6 * (t - 30.0)))
+    schedule = load_point_steps(t, x_lp)
+    assert schedule.times == (0.0, 10.0, 30.0)
+    assert schedule.speeds[1] == 0.0
+    assert np.allclose(schedule.speeds, (1e-6, 0.0, 1e-6), rtol=1e-12)
+    law = RateStateFriction(a=0.01, b=0.008, d_c=10e-6, mu_ref=0.6, v_ref=1e-6)
+    fit_rtol = rate_state_fit.FIT_RTOL
+    rate_state_fit.FIT_RTOL = 1e-12
+    try:
+        mu = model_mu(t, schedule, K, LOAD, law)
+    finally:
+        rate_state_fit.FIT_RTOL = fit_rtol
+    # the contact heals during the hold: friction relaxes below steady sliding's while held and
+    # peaks above it when sliding resumes (Dieterich 1972)
+    assert mu[(t > 10.0) & (t <= 30.0)].min() < 0.6 < mu[t > 30.0].max()
+    mu = mu + 1e-4 * np.random.default_rng(3).normal(size=t.size)
+    fit = fit_rate_state(t, x_lp, mu, stiffness=K, load=LOAD)
+    for name, truth in TRUTH.items():
+        if name not in fit.undetermined:
+            assert abs(fit.values[name] - truth) <= 4.0 * fit.errors[name], (name, fit.values)
+    assert fit.rms == pytest.approx(1e-4, rel=0.1)
+
+
+def test_a_record_cannot_start_or_end_on_a_hold() -> None:
+    t = np.linspace(0.0, 20.0, 401)
+    with pytest.raises(ValueError, match="only between two of them"):
+        load_point_steps(t, np.where(t < 10.0, 0.0, 1e-6 * (t - 10.0)))

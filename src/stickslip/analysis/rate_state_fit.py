@@ -10,8 +10,10 @@ and the friction the regularised rate-and-state law of
 The steps are read off the displacement: the speed of each sample interval,
 ``(x_lp[i+1] - x_lp[i]) / (t[i+1] - t[i])``, starts a new step where it changes by more than
 :data:`STEP_CHANGE` of the larger of the two; each step's speed is its mean (its displacement over
-its duration). ``v_ref`` is the first step's speed, so ``mu_ref`` is the friction of steady
-sliding there.
+its duration). A step between two others slower than :data:`HOLD_FRACTION` of the fastest is a
+hold (the load point stopped: the slide-hold-slide test, in which the contact heals); a
+hold's noisy samples, which change sign, make one hold. ``v_ref`` is the first step's speed,
+so ``mu_ref`` is the friction of steady sliding there.
 
 The fit. The unknowns are ``a``, ``b``, ``d_c`` (positive; fitted as logarithms) and
 ``mu_ref``; the run starts from steady sliding at the first speed. The model is the stiff
@@ -43,6 +45,8 @@ FloatArray = NDArray[np.float64]
 
 #: Relative change of the sample speed that starts a new load-point step.
 STEP_CHANGE = 0.05
+#: A step slower than this fraction of the fastest is a hold (speed 0, slide-hold-slide).
+HOLD_FRACTION = 1e-3
 #: Relative tolerance of the model's runs (their error must stay below the finite-difference
 #: steps of the fit).
 FIT_RTOL = 1e-10
@@ -75,14 +79,23 @@ def load_point_steps(t: FloatArray, x_lp: FloatArray) -> SpeedSchedule:
         if abs(speed[i] - speed[i - 1]) > STEP_CHANGE * max(abs(speed[i]), abs(speed[i - 1])):
             starts.append(i)
     ends = [*starts[1:], speed.size]
-    times, speeds = [], []
-    for s, e in zip(starts, ends, strict=True):
-        v = (x_lp[e] - x_lp[s]) / (t[e] - t[s])
-        if not v > 0.0:
+    steps = [(s, e, float((x_lp[e] - x_lp[s]) / (t[e] - t[s]))) for s, e in zip(starts, ends, strict=True)]
+    fastest = max(abs(v) for _, _, v in steps)
+    times: list[float] = []
+    speeds: list[float] = []
+    for k, (s, e, v) in enumerate(steps):
+        hold = abs(v) <= HOLD_FRACTION * fastest
+        if hold and 0 < k < len(steps) - 1:
+            if speeds[-1] != 0.0:  # a hold's noisy samples are one hold
+                times.append(float(t[s] - t[0]))
+                speeds.append(0.0)
+            continue
+        if not v > 0.0 or hold:
             raise ValueError(f"the load point does not move forward from {t[s]:g} s to {t[e]:g} s "
-                             f"(speed {v:.3g} m/s): velocity steps need positive speeds")
+                             f"(speed {v:.3g} m/s): velocity steps need positive speeds (a hold, "
+                             "below 1e-3 of the fastest step, only between two of them)")
         times.append(float(t[s] - t[0]))
-        speeds.append(float(v))
+        speeds.append(v)
     return SpeedSchedule(tuple(times), tuple(speeds))
 
 

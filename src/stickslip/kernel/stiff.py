@@ -31,7 +31,10 @@ of a periodic motion crosses it once or more, its mean velocity being zero) and 
 reversals ``q_c' = V``, sampled at :data:`EVENT_SAMPLES` points inside each step and bisected to
 round-off. Quasi-stick (the slip speed below a fraction of ``V``) is judged by the caller on
 the dense output. No Python callback
-runs in the loop: the laws are compiled here, chosen by an integer code.
+runs in the loop: the laws are compiled here, chosen by an integer code. The engine is compiled
+with numpy's error model: a division by zero or an overflow (a state healed far beyond its
+steady value) gives inf or nan, which the step's finiteness check rejects (the step shrinks),
+never an exception.
 """
 
 from __future__ import annotations
@@ -93,7 +96,7 @@ SAFETY = 0.9
 FAC_MIN = 0.2
 FAC_MAX = 6.0
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def lu_factor(a: np.ndarray, piv: np.ndarray) -> bool:
     """In-place LU with partial pivoting; False when singular."""
     n = a.shape[0]
@@ -122,7 +125,7 @@ def lu_factor(a: np.ndarray, piv: np.ndarray) -> bool:
     return True
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def lu_solve(lu: np.ndarray, piv: np.ndarray, b: np.ndarray) -> None:
     """Solve in place with the factors of :func:`lu_factor`."""
     n = lu.shape[0]
@@ -144,7 +147,7 @@ def lu_solve(lu: np.ndarray, piv: np.ndarray, b: np.ndarray) -> None:
         b[i] = acc / lu[i, i]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _aug_rhs(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
              is_: int, kq: float, z: np.ndarray, n: int, with_phi: bool, speed: float,
              lv: np.ndarray, jw: np.ndarray, out: np.ndarray) -> None:
@@ -164,7 +167,7 @@ def _aug_rhs(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndar
                 dphi[i, j] = acc
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _stage_solve(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
                  is_: int, kq: float, z0: np.ndarray, n: int, with_phi: bool, speed: float,
                  lu: np.ndarray, piv: np.ndarray, lv: np.ndarray, hw: np.ndarray,
@@ -185,7 +188,7 @@ def _stage_solve(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.
                 rphi[i, j] = col[i]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def dense_value(z0: np.ndarray, z1: np.ndarray, c3: np.ndarray, c4: np.ndarray, theta: float,
                 out: np.ndarray) -> None:
     """RODAS4's dense output at ``theta`` in [0, 1] of the step: order 3 (Hairer & Wanner)."""
@@ -194,7 +197,7 @@ def dense_value(z0: np.ndarray, z1: np.ndarray, c3: np.ndarray, c4: np.ndarray, 
         out[i] = z0[i] * s1 + theta * (z1[i] + s1 * (c3[i] + theta * c4[i]))
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
               is_: int, kq: float, z: np.ndarray, n: int, with_phi: bool, t0: float, t1: float,
               speed: float, rtol: float, atol: np.ndarray, phi_rtol: float, h_start: float,
@@ -279,7 +282,7 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
     return status, t, h
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _integrate_slip_form(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
                          is_: int, kq: float, z: np.ndarray, n: int, with_phi: bool, t0: float, t1: float,
                          speed: float, rtol: float, atol: np.ndarray, phi_rtol: float, h_start: float,

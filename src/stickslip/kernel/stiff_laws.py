@@ -27,7 +27,7 @@ N_LAW = 12
 _LOG_SWITCH = 30.0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def law_values(law: int, p: np.ndarray, v: float, s: float, out: np.ndarray) -> None:
     """Friction force ``F`` (N), state rate ``G`` and their first and second partials in ``(v, s)``.
 
@@ -73,7 +73,7 @@ def law_values(law: int, p: np.ndarray, v: float, s: float, out: np.ndarray) -> 
         out[L_F] = sv * load * a * (lx + math.log(2.0))
         out[L_FV] = load * a / av
         out[L_FS] = sv * load
-        out[L_FVV] = -sv * load * a / (av * av)
+        out[L_FVV] = -sv * (load * a / av) / av  # av * av may underflow to 0; this may be inf
         out[L_FVS] = 0.0
         out[L_FSS] = 0.0
     else:
@@ -99,7 +99,7 @@ def law_values(law: int, p: np.ndarray, v: float, s: float, out: np.ndarray) -> 
             lg = b * math.log(av / vref) + s - mu0
             out[L_G] = -(av / dc) * lg
             out[L_GV] = -(sv / dc) * (lg + b)
-            out[L_GVV] = -b / (dc * av)
+            out[L_GVV] = -(b / dc) / av
         else:
             out[L_G] = 0.0
             out[L_GV] = 0.0
@@ -109,7 +109,7 @@ def law_values(law: int, p: np.ndarray, v: float, s: float, out: np.ndarray) -> 
         out[L_GSS] = 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def quasi_static_speed(p: np.ndarray, kq: float, x: float, psi: float) -> tuple[float, float, float]:
     """Slip speed of the quasi-static slider and its partials: ``v``, ``dv/dx``, ``dv/dpsi``.
 

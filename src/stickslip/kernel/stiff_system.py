@@ -42,7 +42,7 @@ KIND_DYNAMIC = 0
 KIND_QUASI_STATIC = 1
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def contact_speed(kind: int, law: int, p: np.ndarray, kq: float, iv: int, y: np.ndarray,
                   speed: float) -> float:
     """The contact's velocity ``q_c'`` (m/s, ground frame) in the state form: the section function."""
@@ -52,7 +52,7 @@ def contact_speed(kind: int, law: int, p: np.ndarray, kq: float, iv: int, y: np.
     return y[iv]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def slip_speed(kind: int, p: np.ndarray, kq: float, iv: int, w: np.ndarray) -> float:
     """The slip speed ``v = V - q_c'`` (m/s) in the slip form, to full relative precision."""
     if kind == KIND_QUASI_STATIC:
@@ -61,7 +61,7 @@ def slip_speed(kind: int, p: np.ndarray, kq: float, iv: int, w: np.ndarray) -> f
     return w[iv]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def swap_slip_form(z: np.ndarray, n: int, iv: int, speed: float) -> None:
     """Convert ``z = (y, vec Phi)`` (or ``y`` alone) between the state and the slip form, in place.
 
@@ -73,7 +73,7 @@ def swap_slip_form(z: np.ndarray, n: int, iv: int, speed: float) -> None:
             z[n + iv * n + j] = -z[n + iv * n + j]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def system_rhs(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
                is_: int, kq: float, y: np.ndarray, speed: float, slip_form: bool,
                lv: np.ndarray, f: np.ndarray) -> None:
@@ -102,14 +102,14 @@ def system_rhs(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nd
         f[iv] = -f[iv]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def rhs(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
         is_: int, kq: float, y: np.ndarray, speed: float, lv: np.ndarray, f: np.ndarray) -> None:
     """``f = y'`` at ``y`` (state form) for drive speed ``speed`` (m/s); ``lv`` receives the law's values."""
     system_rhs(kind, law, p, amat, bvec, iv, is_, kq, y, speed, False, lv, f)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def system_jacobian(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray,
                     iv: int, is_: int, kq: float, y: np.ndarray, speed: float, slip_form: bool,
                     lv: np.ndarray, jac: np.ndarray) -> None:
@@ -140,7 +140,7 @@ def system_jacobian(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: 
             jac[i, iv] = -jac[i, iv]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def jacobian(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndarray, iv: int,
              is_: int, kq: float, y: np.ndarray, speed: float, lv: np.ndarray,
              jac: np.ndarray) -> None:
@@ -148,7 +148,7 @@ def jacobian(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.ndar
     system_jacobian(kind, law, p, amat, bvec, iv, is_, kq, y, speed, False, lv, jac)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def system_jacobian_derivative_times(kind: int, law: int, p: np.ndarray, amat: np.ndarray,
                                      bvec: np.ndarray, iv: int, is_: int, kq: float,
                                      y: np.ndarray, speed: float, slip_form: bool, u: np.ndarray,
@@ -197,7 +197,7 @@ def system_jacobian_derivative_times(kind: int, law: int, p: np.ndarray, amat: n
             out[iv, j] = -out[iv, j]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def jacobian_derivative_times(kind: int, law: int, p: np.ndarray, amat: np.ndarray,
                               bvec: np.ndarray, iv: int, is_: int, kq: float, y: np.ndarray,
                               speed: float, u: np.ndarray, phi: np.ndarray, lv: np.ndarray,
