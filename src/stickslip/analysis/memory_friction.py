@@ -45,6 +45,9 @@ FloatArray = NDArray[np.float64]
 
 #: Relative tolerance of runs (``atol_i = rtol * scale_i``, scales of :func:`state_scales`).
 DEFAULT_RTOL = 1e-8
+#: Up to this many speeds, :func:`steady_forces` evaluates rate-and-state friction with the
+#: engine's compiled law (the same formula) rather than numpy's array set-up.
+FEW_SPEEDS = 8
 #: Attempted steps per schedule segment (a bound on every run).
 MAX_STEPS = 2_000_000
 #: Section crossings kept per run.
@@ -162,6 +165,14 @@ def steady_forces(system: MemorySystem, speeds: FloatArray) -> FloatArray:
     law, load = system.friction, system.load
     if isinstance(law, RateStateFriction):
         psi = np.array([law.steady_state(float(x), load) for x in v.tolist()])
+        if v.size <= FEW_SPEEDS:  # a run's schedule: the compiled law, without numpy's set-up
+            lv = np.empty(stiff.N_LAW)
+            p = law.parameters(load)
+            forces = np.empty(v.size)
+            for i in range(v.size):
+                stiff.law_values(law.code, p, float(v[i]), float(psi[i]), lv)
+                forces[i] = lv[stiff.L_F]
+            return forces
         return load * np.asarray(law.mu(v, psi), dtype=np.float64)
     return np.array([law.steady_mu(float(x), load) * load for x in v.tolist()])
 
