@@ -124,6 +124,10 @@ def test_quasi_static_velocity_step(tmp_path: Path, capsys: pytest.CaptureFixtur
     (LUGRE, ["--history-times", "0:40"], "--history-times"),
     (QUASI_STATIC, ["--t-max", "40"], "no natural time"),
     (QUASI_STATIC, ["--initial-kick", "0.5"], "needs the slider's mass"),
+    (LUGRE, ["--initial-kick", "nan"], "--initial-kick nan must be a number from -1000 to 1000"),
+    (LUGRE, ["--initial-kick", "1e300"], "must be a number from -1000 to 1000"),
+    (QUASI_STATIC.replace('["10 s", "10 um/s"]', '["10 s", "0 um/s"]'), [],
+     "the first and the last speed of a schedule must be positive"),
     (LUGRE.replace("[system]", "[system]\nmu_k = 0.3"), [], "belong to the curve laws"),
 ])
 def test_bad_input_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str], text: str,

@@ -199,6 +199,10 @@ def default_horizon(system: MemorySystem) -> float:
     return system.schedule.times[-1] + span
 
 
+#: Largest kick ``|F|``: the contact starts at up to a thousand times the drive speed.
+MAX_KICK = 1e3
+
+
 def initial_state(system: MemorySystem, kick: float = 0.0) -> tuple[FloatArray, str]:
     """Steady sliding at the first speed; with ``kick = F`` the contact moves at ``-F V``.
 
@@ -217,6 +221,9 @@ def initial_state(system: MemorySystem, kick: float = 0.0) -> tuple[FloatArray, 
     tuple
         The state ``y`` and its description.
     """
+    if not math.isfinite(kick) or abs(kick) > MAX_KICK:
+        raise ValueError(f"--initial-kick {kick!r} must be a number from {-MAX_KICK:g} to "
+                         f"{MAX_KICK:g} (the contact starts at -F times the drive speed)")
     v = system.schedule.first
     y = steady_state(system, v)
     text = f"steady sliding at {v:g} m/s"
