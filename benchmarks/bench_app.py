@@ -176,7 +176,7 @@ def main(argv: list[str] | None = None) -> int:
         median = statistics.median(times)
         verdict = "meets" if median < goal else "misses"
         print(f"  {name:26s} median {median:6.2f} s, best {min(times):6.2f} s  "
-              f"(goal < {goal} s: {verdict} it)")
+              f"(goal < {goal} s: {verdict} it)  [{', '.join(f'{t:.2f}' for t in times)}]")
     return 0
 
 
