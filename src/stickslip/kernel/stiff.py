@@ -266,9 +266,7 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
     ``z``, ``z_out`` and ``cross_z`` are converted on the way in and out, so callers see the
     state form; the slip speed keeps full relative precision inside the call.
 
-    Why the integrator is longer than the house's 120 lines: the six stages of RODAS4, its
-    dense output, the section search and the step-size controller share the stage vectors
-    of one step; split into compiled helpers they would pass a dozen arrays per call.
+    The work is done by :func:`_integrate_slip_form` (its docstring says why it is long).
     """
     slip = kind == KIND_DYNAMIC
     if slip:
@@ -290,7 +288,12 @@ def _integrate_slip_form(kind: int, law: int, p: np.ndarray, amat: np.ndarray, b
                          t_out: np.ndarray, z_out: np.ndarray, stop_at_section: bool, section_after: float,
                          cross_t: np.ndarray, cross_z: np.ndarray, reversal_t: np.ndarray,
                          stats: np.ndarray) -> tuple[int, float, float]:
-    """:func:`integrate` on ``z`` in the slip form (dynamic) or the quasi-static form."""
+    """:func:`integrate` on ``z`` in the slip form (dynamic) or the quasi-static form.
+
+    Why this function is longer than the house's 120 lines: the stages of RODAS4, its dense
+    output, the section and reversal search and the step-size controller share the stage
+    vectors of one step; split into compiled helpers they would pass a dozen arrays per call.
+    """
     nz = z.shape[0]
     lv = np.empty(N_LAW)
     jac = np.empty((n, n))
