@@ -37,12 +37,16 @@ FloatArray = NDArray[np.float64]
 
 #: ``||D^-1 A D|| h`` of the sampling step.
 STEP = 0.25
-#: Samples evaluated together (one batched product per chunk).
+#: Samples evaluated together (one batched product per chunk): the first chunk, and the
+#: largest (each chunk doubles the last).
+FIRST_CHUNK = 8
 CHUNK = 256
 #: Halvings of a sample interval before a touch of zero is taken as a graze.
 MAX_HALVINGS = 52
 #: Most interval halvings in one search (a budget: beyond it the search gives up).
 MAX_REFINEMENTS = 100_000
+#: Propagators a flow keeps for the event search's halved steps (then it starts afresh).
+KEPT_PROPAGATORS = 128
 #: Relative allowance of a surface that the phase starts on (its own rounding).
 START_TOLERANCE = 1e-10
 #: Multiple of that allowance beyond which the surface counts as left (exact again).
@@ -74,6 +78,9 @@ class AffineFlow:
         aug_scale = np.append(self.scale, self.norm / c_scaled if c_scaled > 0.0 else 1.0)
         self.aug_balanced = self.aug * aug_scale[None, :] / aug_scale[:, None]
         self.aug_ratio = aug_scale[:, None] / aug_scale[None, :]
+        self._kept: dict[float, FloatArray] = {}
+        self.sample_step = STEP / self.norm
+        self._powers = np.empty((0, n + 1, n + 1))
 
     def propagator(self, t: float) -> FloatArray:
         """``expm([[A, c], [0, 0]] t)``: the flow's affine map over ``t`` seconds.
@@ -83,9 +90,34 @@ class AffineFlow:
         """
         return np.asarray(scipy.linalg.expm(self.aug_balanced * t)) * self.aug_ratio
 
-    def at(self, z0: FloatArray, t: float) -> FloatArray:
-        """The state ``t`` seconds after ``z0`` (exact but for rounding)."""
-        p = self.propagator(t)
+    def kept_propagator(self, t: float) -> FloatArray:
+        """:meth:`propagator`, kept for the durations the event search uses again and again
+        (the sampling step halved, ``h / 2^k``); the same matrix, computed once."""
+        p = self._kept.get(t)
+        if p is None:
+            if len(self._kept) >= KEPT_PROPAGATORS:
+                self._kept.clear()
+            p = self._kept[t] = self.propagator(t)
+        return p
+
+    def step_powers(self, k: int) -> FloatArray:
+        """The propagators over ``1..k`` sampling steps (:attr:`sample_step`), kept."""
+        made = self._powers.shape[0]
+        if made < k:
+            grown = np.empty((max(k, min(2 * made, CHUNK)), *self._powers.shape[1:]))
+            grown[:made] = self._powers
+            if made == 0:
+                grown[0] = self.kept_propagator(self.sample_step)
+                made = 1
+            for j in range(made, grown.shape[0]):
+                grown[j] = grown[0] @ grown[j - 1]
+            self._powers = grown
+        return self._powers[:k]
+
+    def at(self, z0: FloatArray, t: float, *, keep: bool = False) -> FloatArray:
+        """The state ``t`` seconds after ``z0`` (exact but for rounding); ``keep``: a duration
+        used again (:meth:`kept_propagator`)."""
+        p = self.kept_propagator(t) if keep else self.propagator(t)
         n = z0.size
         return np.asarray(p[:n, :n] @ z0 + p[:n, n])
 
@@ -157,23 +189,23 @@ def first_event(flow: AffineFlow, z0: FloatArray, normals: FloatArray, levels: F
     if np.any(g0 + shift < 0.0):
         index = int(np.argmin(g0 + shift))
         return Found(0.0, z0, index, 0)
-    steps = max(1, math.ceil(horizon * flow.norm / STEP))
-    h = horizon / steps
+    # one sampling step per mode (its propagators kept across phases), the last sample at or
+    # just beyond the horizon; chunks grow from FIRST_CHUNK to CHUNK samples (most phases end
+    # within a few samples)
+    h = flow.sample_step
+    steps = max(1, math.ceil(horizon / h))
     coef = _Curvature.of(flow, normals)
-    chunk = min(CHUNK, steps)
-    step = flow.propagator(h)
-    powers = np.empty((chunk, n_d + 1, n_d + 1))
-    powers[0] = step
-    for j in range(1, chunk):
-        powers[j] = step @ powers[j - 1]
+    chunk = min(FIRST_CHUNK, steps)
     done, z, used = 0, z0, 0
     budget = [MAX_REFINEMENTS]
     while done < steps:
         k = min(chunk, steps - done)
+        chunk = min(2 * chunk, CHUNK)
         used += k
         if used > max_samples:
             raise RuntimeError(f"sample budget of {max_samples} exhausted")
-        zs = np.vstack([z[None, :], powers[:k, :n_d, :n_d] @ z + powers[:k, :n_d, n_d]])
+        powers = flow.step_powers(k)
+        zs = np.vstack([z[None, :], powers[:, :n_d, :n_d] @ z + powers[:, :n_d, n_d]])
         g = zs @ normals.T + levels
         # the surface is left behind once the function was clearly positive at a sample
         left = np.maximum.accumulate((g > LEFT * tol) | (shift == 0.0)[None, :], axis=0)
@@ -187,13 +219,17 @@ def first_event(flow: AffineFlow, z0: FloatArray, normals: FloatArray, levels: F
                           budget)
             if hit is not None:
                 dt, index = hit
-                z_hit = flow.at(z0, dt)
-                return Found(dt, z_hit, index, used)
+                if dt > horizon:  # in the last interval, beyond the horizon
+                    break
+                return Found(dt, flow.at(z0, dt), index, used)
         done += k
+        if done >= steps:  # the horizon lies in the last interval: its state from there
+            start = (done - 1) * h
+            return Horizon(flow.at(zs[-2], horizon - start), used)
         z = zs[-1]
-        if stop is not None and done < steps and stop(z):
+        if stop is not None and stop(z):
             return Settled(done * h, z, used)
-    return Horizon(z, used)
+    return Horizon(z, used)  # not reached: the loop returns at its last interval
 
 
 @dataclass(frozen=True)
@@ -240,8 +276,8 @@ def _refine(flow: AffineFlow, z_left: FloatArray, t_left: float, h: float, norma
     if budget[0] < 0:
         raise RuntimeError(f"event search budget of {MAX_REFINEMENTS} interval halvings exhausted")
     half = 0.5 * h
-    z_mid = flow.at(z_left, half)
-    z_right = flow.at(z_left, h)
+    z_mid = flow.at(z_left, half, keep=True)
+    z_right = flow.at(z_left, h, keep=True)
     zs = np.vstack([z_left, z_mid, z_right])
     g = zs @ normals.T + levels
     for side in (0, 1):
