@@ -10,7 +10,9 @@ high slip speed), so the exact piecewise-linear engine does not apply. This modu
 with ``y = (q, q', s)``, or the quasi-static slider of rate-and-state (``m = 0``):
 ``k x = F(v, psi)`` solved for the slip speed ``v = 2 v_ref exp(-psi/a) sinh(k x / (N a))``,
 ``y = (x, psi)``, ``x' = V - v``. ``V`` is constant on each call (a schedule of drive speeds is
-a sequence of calls).
+a sequence of calls). Inside a call the dynamic state is carried in the *slip form*, ``q_c'``
+replaced by ``v`` itself, so that creep far below the round-off of ``V`` is resolved; the
+right-hand side, Jacobian and their transformation are in :mod:`stickslip.kernel.stiff_system`.
 
 The method is RODAS4 of Hairer and Wanner (Solving Ordinary Differential Equations II, 2nd ed.,
 Springer 1996, Sec. IV.7; the coefficients of their code ``rodas.f``): six stages, order 4, an
