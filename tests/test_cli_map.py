@@ -93,6 +93,7 @@ def test_resume_store_of_another_configuration_is_refused(
     assert {p.name: _digest(p) for p in parts.iterdir()} == before
 
 
+@pytest.mark.slow  # starts a local Dask cluster (8 s); the default run keeps the thread backend
 def test_map_with_a_local_dask_cluster(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "d.nc"
     code, stdout, err = _run(["map", *SMALL, "--dva", "optimal", "--out", str(out), "--backend",

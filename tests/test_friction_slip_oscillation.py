@@ -52,6 +52,7 @@ def test_slip_oscillation_is_certified_and_never_sticks(tol: float) -> None:
     assert "Poincare" in r.certificate
 
 
+@pytest.mark.slow  # a long solve_ivp oracle run (17 s); the certificate tests stay in the default run
 def test_slip_oscillation_matches_the_oracle() -> None:
     structure, slider, initial = _case(1e-6)
     r = simulate(structure, slider, initial=initial)
