@@ -13,6 +13,7 @@ from __future__ import annotations
 import csv
 import importlib.util
 import io
+import itertools
 import json
 import math
 import re
@@ -87,8 +88,8 @@ def test_default_inputs_render_and_show_the_verdicts() -> None:
     critical = at.table[1].value
     assert critical.loc["with foundation, simulation", "critical speed V_c [m/s]"] == "0.06188"
     assert critical.loc["rigid base, exact (Eq. 36)", "critical speed V_c [m/s]"] == "0.4588"
-    # two time-history figures and the occurrence map
-    assert len(at.get("image")) == 3
+    # a time history and a phase portrait per machine, and the two occurrence maps
+    assert len(at.get("vega_lite_chart")) == 6
     assert len(at.get("download_button")) == 2
 
 
@@ -111,46 +112,119 @@ def test_the_cycles_period_and_amplitude_are_shown_in_seconds_and_metres() -> No
     assert _metric(at, "rigid base: amplitude") == f"{run.amplitude * v / omega:.4g} m"
 
 
+def _dataset(spec: dict[str, Any], name: str) -> Any:
+    """A chart's dataset as a DataFrame (the charts carry Arrow tables)."""
+    return spec["datasets"][name].to_pandas()
+
+
 def test_the_time_plots_are_in_si() -> None:
+    """The charts' samples are the run's exact trajectory scaled by (1/omega_n, V/omega_n, V)
+    (Eqs. 15-16), and the stick shading is the run's stick phases in seconds."""
     from stickslip import Slider, rigid_base, simulate
-    from stickslip.app.figures import PLOT_POINTS, figure_of_run
+    from stickslip.app.charts import PLOT_POINTS, phase_portrait_chart, time_history_chart
 
     run = simulate(rigid_base(0.1), Slider(3.0), record=True)
     scales = (0.01, 0.002, 0.5)  # s, m, m/s
-    plain, si = figure_of_run(run, "t"), figure_of_run(run, "t", scales)
-    for index, (x_scale, y_scale) in enumerate(((scales[0], scales[1]), (scales[1], scales[2]))):
-        expected, drawn = plain.axes[index].lines[0], si.axes[index].lines[0]
-        np.testing.assert_allclose(drawn.get_xdata(), np.asarray(expected.get_xdata()) * x_scale)
-        np.testing.assert_allclose(drawn.get_ydata(), np.asarray(expected.get_ydata()) * y_scale)
-    assert si.axes[0].get_xlabel() == "time t [s]" and si.axes[0].get_ylabel() == "$x$ [m]"
-    assert si.axes[1].get_ylabel() == "slider v [m/s]" and PLOT_POINTS > 0
+    hist = run.time_history(n_points=PLOT_POINTS)
+    history = _dataset(time_history_chart(run, scales), "history")
+    at = np.searchsorted(hist.t * scales[0], history["t"].to_numpy())
+    np.testing.assert_allclose(history["t"], hist.t[at] * scales[0], rtol=1e-15)
+    np.testing.assert_allclose(history["x"], hist.position[at, 0] * scales[1], rtol=1e-15)
+    stick = _dataset(time_history_chart(run, scales), "stick")
+    np.testing.assert_allclose(stick[["start", "end"]].to_numpy(),
+                               run.stick_intervals() * scales[0], rtol=1e-15)
+    orbit = _dataset(phase_portrait_chart(run, scales), "history")
+    x, v = hist.position[:, 0] * scales[1], hist.velocity[:, 0] * scales[2]
+    kept = orbit["i"].to_numpy()
+    assert np.all(np.diff(kept) > 0) and kept[0] == 0 and kept[-1] == x.size - 1
+    np.testing.assert_array_equal(orbit["x"], x[kept])
+    np.testing.assert_array_equal(orbit["v"], v[kept])
+    belt = _dataset(phase_portrait_chart(run, scales), "belt")
+    assert belt["v"].tolist() == [scales[2]]
 
 
-def test_figures_are_drawn_once_per_input(monkeypatch: pytest.MonkeyPatch) -> None:
-    """Issue 31: a rerun of inputs drawn before draws nothing (the PNGs are cached) and the
-    images need no resizing by Streamlit (at most its 1460 px content width)."""
-    from PIL import Image
+def test_a_simplified_line_stays_within_its_tolerance() -> None:
+    """Every dropped sample lies within the tolerance (a fraction of the axes' ranges) of the
+    segment between the kept samples around it: the chart draws the same line."""
+    from stickslip.app.charts import simplified
 
-    from stickslip.app import figures
+    rng = np.random.default_rng(7)
+    t = np.linspace(0.0, 10.0, 1500)
+    for y in (np.sin(3.0 * t), np.where(t % 2.0 < 1.2, t % 2.0, 3.0 * np.cos(5.0 * t)),
+              np.cumsum(rng.normal(size=t.size))):
+        tolerance = 5e-4
+        kept = simplified(t, y, tolerance)
+        assert kept[0] == 0 and kept[-1] == t.size - 1 and np.all(np.diff(kept) > 0)
+        px, py = (t - t[0]) / np.ptp(t), (y - y[0]) / np.ptp(y)
+        worst = 0.0
+        for a, b in itertools.pairwise(kept):
+            dx, dy = px[b] - px[a], py[b] - py[a]
+            inner = slice(a + 1, b)
+            d = np.abs((px[inner] - px[a]) * dy - (py[inner] - py[a]) * dx) / np.hypot(dx, dy)
+            worst = max(worst, float(d.max(initial=0.0)))
+        assert worst <= tolerance
+    line = np.linspace(0.0, 1.0, 1500)  # a straight line keeps its two ends only
+    assert simplified(t, line).tolist() == [0, t.size - 1]
 
-    drawn: list[str] = []
-    real = figures.figure_of_run
 
-    def counted(result: Any, title: str, si: Any = None) -> Any:
-        drawn.append(title)
-        return real(result, title, si)
+def test_the_occurrence_map_axes_read_the_operating_point_in_si() -> None:
+    """The top axis is c = 2 zeta sqrt(m k) and the right one V = lambda_op V_op / lambda at the
+    same load (Eq. 22), over the map's edges; the star is the operating point."""
+    from stickslip.app import charts
+    from stickslip.app.computations import occurrence_maps
+    from stickslip.app.inputs import system_from_key
 
-    monkeypatch.setattr(figures, "figure_of_run", counted)
-    figures.run_figures_png.clear()
-    figures.occurrence_png.clear()
+    lam, zeta, gamma, foundation, law, key = _default_occurrence_args()
+    system = system_from_key(key)
+    maps = occurrence_maps(lam, zeta, gamma, foundation, law)
+    for name, result in maps.items():
+        spec = charts.occurrence_chart(result, name, system, lam, zeta)
+        cells, frame = _dataset(spec, "cells"), _dataset(spec, "frame")
+        root_mk = math.sqrt(2.0 * 5e4)  # m = 2 kg, k = 50 kN/m
+        np.testing.assert_allclose(frame["c"], [2 * root_mk * cells["z0"].min(),
+                                                2 * root_mk * cells["z1"].max()], rtol=1e-12)
+        np.testing.assert_allclose(frame["V"], [lam * 0.05 / cells["l1"].max(),
+                                                lam * 0.05 / cells["l0"].min()], rtol=1e-12)
+        point = _dataset(spec, "point")
+        assert (point["zeta"][0], point["lambda"][0]) == (zeta, lam)
+        # every cell of the map once: the runs of a column cover its lambda edges
+        verdicts = result.dataset["verdict"]
+        assert len(cells) <= verdicts.size and cells.groupby("zeta").size().size == 12
+        curves = _dataset(spec, "curves")
+        assert curves["lambda"].between(cells["l0"].min() * (1 - 1e-12),
+                                        cells["l1"].max() * (1 + 1e-12)).all()
+
+
+def test_charts_are_built_once_per_input_and_their_layout_holds_no_data(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """Issue 31: a rerun of inputs charted before builds nothing (the charts are cached), and
+    a new operating point changes the charts' data only, which the browser updates in place."""
+    from stickslip.app import charts, figures
+
+    built: list[int] = []
+    real = charts.time_history_chart
+
+    def counted(result: Any, si: Any) -> Any:
+        built.append(1)
+        return real(result, si)
+
+    monkeypatch.setattr(figures, "time_history_chart", counted)
+    figures.run_charts.clear()
+    figures.occurrence_map_charts.clear()
     at = _started()
-    assert not at.exception and len(drawn) == 2
+    assert not at.exception and len(built) == 2
+    layouts = [_layout(c.proto.spec) for c in at.get("vega_lite_chart")]
     at.text_input(key="speed").set_value("10 cm/s").run()
-    assert not at.exception and len(drawn) == 4
+    assert not at.exception and len(built) == 4
+    assert [_layout(c.proto.spec) for c in at.get("vega_lite_chart")] == layouts
     at.text_input(key="speed").set_value("5 cm/s").run()
-    assert not at.exception and len(drawn) == 4  # back to the defaults: nothing redrawn
-    png = figures.occurrence_png(*_default_occurrence_args())
-    assert Image.open(io.BytesIO(png)).width == figures.PNG_MAX_WIDTH
+    assert not at.exception and len(built) == 4  # back to the defaults: nothing rebuilt
+
+
+def _layout(spec: str) -> str:
+    """A chart's specification without its datasets (which Streamlit sends apart)."""
+    return json.dumps({k: v for k, v in json.loads(spec).items() if k != "datasets"},
+                      sort_keys=True)
 
 
 def _default_occurrence_args() -> tuple[Any, ...]:
@@ -185,7 +259,7 @@ def test_bad_input_replaces_the_results_and_a_fix_restores_them() -> None:
         "Spring stiffness k: '5 kg' has the wrong unit for the slider stiffness: expected N/m "
         "(dimension [force] / [length]), got kg"
     ]
-    assert not at.metric and not at.table and not at.get("image")
+    assert not at.metric and not at.table and not at.get("image") and not at.get("vega_lite_chart")
     at.text_input(key="k").set_value("50000").run()  # a bare number is SI
     assert not at.exception and not at.error
     assert _verdicts(at) == ("stick-slip", "stick-slip")
@@ -218,7 +292,7 @@ def test_bad_input_is_one_clear_line_and_nothing_is_computed(key: str, text: str
     messages = _errors(at)
     assert len(messages) == 1
     assert expected in messages[0] and "\n" not in messages[0]
-    assert not at.metric and not at.table and not at.get("image")
+    assert not at.metric and not at.table and not at.get("image") and not at.get("vega_lite_chart")
 
 
 def test_inputs_outside_the_model_range_are_one_line() -> None:
@@ -515,7 +589,8 @@ def test_bad_friction_slope_is_one_line_and_nothing_is_computed() -> None:
     (message,) = _errors(at)
     assert message.startswith("Friction slope σ") and "wrong unit" in message and "s/m" in message
     assert "\n" not in message
-    assert not at.metric and not at.table and not at.dataframe and not at.get("image")
+    assert not at.metric and not at.table and not at.dataframe
+    assert not at.get("image") and not at.get("vega_lite_chart")
 
 
 @pytest.mark.parametrize(

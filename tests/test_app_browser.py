@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import importlib
 import io
+import json
 import re
 import shutil
 import socket
@@ -310,6 +311,12 @@ SCREENSHOTS = "STICKSLIP_SCREENSHOTS"
 RECORD = Path(__file__).resolve().parents[1] / "examples" / "rig_record.csv"
 
 
+#: Every image of the page is loaded and every chart drawn by the browser.
+DRAWN = """() => Array.from(document.images).every(i => i.complete)
+  && Array.from(document.querySelectorAll('[data-testid="stVegaLiteChart"]'))
+       .every(c => c.querySelector('canvas.marks, svg.marks') !== null)"""
+
+
 def _screenshot(page: Any, name: str) -> None:
     import os
 
@@ -323,8 +330,7 @@ def _screenshot(page: Any, name: str) -> None:
         height = page.evaluate("Math.max(...Array.from(document.querySelectorAll('*'), "
                                "e => e.scrollHeight))")
         page.set_viewport_size({"width": 1400, "height": min(max(int(height), 1000), 6000)})
-        page.wait_for_function("Array.from(document.images).every(i => i.complete)",
-                               timeout=PAGE_TIMEOUT_MS)
+        page.wait_for_function(f"({DRAWN})()", timeout=PAGE_TIMEOUT_MS)
         page.screenshot(path=str(Path(folder) / name))
         page.set_viewport_size({"width": 1400, "height": 1000})
 
@@ -338,7 +344,33 @@ def test_the_slider_page_in_si(server: str, page: Any) -> None:
     amplitude = page.locator('[data-testid="stMetric"]').filter(has_text="rigid base: amplitude")
     expect(amplitude.locator('[data-testid="stMetricValue"]')).to_have_text(
         re.compile(r"^[0-9.e-]+ m$"))
+    # the time histories, phase portraits and occurrence maps, drawn by the browser
+    charts = page.locator('[data-testid="stVegaLiteChart"]')
+    expect(charts).to_have_count(6, timeout=PAGE_TIMEOUT_MS)
+    page.wait_for_function(f"({DRAWN})()", timeout=PAGE_TIMEOUT_MS)
+    for i in range(6):
+        box = charts.nth(i).locator("canvas.marks").bounding_box()
+        assert box is not None and box["width"] > 200 and box["height"] > 150
     _screenshot(page, "app.png")
+
+
+def test_the_downloads_are_written_when_clicked(server: str, page: Any) -> None:
+    """The slider page's downloads are made on the click (not at every rerun): the CSV's
+    header and both structures, the JSON's verdicts."""
+    expect = _playwright().expect
+    page.goto(server, wait_until="domcontentloaded", timeout=PAGE_TIMEOUT_MS)
+    button = page.get_by_role("button", name="Time histories (CSV)")
+    expect(button).to_have_count(1, timeout=PAGE_TIMEOUT_MS)
+    with page.expect_download(timeout=PAGE_TIMEOUT_MS) as download:
+        button.click()
+    text = Path(download.value.path()).read_text(encoding="utf-8")
+    assert text.splitlines()[0] == "structure,tau,t_s,xi,xi_dot,xi_a,xi_a_dot,x_m,v_m_s,mode"
+    assert {line.split(",")[0] for line in text.splitlines()[1:]} == {"rigid base",
+                                                                      "with foundation"}
+    with page.expect_download(timeout=PAGE_TIMEOUT_MS) as download:
+        page.get_by_role("button", name="Design report (JSON)").click()
+    report = json.loads(Path(download.value.path()).read_text(encoding="utf-8"))
+    assert report["design"]["verdict"]["foundation"]["simulation"] == "stick-slip"
 
 
 def test_the_machine_page_with_typed_modes(server: str, page: Any) -> None:

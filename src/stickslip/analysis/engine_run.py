@@ -135,6 +135,15 @@ class SimulationResult:
         :func:`stickslip.kernel.system.mode_kind_band`)."""
         return self.segment_modes[1:]
 
+    def stick_intervals(self, t_start: float = 0.0) -> FloatArray:
+        """``(start, end)`` of every stick phase that ends after ``t_start`` (dimensionless
+        ``tau``), cut at ``t_start``; shape ``(n, 2)``. The shading of the time histories."""
+        times = np.append(self.segment_times, self.t_end)
+        rows = [(max(float(times[i]), t_start), float(times[i + 1]))
+                for i, mode in enumerate(self.segment_modes)
+                if mode == Mode.STICK and times[i + 1] > t_start]
+        return np.array(rows, dtype=np.float64).reshape(-1, 2)
+
     @property
     def initial_mode(self) -> Mode:
         """Friction state at ``tau = 0``."""

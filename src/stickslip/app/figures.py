@@ -1,8 +1,10 @@
-"""The web app's figures and number formatting (Matplotlib, through :mod:`stickslip.plot`).
+"""The web app's figures and number formatting.
 
-The page's standing figures are cached as PNG images keyed on their inputs
-(:func:`run_figures_png`, :func:`occurrence_png`): drawing and rendering them took 2.3-2.7 s
-of every rerun, also for inputs computed before (issue 31).
+The slider page's standing charts (time histories, phase portraits, occurrence maps) are
+Vega-Lite specifications drawn by the browser (:mod:`stickslip.app.charts`), cached on their
+inputs (:func:`run_charts`, :func:`occurrence_map_charts`). The figures shown on demand (the
+bifurcation diagrams, the basins, the pages of other machines) are Matplotlib's, through
+:mod:`stickslip.plot`, sent as PNG images (:func:`png`).
 """
 
 from __future__ import annotations
@@ -20,7 +22,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter, NullLocator
 
 from stickslip.analysis.continuation import ContinuationResult
-from stickslip.analysis.simulation import SimulationResult
+from stickslip.app.charts import Spec, occurrence_charts, phase_portrait_chart, time_history_chart
 from stickslip.app.computations import (
     LambdaAxis,
     length_scale_at,
@@ -31,12 +33,7 @@ from stickslip.app.computations import (
 from stickslip.app.inputs import FoundationKey, SiKey, system_from_key
 from stickslip.model.friction import FrictionLaw
 from stickslip.model.physical import PhysicalSystem
-from stickslip.plot.figure import new_grid
-from stickslip.plot.simulation import phase_portrait_plot, time_history_plot
-from stickslip.sweep.occurrence import OccurrenceMap
 
-#: Samples of the exact trajectory per figure (every mode switch is added to them).
-PLOT_POINTS = 1500
 #: Resolution of the page's images (Streamlit's own for ``st.pyplot``), dots per inch.
 PNG_DPI = 200
 #: Widest image Streamlit shows unchanged, px (its ``MAXIMUM_CONTENT_WIDTH``): a wider one is
@@ -58,22 +55,24 @@ def png(fig: Figure) -> bytes:
     return buffer.getvalue()
 
 
-@st.cache_data(show_spinner="Drawing the time histories...", max_entries=128)
-def run_figures_png(lam: float, zeta: float, gamma: float, foundation: FoundationKey,
-                    law: FrictionLaw, titles: tuple[str, ...],
-                    si: tuple[float, float, float]) -> tuple[bytes, ...]:
-    """:func:`figure_of_run` of each run of :func:`operating_point_runs`, as PNG images."""
+@st.cache_data(show_spinner=False, max_entries=128)
+def run_charts(lam: float, zeta: float, gamma: float, foundation: FoundationKey,
+               law: FrictionLaw, si: tuple[float, float, float]) -> tuple[tuple[Spec, Spec], ...]:
+    """Time history and phase portrait (:mod:`stickslip.app.charts`) of each run of
+    :func:`operating_point_runs`, in SI (``si``: ``(1/omega_n [s], V/omega_n [m], V [m/s])``)."""
     runs = operating_point_runs(lam, zeta, gamma, foundation, law)
-    return tuple(png(figure_of_run(result, title, si))
-                 for result, title in zip(runs.values(), titles, strict=True))
+    return tuple((time_history_chart(result, si), phase_portrait_chart(result, si))
+                 for result in runs.values())
 
 
-@st.cache_data(show_spinner="Drawing the occurrence maps...", max_entries=64)
-def occurrence_png(lam: float, zeta: float, gamma: float, foundation: FoundationKey | None,
-                   law: FrictionLaw, key: SiKey) -> bytes:
-    """:func:`occurrence_figure` of :func:`occurrence_maps` as a PNG image (``key``: the system)."""
+@st.cache_data(show_spinner=False, max_entries=64)
+def occurrence_map_charts(lam: float, zeta: float, gamma: float,
+                          foundation: FoundationKey | None, law: FrictionLaw,
+                          key: SiKey) -> list[Spec]:
+    """:func:`~stickslip.app.charts.occurrence_charts` of :func:`occurrence_maps` (``key``:
+    the system, for its SI axes)."""
     maps = occurrence_maps(lam, zeta, gamma, foundation, law)
-    return png(occurrence_figure(maps, system_from_key(key), lam, zeta))
+    return occurrence_charts(maps, system_from_key(key), lam, zeta)
 
 
 def fmt(x: float | None, unit: str = "") -> str:
@@ -81,49 +80,6 @@ def fmt(x: float | None, unit: str = "") -> str:
     if x is None or not math.isfinite(x):
         return "—"
     return f"{x:.4g}" + (f" {unit}" if unit else "")
-
-
-def figure_of_run(result: SimulationResult, title: str,
-                  si: tuple[float, float, float] | None = None) -> Figure:
-    """Time history of the slider (stick phases shaded) next to the phase portrait.
-
-    ``si``: ``(1/omega_n [s], V/omega_n [m], V [m/s])`` draws both in s, m and m/s
-    (:func:`~stickslip.plot.simulation.time_history_plot`); dimensionless without.
-    """
-    fig, (ax_t, ax_p) = new_grid(1, 2, figsize=(10.0, 3.0), width_ratios=(2.2, 1.0))
-    time_history_plot(result, ax=ax_t, quantity="position", n_points=PLOT_POINTS, si=si)
-    phase_portrait_plot(result, ax=ax_p, n_points=PLOT_POINTS, si=si)
-    fig.suptitle(title)
-    return fig
-
-
-def occurrence_figure(maps: Mapping[str, OccurrenceMap], system: PhysicalSystem, lam: float,
-                      zeta: float) -> Figure:
-    """The maps side by side (closed-form boundaries overlaid), the operating point marked.
-
-    Secondary axes in SI: the damping coefficient ``c = 2 zeta sqrt(m k)`` on top, the belt
-    speed ``V = lambda_op V_op / lambda`` (at the same load) on the right. One legend below
-    collects the entries of both panels.
-    """
-    fig = Figure(figsize=(11.0, 4.6), layout="constrained")
-    axes = fig.subplots(1, len(maps), sharey=True, squeeze=False)[0]
-    root_mk = math.sqrt(system.mass * system.stiffness)
-    entries: dict[str, Any] = {}
-    for ax, (name, result) in zip(axes, maps.items(), strict=True):
-        result.plot(ax=ax, style="image", legend=True, title=name)
-        legend = ax.get_legend()
-        entries |= {text.get_text(): handle for text, handle in
-                    zip(legend.get_texts(), legend.legend_handles, strict=True)}
-        legend.remove()
-        (star,) = ax.plot([zeta], [lam], marker="*", ms=16, color="gold", mec="black", ls="none")
-        top = ax.secondary_xaxis("top", functions=(lambda z: 2.0 * root_mk * z,
-                                                   lambda c: c / (2.0 * root_mk)))
-        top.set_xlabel("damping c [N s/m]")
-    _lambda_in_si(axes[-1], system, lam, "speed", "y", label="belt speed V [m/s]")
-    entries["operating point"] = star
-    fig.legend(list(entries.values()), list(entries), loc="outside lower center",
-               ncols=min(len(entries), 4), frameon=False, fontsize="small")
-    return fig
 
 
 def _lambda_in_si(ax: Axes, system: PhysicalSystem, lam: float, axis: LambdaAxis,

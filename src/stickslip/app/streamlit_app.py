@@ -49,8 +49,8 @@ from stickslip.app.figures import (
     bifurcation_events_table,
     bifurcation_figure,
     fmt,
-    occurrence_png,
-    run_figures_png,
+    occurrence_map_charts,
+    run_charts,
 )
 from stickslip.app.inputs import (
     DEFAULTS,
@@ -467,28 +467,35 @@ def _show_results(raw: Mapping[str, str], system: PhysicalSystem) -> None:
     law = system.slider().friction
     runs = operating_point_runs(lam, zeta, gamma, assessed, law)
     si = (system.time_scale, system.length_scale, system.speed)
-    titles = tuple(f"{name}: {report['verdict'][_side(name)]['simulation']}" for name in runs)
-    images = run_figures_png(lam, zeta, gamma, assessed, law, titles, si)
-    for (name, result), image in zip(runs.items(), images, strict=True):
-        st.image(image)
+    charts = run_charts(lam, zeta, gamma, assessed, law, si)
+    for (name, result), (history, portrait) in zip(runs.items(), charts, strict=True):
+        st.markdown(f"**{name}: {report['verdict'][_side(name)]['simulation']}**")
+        left, right = st.columns((2.2, 1.0))
+        left.vega_lite_chart(history, width="stretch")
+        right.vega_lite_chart(portrait, width="stretch")
         _show_cycle(name, result, system)
 
     st.subheader("Occurrence map around the operating point")
     given = assessed if system.foundation is not None else None
-    st.image(occurrence_png(lam, zeta, gamma, given, law, si_key(system)))
-    st.caption("Each cell is a certified simulation from the startup state at this γ. "
+    for column, chart in zip(st.columns(2), occurrence_map_charts(
+            lam, zeta, gamma, given, law, si_key(system)), strict=True):
+        column.vega_lite_chart(chart, width="stretch")
+    st.caption("Each cell is a certified simulation from the startup state at this γ; the "
+               "star is the operating point. "
                + ("Right: the given foundation (fixed in SI units)." if given else
-                  "Right: the foundation of Eqs. (28)-(30) tuned at each ζ of the grid."))
+                  "Right: the foundation of Eqs. (28)-(30) tuned at each ζ of the grid.")
+               + " Drag to pan, scroll to zoom, double-click to reset; the menu (⋯) saves a "
+               "chart as PNG or SVG.")
 
     _show_disturbances(report, system, assessed)
     _show_bifurcation(report, system, assessed)
 
     st.subheader("Download")
-    col1, col2 = st.columns(2)
-    col1.download_button("Design report (JSON)", report_json(raw, report, runs, optimum),
+    col1, col2 = st.columns(2)  # written when clicked, not at every rerun (0.1 s for the CSV)
+    col1.download_button("Design report (JSON)", lambda: report_json(raw, report, runs, optimum),
                          file_name="stickslip-design.json", mime="application/json",
                          key="download_json")
-    col2.download_button("Time histories (CSV)", history_csv(runs, system),
+    col2.download_button("Time histories (CSV)", lambda: history_csv(runs, system),
                          file_name="stickslip-time-history.csv", mime="text/csv",
                          key="download_csv")
 

@@ -35,14 +35,17 @@ def streamlit_command(port: int | None, headless: bool, address: str = DEFAULT_A
     """The ``python -m streamlit run`` command line that serves the app on ``address``.
 
     Tracebacks are not sent to the browser (they name the server's files); uploads are
-    limited to :data:`~stickslip.io.machine_file.UPLOAD_MAX_MB`.
+    limited to :data:`~stickslip.io.machine_file.UPLOAD_MAX_MB`. Streamlit's full garbage
+    collection after every run of the page is off: with the engine's compiled kernels loaded
+    it took about 0.2 s, during which the end of the page waited to be sent (Python's own
+    collector still runs as usual).
     """
     from stickslip.io.machine_file import UPLOAD_MAX_MB
 
     command = [sys.executable, "-m", "streamlit", "run", str(APP_SCRIPT),
                "--browser.gatherUsageStats", "false", "--client.toolbarMode", "viewer",
                "--server.address", address, "--client.showErrorDetails", "none",
-               "--server.maxUploadSize", str(UPLOAD_MAX_MB)]
+               "--server.maxUploadSize", str(UPLOAD_MAX_MB), "--runner.postScriptGC", "false"]
     if port is not None:
         command += ["--server.port", str(port)]
     if headless:

@@ -83,7 +83,7 @@ def _is_log(values: FloatArray, spacing: str, requested: bool | None, lists: boo
     return lists and spacing == "list" and values.size > 1 and values.max() / values.min() >= 20.0
 
 
-def _edges(values: FloatArray, log: bool) -> FloatArray:
+def cell_edges(values: FloatArray, log: bool) -> FloatArray:
     """Cell edges around grid values: geometric midpoints on a log axis, arithmetic otherwise."""
     v = np.asarray(values, dtype=np.float64)
     if v.size == 1:
@@ -338,7 +338,7 @@ def _draw_cells(ax: Axes, x: FloatArray, y: FloatArray, verdict: NDArray[Any], s
     """Markers or the categorical image of ``verdict`` (shape ``(y.size, x.size)``)."""
     artists: list[Any] = []
     handles: list[Any] = []
-    x_edges, y_edges = _edges(x, x_log), _edges(y, y_log)
+    x_edges, y_edges = cell_edges(x, x_log), cell_edges(y, y_log)
     if style == "markers":
         size = marker_size or float(np.clip(160.0 / max(x.size, y.size), 2.0, 7.0))
         xx, yy = np.meshgrid(x, y)

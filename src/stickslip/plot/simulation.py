@@ -33,18 +33,10 @@ def _history(result: SimulationResult, t_start: float, n_points: int) -> TimeHis
 
 def _shade_stick(ax: Axes, result: SimulationResult, t_start: float,
                  time_scale: float | None = None) -> list[Any]:
-    from stickslip.analysis.verdict import Mode
-
     artists: list[Any] = []
-    times = np.append(result.segment_times, result.t_end)
-    for i, mode in enumerate(result.segment_modes):
-        if mode == Mode.STICK and times[i + 1] > t_start:
-            label = "stick" if not artists else None
-            start, end = max(times[i], t_start), times[i + 1]
-            if time_scale is not None:
-                start, end = start * time_scale, end * time_scale
-            artists.append(ax.axvspan(start, end, color=STICK_COLOR, alpha=0.35, lw=0,
-                                      label=label))
+    for start, end in result.stick_intervals(t_start) * (time_scale or 1.0):
+        artists.append(ax.axvspan(start, end, color=STICK_COLOR, alpha=0.35, lw=0,
+                                  label=None if artists else "stick"))
     return artists
 
 
