@@ -83,8 +83,8 @@ def test_default_inputs_render_and_show_the_verdicts() -> None:
     assert float(_metric(at, "λ")) == pytest.approx(0.2 * 500 / (0.05 * math.sqrt(2 * 5e4)),
                                                     rel=1e-3)
     assert float(_metric(at, "γ")) == pytest.approx(1.5)
-    # verdict table, critical speed/load table, foundation table
-    assert len(at.table) == 3
+    # verdict table, critical speed/load table, foundation table, stability table
+    assert len(at.table) == 4
     critical = at.table[1].value
     assert critical.loc["with foundation, simulation", "critical speed V_c [m/s]"] == "0.06188"
     assert critical.loc["rigid base, exact (Eq. 36)", "critical speed V_c [m/s]"] == "0.4588"
@@ -527,7 +527,7 @@ def test_linear_law_shows_the_stability_table_of_the_design_report() -> None:
     assert not at.exception and not at.error
     # delta = sigma W / (2 sqrt(m k)) = 0.02 * 500 / (2 sqrt(1e5)) = 0.0158114
     assert any(c.value.startswith("Friction law: linear, delta = 0.0158114") for c in at.caption)
-    (table,) = [d.value for d in at.dataframe]
+    (table,) = [t.value for t in at.table if "δ_crit" in t.value.columns]
     expected = _design_stability(PhysicalFriction("linear", slope=0.02))
     for row, key in (("rigid base", "rigid"), ("with foundation", "foundation")):
         ref = expected[key]
