@@ -176,7 +176,7 @@ def phase_portrait_chart(result: SimulationResult, si: tuple[float, float, float
          "axis": {"tickCount": 4}}
     y = {"field": "v", "type": "quantitative", "title": "slider v [m/s]"}
     return {
-        "datasets": _tables(history=history, first=history.iloc[:1],
+        "datasets": _tables(history=history, first=history.iloc[:1].assign(what="start"),
                             belt=pd.DataFrame({"v": [speed], "what": ["belt speed"]})),
         "height": RUN_HEIGHT, "autosize": AUTOSIZE, "usermeta": CANVAS,
         "layer": [
@@ -185,7 +185,7 @@ def phase_portrait_chart(result: SimulationResult, si: tuple[float, float, float
              "encoding": {"x": x, "y": y, "order": {"field": "i"}}},
             {"data": {"name": "first"}, "mark": {"type": "point", "filled": True, "size": 30,
                                                  "color": START_COLOR},
-             "encoding": {"x": x, "y": y, "tooltip": [{"value": "start"}]}},
+             "encoding": {"x": x, "y": y, "tooltip": [{"field": "what"}]}},
             {"data": {"name": "belt"}, "mark": {"type": "rule", "color": BELT_COLOR,
                                                 "strokeDash": DASHES["--"], "strokeWidth": 0.8},
              "encoding": {"y": y, "tooltip": [{"field": "what"},
@@ -292,6 +292,20 @@ def occurrence_chart(result: OccurrenceMap, title: str, system: PhysicalSystem, 
     styles = [CURVE_STYLES.get(k, {}) for k in keys]
     frame = pd.DataFrame({"c": [2.0 * root_mk * z_lo, 2.0 * root_mk * z_hi],
                           "V": [product / l_hi, product / l_lo]})
+    # the closed-form curves (colour and dash in one legend); none when no curve applies
+    legend = {**LEGEND, "columns": 1}
+    curve_layers = [{
+        "data": {"name": "curves"}, "mark": {"type": "line", "strokeWidth": 1.6, "clip": True},
+        "encoding": {
+            "x": {**x, "field": "zeta"}, "y": {**y, "field": "lambda"},
+            "color": {"field": "curve", "type": "nominal", "title": None, "legend": legend,
+                      "scale": {"domain": labels,
+                                "range": [to_hex(s.get("color", "black")) for s in styles]}},
+            "strokeDash": {"field": "curve", "type": "nominal", "title": None, "legend": legend,
+                           "scale": {"domain": labels,
+                                     "range": [DASHES[s.get("ls", "-")] for s in styles]}},
+        },
+    }] if labels else []
     return {
         "datasets": _tables(cells=cells, curves=curves, frame=frame,
                             point=pd.DataFrame({"zeta": [zeta], "lambda": [lam],
@@ -305,7 +319,7 @@ def occurrence_chart(result: OccurrenceMap, title: str, system: PhysicalSystem, 
                               "fill": {"field": "verdict", "type": "nominal", "title": None,
                                        "scale": {"domain": verdicts,
                                                  "range": [COLORS[v] for v in verdicts]},
-                                       "legend": {**LEGEND, "columns": 1}},
+                                       "legend": legend},
                               # the cell's own colour as its outline: no seams between cells
                               "stroke": {"field": "paint", "type": "nominal", "scale": None},
                               "tooltip": [{"field": "zeta", "title": "ζ", "format": ".4g"},
@@ -314,19 +328,7 @@ def occurrence_chart(result: OccurrenceMap, title: str, system: PhysicalSystem, 
                                           {"field": "lambda_to", "title": "λ to",
                                            "format": ".4g"},
                                           {"field": "verdict"}]}},
-                {"data": {"name": "curves"}, "mark": {"type": "line", "strokeWidth": 1.6,
-                                                      "clip": True},
-                 "encoding": {"x": {**x, "field": "zeta"}, "y": {**y, "field": "lambda"},
-                              "color": {"field": "curve", "type": "nominal", "title": None,
-                                        "scale": {"domain": labels,
-                                                  "range": [to_hex(s.get("color", "black"))
-                                                            for s in styles]},
-                                        "legend": {**LEGEND, "columns": 1}},
-                              "strokeDash": {"field": "curve", "type": "nominal",
-                                             "scale": {"domain": labels,
-                                                       "range": [DASHES[s.get("ls", "-")]
-                                                                 for s in styles]},
-                                             "legend": None}}},
+                *curve_layers,
                 {"data": {"name": "point"}, "mark": {"type": "point", "shape": STAR, "size": 260,
                                                      "filled": True, "color": OPERATING_COLOR,
                                                      "stroke": "black", "strokeWidth": 1},
