@@ -81,6 +81,21 @@ def test_undamped_period_and_amplitude_equal_eqs_34_35(lam: float) -> None:
     assert result.stick_ratio * result.period == pytest.approx(2 * lam, rel=1e-9)
 
 
+def test_stick_intervals_last_2_lam_and_repeat_with_the_period() -> None:
+    # closed form (undamped, paper Eqs. 34-35): every stick phase after the start-up one lasts
+    # 2 lam (xi from -lam to +lam at unit speed), and they start one period apart
+    lam = 1.5
+    result = simulate(rigid_base(0.0), Slider(lam, gamma=2.0), run_to_t_max=True)
+    intervals = result.stick_intervals()
+    assert intervals.shape[1] == 2 and len(intervals) >= 4
+    whole = intervals[1:-1]  # the last one may be cut at the horizon
+    np.testing.assert_allclose(whole[:, 1] - whole[:, 0], 2 * lam, rtol=1e-9)
+    np.testing.assert_allclose(np.diff(intervals[1:, 0]), stick_slip_period(lam), rtol=1e-9)
+    assert intervals[0, 0] == 0.0 and intervals[-1, 1] <= result.t_end
+    later = result.stick_intervals(t_start=intervals[1, 0] + lam)  # cut inside a phase
+    assert later[0, 0] == intervals[1, 0] + lam and later[0, 1] == intervals[1, 1]
+
+
 def test_undamped_trajectory_is_the_exact_circle() -> None:
     # closed form: in slip-I, xi^2 + xi'^2 = 1 + lam^2 (energy conservation, zeta = 0)
     lam = 2.0
