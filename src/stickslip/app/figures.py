@@ -45,9 +45,9 @@ def png(fig: Figure) -> bytes:
     """``fig`` as a PNG image at most :data:`PNG_MAX_WIDTH` wide (:data:`PNG_DPI` at most).
 
     Drawn once, at the resolution that gives the width Streamlit shows unchanged: no tight
-    bounding box (the page's figures use constrained layout, which already keeps titles,
-    labels and legends inside the figure) and no shrinking afterwards. Both cost a second draw
-    or a decode and encode: the page's three figures took 3.2 s that way, 1.9 s this way.
+    bounding box (the package's figures use constrained layout, which already keeps titles,
+    labels and legends inside the figure) and no shrinking afterwards, each of which would
+    cost a second draw or a decode and encode.
     """
     buffer = io.BytesIO()
     width = float(fig.get_size_inches()[0])
@@ -73,6 +73,16 @@ def occurrence_map_charts(lam: float, zeta: float, gamma: float,
     the system, for its SI axes)."""
     maps = occurrence_maps(lam, zeta, gamma, foundation, law)
     return occurrence_charts(maps, system_from_key(key), lam, zeta)
+
+
+@st.cache_data(show_spinner=False, max_entries=32)
+def machine_modes_png(digest: str, _machine: Any, _reduction: Any) -> bytes:
+    """:func:`~stickslip.plot.operating.machine_modes_plot` of a machine as a PNG image, drawn
+    once per machine: ``digest`` (of its uploaded or typed files) fixes the machine and its
+    reduction, which are not hashed (their leading underscore)."""
+    from stickslip.plot.operating import machine_modes_plot
+
+    return png(machine_modes_plot(_machine, reduction=_reduction).figure)
 
 
 def fmt(x: float | None, unit: str = "") -> str:
