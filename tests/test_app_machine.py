@@ -12,6 +12,7 @@ from __future__ import annotations
 import io
 import math
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -153,3 +154,32 @@ def test_an_unforeseen_error_is_one_line_without_a_traceback(
     (error,) = [str(e.value).replace("\\", "") for e in at.error]
     assert "The design of this machine failed unexpectedly (RuntimeError: boom in <path>)" in error
     assert "/tmp" not in error
+
+
+def test_the_modes_figure_is_drawn_once_per_machine(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Issue 31: a rerun of a machine drawn before draws nothing (the figure is cached on the
+    digest of its files); a changed machine is drawn again."""
+    pytest.importorskip("streamlit", reason="the app extra (streamlit) is not installed")
+    from streamlit.testing.v1 import AppTest
+
+    from stickslip.app import figures
+    from stickslip.cli import app_command
+    from stickslip.plot import operating
+
+    drawn: list[int] = []
+    real = operating.machine_modes_plot
+
+    def counted(*args: Any, **kwargs: Any) -> Any:
+        drawn.append(1)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(operating, "machine_modes_plot", counted)
+    figures.machine_modes_png.clear()
+    at = AppTest.from_file(str(app_command.APP_SCRIPT), default_timeout=180.0)
+    at.run()
+    at.sidebar.radio(key="page").set_value("your machine (matrices or modes)").run()
+    assert not at.exception and len(drawn) == 1 and len(at.get("image")) == 1
+    at.text_input(key="machine_speed").set_value("0.6 mm/s").run()
+    assert not at.exception and len(drawn) == 2
+    at.text_input(key="machine_speed").set_value("0.5 mm/s").run()
+    assert not at.exception and len(drawn) == 2  # the machine of the first run: not redrawn
