@@ -174,7 +174,7 @@ def test_the_modes_figure_is_drawn_once_per_machine(monkeypatch: pytest.MonkeyPa
         return real(*args, **kwargs)
 
     monkeypatch.setattr(operating, "machine_modes_plot", counted)
-    figures.machine_modes_png.clear()
+    figures.cached_png.clear()
     at = AppTest.from_file(str(app_command.APP_SCRIPT), default_timeout=180.0)
     at.run()
     at.sidebar.radio(key="page").set_value("your machine (matrices or modes)").run()

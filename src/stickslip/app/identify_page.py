@@ -115,7 +115,7 @@ def show_identify_page() -> None:
 
     import streamlit as st
 
-    from stickslip.app.figures import png
+    from stickslip.app.figures import cached_png
     from stickslip.app.messages import show_error, show_failure, show_warning
     from stickslip.app.workers import wait_for
 
@@ -147,7 +147,7 @@ def show_identify_page() -> None:
         show_warning(warning)
     st.subheader(f"Fit: {result.law} law")
     st.text(result.summary())
-    st.image(png(result.plot().figure))
+    st.image(cached_png(key, lambda: result.plot().figure))
     try:
         config = result.to_config()
     except ValueError as exc:

@@ -194,11 +194,12 @@ def show_machine_page() -> None:
     """Lay out the "your machine" page (Streamlit)."""
     import streamlit as st
 
-    from stickslip.app.figures import machine_modes_png
+    from stickslip.app.figures import cached_png
     from stickslip.app.machine_bifurcation import show_machine_bifurcation
     from stickslip.app.machine_contact import show_contact_machine
     from stickslip.app.messages import show_failure
     from stickslip.app.workers import wait_for
+    from stickslip.plot.operating import machine_modes_plot
 
     st.title("Your machine: any linear structure, the contact on any DOF")
     st.caption("Upload the machine TOML of 'stickslip design --config' with the matrix files it "
@@ -261,7 +262,8 @@ def show_machine_page() -> None:
                    "stick-slip: the largest range of belt speeds and loads without stick-slip "
                    "(simulated onset, the machine's friction law).")
     payload = report.to_dict()
-    st.image(machine_modes_png(digest, machine, reduction))  # drawn once per machine
+    st.image(cached_png(("modes", digest),
+                        lambda: machine_modes_plot(machine, reduction=reduction).figure))
     show_machine_bifurcation(machine, digest)
     st.download_button("Design report (JSON)", __import__("json").dumps(payload, indent=2, default=str),
                        file_name="stickslip-machine.json", mime="application/json",

@@ -54,7 +54,7 @@ def show_tuning_page() -> None:
     import pandas as pd
     import streamlit as st
 
-    from stickslip.app.figures import fmt, png
+    from stickslip.app.figures import cached_png, fmt
     from stickslip.app.messages import show_error
 
     st.title("The foundation as a vibration absorber")
@@ -82,4 +82,5 @@ def show_tuning_page() -> None:
                f"{fmt(payload['Omega_peak'])}; the paper's fitted parameters give H_max = "
                f"{fmt(fit['H_max_exact_at_fitted'])} (exact response)."
                + (" The optimum lies on a search bound." if any(result.at_bound) else ""))
-    st.image(png(curves.plot().figure))
+    st.image(cached_png(("tuning", raw["tuning_zeta"], raw["tuning_mass_ratio"]),
+                        lambda: curves.plot().figure))
