@@ -61,7 +61,7 @@ def show_machine_bifurcation(machine: Any, digest: str) -> None:
     """The section of the machine page (Streamlit): range fields, a button, the diagram."""
     import streamlit as st
 
-    from stickslip.app.figures import fmt
+    from stickslip.app.figures import cached_png, fmt
     from stickslip.app.messages import show_error, show_failure
     from stickslip.app.workers import wait_for
 
@@ -90,5 +90,5 @@ def show_machine_bifurcation(machine: Any, digest: str) -> None:
     except Exception as exc:
         show_failure(exc, "The continuation")
         return
-    st.pyplot(result.plot().figure)
+    st.image(cached_png(key, lambda: result.plot().figure))  # drawn once per range
     st.text(result.summary())

@@ -264,14 +264,14 @@ def show_contact_machine(machine_file: Any, digest: str) -> None:
         try:
             result, locus = wait_for(("contact-stability", digest), stability_in_worker, cm,
                                      what="Analysing steady sliding")
-            payload["stability"] = _show_stability(result, locus, cm.machine.name)
+            payload["stability"] = _show_stability(result, locus, cm.machine.name, digest)
         except Exception as exc:
             show_failure(exc, "The complex-eigenvalue analysis")
     st.subheader("Time history from the start-up state")
     try:
         run = wait_for(("contact-run", digest), simulate_in_worker, cm,
                        what="Running the machine with its contact")
-        payload["simulation"] = _show_run(run)
+        payload["simulation"] = _show_run(run, digest)
     except Exception as exc:
         show_failure(exc, "The time history")
     st.download_button("Stability and time history (JSON)",
@@ -292,10 +292,14 @@ def _queue_run(key: tuple[str, str], cm: ContactMachine) -> None:
             pass
 
 
-def _show_stability(result: Any, locus: Any, name: str) -> dict[str, Any]:
-    """The analysis's verdict, critical coefficients, modes and root locus; its JSON."""
+def _show_stability(result: Any, locus: Any, name: str, digest: str) -> dict[str, Any]:
+    """The analysis's verdict, critical coefficients, modes and root locus; its JSON.
+
+    ``digest`` (of the uploaded files) keys the root locus's image: drawn once per machine.
+    """
     import streamlit as st
 
+    from stickslip.app.figures import cached_png
     from stickslip.plot.stability import root_locus_plot
 
     data = result.to_dict()
@@ -314,14 +318,17 @@ def _show_stability(result: Any, locus: Any, name: str) -> dict[str, Any]:
         f"critical mu {critical_line(data['critical'])}",
         f"undamped    {critical_line(data['critical_undamped'])}"]))
     st.dataframe(modes_table(data), key="contact_modes_table")
-    st.pyplot(root_locus_plot(locus, title=plain_title(name)).figure)
+    st.image(cached_png(("root-locus", digest),
+                        lambda: root_locus_plot(locus, title=plain_title(name)).figure))
     return dict(data)
 
 
-def _show_run(run: ContactHistory) -> dict[str, Any]:
-    """The run's verdict, certificate, period, amplitude, separation, events and figure."""
+def _show_run(run: ContactHistory, digest: str) -> dict[str, Any]:
+    """The run's verdict, certificate, period, amplitude, separation, events and figure (its
+    image drawn once per machine, keyed by ``digest``)."""
     import streamlit as st
 
+    from stickslip.app.figures import cached_png
     from stickslip.plot.contact_history import contact_history_plot
 
     p = run.payload
@@ -335,7 +342,7 @@ def _show_run(run: ContactHistory) -> dict[str, Any]:
             f"events      {p['n_events']} ({counts}) up to t = {p['t_end_s']:.6g} s\n"
             "amplitude   half the peak-to-peak displacement of the contact DOF over the last "
             "period")
-    st.pyplot(contact_history_plot(run.history,
-                                   title=f"{plain_title(str(p['machine']))}: the last periods",
-                                   period_s=p["period_s"]).figure)
+    st.image(cached_png(("contact-run", digest), lambda: contact_history_plot(
+        run.history, title=f"{plain_title(str(p['machine']))}: the last periods",
+        period_s=p["period_s"]).figure))
     return dict(p)

@@ -26,6 +26,7 @@ and the downloads (:mod:`stickslip.app.exports`) have modules of their own.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from functools import partial
 from typing import Any
 
 import pandas as pd
@@ -48,6 +49,7 @@ from stickslip.app.exports import bifurcation_csv, bifurcation_netcdf, history_c
 from stickslip.app.figures import (
     bifurcation_events_table,
     bifurcation_figure,
+    cached_png,
     fmt,
     occurrence_map_charts,
     run_charts,
@@ -313,10 +315,16 @@ def _show_disturbances(report: Mapping[str, Any], system: PhysicalSystem,
             "undetermined": [f"{r.fractions['undetermined']:.3f}" for r in results.values()],
         })
         for column, (name, result) in zip(st.columns(len(results)), results.items(), strict=True):
-            column.pyplot(result.plot(marker_size=2.0, title=name).figure)
+            column.image(cached_png(("basin", name, *key),  # drawn once per machine
+                                    partial(_basin_figure, result, name)))
         st.caption(f"Dimensionless: ξ in units of V/ω_n = {_fmt(system.length_scale, 'm')} from the "
                    f"kinetic-friction equilibrium, ξ' in units of V = {_fmt(system.speed, 'm/s')}; "
                    "with the foundation, the foundation mass starts at rest in its steady state.")
+
+
+def _basin_figure(result: Any, name: str) -> Any:
+    """The basin of one machine (its states by verdict, the safe region), titled ``name``."""
+    return result.plot(marker_size=2.0, title=name).figure
 
 
 def _show_bifurcation(report: Mapping[str, Any], system: PhysicalSystem,
@@ -355,7 +363,8 @@ def _show_bifurcation(report: Mapping[str, Any], system: PhysicalSystem,
         if stored is None or stored[0] != key:
             return
         results = stored[1]
-        st.pyplot(bifurcation_figure(results, system, report["lambda"], axis))
+        st.image(cached_png(("bifurcation", *key),  # drawn once per range and machine
+                            lambda: bifurcation_figure(results, system, report["lambda"], axis)))
         st.caption("Amplitude in units of V/ω_n of each point (the belt speed there). The "
                    "interval where a stable cycle and stable steady sliding coexist is "
                    "bistable: which one the machine settles to depends on its start and knocks.")
