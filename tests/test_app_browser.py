@@ -407,18 +407,16 @@ def test_the_identification_page_takes_the_fit_to_the_slider_page(server: str, p
 
 
 @pytest.mark.slow  # starts its own server and times a dozen page runs
-def test_the_app_benchmark_runs_in_the_browser(capsys: pytest.CaptureFixture[str]) -> None:
+def test_the_app_benchmark_runs_in_the_browser() -> None:
+    """The benchmark, in a process of its own: its Playwright session cannot run inside the
+    module's (the browser fixture's event loop)."""
     _chromium()
     _playwright()
-    import importlib.util as util
-
     path = Path(__file__).resolve().parents[1] / "benchmarks" / "bench_app.py"
-    spec = util.spec_from_file_location("bench_app", path)
-    assert spec is not None and spec.loader is not None
-    bench = util.module_from_spec(spec)
-    spec.loader.exec_module(bench)
-    assert bench.main(["--repeats", "2"]) == 0
-    out = capsys.readouterr().out
+    done = subprocess.run([sys.executable, str(path), "--repeats", "2"], capture_output=True,
+                          text=True, timeout=900, check=False)
+    out = done.stdout
+    assert done.returncode == 0, _tail(done.stderr)
     times = {name: float(value) for name, value in
              re.findall(r"^  (new point|cached) .*?median +([0-9.]+) s", out, flags=re.M)}
     assert set(times) == {"new point", "cached"}, out
