@@ -20,13 +20,19 @@ printed with the goals.
 (``examples/slideway``) designed on the machine page, the heavy case of issue 31 (another
 user's input change waited 32 s behind it when the design ran in the page's thread).
 
-    python benchmarks/bench_app.py [--repeats 5] [--busy]
+    python benchmarks/bench_app.py [--repeats 5] [--busy] [--baseline OLD/src]
+
+``--baseline`` measures another checkout's app first, in the same run (its own ``stickslip
+app`` command, its code on ``PYTHONPATH``), and prints the ratio of the medians (above 1: this
+one is faster).
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import math
+import os
 import socket
 import statistics
 import subprocess
@@ -142,24 +148,34 @@ def _while_busy(browser: Any, url: str, page: Any, expect: Any, repeats: int) ->
     return times
 
 
-def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--repeats", type=int, default=5, help="reruns of each kind (1 to 50)")
-    parser.add_argument("--busy", action="store_true",
-                        help="also time cached reruns while another tab designs the slideway")
-    args = parser.parse_args(argv)
-    if not 1 <= args.repeats <= 50:
-        parser.error(f"--repeats {args.repeats} must be from 1 to 50")
-    if not Path(CHROMIUM).exists():
-        sys.exit(f"bench_app: no Chromium at {CHROMIUM}: run 'make browser'")
-    from playwright.sync_api import expect, sync_playwright
+def _command(port: int, source: Path | None) -> tuple[list[str], dict[str, str]]:
+    """The ``stickslip app`` server command on ``port`` and its environment: this checkout's, or
+    that of the checkout whose ``src`` folder is ``source`` (asked of its own code)."""
+    env = dict(os.environ)
+    if source is None:
+        from stickslip.cli.app_command import streamlit_command
 
-    from stickslip.cli.app_command import streamlit_command
+        return [*streamlit_command(port, headless=True), "--server.fileWatcherType", "none"], env
+    env["PYTHONPATH"] = str(source)
+    ask = ("import json; from stickslip.cli.app_command import streamlit_command; "
+           f"print(json.dumps(streamlit_command({port}, True)))")
+    done = subprocess.run([sys.executable, "-c", ask], env=env, capture_output=True, text=True,
+                          timeout=120, check=False)
+    if done.returncode != 0:
+        sys.exit(f"bench_app: --baseline {source}: its 'stickslip app' command could not be "
+                 "built (is it the src folder of a stickslip checkout?)")
+    return [*json.loads(done.stdout), "--server.fileWatcherType", "none"], env
+
+
+def _measure(source: Path | None, repeats: int, busy: bool) -> dict[str, Any]:
+    """First page, new points, cached reruns (and busy ones) of one server, in seconds."""
+    from playwright.sync_api import expect, sync_playwright
 
     port = _free_port()
     url = f"http://127.0.0.1:{port}"
-    command = [*streamlit_command(port, headless=True), "--server.fileWatcherType", "none"]
-    process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    command, env = _command(port, source)
+    process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
     try:
         _wait_healthy(url, process)
         with sync_playwright() as playwright:
@@ -172,14 +188,13 @@ def main(argv: list[str] | None = None) -> int:
                     has_text="Verdict with foundation")
                 expect(verdict).to_have_count(1, timeout=FIRST_PAGE_TIMEOUT_MS)
                 _page_done(page, expect)
-                first = time.perf_counter() - start
-                new, cached = [], []
-                for i in range(args.repeats):
-                    new.append(_rerun(page, expect, 6.0 + i))  # 6, 7, ... cm/s: not seen before
-                    cached.append(_rerun(page, expect, 5.0))  # the default, computed at start
-                busy: list[float] = []
-                if args.busy:
-                    busy = _while_busy(browser, url, page, expect, args.repeats)
+                times: dict[str, Any] = {"first": time.perf_counter() - start, "new": [],
+                                         "cached": [], "busy": []}
+                for i in range(repeats):
+                    times["new"].append(_rerun(page, expect, 6.0 + i))  # 6, 7, ... cm/s: new
+                    times["cached"].append(_rerun(page, expect, 5.0))  # the default, computed
+                if busy:
+                    times["busy"] = _while_busy(browser, url, page, expect, repeats)
             finally:
                 browser.close()
     finally:
@@ -189,17 +204,43 @@ def main(argv: list[str] | None = None) -> int:
         except subprocess.TimeoutExpired:
             process.kill()
             process.wait()
+    return times
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=5, help="reruns of each kind (1 to 50)")
+    parser.add_argument("--busy", action="store_true",
+                        help="also time cached reruns while another tab designs the slideway")
+    parser.add_argument("--baseline", type=Path, default=None,
+                        help="the src folder of another checkout (e.g. a git worktree of an "
+                             "older commit): measured first, in the same run, and the ratios "
+                             "of the medians printed")
+    args = parser.parse_args(argv)
+    if not 1 <= args.repeats <= 50:
+        parser.error(f"--repeats {args.repeats} must be from 1 to 50")
+    if args.baseline is not None and not (args.baseline / "stickslip" / "app").is_dir():
+        parser.error(f"--baseline {args.baseline}: no stickslip/app folder in it (give the src "
+                     "folder of a stickslip checkout)")
+    if not Path(CHROMIUM).exists():
+        sys.exit(f"bench_app: no Chromium at {CHROMIUM}: run 'make browser'")
+    base = _measure(args.baseline, args.repeats, args.busy) if args.baseline else None
+    times = _measure(None, args.repeats, args.busy)
     print(f"bench_app: the app in headless Chromium, {args.repeats} reruns of each kind "
           f"(wall time from Enter to the end of the page's run)")
-    print(f"  first page (cold caches)   {first:7.2f} s")
-    rows = [("new point", new, NEW_POINT_GOAL), ("cached (back to 5 cm/s)", cached, CACHED_GOAL)]
-    if busy:
-        rows.append(("cached, slideway designing", busy, CACHED_GOAL))
-    for name, times, goal in rows:
-        median = statistics.median(times)
+    print(f"  first page (cold caches)   {times['first']:7.2f} s")
+    rows = [("new point", "new", NEW_POINT_GOAL), ("cached (back to 5 cm/s)", "cached", CACHED_GOAL)]
+    if args.busy:
+        rows.append(("cached, slideway designing", "busy", CACHED_GOAL))
+    for name, key, goal in rows:
+        median = statistics.median(times[key])
         verdict = "meets" if median < goal else "misses"
-        print(f"  {name:26s} median {median:6.2f} s, best {min(times):6.2f} s  "
-              f"(goal < {goal} s: {verdict} it)  [{', '.join(f'{t:.2f}' for t in times)}]")
+        print(f"  {name:26s} median {median:6.2f} s, best {min(times[key]):6.2f} s  "
+              f"(goal < {goal} s: {verdict} it)  [{', '.join(f'{t:.2f}' for t in times[key])}]")
+        if base is not None:
+            old = statistics.median(base[key])
+            print(f"  {'':26s} baseline {args.baseline}: median {old:6.2f} s "
+                  f"[{', '.join(f'{t:.2f}' for t in base[key])}]; baseline / this {old / median:.2f}")
     return 0
 
 

@@ -183,17 +183,7 @@ def phase_portrait_chart(result: SimulationResult, si: tuple[float, float, float
     The chart of :func:`~stickslip.plot.simulation.phase_portrait_plot` with ``si``; stick
     phases lie on the belt-speed line ``v = V``.
 
-    Parameters
-    ----------
-    result : SimulationResult
-        A recorded run (dimensionless).
-    si : (float, float, float)
-        ``(1/omega_n [s], V/omega_n [m], V [m/s])`` of the physical system (Eqs. 15-16).
-
-    Returns
-    -------
-    dict
-        The Vega-Lite specification; its ``datasets`` are Arrow tables.
+    Parameters and return value as :func:`time_history_chart`.
     """
     history = _orbit(result, si)
     speed = si[2]
