@@ -157,3 +157,32 @@ def test_operating_map_cells_report_the_proven_cycle() -> None:
         seconds = run.period * point.reference_system().time_scale
         assert result.period_s[i, 0] == seconds
     assert result.period_s[1, 0] == pytest.approx(19.25e-3, abs=0.01e-3)
+
+
+def test_end_drift_bounds_the_nominal_continuation() -> None:
+    # _cycle_tube.end_drift bounds |g*(t* + u) - g*(t*)| for 0 <= u <= T along z' = A z + c;
+    # reference: the exact continuation n . int_0^u expm(A s) ds f* (an augmented matrix
+    # exponential), sampled finely on [0, T]
+    import scipy.linalg
+
+    from stickslip.analysis._cycle_tube import end_drift
+
+    rng = np.random.default_rng(7)
+    for case in range(40):
+        a = rng.normal(size=(4, 4))
+        f_star = rng.normal(size=4)
+        nv = rng.normal(size=4)
+        if case % 2:  # a surface nearly parallel to the flow: the tight case
+            nv -= (nv @ f_star) / (f_star @ f_star) * f_star * (1.0 - 1e-3)
+        t_dev = float(rng.uniform(1e-3, 0.5)) / float(np.linalg.norm(a))
+        aug = np.zeros((5, 5))
+        aug[:4, :4], aug[:4, 4] = a, f_star
+        exact = max(abs(float(nv @ scipy.linalg.expm(aug * u)[:4, 4]))
+                    for u in np.linspace(0.0, t_dev, 201))
+        norm_a = float(np.linalg.norm(a))  # Frobenius: a bound of the 2-norm, as the tube uses
+        f_norm = float(np.linalg.norm(f_star))
+        bound = end_drift(nv, a, f_star, f_norm, norm_a, t_dev)
+        assert exact <= bound * (1 + 1e-12)
+        if case % 2:
+            old = float(np.linalg.norm(nv)) * f_norm * np.exp(norm_a * t_dev) * t_dev
+            assert bound < 0.6 * old

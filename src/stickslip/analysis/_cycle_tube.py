@@ -311,14 +311,57 @@ def _end_time_deviation(ph: Phase, z_dev: float) -> float | None:
             # the end itself clear: impossible (g* vanishes there); treat as failure
             return None
     ext = math.exp(ph.norm_a * t_dev)
+    f_end = float(np.linalg.norm(ph.f_minus))
     for e, (nv, _g0) in enumerate(ph.functions):
         if e == ph.ending:
             continue  # the other surfaces past t*, up to t* + T
-        drift = float(np.linalg.norm(nv)) * (float(ph.flow_norm[-1]) * ext * t_dev
-                                             + float(ph.m_norm[-1]) * ext * z_dev)
-        if abs(float(ph.g[-1, e])) <= drift:
+        n_norm = float(np.linalg.norm(nv))
+        spread = n_norm * float(ph.m_norm[-1]) * ext * z_dev
+        # the nominal continuation moves g by at most T |n . f(z*)| + ||n^T A|| ||f|| T^2 e/2
+        # (f(z*(t* + s)) = expm(A s) f(z*(t*)); see end_drift), or by ||n|| ||f|| e T
+        along = min(n_norm * float(ph.flow_norm[-1]) * ext * t_dev,
+                    end_drift(nv, ph.a, ph.f_minus, f_end, ph.norm_a, t_dev))
+        if abs(float(ph.g[-1, e])) <= spread + along:
             return None
     return t_dev
+
+
+def end_drift(nv: FloatArray, a: FloatArray, f_star: FloatArray, f_norm: float, norm_a: float,
+              t_dev: float) -> float:
+    """Bound of ``|g*(t* + u) - g*(t*)|`` for ``0 <= u <= t_dev`` along the nominal flow.
+
+    With ``g = n . z - g0`` and ``z' = A z + c``, ``g*' = n . f`` and ``f(z*(t* + s)) =
+    expm(A s) f*`` (``f*`` the field at the phase's end). ``expm(A s) - I = int_0^s A
+    expm(A r) dr`` gives ``|n . (expm(A s) - I) f*| <= ||n^T A|| s exp(||A|| s) ||f*||``, so
+
+    ``|g*(t* + u) - g*(t*)| <= u |n . f*| + ||n^T A|| ||f*|| u^2 exp(||A|| u) / 2``,
+
+    increasing in ``u``: its value at ``t_dev`` bounds the window. Tighter than ``||n|| ||f*||
+    exp(||A|| T) T`` when the surface's rate ``n . f*`` is small (a band edge of the same
+    velocity near the one the phase ends on).
+
+    Parameters
+    ----------
+    nv : ndarray
+        The surface's normal ``n``.
+    a : ndarray
+        The mode's matrix ``A``.
+    f_star : ndarray
+        ``f*``: the nominal field at the phase's end.
+    f_norm : float
+        ``||f*||_2``.
+    norm_a : float
+        A bound of ``||A||_2`` (the Frobenius norm).
+    t_dev : float
+        ``T``: the window past ``t*``.
+
+    Returns
+    -------
+    float
+        The bound.
+    """
+    return (t_dev * abs(float(nv @ f_star))
+            + float(np.linalg.norm(nv @ a)) * f_norm * t_dev ** 2 * math.exp(norm_a * t_dev) / 2.0)
 
 
 def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArray,
