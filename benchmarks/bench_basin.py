@@ -254,7 +254,8 @@ def early_certificate_ab(structure, slider, states, repeats: int) -> str:  # typ
                 data = data.copy()
                 data[ESCAPE_F_LO] = np.nan
             _, isum = run_prepared_states(system.mass, system.stiffness, system.lam, system.gamma,
-                                          system.edges, prepared, r_in, r_hi, data, states, *limits)
+                                          system.edges, prepared, r_in, r_hi, data, states, *limits,
+                                          True)
             best = min(best, time.perf_counter() - start)
         return len(states) / best, isum[:, 0]
 

@@ -99,8 +99,12 @@ def run_cells(masses, dampings, stiffnesses, structure_index, lams, gammas, edge
     ``(n_cells, N_INT)``, with the layouts of :mod:`stickslip.kernel.engine`. The structures'
     own data (:func:`~stickslip.kernel.system.structure_data_stack`) is computed here on every
     call; a sweep that runs many batches of the same structures computes it once and calls
-    :func:`run_prepared_cells`.
+    :func:`run_prepared_cells`. The matrices are copied into writable arrays, as a sweep
+    stacks them: a read-only array (a ``Structure``'s own) is another numba type, and its
+    first call compiled the whole run loop again (about a minute).
     """
+    masses, dampings, stiffnesses = (np.array(a, dtype=np.float64, order="C")
+                                     for a in (masses, dampings, stiffnesses))
     shared = structure_data_stack(masses, dampings, stiffnesses)
     return run_prepared_cells(shared, masses, dampings, stiffnesses, structure_index, lams,
                               gammas, edges, intercepts, slopes, n_bands, t_max, max_events,
@@ -152,10 +156,13 @@ def coulomb_tables(lams, gammas):
     return edges, intercepts, slopes, n_bands
 
 
-@njit(cache=True)
 def prepare_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes,
                    early_certificate=True, escape_region=True):
     """Per-system data of :func:`run_prepared_states`: ``(prepared, r_in, r_hi, escape_data)``.
+
+    A Python function: it calls the compiled :func:`prepare_states_kernel` with both flags
+    given, so that every caller, with or without the defaults, loads the one cached
+    compilation (numba compiles a call that leaves a default out as another signature).
 
     ``prepared``: :func:`stickslip.kernel.certificate.prepare_certified` (with the slip trap
     region) or, without ``early_certificate``, :func:`~stickslip.kernel.system.prepare_bands`;
@@ -167,6 +174,14 @@ def prepare_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slop
     (NaN: no test; without ``early_certificate``, for more than one degree of freedom and for
     a one-band law, as the regions).
     """
+    return prepare_states_kernel(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes,
+                                 bool(early_certificate), bool(escape_region))
+
+
+@njit(cache=True)
+def prepare_states_kernel(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes,
+                          early_certificate, escape_region):
+    """:func:`prepare_states` compiled, every argument given."""
     if early_certificate:
         prepared = prepare_certified(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
         if escape_region:
@@ -188,10 +203,13 @@ def prepare_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slop
     return prepared, r_in, r_hi, escape_data
 
 
-@njit(cache=True)
 def run_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0s, t_max,
                max_events, cycle_tol, max_period, join_startup=True, early_certificate=True):
     """Run one system from many initial states ``z0s`` (shape ``(n_states, 2 n)``) in parallel.
+
+    A Python function over two cached kernels (:func:`prepare_states` and
+    :func:`run_prepared_states`, every argument given): a compiled wrapper recompiled their
+    whole call tree, about a minute, for its own first call.
 
     The system is prepared once (:func:`prepare_states`: the per-system data and, for one
     degree of freedom and a velocity-dependent law, the early certificates: the slip trap
@@ -237,8 +255,8 @@ def run_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, 
     prepared, r_in, r_hi, escape_data = prepare_states(mass, damping, stiffness, lam, gamma, edges,
                                                        intercepts, slopes, early_certificate)
     return run_prepared_states(mass, stiffness, lam, gamma, edges, prepared, r_in, r_hi,
-                               escape_data, z0s, t_max, max_events, cycle_tol, max_period,
-                               join_startup)
+                               escape_data, z0s, float(t_max), int(max_events), float(cycle_tol),
+                               int(max_period), bool(join_startup))
 
 
 @njit(parallel=True, cache=True)

@@ -349,7 +349,7 @@ def run_state_batch(system: BasinSystem, states: FloatArray, options: EngineOpti
             prepared, r_in, r_hi, escape_data = system.kernel
             float_summary, int_summary = run_prepared_states(
                 system.mass, system.stiffness, system.lam, system.gamma, system.edges, prepared,
-                r_in, r_hi, escape_data, states, *limits)
+                r_in, r_hi, escape_data, states, *limits, True)
         else:
             float_summary, int_summary = run_states(
                 system.mass, system.damping, system.stiffness, system.lam, system.gamma,
