@@ -27,8 +27,7 @@ many statuses agree with the run without them (all must). Then a foundation (2 D
 basin with the same law (foundation mass and stiffness ratios 1, damping ratio 0.1; at most
 FOUNDATION_SAMPLES states: every 2-DOF state runs to its own verdict): samples/s (the trap
 region is 1-DOF; its baseline is the oracle), with its states, stick phases and share of the steps
-by verdict (where an N-DOF basin's time goes), the kernel's labels-only runs against runs
-that track extremes (the loop before), and its labels against long direct runs without
+by verdict (where an N-DOF basin's time goes), and its labels against long direct runs without
 the proven balls of stickslip.sweep.basin_cycles (ten times the horizon, every state), with the
 samples/s of that path in the same run. ``--only foundation`` runs that case alone.
 """
@@ -59,7 +58,7 @@ from stickslip import (
 from stickslip.analysis.simulation import EngineOptions
 from stickslip.analysis.verdict import verdict_codes
 from stickslip.kernel.batch import prepare_states, run_prepared_states
-from stickslip.kernel.engine import F_T_END, I_N_STEPS, I_N_STICK, I_STATUS
+from stickslip.kernel.engine import I_N_STEPS, I_N_STICK, I_STATUS
 from stickslip.kernel.outer_certificate import ESCAPE_F_LO
 from stickslip.model.friction import CoulombFriction, StribeckFriction
 from stickslip.sweep.basin import BasinSystem, basin_stability, run_state_batch, sample_box
@@ -135,7 +134,6 @@ def main() -> None:
             ab_lines.append(early_certificate_ab(structure, slider, states, args.repeats))
         if structure.n_dof > 1:
             ab_lines.append(f"{name}: " + work_by_verdict(result))
-            ab_lines.append(f"{name}: " + labels_loop_ab(structure, slider, states, args.repeats))
             ab_lines.append(f"{name}: " + against_long_runs(structure, slider, states, result))
     for line in ab_lines:
         print(line)
@@ -172,39 +170,6 @@ def late_stick(structure, slider, state) -> str:  # type: ignore[no-untyped-def]
     return (f"differs from the oracle: the engine's run ({run.verdict.value}, certified at tau = "
             f"{run.t_certified:.1f}) first sticks at tau = {first:.1f}, the oracle's horizon is "
             f"{HORIZON:g}")
-
-
-def labels_loop_ab(structure, slider, states, repeats: int) -> str:  # type: ignore[no-untyped-def]
-    """Samples/s of the kernel's runs (no balls) computing labels only against tracking extremes.
-
-    ``run_prepared_states`` with ``join_startup=True`` (the basin's runs: the engine's
-    ``LOOP_LABELS``, no extremes, the quick event search) and ``False`` (``LOOP_TRACKED``,
-    the loop N-DOF basins ran before), best of ``repeats`` each, in one run; with how many
-    statuses agree and the largest difference of the end times.
-    """
-    from stickslip.kernel.batch import run_prepared_states
-
-    system = BasinSystem.prepare(structure, slider, len(states))
-    opts = EngineOptions()
-    limits = (float(opts.t_max), int(opts.max_events), float(opts.cycle_tol), int(opts.max_period))
-    prepared, r_in, r_hi, escape_data = system.kernel
-
-    def rate(labels: bool) -> tuple[float, np.ndarray, np.ndarray]:
-        best = np.inf
-        for _ in range(repeats):
-            start = time.perf_counter()
-            fsum, isum = run_prepared_states(system.mass, system.stiffness, system.lam, system.gamma,
-                                             system.edges, prepared, r_in, r_hi, escape_data, states,
-                                             *limits, labels)
-            best = min(best, time.perf_counter() - start)
-        return len(states) / best, isum[:, I_STATUS], fsum[:, F_T_END]
-
-    labels, status_l, t_l = rate(True)
-    tracked, status_t, t_t = rate(False)
-    return (f"kernel without balls, labels only {labels:,.0f} samples/s, tracking extremes "
-            f"{tracked:,.0f} ({labels / tracked:.2f}x, best of {repeats}); same status on "
-            f"{int(np.sum(status_l == status_t))}/{len(states)}, end times within "
-            f"{float(np.max(np.abs(t_l - t_t))):.1e}")
 
 
 def against_long_runs(structure, slider, states, result) -> str:  # type: ignore[no-untyped-def]

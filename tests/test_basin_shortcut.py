@@ -148,23 +148,10 @@ def test_start_up_run_gets_the_time_a_joined_clock_runs_ahead_by() -> None:
 
 def test_no_shortcut_with_a_foundation() -> None:
     # two degrees of freedom: a stick state does not fix the foundation's state, so every
-    # state runs to its own verdict, as without the shortcut; the basin's runs compute labels
-    # and times only (engine.LOOP_LABELS): the same statuses, counts, periods and times (the
-    # quick event search finds the same roots to rounding), and no extremes (NaN)
+    # state runs to its own verdict, bit for bit as without the shortcut
     structure = elastic_foundation(0.1, Foundation(0.05, 1.0, 0.1))
     slider = Slider(3.0)
     states = sample_box(structure, slider, 60, {"xi": (-3.0, 3.0), "v": (-2.0, 1.5)}, seed=5)
     (f_join, i_join), (f_full, i_full) = _both(structure, slider, states)
     np.testing.assert_array_equal(i_join, i_full)
-    cycle = i_full[:, engine.I_STATUS] == engine.STATUS_CYCLE
-    assert 0 < cycle.sum() < len(states), "the box should hold both verdicts"
-    for column in (engine.F_LYAPUNOV_BOUND, engine.F_PERIOD, engine.F_STICK_RATIO,
-                   engine.F_CYCLE_MISMATCH, engine.F_T_END, engine.F_T_LAST_STICK,
-                   engine.F_T_CERTIFIED):
-        np.testing.assert_allclose(f_join[:, column], f_full[:, column], rtol=1e-12, atol=0,
-                                   err_msg=engine_column_name(column))
-    for column in (engine.F_AMPLITUDE, engine.F_XI_MIN, engine.F_XI_MAX,
-                   engine.F_CYCLE_MAX_VELOCITY):
-        assert np.isnan(f_join[:, column]).all() and not np.isnan(f_full[cycle, column]).any()
-    assert np.isnan(f_join[:, engine.F_MAX_VELOCITY]).all()
-    assert not np.isnan(f_full[:, engine.F_MAX_VELOCITY]).any()
+    np.testing.assert_array_equal(f_join, f_full)

@@ -33,9 +33,6 @@ from stickslip.kernel.engine import (
     I_N_STEPS,
     I_N_STICK,
     I_STATUS,
-    LOOP_LABELS,
-    LOOP_TO_STICK,
-    LOOP_TRACKED,
     N_FLOAT,
     N_INT,
     STATUS_CYCLE,
@@ -136,7 +133,7 @@ def run_prepared_cells(shared, masses, dampings, stiffnesses, structure_index, l
                                  stiffnesses[s], lams[c], gammas[c], edges[c, : nb + 1],
                                  intercepts[c, :nb], slopes[c, :nb], True)
         result = run_prepared(masses[s], lams[c], gammas[c], edges[c, : nb + 1], prepared, z0,
-                              t_max, max_events, cycle_tol, max_period, False, False, LOOP_TRACKED)
+                              t_max, max_events, cycle_tol, max_period, False, False, False)
         copy_vector(float_summary[c], result[4])
         copy_vector(int_summary[c], result[5])
     return float_summary, int_summary
@@ -222,12 +219,10 @@ def run_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, 
     With ``join_startup`` and a single degree of freedom, each state is run only until its
     first stick phase, whose continuation is then taken from the start-up run
     (:func:`join_startup_summary`); other systems, and ``join_startup=False``, run every state
-    to its own verdict. With ``join_startup`` the states' runs compute labels and times only
-    (``LOOP_TO_STICK`` and ``LOOP_LABELS`` of :func:`~stickslip.kernel.engine.run_prepared`):
-    no velocity maximum (NaN), and no amplitude of a slip oscillation or of a cycle certified
-    by a repeat (NaN); verdicts, periods, certificate times, and the cycles of the start-up
-    run (joined 1-DOF runs) and of proven balls are complete. ``join_startup=False`` tracks
-    every summary (``LOOP_TRACKED``).
+    to its own verdict. The shortcut's summaries carry no velocity maximum (NaN), and a slip
+    oscillation certified before any stick has no amplitude (NaN; see
+    :func:`~stickslip.kernel.engine.run_prepared`); verdicts, periods, certificate times,
+    and the cycles of stick-slip runs (the start-up run's) are complete.
 
     Why this is exact (one degree of freedom, any friction law): while stuck, the slider moves
     with the belt, ``v = 1`` and ``xi' = 1`` while the stick force of Eq. (20),
@@ -285,7 +280,7 @@ def run_prepared_states(mass, stiffness, lam, gamma, edges, prepared, r_in, r_hi
         t_longer = t_max + lam * (2.0 + 2.0 * gamma) / stick_row[0]
         canonical = run_prepared(mass, lam, gamma, edges, prepared, startup, t_longer, max_events,
                                  cycle_tol, max_period, np.bool_(False), np.bool_(False),
-                                 np.int64(LOOP_TRACKED))  # the states' signature: one compile
+                                 np.bool_(False))  # the states' signature: one compile
         copy_vector(startup_f, canonical[4])
         copy_vector(startup_i, canonical[5])
         status = startup_i[I_STATUS]
@@ -297,14 +292,6 @@ def run_prepared_states(mass, stiffness, lam, gamma, edges, prepared, r_in, r_hi
                   - escape_data[ESCAPE_XI_LO] <= t_max)
         slip_ii = certified and not np.isnan(escape_data[ESCAPE_F_LO])
     z_eq = prepared[15]
-    # the basin's runs need labels and times (LOOP_LABELS; see run_prepared); the reference
-    # runs (join_startup=False) track every summary
-    if shortcut:
-        loop = np.int64(LOOP_TO_STICK)
-    elif join_startup:
-        loop = np.int64(LOOP_LABELS)
-    else:
-        loop = np.int64(LOOP_TRACKED)
     for c in prange(n_states):
         w0 = np.array([z0s[c, 0], z0s[c, 1], 1.0])
         if escape and escape_certifies(w0, z_eq, r_in, r_hi, escape_data):
@@ -316,7 +303,7 @@ def run_prepared_states(mass, stiffness, lam, gamma, edges, prepared, r_in, r_hi
             escape_summary(float_summary[c], int_summary[c], startup_f, startup_i)
             continue
         result = run_prepared(mass, lam, gamma, edges, prepared, z0s[c], t_max, max_events,
-                              cycle_tol, max_period, np.bool_(False), np.bool_(False), loop)
+                              cycle_tol, max_period, np.bool_(False), np.bool_(False), shortcut)
         copy_vector(float_summary[c], result[4])
         copy_vector(int_summary[c], result[5])
         if shortcut and result[5][I_STATUS] == STATUS_STUCK:

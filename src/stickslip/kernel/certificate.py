@@ -86,7 +86,6 @@ from stickslip.kernel.engine import (
     F_T_CERTIFIED,
     F_T_END,
     I_STATUS,
-    LOOP_TO_STICK,
     STATUS_STEADY,
     STATUS_STUCK,
     run_prepared,
@@ -207,7 +206,7 @@ def _trial(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, prep
     # cheap rejection first: one turn, which must not stick nor come back further out
     seg_t, seg_mode, seg_state, _, fsum, isum, _ = run_prepared(
         mass, lam, gamma, edges, prepared, z0, 1.25 * period, np.int64(TRIAL_EVENTS), 1e-12,
-        np.int64(4), np.bool_(True), np.bool_(False), np.int64(LOOP_TO_STICK))
+        np.int64(4), np.bool_(True), np.bool_(False), np.bool_(True))
     if isum[I_STATUS] == STATUS_STUCK:
         return empty, 0.0
     if isum[I_STATUS] != STATUS_STEADY:
@@ -219,10 +218,10 @@ def _trial(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, prep
                 if sqrt_k * (states[i, 0] - z_eq[0]) >= rho0:
                     return empty, 0.0
                 break
-    # the motion, recorded until the energy certificate holds (LOOP_TO_STICK: a stick ends it)
+    # the motion, recorded until the energy certificate holds (stop_at_stick: a stick ends it)
     seg_t, seg_mode, seg_state, _, fsum, isum, _ = run_prepared(
         mass, lam, gamma, edges, prepared, z0, TRIAL_PERIODS * period, np.int64(TRIAL_EVENTS), 1e-12,
-        np.int64(4), np.bool_(True), np.bool_(False), np.int64(LOOP_TO_STICK))
+        np.int64(4), np.bool_(True), np.bool_(False), np.bool_(True))
     if isum[I_STATUS] != STATUS_STEADY:
         return empty, 0.0
     n_samples = int(fsum[F_T_CERTIFIED] / dt) + 1

@@ -56,19 +56,10 @@ STATUS_MAX_EVENTS = 4
 STATUS_MAX_STEPS = 5
 #: a slip oscillation (periodic, never sticking) certified by a repeating section state
 STATUS_OSCILLATION = 6
-#: kernel-internal: a ``LOOP_TO_STICK`` run reached its first stick phase (see
+#: kernel-internal: a ``stop_at_stick`` run reached its first stick phase (see
 #: :func:`stickslip.kernel.batch.run_states`, which replaces it by the verdict of the stick
 #: phase's continuation; it never leaves the kernel)
 STATUS_STUCK = 7
-
-#: The run loops of :func:`run_prepared` (its last argument). ``LOOP_TRACKED``: every summary
-#: (the extremes tracked step by step, the exact event search). ``LOOP_LABELS``: verdicts and
-#: times only (no extremes: a slip step costs about two thirds; the ``quick`` event search,
-#: the same roots to rounding). ``LOOP_TO_STICK``: ``LOOP_LABELS`` that ends at the first
-#: stick phase with ``STATUS_STUCK``.
-LOOP_TRACKED = 0
-LOOP_LABELS = 1
-LOOP_TO_STICK = 2
 
 #: Bound on sub-steps per run. A very stiff or heavily damped structure needs tiny steps
 #: (h ||A|| <= 1/2); this keeps such a run to seconds, ending with a reported status.
@@ -272,7 +263,7 @@ def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_m
     """
     prepared = prepared_tables(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
     return run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle_tol,
-                        max_period, record, run_to_t_max, LOOP_TRACKED)
+                        max_period, record, run_to_t_max, False)
 
 
 def prepared_tables(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes):
@@ -284,16 +275,14 @@ def prepared_tables(mass, damping, stiffness, lam, gamma, edges, intercepts, slo
 
 @njit(cache=True)
 def _summaries(fsum, isum, status, t, last_bound, max_v, t_last_stick, n_stick, n_bk, n_seg,
-               n_steps, quick):
+               n_steps, stop_at_stick):
     """Complete the float and integer summaries at the end of a run (layouts ``F_*``, ``I_*``)."""
     fsum[F_LYAPUNOV_BOUND] = last_bound
     fsum[F_MAX_VELOCITY] = max_v
-    if quick:
-        # extremes are not tracked: the velocity maximum, and the xi range of a slip
-        # oscillation or of a cycle certified by a repeat (a proven ball's are its own)
+    if stop_at_stick:
+        # extremes are not tracked: the velocity maximum, and a slip oscillation's xi range
         fsum[F_MAX_VELOCITY] = np.nan
-        if status == STATUS_OSCILLATION or (status == STATUS_CYCLE
-                                            and not np.isnan(fsum[F_CYCLE_MISMATCH])):
+        if status == STATUS_OSCILLATION:
             fsum[F_AMPLITUDE] = np.nan
             fsum[F_XI_MIN] = np.nan
             fsum[F_XI_MAX] = np.nan
@@ -309,26 +298,22 @@ def _summaries(fsum, isum, status, t, last_bound, max_v, t_last_stick, n_stick, 
 
 @njit(cache=True)
 def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle_tol, max_period,
-                 record, run_to_t_max, loop):
+                 record, run_to_t_max, stop_at_stick):
     """:func:`run` with the per-system data of :func:`~stickslip.kernel.system.prepare_bands` computed once.
 
     Many runs of one system (basin stability: one system, many initial states) share the
     matrix exponentials and certificates; ``prepared`` is only read, so threads may share it.
 
-    ``loop`` (``LOOP_TRACKED``, ``LOOP_LABELS`` or ``LOOP_TO_STICK``, an int64) is what the
-    run computes. The runs of a basin need its labels and times only (``LOOP_LABELS``, and
-    ``LOOP_TO_STICK`` for one degree of freedom): no extremes, so ``F_MAX_VELOCITY`` is NaN,
-    and so are the amplitude, ``xi`` range and largest velocity of a cycle certified by a
-    repeat or of a slip oscillation (their periods are exact; a proven ball's cycle carries
-    its own numbers). ``benchmarks/bench_basin.py --only foundation`` prints the A/B of
-    the two loops on its 2-DOF basin.
-
-    With ``LOOP_TO_STICK`` the run ends with the kernel-internal status ``STATUS_STUCK`` as
+    With ``stop_at_stick`` the run ends with the kernel-internal status ``STATUS_STUCK`` as
     soon as a stick phase begins (or at once when ``z0`` is a stick state), unless a verdict
     was certified before; ``F_T_END`` is then the time the stick phase began and the final
     state is the stick state. For a single degree of freedom every stick phase ends at the
     same breakaway state, so the rest of the motion is known from one run
-    (:func:`stickslip.kernel.batch.run_states`).
+    (:func:`stickslip.kernel.batch.run_states`). Such a run is the basin's hot loop, so it
+    does not track extremes (half the cost of a step in a narrow friction band):
+    ``F_MAX_VELOCITY`` is NaN, and so are the amplitude, ``xi`` range and largest velocity
+    of a slip oscillation it certifies (its period is exact); and its event search is the
+    ``quick`` one of :func:`first_reach` (the same roots to rounding).
 
     Why this function is longer than the house's 120 lines: the step is written out here,
     its small helpers inlined, the mode's arrays bound once per phase, and only events
@@ -345,8 +330,6 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
     n = mass.shape[0]
     nz = 2 * n
     m = nz + 1
-    stop_at_stick = loop == LOOP_TO_STICK
-    quick = loop != LOOP_TRACKED
     (ahat, phi, hstep, sig_rows, f_start, f_sign, f_offset, stick_row, lyap, kappa, n_lyap,
      ev_count, ev_next, ev_vel, _eq_mode, z_eq, lyap_lo, lyap_hi, margin, sec_mode,
      sec_event, trap_radius, trap_data, ball_data, ball_norm) = prepared
@@ -439,7 +422,7 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
         have_u[0] = 0
         if t + h > t_max:
             h = t_max - t
-            taylor_vectors(ahat_m, w, u, quick)
+            taylor_vectors(ahat_m, w, u, stop_at_stick)
             have_u[0] = 1
             taylor_state(u, h, w1)
         else:
@@ -455,22 +438,22 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             if event_free(sig0, sig1, start, sign, offset, h):
                 continue
             s = first_reach(sig_m, start, sign, offset, sig0, sig1, w, h, ahat_m, u, have_u, row,
-                            coef, bp, departing and ev_next[mode, e] == NEXT_BELT, quick)
+                            coef, bp, departing and ev_next[mode, e] == NEXT_BELT, stop_at_stick)
             if s < s_ev:
                 s_ev = s
                 e_ev = e
         s_end = h
         if e_ev >= 0:
             if have_u[0] == 0:
-                taylor_vectors(ahat_m, w, u, quick)
+                taylor_vectors(ahat_m, w, u, stop_at_stick)
                 have_u[0] = 1
             taylor_state(u, s_ev, w_end)
-            if not quick:  # the value ranges are not tracked (sig1 is only theirs)
+            if not stop_at_stick:  # the value ranges are not tracked (sig1 is only theirs)
                 signature(sig_m, w_end, sig1)
             s_end = s_ev
         else:
             copy_vector(w_end, w1)
-        if not quick:  # (a LOOP_TO_STICK run takes no stick step)
+        if mode == STICK or not stop_at_stick:
             if mode == STICK:  # xi' = 1: xi's extremes are the step's ends, the velocity the belt's
                 lo, hi, vhi = w[0], w_end[0], 1.0
             else:
@@ -565,7 +548,7 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             break
 
     _summaries(fsum, isum, status, t, last_bound, max_v, t_last_stick, n_stick, n_rec[0], n_seg,
-               n_steps, quick)
+               n_steps, stop_at_stick)
     n_keep = min(n_seg, cap) if record else 0
     return (
         seg_t[:n_keep].copy(),

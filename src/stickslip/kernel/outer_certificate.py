@@ -109,7 +109,7 @@ from numba import njit
 
 from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel is stamped with the whole kernel folder)
 from stickslip.kernel.dense_output import evaluate_prepared
-from stickslip.kernel.engine import F_T_END, I_STATUS, LOOP_TO_STICK, STATUS_STUCK, run_prepared
+from stickslip.kernel.engine import F_T_END, I_STATUS, STATUS_STUCK, run_prepared
 from stickslip.kernel.system import SLIP_I, mode_kind, secant_range
 
 #: Angle bins of the stored region.
@@ -344,7 +344,7 @@ def first_return_outwards(mass, damping, stiffness, lam, gamma, edges, intercept
     budget = TURN_EVENTS_PER_BAND * edges.shape[0] + 64  # a turn crosses each edge twice
     seg_t, seg_mode, seg_state, _, fsum, isum, _ = run_prepared(
         mass, lam, gamma, edges, prepared, z0, 1.05 * 2.0 * np.pi / omega_min, budget, 1e-12,
-        np.int64(4), np.bool_(True), np.bool_(False), np.int64(LOOP_TO_STICK))
+        np.int64(4), np.bool_(True), np.bool_(False), np.bool_(True))
     times = np.arange(int(fsum[F_T_END] / dt)) * dt
     states, _ = evaluate_prepared(prepared[0], prepared[1], prepared[2], seg_t,
                          seg_mode, seg_state, times)
@@ -407,10 +407,10 @@ def _trial(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, prep
     period = 2.0 * np.pi * np.sqrt(m00 / k00)
     dt = period / SAMPLES_PER_PERIOD
     z0 = np.array([z_eq[0] + rho0 / sqrt_k, 0.0])
-    # the motion, recorded until it reaches the belt speed (LOOP_TO_STICK ends the run there)
+    # the motion, recorded until it reaches the belt speed (stop_at_stick ends the run there)
     seg_t, seg_mode, seg_state, _, fsum, isum, _ = run_prepared(
         mass, lam, gamma, edges, prepared, z0, TRIAL_PERIODS * period, np.int64(TRIAL_EVENTS), 1e-12,
-        np.int64(4), np.bool_(True), np.bool_(False), np.int64(LOOP_TO_STICK))
+        np.int64(4), np.bool_(True), np.bool_(False), np.bool_(True))
     if isum[I_STATUS] != STATUS_STUCK:
         return empty, empty, 0  # decayed, oscillates, or too slow
     t_stick = fsum[F_T_END]
