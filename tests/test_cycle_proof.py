@@ -186,3 +186,22 @@ def test_end_drift_bounds_the_nominal_continuation() -> None:
         if case % 2:
             old = float(np.linalg.norm(nv)) * f_norm * np.exp(norm_a * t_dev) * t_dev
             assert bound < 0.6 * old
+
+
+def test_profile_cycle_ball_prints_the_ladder() -> None:
+    # benchmarks/profile_cycle_ball.py (bench_basin's foundation case): the proven radius holds
+    # with theta < 1 (the proof's own acceptance), the larger radii name the failing phase
+    import subprocess
+    import sys
+
+    script = Path(__file__).resolve().parent.parent / "benchmarks" / "profile_cycle_ball.py"
+    done = subprocess.run([sys.executable, str(script), "--radii", "8"], capture_output=True,
+                          text=True, check=True, timeout=600)
+    lines = done.stdout.splitlines()
+    assert lines[0].startswith("stick-slip: proven:")
+    held = [line for line in lines if "tube holds" in line and "(contracts)" in line]
+    failed = [line for line in lines if "tube fails in phase" in line]
+    assert held and failed
+    radius = float(lines[0].split("a ball of radius ")[1].split()[0])
+    held_radii = [float(line.split("r = ")[1].split(":")[0]) for line in held]
+    assert any(abs(r - radius) <= 0.01 * radius for r in held_radii)  # describe() rounds to 3 digits

@@ -68,3 +68,50 @@ def test_every_heavy_engine_kernel_is_compiled_for_one_signature(tmp_path: Path)
     counts = json.loads(done.stdout.splitlines()[-1])
     assert len(counts) == sum(len(names) for names in HEAVY.values())
     assert {name: n for name, n in counts.items() if n != 1} == {}
+
+
+BATCH_SCRIPT = """
+import json
+import numpy as np
+from stickslip import Foundation, Slider, StribeckFriction, elastic_foundation, rigid_base
+from stickslip.analysis.engine_run import EngineOptions
+from stickslip.kernel import batch
+from stickslip.sweep.basin import basin_stability, sample_box
+
+opts = EngineOptions()
+limits = (opts.t_max, opts.max_events, opts.cycle_tol, opts.max_period)
+for structure in (rigid_base(0.1), elastic_foundation(0.1, Foundation(0.05, 1.0, 0.1))):
+    slider = Slider(2.0, friction=StribeckFriction(0.2, tolerance=1e-3))
+    states = sample_box(structure, slider, 1000, {"xi": (-1.0, 1.0), "v": (-1.0, 1.5)}, seed=3)
+    basin_stability(structure, slider, states[:40])  # the command's path (prepared once)
+    edges, intercepts, slopes = slider.friction.bands(slider.lam, slider.gamma)
+    args = (structure.mass, structure.damping, structure.stiffness, slider.lam, slider.gamma,
+            edges, intercepts, slopes)  # a Structure's own, read-only matrices
+    batch.prepare_states(*args)  # the defaults left out
+    batch.prepare_states(*args, False)
+    batch.run_states(*args, states[:20], *limits)
+    batch.run_states(*args, states[:20], *limits, False, False)
+    lams = np.array([1.0, 2.0])
+    e, a, s, nb = batch.coulomb_tables(lams, np.full(2, 2.0))
+    cells = (np.zeros(2, dtype=np.int64), lams, np.full(2, 2.0), e, a, s, nb, *limits)
+    batch.run_cells(structure.mass[None], structure.damping[None], structure.stiffness[None],
+                    *cells)  # read-only views
+    batch.run_cells(np.stack([structure.mass]), np.stack([structure.damping]),
+                    np.stack([structure.stiffness]), *cells)  # writable, as a sweep stacks them
+names = ("prepare_states_kernel", "run_prepared_states", "run_prepared_cells")
+print(json.dumps({name: len(getattr(batch, name).signatures) for name in names}))
+"""
+
+
+@pytest.mark.slow
+def test_batch_entry_points_share_one_compilation_per_dimension(tmp_path: Path) -> None:
+    # run_states and prepare_states are Python functions that give every argument, and
+    # run_cells copies read-only matrices, so a basin's own path, direct calls with or without
+    # the defaults and a Dask worker's run_states load one compilation (numba types arrays by
+    # dtype, dimensions and layout, so 1 and 2 DOF share it); before, each such call compiled
+    # the run loop again (prepare_states without its defaults, run_states, read-only matrices)
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
+    done = subprocess.run([sys.executable, "-c", BATCH_SCRIPT], capture_output=True, text=True,
+                          check=True, timeout=1800, env=env)
+    counts = json.loads(done.stdout.splitlines()[-1])
+    assert counts == {"prepare_states_kernel": 1, "run_prepared_states": 1, "run_prepared_cells": 1}

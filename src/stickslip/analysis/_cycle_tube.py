@@ -227,6 +227,8 @@ class Tube:
     ok: bool
     jacobian_bound: float = math.inf  # E(r)
     breakaway_deviation: list[float] = field(default_factory=list)  # Z at each breakaway
+    failed_phase: int = -1  # the phase whose check failed (not ok); -1 when ok
+    failed_deviation: float = math.nan  # the deviation Z the tube carried into that phase
 
 
 def interval_floor(values: FloatArray, curvature: FloatArray) -> FloatArray:
@@ -428,14 +430,14 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
         z_devs.append(z_dev)
         t_dev = _end_time_deviation(ph, z_dev)
         if t_dev is None:
-            return Tube(False)
+            return Tube(False, failed_phase=i, failed_deviation=z_dev)
         ext = math.exp(ph.norm_a * t_dev)
         z_event = float(ph.m_norm[-1]) * ext * z_dev + float(ph.flow_norm[-1]) * ext * t_dev
         z_event += ROUNDING * scale
         if ph.belt_decision:
             force = float(stick_normal @ ph.z_end)
             if min(abs(force - lam), abs(force - low_level)) <= stick_norm * z_event:
-                return Tube(False)
+                return Tube(False, failed_phase=i, failed_deviation=z_dev)
         # the factor X = S expm(A t) and its variation over the tube
         nv = ph.functions[ph.ending][0]
         n_norm = float(np.linalg.norm(nv))
@@ -443,7 +445,7 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
         p_star = float(nv @ ph.f_minus)
         dp = float(np.linalg.norm(nv @ ph.a)) * z_event
         if abs(p_star) - dp <= 0.0:
-            return Tube(False)
+            return Tube(False, failed_phase=i, failed_deviation=z_dev)
         jump = ph.a_plus - ph.a
         if not (ph.belt_decision or ph.breakaway):
             # a friction-band edge: both event points lie on the surface n . z = g0, so
