@@ -156,6 +156,6 @@ def show_identify_page() -> None:
     col1, col2 = st.columns(2)
     col1.download_button("Machine file (TOML, as --write-config)", config,
                          file_name="machine.toml", mime="application/toml",
-                         key="download_identified_toml")
+                         key="download_identified_toml", on_click="ignore")
     col2.button("Take these values to the slider page", key="identified_to_slider",
                 on_click=_take_to_slider, args=(slider_inputs(result),))

@@ -277,7 +277,7 @@ def show_contact_machine(machine_file: Any, digest: str) -> None:
     st.download_button("Stability and time history (JSON)",
                        __import__("json").dumps(payload, indent=2, default=str),
                        file_name="stickslip-contact.json", mime="application/json",
-                       key="download_contact_json")
+                       key="download_contact_json", on_click="ignore")
 
 
 def _queue_run(key: tuple[str, str], cm: ContactMachine) -> None:

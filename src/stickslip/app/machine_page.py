@@ -267,4 +267,4 @@ def show_machine_page() -> None:
     show_machine_bifurcation(machine, digest)
     st.download_button("Design report (JSON)", __import__("json").dumps(payload, indent=2, default=str),
                        file_name="stickslip-machine.json", mime="application/json",
-                       key="download_machine_json")
+                       key="download_machine_json", on_click="ignore")

@@ -138,4 +138,4 @@ def show_memory_report(p: dict[str, Any], image: bytes) -> None:
     st.info(p["foundation"])
     st.download_button("Design report (JSON)", json.dumps(p, indent=2),
                        file_name="stickslip-design-memory.json", mime="application/json",
-                       key="download_memory_json")
+                       key="download_memory_json", on_click="ignore")

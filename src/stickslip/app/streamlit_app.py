@@ -378,10 +378,10 @@ def _show_bifurcation(report: Mapping[str, Any], system: PhysicalSystem,
         col1, col2 = st.columns(2)
         col1.download_button("Bifurcation diagrams (CSV)", bifurcation_csv(results, system, axis),
                              file_name="stickslip-bifurcation.csv", mime="text/csv",
-                             key="download_bifurcation_csv")
+                             key="download_bifurcation_csv", on_click="ignore")
         col2.download_button("Bifurcation diagrams (netCDF)", bifurcation_netcdf(results),
                              file_name="stickslip-bifurcation.nc", mime="application/x-netcdf",
-                             key="download_bifurcation_netcdf")
+                             key="download_bifurcation_netcdf", on_click="ignore")
 
 
 def main() -> None:
@@ -503,10 +503,10 @@ def _show_results(raw: Mapping[str, str], system: PhysicalSystem) -> None:
     col1, col2 = st.columns(2)  # written when clicked, not at every rerun (0.1 s for the CSV)
     col1.download_button("Design report (JSON)", lambda: report_json(raw, report, runs, optimum),
                          file_name="stickslip-design.json", mime="application/json",
-                         key="download_json")
+                         key="download_json", on_click="ignore")
     col2.download_button("Time histories (CSV)", lambda: history_csv(runs, system),
                          file_name="stickslip-time-history.csv", mime="text/csv",
-                         key="download_csv")
+                         key="download_csv", on_click="ignore")
 
 
 if __name__ == "__main__":
