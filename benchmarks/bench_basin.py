@@ -66,6 +66,19 @@ from stickslip.sweep.basin import BasinSystem, basin_stability, run_state_batch,
 HORIZON = 100.0
 FOUNDATION_SAMPLES = 20_000
 STICK = 2
+#: the small-net-damping case's states about steady sliding (both sides of the belt speed)
+NARROW = {"xi": (-0.7, 0.7), "v": (-0.7, 1.3)}
+
+
+def weak_net_damping_slider() -> Slider:
+    """The small-net-damping slider: exponential Stribeck law, v_s/V = 0.2, lambda = 1.484."""
+    return Slider(0.05 * 0.2 * float(np.exp(5.0)), friction=StribeckFriction(0.2, tolerance=1e-4))
+
+
+def foundation_weak_case():  # type: ignore[no-untyped-def]
+    """The "foundation weak" case: structure, slider and the box its states are drawn from."""
+    return (elastic_foundation(0.05, Foundation(1.0, 1.0, 0.1)), weak_net_damping_slider(),
+            {**NARROW, "xi_a": (-0.2, 0.2), "v_a": (-0.2, 0.2)})
 
 
 def oracle_label(structure, slider, state) -> str:  # type: ignore[no-untyped-def]
@@ -91,18 +104,14 @@ def main() -> None:
         if getattr(args, name) < 1:
             parser.error(f"--{name.replace('_', '-')} {getattr(args, name)} must be at least 1")
     wide = {"xi": (-4.0, 4.0), "v": (-3.0, 1.5)}
-    weak_law = StribeckFriction(0.2, tolerance=1e-4)
-    weak = Slider(0.05 * 0.2 * float(np.exp(5.0)), friction=weak_law)
-    narrow = {"xi": (-0.7, 0.7), "v": (-0.7, 1.3)}
     cases = [
         ("coulomb", rigid_base(0.1), Slider(2.5), wide),
         ("stribeck tol 1e-4", rigid_base(0.1),
          Slider(2.0, friction=StribeckFriction(0.2, tolerance=1e-4)), wide),
         ("stribeck tol 1e-3", rigid_base(0.1),
          Slider(2.0, friction=StribeckFriction(0.2, tolerance=1e-3)), wide),
-        ("weak net damping", rigid_base(0.05), weak, narrow),
-        ("foundation weak", elastic_foundation(0.05, Foundation(1.0, 1.0, 0.1)), weak,
-         {**narrow, "xi_a": (-0.2, 0.2), "v_a": (-0.2, 0.2)}),
+        ("weak net damping", rigid_base(0.05), weak_net_damping_slider(), NARROW),
+        ("foundation weak", *foundation_weak_case()),
     ]
     print(f"{'case':20s} {'engine samples/s':>17s} {'oracle samples/s':>17s} {'ratio':>8s}  "
           f"stick-slip fraction  labels equal")

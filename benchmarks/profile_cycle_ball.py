@@ -12,21 +12,35 @@ whether the tube holds (:func:`stickslip.analysis._cycle_tube.tube_bound`), the 
 of the Jacobian's variation over the ball and the contraction bound ``theta = ||J||_W + kappa
 E(r)`` (a proof needs ``theta < 1``), or the phase where the tube fails: its mode, band, the
 band's width in sliding speed, its duration and the deviation the tube carried into it.
+
+Then what a larger ball would buy (``--states``, 300 by default; 0 skips it): the first
+``--states`` states of bench_basin.py's box (same seed) run with ``simulate``, and for each
+stick-slip one the breakaway states' Euclidean distances to the proven fixed point in the
+foundation coordinates ``b`` (the norm of the proven radius). For each radius it prints the
+mean number of stick phases, and the mean time, until the first breakaway inside a ball of
+that radius: where a basin run with such a ball would stop. The distances at the first
+breakaway are printed too (their quantiles): they set how far any ball must reach.
 """
 
 from __future__ import annotations
 
 import argparse
+import sys
+from pathlib import Path
 
 import numpy as np
 
-from stickslip import Foundation, InitialState, Slider, elastic_foundation, simulate
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # bench_basin's case
+
+from bench_basin import foundation_weak_case
+
+from stickslip import InitialState, simulate
 from stickslip.analysis import _cycle_tube as tube
 from stickslip.analysis import cycle_proof
 from stickslip.analysis.engine_run import EngineOptions
 from stickslip.analysis.return_map import ReturnMap
-from stickslip.kernel.system import mode_kind_band
-from stickslip.model.friction import StribeckFriction
+from stickslip.kernel.system import STICK, mode_kind_band
+from stickslip.sweep.basin import sample_box
 
 KINDS = {0: "slip-I", 1: "slip-II", 2: "stick"}
 
@@ -34,11 +48,14 @@ KINDS = {0: "slip-I", 1: "slip-II", 2: "stick"}
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--radii", type=int, default=12, help="ladder radii to try, largest first")
+    parser.add_argument("--states", type=int, default=300,
+                        help="basin states for what a larger ball would buy (0: skip)")
     args = parser.parse_args()
     if args.radii < 1:
         parser.error(f"--radii {args.radii} must be at least 1")
-    slider = Slider(0.05 * 0.2 * float(np.exp(5.0)), friction=StribeckFriction(0.2, tolerance=1e-4))
-    structure = elastic_foundation(0.05, Foundation(1.0, 1.0, 0.1))
+    if args.states < 0:
+        parser.error(f"--states {args.states} must be at least 0")
+    structure, slider, box = foundation_weak_case()
     run = simulate(structure, slider, initial=InitialState(np.array([0.6, 0.1]), np.array([-0.7, 0.1])))
     proof = run.cycle_proof
     if proof is None:
@@ -75,6 +92,39 @@ def main() -> None:
                  and np.isfinite(edges[band + 1]) else "")
         print(f"r = {radius:9.3e}: tube fails in phase {t.failed_phase} ({KINDS[kind]}, band {band}"
               f"{width}, duration {ph.duration:.3g}), carried deviation {t.failed_deviation:.2e}")
+    if args.states > 0:
+        center = pmap.reduce(proof.fixed_point)
+        states = sample_box(structure, slider, args.states, box, seed=1)
+        larger_balls(structure, slider, states, center, [proof.radius, 1e-4, 1e-3, 1e-2, 1e-1, 1.0])
+
+
+def larger_balls(structure, slider, states, center, radii) -> None:  # type: ignore[no-untyped-def]
+    """Where basin runs would stop with a proven ball of each radius (see the module's text)."""
+    n = structure.n_dof
+    distances, times = [], []
+    for state in states:
+        run = simulate(structure, slider, initial=InitialState(state[:n], state[n:]), record=True)
+        if run.verdict.value != "stick-slip":
+            continue
+        modes = np.asarray(run.segment_modes)
+        rows = np.asarray(run.segment_states)
+        bk = np.flatnonzero((modes[:-1] == STICK) & (modes[1:] != STICK)) + 1
+        b = np.concatenate([rows[bk, 1:n], rows[bk, n + 1:]], axis=1)
+        distances.append(np.linalg.norm(b - center, axis=1))
+        times.append(np.asarray(run.segment_times)[bk])
+    if not distances:
+        print(f"none of the {len(states)} states is stick-slip")
+        return
+    first = np.quantile([d[0] for d in distances], [0.1, 0.5, 0.9])
+    print(f"{len(distances)} of {len(states)} states stick-slip; distance of the first breakaway "
+          f"from the fixed point: 10% {first[0]:.3g}, median {first[1]:.3g}, 90% {first[2]:.3g}")
+    for radius in radii:
+        # the first breakaway inside the ball (the last one when none is: the run's certificate)
+        enter = [int(np.argmax(d <= radius)) if np.any(d <= radius) else d.size - 1 for d in distances]
+        phases = np.mean(enter) + 1.0
+        tau = np.mean([t[j] for t, j in zip(times, enter, strict=True)])
+        print(f"ball radius {radius:9.3e}: stops after {phases:5.2f} stick phases, at tau {tau:7.2f}"
+              " on average")
 
 
 if __name__ == "__main__":

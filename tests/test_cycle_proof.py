@@ -195,8 +195,8 @@ def test_profile_cycle_ball_prints_the_ladder() -> None:
     import sys
 
     script = Path(__file__).resolve().parent.parent / "benchmarks" / "profile_cycle_ball.py"
-    done = subprocess.run([sys.executable, str(script), "--radii", "8"], capture_output=True,
-                          text=True, check=True, timeout=600)
+    done = subprocess.run([sys.executable, str(script), "--radii", "8", "--states", "12"],
+                          capture_output=True, text=True, check=True, timeout=600)
     lines = done.stdout.splitlines()
     assert lines[0].startswith("stick-slip: proven:")
     held = [line for line in lines if "tube holds" in line and "(contracts)" in line]
@@ -205,3 +205,9 @@ def test_profile_cycle_ball_prints_the_ladder() -> None:
     radius = float(lines[0].split("a ball of radius ")[1].split()[0])
     held_radii = [float(line.split("r = ")[1].split(":")[0]) for line in held]
     assert any(abs(r - radius) <= 0.01 * radius for r in held_radii)  # describe() rounds to 3 digits
+    # what a larger ball would buy: a larger ball is entered no later, and never before the
+    # first breakaway
+    stops = [float(line.split("stops after ")[1].split()[0]) for line in lines
+             if line.startswith("ball radius")]
+    assert len(stops) == 6 and stops[-1] >= 1.0
+    assert all(a >= b for a, b in zip(stops, stops[1:], strict=False))
