@@ -9,6 +9,7 @@ engine runs started on its boundary.
 
 from __future__ import annotations
 
+import itertools
 from pathlib import Path
 
 import numpy as np
@@ -210,4 +211,4 @@ def test_profile_cycle_ball_prints_the_ladder() -> None:
     stops = [float(line.split("stops after ")[1].split()[0]) for line in lines
              if line.startswith("ball radius")]
     assert len(stops) == 6 and stops[-1] >= 1.0
-    assert all(a >= b for a, b in zip(stops, stops[1:], strict=False))
+    assert all(a >= b for a, b in itertools.pairwise(stops))
