@@ -122,3 +122,31 @@ def test_the_stick_slip_absorber_of_a_non_coulomb_machine_says_it_assumes_coulom
         assert len(notes) == 1 and lines.index(notes[0]) == len(lines) - 1  # under the stick-slip row
         assert "stribeck" in notes[0] and "machine's own law" in notes[0]
         assert "assumption" not in entries[0] and entries[1]["assumption"].startswith("assumes Coulomb")
+
+
+def test_tuned_slideway_critical_speed_is_where_steady_sliding_stops_being_proven() -> None:
+    # Source: direct runs from the start-up state (simulate) on the tuned slideway of the
+    # gallery example (examples/plot_10_slideway.py). The search once counted undetermined runs
+    # (an unproven period-3 candidate at 0.584 mm/s, a horizon at 0.467 mm/s) as steady and
+    # reported V_c = 0.418 mm/s, below speeds where the table stick-slips (0.5 mm/s).
+    from pathlib import Path
+
+    from stickslip import simulate
+    from stickslip.analysis.verdict import Verdict
+    from stickslip.io.machine_file import machine_from_file, read_machine_file
+
+    path = Path(__file__).resolve().parents[1] / "examples" / "slideway" / "machine.toml"
+    machine, _ = machine_from_file(read_machine_file(path),
+                                   {"mu_s": 0.15, "mu_k": 0.1, "load": 2600.0, "speed": 5e-4})
+    (hinf,) = tune_machine_absorber(machine, 10.0, 2, stick_slip=False)
+    tuned = machine.with_absorber(hinf.mass, hinf.stiffness, hinf.damping, 2)
+    critical = hinf.critical
+    assert not critical.undetermined_above
+
+    def verdict(speed: float) -> Verdict:
+        return simulate(*tuned.with_operating_point(speed=speed).to_dimensionless(), record=False).verdict
+
+    assert verdict(1.001 * critical.speed) is Verdict.STEADY_SLIDING  # just above: proven steady
+    assert verdict(0.999 * critical.speed) is Verdict.STICK_SLIP  # just below: proven stick-slip
+    assert verdict(5e-4) is Verdict.STICK_SLIP  # the example's feed: below V_c, as it says
+    assert critical.speed > 5e-4

@@ -226,7 +226,7 @@ def verdict_code(structure: Structure, lam: float, gamma: float, options: Engine
 
 @dataclass(frozen=True)
 class Onset:
-    """Result of :func:`find_onset`: the smallest ``lambda`` with a stick-slip verdict.
+    """Result of :func:`find_onset`: the smallest ``lambda`` where steady sliding is not proven.
 
     Attributes
     ----------
@@ -236,18 +236,22 @@ class Onset:
     lam_min, lam_max : float
         The range searched.
     converged : bool
-        False when a bisection run ended undetermined (the onset is then only bracketed).
+        True when the final bracket is ``rtol`` narrow (kept for callers of the bracket searches:
+        an undetermined run no longer stops this one, see :func:`find_onset`).
     n_runs : int
         Simulations made.
     n_undetermined : int
-        Runs that ended undetermined (horizon, event budget, unproven cycle): scan points
-        counted as not stick-slip, or the bisection run that stopped the search.
+        Runs that ended undetermined (horizon, event budget, unproven cycle), all counted on the
+        stick-slip side: steady sliding is not proven there.
     bracket : tuple of float
         ``(lam_below, lam_above)``: the last scan step or the final bisection bracket, between
-        a run that did not stick-slip and one that did (``(lam_min, lam_min)`` or
+        a run certified not to stick-slip and one that is not (``(lam_min, lam_min)`` or
         ``(lam_max, inf)`` at the ends of the range).
     undetermined_by : tuple of (str, int)
         The undetermined runs by run status (:attr:`RunStatus.label`, count): why they are.
+    undetermined_above : bool
+        The run at ``bracket[1]`` (at ``lam_min`` when the search starts there) ended
+        undetermined: steady sliding ends at the onset, but stick-slip is not proven just above it.
     """
 
     lam: float
@@ -258,10 +262,11 @@ class Onset:
     n_undetermined: int = 0
     bracket: tuple[float, float] = (math.nan, math.nan)
     undetermined_by: tuple[tuple[str, int], ...] = ()
+    undetermined_above: bool = False
 
     @property
     def at_lower_bound(self) -> bool:
-        """Stick-slip already at ``lam_min``: the onset is ``<= lam_min``, not ``lam_min``."""
+        """Steady sliding not proven already at ``lam_min``: the onset is ``<= lam_min``."""
         return self.lam <= self.lam_min
 
     @property
@@ -282,13 +287,19 @@ def find_onset(
     options: EngineOptions | None = None,
     on_run: RunHook | None = None,
 ) -> Onset:
-    """Smallest ``lambda`` with a stick-slip verdict from the startup state, and how it was found.
+    """Onset of stick-slip from the startup state: where steady sliding stops being proven.
 
-    The scan multiplies ``lambda`` by ``growth`` from ``lam_min`` until the first stick-slip
-    verdict (undetermined scan points and other verdicts count as not stick-slip), then
-    :func:`bisect_crossings` bisects the last step on "stick-slip or not". A stick-slip island
-    narrower than one scan step can be stepped over; for every verdict change, use
-    :func:`stickslip.sweep.stick_slip_boundary`.
+    The scan multiplies ``lambda`` by ``growth`` from ``lam_min`` until the first run that is
+    not certified to slide (a stick-slip verdict or an undetermined one: a run whose cycle is
+    not proven, or which reaches its horizon, sticks or may; steady sliding and a slip
+    oscillation are certified not to), then :func:`bisect_crossings` bisects the last step on
+    that distinction. Below the onset every run of the search is certified not to stick-slip;
+    :attr:`Onset.undetermined_above` says when the run just above it is undetermined rather
+    than proven stick-slip (a machine whose stick-slip near the onset has no proven cycle).
+    Counting undetermined runs as "not stick-slip" instead would report an onset deep in a
+    region where the runs stick: on the tuned slideway example, 0.418 mm/s, below runs that
+    stick-slip at 0.5 and 0.6 mm/s. A stick-slip island narrower than one scan step can be
+    stepped over; for every verdict change, use :func:`stickslip.sweep.stick_slip_boundary`.
 
     Parameters
     ----------
@@ -330,19 +341,24 @@ def find_onset(
         if on_run is not None:
             on_run(lam, result)
 
+    undetermined_at: set[float] = set()
+
     def stick_slips(lam: float) -> int:
+        """STICK_SLIP unless the run is certified not to stick-slip (then STEADY_SLIDING)."""
         nonlocal n_runs, n_undetermined
         n_runs += 1
         code = run_code(structure, contact(lam), opts, watch)
         if code == Verdict.UNDETERMINED.code:
             n_undetermined += 1
-        if code in (Verdict.STICK_SLIP.code, Verdict.UNDETERMINED.code):
+            undetermined_at.add(lam)
+            return Verdict.STICK_SLIP.code  # steady sliding not proven: the stick-slip side
+        if code == Verdict.STICK_SLIP.code:
             return code
         return Verdict.STEADY_SLIDING.code  # "not stick-slip": a slip oscillation counts as steady here
 
     def done(lam: float, converged: bool, bracket: tuple[float, float]) -> Onset:
         return Onset(lam, lam_min, lam_max, converged, n_runs, n_undetermined, bracket,
-                     tuple(sorted(why.items())))
+                     tuple(sorted(why.items())), bracket[1] in undetermined_at)
 
     def classify(_group: IntArray, lams: FloatArray) -> CodeArray:
         return np.array([stick_slips(float(lam)) for lam in lams], dtype=np.int8)
@@ -456,11 +472,11 @@ def lowest_onset(
     rtol: float = 1e-6,
     options: EngineOptions | None = None,
 ) -> float:
-    """Smallest ``lambda`` with a stick-slip verdict from the startup state (dimensionless).
+    """Onset of stick-slip from the startup state (dimensionless): :func:`find_onset`'s ``lam``.
 
-    The design value: below it the system slides steadily. :func:`find_onset` with the paper's
-    Coulomb law; its ``lam`` alone. Returns ``lam_min`` if it already stick-slips and ``inf``
-    if nothing up to ``lam_max`` does.
+    The design value: below it the system is certified to slide steadily. :func:`find_onset`
+    with the paper's Coulomb law; its ``lam`` alone. Returns ``lam_min`` if steady sliding is
+    not proven there and ``inf`` if it is proven everywhere up to ``lam_max``.
 
     Parameters
     ----------

@@ -204,7 +204,8 @@ def _onset_note(onset: Onset, what: str, si_at: Callable[[float], float], unit: 
     """
     parts = []
     if onset.at_lower_bound:
-        parts.append(f"stick-slip already at the {ends[0]} {what} searched, {si_at(onset.lam_min):.4g} "
+        first = "steady sliding not proven" if onset.undetermined_above else "stick-slip"
+        parts.append(f"{first} already at the {ends[0]} {what} searched, {si_at(onset.lam_min):.4g} "
                      f"{unit} (lambda = {onset.lam_min:g}, the search's lower bound): the critical "
                      f"{what} lies beyond it, not found")
     elif onset.above_range:
@@ -215,11 +216,15 @@ def _onset_note(onset: Onset, what: str, si_at: Callable[[float], float], unit: 
         a, b = sorted(si_at(x) for x in onset.bracket)
         parts.append(f"an undetermined run stopped the bisection: the critical {what} lies between "
                      f"{a:.4g} and {b:.4g} {unit}")
+    if onset.undetermined_above and not (onset.above_range or onset.at_lower_bound):
+        parts.append(f"steady sliding is proven up to the critical {what}, but the run just past it "
+                     "is undetermined, not proven stick-slip")
     if onset.n_undetermined and count_runs:
         messages = {status.label: status.message.split(";")[0] for status in RunStatus}
         why = ", ".join(f"{n}: {messages[label]}" for label, n in onset.undetermined_by)
         parts.append(f"{onset.n_undetermined} of {onset.n_runs} runs undetermined ({why}), counted "
-                     "as not stick-slip: a larger t_max may decide them")
+                     "on the stick-slip side (steady sliding is not proven there): a larger t_max "
+                     "may decide them")
     return "; ".join(parts)
 
 

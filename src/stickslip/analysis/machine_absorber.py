@@ -125,6 +125,31 @@ class CriticalPoint:
     lam: float
     speed: float
     load: float
+    #: runs of the two searches that ended undetermined, counted where steady sliding is not
+    #: proven (:func:`~stickslip.analysis.critical.find_onset`)
+    undetermined: int = 0
+    #: the run just past the speed onset ended undetermined, not proven stick-slip
+    undetermined_above: bool = False
+
+    def describe(self, with_lambda: bool = False) -> str:
+        """``stick-slip below V_c=... m/s / above W_c=... N``, with what the searches left open.
+
+        When the run just past the onset is undetermined, the onset is where steady sliding
+        stops being proven, and the text says so instead of claiming stick-slip beyond it.
+        ``with_lambda`` adds ``(lambda_c=...)`` after the values.
+        """
+        values = f"V_c={self.speed:.4g} m/s / above W_c={self.load:.4g} N"
+        if with_lambda:
+            values += f" (lambda_c={self.lam:.4g})"
+        if self.undetermined_above:
+            text = (f"steady sliding proven only above {values.replace(' / above ', ' / below ')} "
+                    "(the run just past it is undetermined, not proven stick-slip)")
+        else:
+            text = f"stick-slip below {values}"
+        if self.undetermined:
+            text += (f" ({self.undetermined} run(s) undetermined: counted as not proven steady; "
+                     "a longer horizon, --t-max, may decide them)")
+        return text
 
     @classmethod
     def of(cls, machine: Machine, options: EngineOptions | None = None,
@@ -145,7 +170,9 @@ class CriticalPoint:
         speed = 0.0 if not math.isfinite(lam) else machine.speed_for_lambda(lam)
         lam_load = onsets.load.lam
         load = math.inf if not math.isfinite(lam_load) else machine.load_for_lambda(lam_load)
-        return cls(lam, speed, load)
+        undetermined = onsets.speed.n_undetermined + (
+            onsets.load.n_undetermined if onsets.own_law else 0)  # Coulomb: one search for both
+        return cls(lam, speed, load, undetermined, onsets.speed.undetermined_above)
 
     def to_dict(self) -> dict[str, Any]:
         """``lambda_c``, ``critical_speed_m_per_s``, ``critical_load_N`` (None when infinite)."""
@@ -153,7 +180,8 @@ class CriticalPoint:
             return float(x) if math.isfinite(x) else None
 
         return {"lambda_c": num(self.lam), "critical_speed_m_per_s": num(self.speed),
-                "critical_load_N": num(self.load)}
+                "critical_load_N": num(self.load), "undetermined_runs": self.undetermined,
+                "undetermined_past_onset": self.undetermined_above}
 
 
 @dataclass(frozen=True)
@@ -238,8 +266,7 @@ class MachineDesign:
         if c.lam <= LAM_MIN:
             return (f"stick-slip already at lambda = {LAM_MIN:g}, the search's lower bound "
                     f"({_bound_text(self.machine, LAM_MIN)}): V_c and W_c lie beyond it")
-        return (f"stick-slip below V_c={c.speed:.4g} m/s / above W_c={c.load:.4g} N "
-                f"(lambda_c={c.lam:.4g})")
+        return c.describe(with_lambda=True)
 
     def summary(self) -> str:
         """Plain-text report."""
@@ -255,8 +282,8 @@ class MachineDesign:
             lines.insert(2, f"undetermined because: {why}")
         for a in self.absorbers:
             lines.append(f"absorber ({a.objective}): m_a={a.mass:.4g} kg, k_a={a.stiffness:.4g} N/m, "
-                         f"c_a={a.damping:.4g} N s/m -> V_c={a.critical.speed:.4g} m/s, "
-                         f"W_c={a.critical.load:.4g} N, peak {a.peak_receptance:.4g} m/N")
+                         f"c_a={a.damping:.4g} N s/m -> {a.critical.describe()}, "
+                         f"peak {a.peak_receptance:.4g} m/N")
             if a.objective == "stick-slip" and self.tuning_note is not None:
                 lines.append(f"  (this absorber {self.tuning_note})")
         return "\n".join(lines)

@@ -244,11 +244,11 @@ def _tune_machine(ctx: typer.Context, config: Path, objective: str, json: bool) 
         print_json(payload)
         return
     lines = [machine.summary(),
-             f"without absorber: stick-slip below V_c={bare.speed:.4g} m/s / above W_c={bare.load:.4g} N"]
+             f"without absorber: {bare.describe()}"]
     for d in designs:
         lines.append(f"absorber ({d.objective}): m_a={d.mass:.4g} kg, k_a={d.stiffness:.4g} N/m, "
-                     f"c_a={d.damping:.4g} N s/m -> V_c={d.critical.speed:.4g} m/s, "
-                     f"W_c={d.critical.load:.4g} N, peak receptance {d.peak_receptance:.4g} m/N")
+                     f"c_a={d.damping:.4g} N s/m -> {d.critical.describe()}, "
+                     f"peak receptance {d.peak_receptance:.4g} m/N")
     typer.echo("\n".join(lines))
 
 
