@@ -87,3 +87,26 @@ def test_design_command_takes_the_deflection_bound_in_si(tmp_path, capsys) -> No
                                  capsys)
         assert code == 2 and out == "" and len(err.strip().splitlines()) == 1
         assert "--max-foundation-deflection" in err
+
+
+def test_tune_says_when_the_printed_optimum_is_on_the_edge_of_a_window(capsys) -> None:  # type: ignore[no-untyped-def]
+    # Source: the exact stability intervals (roots of the characteristic polynomial,
+    # stickslip.analysis.stability) of the foundation as tune prints it, to 4 digits. At zeta =
+    # 0.1 the maximiser stops where a window of instability closes, so the printed foundation
+    # loses stability before the optimum's delta_crit (an independent check found it).
+    import json
+
+    from stickslip.analysis.stability import critical_weakening, stability_intervals
+    from tests.cli_helpers import run_cli
+
+    code, out, _ = run_cli(["tune", "--zeta", "0.1", "--objective", "stability", "--json"], capsys)
+    assert code == 0
+    payload = json.loads(out)
+    printed = Foundation(*(float(f"{payload[key]:.4g}") for key in ("M", "K", "zeta_a")))
+    structure = elastic_foundation(0.1, printed)
+    assert payload["delta_crit_as_printed"] == pytest.approx(critical_weakening(structure), rel=1e-12)
+    first_unstable = next(lo for lo, _, stable in stability_intervals(structure) if not stable)
+    assert payload["delta_crit_as_printed"] == pytest.approx(first_unstable, rel=1e-9)
+    assert payload["delta_crit_as_printed"] < 0.99 * payload["delta_crit"]
+    code, out, _ = run_cli(["tune", "--zeta", "0.1", "--objective", "stability"], capsys)
+    assert f"is stable only below delta = {payload['delta_crit_as_printed']:.6g}" in out

@@ -61,6 +61,19 @@ class StabilityTuning:
         """``delta_crit / reference_delta_crit``."""
         return self.delta_crit / self.reference_delta_crit if self.reference_delta_crit > 0 else math.inf
 
+    def rounded(self, digits: int = 4) -> tuple[Foundation, float]:
+        """The foundation rounded to ``digits`` significant digits, and its own ``delta_crit``.
+
+        The optimum of ``delta_crit`` can sit on the edge of a window of instability (at
+        ``zeta = 0.1``: a window opens at ``delta = 0.548`` for foundations next to the optimum,
+        whose first loss of stability is at 0.578), so a foundation built from printed,
+        rounded values may lose stability earlier than the optimum; this says how much earlier.
+        """
+        f = self.foundation
+        built = Foundation(*(float(f"{x:.{digits}g}") for x in (f.mass_ratio, f.stiffness_ratio,
+                                                                 f.damping_ratio)))
+        return built, critical_weakening(elastic_foundation(self.zeta, built))
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready, with the keys of ``stickslip tune --objective stability --json``."""
         f, r = self.foundation, self.reference

@@ -264,7 +264,10 @@ def _tune_stability(zeta: float, mass_ratio: float | None, json: bool) -> None:
     from stickslip.analysis.stability_tuning import optimal_foundation_stability
 
     bounds = _mass_bounds(zeta, mass_ratio)
-    payload = optimal_foundation_stability(zeta, mass_ratio_bounds=bounds).to_dict()
+    tuning = optimal_foundation_stability(zeta, mass_ratio_bounds=bounds)
+    payload = tuning.to_dict()
+    printed, printed_delta = tuning.rounded(4)
+    payload["delta_crit_as_printed"] = printed_delta  # of M, K, zeta_a to 4 significant digits
     if json:
         print_json(payload)
         return
@@ -284,6 +287,12 @@ def _tune_stability(zeta: float, mass_ratio: float | None, json: bool) -> None:
            f"friction force is {payload['foundation_deflection_ratio']:.4g} times the slider spring's "
            "(the largest allowed); softer foundations stabilise further but drift further"]
           if payload["K"] <= payload["stiffness_ratio_bounds"][0] * (1 + 1e-9) else []),
+        *([f"note: the optimum sits on the edge of a window of instability: the foundation as "
+           f"printed, ({printed.mass_ratio:.4g}, {printed.stiffness_ratio:.4g}, "
+           f"{printed.damping_ratio:.4g}), is stable only below delta = {printed_delta:.6g} "
+           "(--json gives the optimum to full precision; stickslip.analysis.stability.stability_intervals "
+           "lists the windows)"]
+          if printed_delta < payload["delta_crit"] * (1 - 1e-6) else []),
     ]))
 
 
