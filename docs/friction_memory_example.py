@@ -57,6 +57,45 @@ def canudas_de_wit(out: Path) -> None:
     plt.close(fig)
 
 
+def lugre_limit() -> None:
+    """LuGre's periods as sigma0 grows (sigma1 = sqrt(sigma0)) and the limit law with a true stick.
+
+    The limit runs on the exact engine: the Stribeck law ``F_c + (F_s - F_c) exp(-(v/v_s)^2) +
+    sigma2 v`` (n = 2, viscous 0.4 s/m with W = 1 N), interpolated to 1e-6.
+    """
+    from stickslip import PhysicalSystem, simulate
+    from stickslip.model.physical import PhysicalFriction
+
+    periods = []
+    for sigma0 in (1e5, 1e6, 1e7):
+        law = LuGreFriction(sigma0=sigma0, sigma1=math.sqrt(sigma0), sigma2=0.4, mu_c=1.0, mu_s=1.5,
+                            stribeck_velocity=1e-3)
+        system = MemorySystem(np.array([[1.0]]), np.array([[0.0]]), np.array([[2.0]]), 0, 1.0, law,
+                              SpeedSchedule.constant(0.1))
+        periods.append(f"{simulate_memory(system, kick=-1.0, t_max=60.0).period:.6f}")
+    limit = PhysicalSystem(mass=1.0, stiffness=2.0, damping=0.0, mu_s=1.5, mu_k=1.0, load=1.0,
+                           speed=0.1, friction=PhysicalFriction("stribeck", stribeck_velocity=1e-3,
+                                                                exponent=2.0, viscous=0.4,
+                                                                tolerance=1e-6))
+    run = simulate(limit.structure(), limit.slider())
+    print(f"LuGre periods at sigma0 = 1e5, 1e6, 1e7 N/m: {', '.join(periods)} s; the limit law "
+          f"(exact engine): {run.verdict.value}, period {run.period * limit.time_scale:.6f} s")
+
+
+def gu_rice_ruina() -> None:
+    """Gu, Rice, Ruina and Tse (1984): the spring-slider with inertia at k = 0.8 k_c, both laws."""
+    a, b, d_c, load, speed = 0.01, 0.015, 1e-5, 1.0, 1e-6
+    k = 0.8 * rice_ruina_critical_stiffness(load, a, b, d_c, 1.0, speed)
+    for evolution in ("aging", "slip"):
+        law = RateStateFriction(a=a, b=b, d_c=d_c, mu_ref=0.6, v_ref=1e-6, evolution=evolution)
+        system = MemorySystem(np.array([[1.0]]), np.array([[0.0]]), np.array([[k]]), 0, load, law,
+                              SpeedSchedule.constant(speed))
+        result = simulate_memory(system, kick=0.5)
+        multipliers = [] if result.orbit is None else [f"{abs(m):.2g}" for m in result.orbit.multipliers]
+        print(f"Gu-Rice-Ruina, {evolution} law, k = 0.8 k_c: {result.verdict.value}, period "
+              f"{result.period:.3f} s, nontrivial multipliers {multipliers}")
+
+
 def velocity_step(out: Path) -> None:
     """The quasi-static slider through a tenfold load-point velocity step (aging law)."""
     a, b, d_c = 0.01, 0.008, 10e-6
@@ -133,8 +172,10 @@ def main() -> None:
     args = parser.parse_args()
     args.out.mkdir(parents=True, exist_ok=True)
     canudas_de_wit(args.out)
+    lugre_limit()
     velocity_step(args.out)
     rice_ruina(args.out)
+    gu_rice_ruina()
     stability_map(args.out)
 
 
