@@ -501,3 +501,55 @@ def lowest_onset(
     """
     return find_onset(structure, gamma=gamma, lam_min=lam_min, lam_max=lam_max, growth=growth,
                       rtol=rtol, options=options).lam
+
+
+def onset_note(onset: Onset, what: str, si_at: Callable[[float], float], unit: str,
+               ends: tuple[str, str], count_runs: bool = True) -> str:
+    """What an onset search left open, in the machine's units ("" when nothing).
+
+    Parameters
+    ----------
+    onset : Onset
+        The search's result.
+    what : str
+        The axis in words (``"belt speed"``, ``"normal load"``).
+    si_at : callable
+        ``si_at(lam)``: the SI value (m/s or N) at a dimensionless ``lambda``.
+    unit : str
+        Unit of ``si_at``'s values.
+    ends : (str, str)
+        The ends of the range along this axis, least and most prone to stick-slip
+        (``("fastest", "slowest")`` for the speed, ``("lightest", "heaviest")`` for the load).
+    count_runs : bool
+        Also say how many runs were undetermined, and why.
+
+    Returns
+    -------
+    str
+        The notes joined by ``"; "``: an onset at a bound of the range, a bracket an
+        undetermined run left, an undetermined run just past the onset, the undetermined runs.
+    """
+    parts = []
+    if onset.at_lower_bound:
+        first = "steady sliding not proven" if onset.undetermined_above else "stick-slip"
+        parts.append(f"{first} already at the {ends[0]} {what} searched, {si_at(onset.lam_min):.4g} "
+                     f"{unit} (lambda = {onset.lam_min:g}, the search's lower bound): the critical "
+                     f"{what} lies beyond it, not found")
+    elif onset.above_range:
+        parts.append(f"no run certified stick-slip, as far as the {ends[1]} {what}, "
+                     f"{si_at(onset.lam_max):.4g} {unit} (lambda = {onset.lam_max:g}, the search's "
+                     "upper bound): no critical value inside it")
+    elif not onset.converged:
+        a, b = sorted(si_at(x) for x in onset.bracket)
+        parts.append(f"an undetermined run stopped the bisection: the critical {what} lies between "
+                     f"{a:.4g} and {b:.4g} {unit}")
+    if onset.undetermined_above and not (onset.above_range or onset.at_lower_bound):
+        parts.append(f"steady sliding is proven up to the critical {what}, but the run just past it "
+                     "is undetermined, not proven stick-slip")
+    if onset.n_undetermined and count_runs:
+        messages = {status.label: status.message.split(";")[0] for status in RunStatus}
+        why = ", ".join(f"{n}: {messages[label]}" for label, n in onset.undetermined_by)
+        parts.append(f"{onset.n_undetermined} of {onset.n_runs} runs undetermined ({why}), counted "
+                     "on the stick-slip side (steady sliding is not proven there): a larger t_max "
+                     "may decide them")
+    return "; ".join(parts)

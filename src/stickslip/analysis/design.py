@@ -22,7 +22,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from stickslip.analysis.critical import Onset, SpeedLoadOnsets, speed_and_load_onsets
+from stickslip.analysis.critical import Onset, SpeedLoadOnsets, onset_note, speed_and_load_onsets
 from stickslip.analysis.simulation import EngineOptions, SimulationResult, simulate
 from stickslip.analysis.theory import (
     FITTED_ZETA_RANGE,
@@ -195,39 +195,6 @@ def _label(stick_slip: bool) -> str:
     return Verdict.STICK_SLIP.value if stick_slip else Verdict.STEADY_SLIDING.value
 
 
-def _onset_note(onset: Onset, what: str, si_at: Callable[[float], float], unit: str,
-                ends: tuple[str, str], count_runs: bool = True) -> str:
-    """What a search that did not end in a converged crossing found, in the machine's units.
-
-    ``ends``: the ends of the range along this axis, least and most prone to stick-slip
-    (``("fastest", "slowest")`` for the speed, ``("lightest", "heaviest")`` for the load).
-    """
-    parts = []
-    if onset.at_lower_bound:
-        first = "steady sliding not proven" if onset.undetermined_above else "stick-slip"
-        parts.append(f"{first} already at the {ends[0]} {what} searched, {si_at(onset.lam_min):.4g} "
-                     f"{unit} (lambda = {onset.lam_min:g}, the search's lower bound): the critical "
-                     f"{what} lies beyond it, not found")
-    elif onset.above_range:
-        parts.append(f"no run certified stick-slip, as far as the {ends[1]} {what}, "
-                     f"{si_at(onset.lam_max):.4g} {unit} (lambda = {onset.lam_max:g}, the search's "
-                     "upper bound): no critical value inside it")
-    elif not onset.converged:
-        a, b = sorted(si_at(x) for x in onset.bracket)
-        parts.append(f"an undetermined run stopped the bisection: the critical {what} lies between "
-                     f"{a:.4g} and {b:.4g} {unit}")
-    if onset.undetermined_above and not (onset.above_range or onset.at_lower_bound):
-        parts.append(f"steady sliding is proven up to the critical {what}, but the run just past it "
-                     "is undetermined, not proven stick-slip")
-    if onset.n_undetermined and count_runs:
-        messages = {status.label: status.message.split(";")[0] for status in RunStatus}
-        why = ", ".join(f"{n}: {messages[label]}" for label, n in onset.undetermined_by)
-        parts.append(f"{onset.n_undetermined} of {onset.n_runs} runs undetermined ({why}), counted "
-                     "on the stick-slip side (steady sliding is not proven there): a larger t_max "
-                     "may decide them")
-    return "; ".join(parts)
-
-
 def _searched(system: PhysicalSystem, onsets: SpeedLoadOnsets, exact_limit: float | None) -> CriticalValues:
     """Critical values of the onset searches along the speed and the load, with their notes.
 
@@ -251,9 +218,9 @@ def _searched(system: PhysicalSystem, onsets: SpeedLoadOnsets, exact_limit: floa
     lam, speed = value(speed_on, system.speed_for_lambda)
     lam_load, load = value(load_on, system.load_for_lambda)
     notes = [f"{axis}: {text}" for axis, text in (
-        ("speed", _onset_note(speed_on, "belt speed", system.speed_for_lambda, "m/s",
+        ("speed", onset_note(speed_on, "belt speed", system.speed_for_lambda, "m/s",
                               ("fastest", "slowest"))),
-        ("load", _onset_note(load_on, "normal load", system.load_for_lambda, "N",
+        ("load", onset_note(load_on, "normal load", system.load_for_lambda, "N",
                              ("lightest", "heaviest"), count_runs=onsets.own_law)),
     ) if text]
     return CriticalValues(lam, speed, load, lam_load if onsets.own_law else None, law, "; ".join(notes))
