@@ -57,3 +57,38 @@ def test_default_reproduction(tmp_path: Path) -> None:
     report = reproduce(out, "default")
     _check(out, json.loads((out / "report.json").read_text()))
     assert report.counts().get("confirmed", 0) >= 12
+
+
+def test_reproduce_refuses_a_folder_it_did_not_write(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                                     monkeypatch: pytest.MonkeyPatch) -> None:
+    # nothing lost: a folder with the user's own report.html is not written into without
+    # --overwrite (an independent audit found it silently replaced)
+    out = tmp_path / "mine"
+    out.mkdir()
+    (out / "report.html").write_text("my own report", encoding="utf-8")
+    with pytest.raises(SystemExit) as err:
+        run(["reproduce", "--out", str(out), "--quality", "tiny"])
+    assert err.value.code == 2
+    assert "non-empty folder that stickslip reproduce did not write" in capsys.readouterr().err
+    assert (out / "report.html").read_text(encoding="utf-8") == "my own report"
+    assert sorted(p.name for p in out.iterdir()) == ["report.html"]
+
+    # a folder an earlier reproduce wrote (its marker) is refreshed, as make run does twice
+    import stickslip.reproduction.run as reproduction_run
+
+    class Reached(Exception):
+        pass
+
+    def reached(*_args: object) -> None:
+        raise Reached
+
+    monkeypatch.setattr(reproduction_run, "reproduce", reached)
+    marked = tmp_path / "results"
+    marked.mkdir()
+    (marked / "report.html").write_text("an earlier run", encoding="utf-8")
+    (marked / ".stickslip-reproduce").write_text("", encoding="utf-8")
+    with pytest.raises(Reached):
+        run(["reproduce", "--out", str(marked), "--quality", "tiny"])
+    with pytest.raises(Reached):
+        run(["reproduce", "--out", str(out), "--quality", "tiny", "--overwrite"])
+    assert (out / ".stickslip-reproduce").exists()

@@ -9,6 +9,9 @@ import typer
 
 from stickslip.cli.console import BadInput, print_json
 
+#: a file in every folder ``reproduce`` wrote: a later run may refresh that folder
+MARKER = ".stickslip-reproduce"
+
 
 def reproduce(
     out: Annotated[Path, typer.Option("--out", help="folder for figures, data and the report")] = Path(
@@ -17,8 +20,13 @@ def reproduce(
         str, typer.Option("--quality", help="tiny (seconds), default (< 3 min) or high (dense maps)")
     ] = "default",
     json: Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")] = False,
+    overwrite: Annotated[bool, typer.Option(
+        "--overwrite", help="write into a non-empty folder that no earlier reproduce wrote")] = False,
 ) -> None:
     """Recompute every figure and claim of the paper; write report.md and report.html.
+
+    A folder an earlier ``reproduce`` wrote is refreshed (it holds the marker file
+    .stickslip-reproduce); any other non-empty folder is refused unless --overwrite.
 
     Example: stickslip reproduce --out results --quality tiny
     """
@@ -30,8 +38,14 @@ def reproduce(
     get_quality(quality)
     if out.exists() and not out.is_dir():
         raise BadInput(f"--out {str(out)!r} exists and is not a folder")
+    if (out.is_dir() and not overwrite and not (out / MARKER).exists()
+            and any(out.iterdir())):
+        raise BadInput(f"--out {str(out)!r} is a non-empty folder that stickslip reproduce did not "
+                       "write; its files could be replaced: pass --overwrite, or name a new folder")
     try:
         out.mkdir(parents=True, exist_ok=True)
+        (out / MARKER).write_text("written by stickslip reproduce; it may refresh this folder\n",
+                                  encoding="utf-8")
     except OSError as exc:
         raise BadInput(f"--out {str(out)!r} cannot be created: {exc.strerror}") from None
 
