@@ -375,3 +375,31 @@ def test_tune_warns_outside_the_fitted_range(capsys: pytest.CaptureFixture[str])
         out, err = capsys.readouterr()
         json.loads(out)
         assert (len(err.strip().splitlines()) == 1 and "0.4" in err) if warned else err == ""
+
+
+@pytest.mark.parametrize("args, message", [
+    (["map", "--lam", "1:2:3", "--zeta", "0.1", "--out", "m.nc", "--csv", "m.nc"],
+     "--out and --csv name the same file 'm.nc'"),
+    (["map", "--lam", "1:2:3", "--zeta", "0.1", "--out", "m.nc", "--plot", "m.png", "--csv",
+      "m.png"], "--csv and --plot name the same file 'm.png'"),
+    (["continue", "--param", "lam", "--range", "0.5:5", "--out", "x.csv"],
+     "--out 'x.csv' must end in .nc (netCDF)"),
+    (["stability", "--config", str(Path(__file__).resolve().parents[1] / "examples" / "brake_pad"
+                                   / "machine.toml"), "--plot", "f.png", "--map", "f.png"],
+     "--plot and --map name the same file 'f.png'"),
+])
+def test_two_outputs_never_share_a_file_and_suffixes_say_the_format(
+        args: list[str], message: str, here: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # an independent audit: --out m.nc --csv m.nc wrote the CSV over the netCDF map, and
+    # continue wrote netCDF into x.csv; both are refused before any work, and nothing is written
+    code, _, err = run_cli(args, capsys)
+    assert code == 2 and message in err and "Traceback" not in err
+    assert _listing(here) == []
+
+
+def test_an_existing_map_figure_names_its_own_option(here: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    (here / "exist.png").write_bytes(b"mine")
+    config = Path(__file__).resolve().parents[1] / "examples" / "brake_pad" / "machine.toml"
+    code, _, err = run_cli(["stability", "--config", str(config), "--map", "exist.png"], capsys)
+    assert code == 2 and "--map file 'exist.png' exists; pass --overwrite" in err
+    assert (here / "exist.png").read_bytes() == b"mine"

@@ -202,6 +202,20 @@ def print_json(payload: dict[str, Any]) -> None:
     sys.stdout.write(json.dumps(_jsonable(payload), allow_nan=False) + "\n")
 
 
+def check_distinct_outputs(**paths: Path | None) -> None:
+    """Refuse two output options (keyword: option name without dashes) naming one file."""
+    seen: dict[Path, str] = {}
+    for option, path in paths.items():
+        if path is None:
+            continue
+        key = Path(path).resolve()
+        name = "--" + option.replace("_", "-")
+        if key in seen:
+            raise BadInput(f"{seen[key]} and {name} name the same file {str(path)!r}; one would "
+                           "overwrite the other")
+        seen[key] = name
+
+
 def check_output_path(path: Path, *, overwrite: bool = True, option: str = "output") -> Path:
     """Check that ``path`` can be written before any work starts; create nothing.
 
@@ -230,14 +244,14 @@ def check_output_path(path: Path, *, overwrite: bool = True, option: str = "outp
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg")
 
 
-def check_figure_path(path: Path, *, overwrite: bool = False) -> Path:
-    """Like :func:`check_output_path` for ``--plot``, and the suffix must name a figure format."""
+def check_figure_path(path: Path, *, overwrite: bool = False, option: str = "--plot") -> Path:
+    """Like :func:`check_output_path` for ``--plot`` (or ``option``); the suffix names a figure format."""
     path = Path(path)
     if path.suffix.lower() not in FIGURE_SUFFIXES:
         raise BadInput(
             f"figure file {str(path)!r} must end in one of {', '.join(FIGURE_SUFFIXES)}"
         )
-    return check_output_path(path, overwrite=overwrite, option="--plot")
+    return check_output_path(path, overwrite=overwrite, option=option)
 
 
 def save_plot(draw: Callable[[Any], Any], path: Path, size: tuple[float, float] = (8.0, 5.5)) -> str:

@@ -7,7 +7,14 @@ from typing import Annotated, Any
 
 import typer
 
-from stickslip.cli.console import BadInput, check_figure_path, check_output_path, parse_dva, print_json
+from stickslip.cli.console import (
+    BadInput,
+    check_distinct_outputs,
+    check_figure_path,
+    check_output_path,
+    parse_dva,
+    print_json,
+)
 from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE, OVERWRITE, PLOT, parse_range
 
 #: ``--points`` typed for a machine without a contact.
@@ -95,7 +102,10 @@ def continue_branches(
     if not 10 <= max_steps <= 100_000:
         raise BadInput(f"--max-steps {max_steps} must be from 10 to 100000")
     if out is not None:
+        if out.suffix.lower() != ".nc":
+            raise BadInput(f"--out {str(out)!r} must end in .nc (netCDF)")
         check_output_path(out, overwrite=overwrite, option="--out")
+    check_distinct_outputs(out=out, plot=plot)
     if plot is not None:
         check_figure_path(plot, overwrite=overwrite)
     system: AnySystem
@@ -157,6 +167,7 @@ def _contact_continuation(ctx: typer.Context, config: Path, machine_file: Any, p
         if out.suffix.lower() not in (".csv", ".json"):
             raise BadInput(f"--out {str(out)!r} must end in .csv or .json with a [contact] machine")
         check_output_path(out, overwrite=overwrite, option="--out")
+    check_distinct_outputs(out=out, plot=plot)
     if plot is not None:
         check_figure_path(plot, overwrite=overwrite)
     system, machine = contact_run_system(config, machine_file)

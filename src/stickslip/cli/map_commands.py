@@ -17,6 +17,7 @@ import typer
 
 from stickslip.cli.console import (
     BadInput,
+    check_distinct_outputs,
     check_figure_path,
     check_grid_memory,
     check_output_path,
@@ -227,6 +228,7 @@ def map_command(
         raise BadInput(f"--chunk-size {chunk_size} must be at least 1")
     if out.suffix.lower() != ".nc":
         raise BadInput(f"output file {str(out)!r} must end in .nc (netCDF)")
+    check_distinct_outputs(out=out, csv=csv, plot=plot)
     check_output_path(out)
     if csv is not None:
         check_output_path(csv, overwrite=overwrite, option="--csv")
@@ -413,6 +415,7 @@ def boundary_command(
         if out.suffix.lower() != ".nc":
             raise BadInput(f"output file {str(out)!r} must end in .nc (netCDF)")
         check_output_path(out, overwrite=overwrite)
+    check_distinct_outputs(out=out, plot=plot)
     if plot is not None:
         check_figure_path(plot, overwrite=overwrite)
     result = stick_slip_boundary(zeta_axis, spec, gamma, lam_min=lam_min, lam_max=lam_max,
@@ -529,6 +532,7 @@ def operating_map_command(config: Path, speed: str | None, load: str | None, *, 
     machine, _ = config_machine(config)
     if out.suffix.lower() != ".nc":
         raise BadInput(f"output file {str(out)!r} must end in .nc (netCDF)")
+    check_distinct_outputs(out=out, csv=csv, plot=plot)
     check_output_path(out, option="--out")
     if csv is not None:
         check_output_path(csv, overwrite=overwrite, option="--csv")

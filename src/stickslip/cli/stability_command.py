@@ -43,15 +43,15 @@ def stability(
 
     Example: stickslip stability --config examples/brake_pad/machine.toml --json
     """
-    from stickslip.cli.console import check_figure_path
+    from stickslip.cli.console import check_distinct_outputs, check_figure_path
 
     if not 0.0 < mu_max <= MU_MAX_LIMIT:
         raise BadInput(f"--mu-max {mu_max!r} must be above 0 and at most {MU_MAX_LIMIT:g}")
-    for path in (plot, map_plot):
-        if path is not None:
-            check_figure_path(path, overwrite=overwrite)
-    if plot is not None and map_plot is not None and Path(plot).resolve() == Path(map_plot).resolve():
-        raise BadInput(f"--plot and --map name the same file {str(plot)!r}")
+    check_distinct_outputs(plot=plot, map=map_plot)
+    if plot is not None:
+        check_figure_path(plot, overwrite=overwrite)
+    if map_plot is not None:
+        check_figure_path(map_plot, overwrite=overwrite, option="--map")
     from stickslip.cli.machine_config import load_machine_file
 
     memory_file = load_machine_file(config, normal_coupling=True)
