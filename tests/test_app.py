@@ -732,6 +732,8 @@ def test_app_command_warns_when_opened_to_the_network(
         address: str, warned: bool, monkeypatch: pytest.MonkeyPatch,
         capsys: pytest.CaptureFixture[str]) -> None:
     calls = _started_commands(monkeypatch)
+    # the warning alone (whether this computer can serve on the address: the test below)
+    monkeypatch.setattr("stickslip.cli.app_command.check_can_serve", lambda *_: None)
     code, out, err = _run(["app", "--address", address, "--headless"], capsys)
     assert code == 0 and out == ""
     (command,) = calls
@@ -748,6 +750,34 @@ def test_app_command_refuses_an_empty_address(monkeypatch: pytest.MonkeyPatch,
     calls = _started_commands(monkeypatch)
     code, _, err = _run(["app", "--address", " "], capsys)
     assert code == 2 and err.count("\n") == 1 and "--address" in err and not calls
+
+
+@pytest.mark.parametrize("address, message", [
+    ("bogus.invalid", "--address 'bogus.invalid' cannot be resolved"),  # RFC 2606: never resolves
+    ("192.0.2.7", "--address '192.0.2.7' cannot be served on by this computer"),  # RFC 5737
+])
+def test_app_command_refuses_an_address_it_cannot_serve_on(
+        address: str, message: str, monkeypatch: pytest.MonkeyPatch,
+        capsys: pytest.CaptureFixture[str]) -> None:
+    # an independent audit: Streamlit's 53-line traceback was all such an address got
+    calls = _started_commands(monkeypatch)
+    code, _, err = _run(["app", "--address", address, "--headless"], capsys)
+    assert code == 2 and err.count("\n") == 1 and message in err and not calls
+
+
+def test_app_command_refuses_a_port_in_use(monkeypatch: pytest.MonkeyPatch,
+                                           capsys: pytest.CaptureFixture[str]) -> None:
+    import socket
+
+    calls = _started_commands(monkeypatch)
+    with socket.socket() as busy:
+        busy.bind(("127.0.0.1", 0))
+        busy.listen()
+        port = busy.getsockname()[1]
+        code, _, err = _run(["app", "--port", str(port), "--headless"], capsys)
+    assert code == 2
+    assert err == f"stickslip: error: --port {port} is in use on 127.0.0.1: choose another port\n"
+    assert not calls
 
 
 def test_app_command_rejects_a_bad_port(capsys: pytest.CaptureFixture[str]) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import errno
 import importlib.util
 import ipaddress
 import signal
@@ -79,6 +80,7 @@ def app(
                        "only) or 0.0.0.0 (every interface)")
     if importlib.util.find_spec("streamlit") is None:
         raise BadInput("streamlit is not installed; install the app extra: pip install stickslip[app]")
+    check_can_serve(address.strip(), port)
     if not is_loopback(address):
         print(f"stickslip: warning: --address {address} opens the app to other computers; it has "
               "no login, and anyone who reaches it can run computations here", file=sys.stderr)
@@ -97,6 +99,33 @@ def app(
             code = process.wait()
     if code != 0:
         raise typer.Exit(code)
+
+
+def check_can_serve(address: str, port: int | None) -> None:
+    """Refuse, in one line, an address this computer cannot serve on or a port in use.
+
+    Binds a socket for a moment (to ``port``, or to any free port when Streamlit picks it):
+    without this check, Streamlit's own traceback (``socket.gaierror``, ``OSError``) or a
+    timestamped log line was all a mistyped address or a busy port got.
+    """
+    import socket
+
+    host = address.strip("[]")
+    try:
+        infos = socket.getaddrinfo(host, port or 0, type=socket.SOCK_STREAM)
+    except socket.gaierror as exc:
+        raise BadInput(f"--address {address!r} cannot be resolved ({exc.strerror}): give an address "
+                       "of this computer, such as 127.0.0.1 or 0.0.0.0") from None
+    family, kind, proto, _, where = infos[0]
+    with socket.socket(family, kind, proto) as probe:
+        try:
+            probe.bind(where)
+        except OSError as exc:
+            if port is not None and exc.errno == errno.EADDRINUSE:
+                raise BadInput(f"--port {port} is in use on {address}: choose another port") from None
+            raise BadInput(f"--address {address!r} cannot be served on by this computer "
+                           f"({exc.strerror}): give one of its addresses, such as 127.0.0.1 or "
+                           "0.0.0.0") from None
 
 
 def _interrupt(signum: int, frame: object) -> None:
