@@ -228,3 +228,20 @@ def test_json_gives_the_hopf_stiffness(tmp_path: Path, capsys: pytest.CaptureFix
     assert steady["stable"] is False
     assert steady["rice_ruina_critical_stiffness_N_m"] == pytest.approx(1e4, rel=1e-12)
     assert steady["critical_stiffness_N_m"] == pytest.approx(1e4, rel=1e-10)
+
+
+def test_a_run_that_stays_at_unstable_steady_sliding_says_to_kick_it(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    # the shipped example (below Rice and Ruina's k_c, so steady sliding is unstable: the
+    # eigenvalues, tests/test_memory_stability.py) started on steady sliding stays there; an
+    # independent audit found it told to "increase t_max", which never helps: it needs a kick
+    path = Path(__file__).resolve().parents[1] / "examples" / "friction_memory" / "rate_state.toml"
+    code, out, err = _run(["simulate", "--config", str(path), "--json"], capsys)
+    assert code == 0, err
+    payload = json.loads(out)
+    assert payload["verdict"] == "undetermined"
+    assert "unstable equilibrium" in payload["status_message"]
+    assert "--initial-kick" in payload["status_message"] and "t_max" not in payload["status_message"]
+    code, out, err = _run(["simulate", "--config", str(path), "--initial-kick", "0.5", "--json"], capsys)
+    assert code == 0, err
+    assert json.loads(out)["verdict"] in ("stick-slip", "slip-oscillation")

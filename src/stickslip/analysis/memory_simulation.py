@@ -308,17 +308,21 @@ def simulate_memory(system: MemorySystem, *, t_max: float | None = None, kick: f
                          "component)"),
             reason="steady sliding: linearly stable and reached", orbit=None, period=nan,
             amplitude=nan, min_slip_speed=nan, **common)
+    at_unstable_equilibrium = not steady.stable and distance < STEADY_TOLERANCE
     if run.cross_t.size >= 3:
         period_guess = float(run.cross_t[-1] - run.cross_t[-2])
         orbit = shoot_cycle(system, run.cross_y[-1], period_guess, rtol=rtol)
         if orbit is not None:
             return _cycle_result(system, orbit, common)
-        reason = ("the run oscillates but Newton shooting on the section q_c' = 0 did not "
-                  "converge; increase t_max")
-    elif not steady.stable and distance < STEADY_TOLERANCE:
+    if at_unstable_equilibrium:
+        # before the shooting's message: round-off crossings of the section at the equilibrium
+        # are no oscillation, and a longer run from it stays there (the shipped rate_state.toml)
         reason = (f"steady sliding is linearly unstable (growth rate {steady.growth_rate:.6g} 1/s) "
                   "but the run stayed at it (an unstable equilibrium); start it off steady "
-                  "sliding (--initial-kick) or run longer")
+                  "sliding (--initial-kick, e.g. 0.5): a longer run from it stays there")
+    elif run.cross_t.size >= 3:
+        reason = ("the run oscillates but Newton shooting on the section q_c' = 0 did not "
+                  "converge; increase t_max")
     else:
         reason = "the run neither reached steady sliding nor settled on a cycle; increase t_max"
     return MemoryResult(verdict=Verdict.UNDETERMINED, certificate="", reason=reason, orbit=None,
