@@ -178,7 +178,12 @@ def test_dimensionless_friction_option(capsys: pytest.CaptureFixture[str]) -> No
     assert payload["period"] == pytest.approx(6.3627198 * root2, rel=1e-5)
     code, _, err = _run(["map", "--lam", "1", "--zeta", "0.1", "--friction",
                          "rate-state:a=0.01,b=0.015,dc=1,mu_ref=0.6,vref=1", "--out", "x.nc"], capsys)
-    assert code == 2 and "runs on `stickslip simulate`" in err
+    assert code == 2 and "it runs on simulate with --friction, and on every --config command" in err
+    # the law's name alone gets its parameters named (an independent audit: it was told to
+    # use simulate, on simulate)
+    code, _, err = _run(["simulate", "--lam", "3", "--zeta", "0.1", "--friction", "lugre"], capsys)
+    assert code == 2 and err.count("\n") == 1
+    assert "friction law 'lugre' needs its parameters, e.g. lugre:sigma0=" in err
 
 
 STRUCTURE = """

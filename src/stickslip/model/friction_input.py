@@ -210,9 +210,13 @@ def parse_friction(text: str) -> FrictionLaw:
             raise ValueError(f"friction law {raw!r}: {exc}") from None
     if kind == "table" and arg:
         return _dimensionless_table(raw, arg.strip())
+    if kind in ("rate-state", "lugre") and not arg.strip():
+        example = ("lugre:sigma0=1e5,sigma1=316,sigma2=0.4,mu_c=1,mu_s=1.5,vs=0.001" if kind == "lugre"
+                   else "rate-state:a=0.01,b=0.015,dc=0.01,mu_ref=0.6,vref=0.001")
+        raise ValueError(f"friction law {raw!r} needs its parameters, e.g. {example}")
     if kind in ("rate-state", "lugre"):
-        raise ValueError(f"friction law {raw!r}: friction with memory runs on `stickslip simulate` "
-                         "(--friction rate-state:... or lugre:..., or --config) only")
+        raise ValueError(f"friction law {raw!r}: friction with memory is not taken here (it runs on "
+                         "simulate with --friction, and on every --config command but tune)")
     if kind == "stribeck" and arg:
         names = STRIBECK_KEYS
         values: dict[str, float] = {}
