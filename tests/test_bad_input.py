@@ -403,3 +403,13 @@ def test_an_existing_map_figure_names_its_own_option(here: Path, capsys: pytest.
     code, _, err = run_cli(["stability", "--config", str(config), "--map", "exist.png"], capsys)
     assert code == 2 and "--map file 'exist.png' exists; pass --overwrite" in err
     assert (here / "exist.png").read_bytes() == b"mine"
+
+
+def test_plot_from_past_the_runs_end_is_refused(here: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # an independent audit: an empty figure, a matplotlib warning and exit 0; the run at
+    # lambda = 3, zeta = 0.1 certifies steady sliding at tau = 17.5 (its own certificate)
+    code, _, err = run_cli(["simulate", "--lam", "3", "--zeta", "0.1", "--plot-from", "1e9",
+                            "--plot", "pf.png"], capsys)
+    assert code == 2 and err.count("\n") == 1
+    assert "--plot-from 1e+09 is at or past the run's end, tau = 17.49" in err
+    assert _listing(here) == []

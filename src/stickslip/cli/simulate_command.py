@@ -163,6 +163,9 @@ def simulate(
     else:
         payload["foundation"] = None
     if plot is not None:
+        if t_plot_start is not None and t_plot_start >= result.t_end:
+            raise BadInput(f"--plot-from {t_plot_start:g} is at or past the run's end, tau = "
+                           f"{result.t_end:.6g}: the figure would be empty")
         payload["plot"] = str(result.plot(t_start=t_plot_start).savefig(plot))
     if json:
         print_json(payload)
