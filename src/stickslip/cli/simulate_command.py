@@ -256,9 +256,14 @@ def _simulate_memory_dimensionless(ctx: typer.Context, *, lam: float, zeta: floa
     if json:
         print_json(payload)
         return
+    def shown(x: float | None) -> str:
+        return "-" if x is None else f"{x:.6g}"
+
     typer.echo(f"verdict     {payload['verdict']}\ncertificate "
                f"{payload['certificate'] or '- (' + payload['status_message'] + ')'}\n"
-               f"period      {payload['period']}   amplitude {payload['amplitude']} (dimensionless)")
+               f"period      {shown(payload['period'])}   amplitude {shown(payload['amplitude'])}\n"
+               "units       dimensionless: m = k = V = 1, load = lambda; the engine's m/s, s and m "
+               "read as V, 1/omega_n (tau) and V/omega_n")
 
 
 def _simulate_memory(ctx: typer.Context, machine_file: Any, *, t_max: str | None,
