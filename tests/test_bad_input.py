@@ -413,3 +413,14 @@ def test_plot_from_past_the_runs_end_is_refused(here: Path, capsys: pytest.Captu
     assert code == 2 and err.count("\n") == 1
     assert "--plot-from 1e+09 is at or past the run's end, tau = 17.49" in err
     assert _listing(here) == []
+
+
+def test_initial_states_with_a_state_column_the_structure_lacks(here: Path,
+                                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    # an independent audit: xi_a on a rigid base was silently ignored; other columns (an id)
+    # are carried through to the labels, as before
+    (here / "f.csv").write_text("xi,v,xi_a\n0.1,0.2,0.3\n", encoding="utf-8")
+    code, _, err = run_cli(["basin", "--lam", "2.5", "--zeta", "0.1", "--initial-states", "f.csv"],
+                           capsys)
+    assert code == 2 and err.count("\n") == 1
+    assert "the column(s) xi_a name state coordinates this structure does not have" in err

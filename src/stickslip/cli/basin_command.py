@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import re
 import sys
 from pathlib import Path
 from typing import Annotated, Any
@@ -52,6 +53,10 @@ def parse_box(text: str) -> dict[str, tuple[float, float]]:
     return box
 
 
+#: a state coordinate's column name: xi/x and v, and the other DOFs' xi_a, v_a, x_a2, v_a3, ...
+STATE_NAME = re.compile(r"(xi|x|v)(_a\d*)?")
+
+
 def read_states(path: Path, names: list[str]) -> tuple[list[dict[str, str]], list[str], list[list[float]]]:
     """Rows of ``--initial-states``: every row as read, the columns, and the state columns as numbers."""
     try:
@@ -64,6 +69,12 @@ def read_states(path: Path, names: list[str]) -> tuple[list[dict[str, str]], lis
     if missing:
         raise BadInput(f"--initial-states {str(path)!r} lacks the columns {', '.join(missing)} "
                        f"(needs {', '.join(names)})")
+    # other columns are carried through to the labels; one named like a state coordinate of
+    # another structure (xi_a on a rigid base) would be silently ignored, so it is refused
+    foreign = [c for c in columns if c not in names and STATE_NAME.fullmatch(c.strip())]
+    if foreign:
+        raise BadInput(f"--initial-states {str(path)!r}: the column(s) {', '.join(foreign)} name state "
+                       f"coordinates this structure does not have (its state is {', '.join(names)})")
     rows, values = [], []
     for k, row in enumerate(reader, start=2):
         try:
