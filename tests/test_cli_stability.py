@@ -155,3 +155,14 @@ def test_the_apps_machine_builder_refuses_normal_coupling_too() -> None:
     machine, reduction = machine_from_file(machine_file, values, normal_coupling=True)
     assert machine.n_dof == 2 and reduction is None
     assert machine_file.contact().normal_stiffness == 5e7 and machine_file.contact().normal_dof == 1
+
+
+def test_a_search_below_the_operating_mu_says_so(capsys: pytest.CaptureFixture[str]) -> None:
+    # an independent audit: "UNSTABLE" at mu = 0.4 beside "critical mu none up to mu = 0.1",
+    # with no word that the search never reached the operating point
+    code, out, err = run_cli(["stability", "--config", str(BRAKE_PAD / "machine.toml"), "--mu-max", "0.1"],
+                             capsys)
+    assert code == 0, err
+    line = next(x for x in out.splitlines() if x.startswith("critical mu"))
+    assert "none up to mu = 0.1" in line
+    assert "the operating mu = 0.4 lies above the searched range: raise --mu-max" in line
