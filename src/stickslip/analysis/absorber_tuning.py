@@ -252,7 +252,7 @@ def _foundation_starts(
     return [first, *_best_of_grid(build, axes, 3)]
 
 
-@lru_cache(maxsize=256)
+@lru_cache(maxsize=4096)  # a map's zeta axis (hundreds) tuned once, then reused by its cells
 def _tune_cached(
     zeta: float, mass_ratio: float | None, mass_bounds: tuple[float, float]
 ) -> TuningResult:
