@@ -424,3 +424,16 @@ def test_initial_states_with_a_state_column_the_structure_lacks(here: Path,
                            capsys)
     assert code == 2 and err.count("\n") == 1
     assert "the column(s) xi_a name state coordinates this structure does not have" in err
+
+
+@pytest.mark.parametrize("extra, message", [
+    (["--mass", "1 kg", "--speed", "0.05 m/s"], "--evolution 'slip' is for --law rate-state"),
+    (["--law", "lugre"], "--evolution is not used by --law lugre"),
+])
+def test_identify_refuses_an_evolution_law_it_would_ignore(extra: list[str], message: str, here: Path,
+                                                           capsys: pytest.CaptureFixture[str]) -> None:
+    # an independent audit: --evolution was silently ignored by the Coulomb and LuGre fits
+    record = Path(__file__).resolve().parents[1] / "examples" / "rig_record.csv"
+    code, _, err = run_cli(["identify", str(record), "--load", "100 N", "--evolution", "slip", *extra],
+                           capsys)
+    assert code == 2 and err.count("\n") == 1 and message in err

@@ -120,7 +120,8 @@ def identify(
         _identify_lugre(record, load=load,
                         given={"--mass": mass, "--speed": speed, "--columns": columns, "--fix": fix,
                                "--table-speeds": table_speeds, "--write-config": write_config,
-                               "--plot": plot, "--stiffness": stiffness},
+                               "--plot": plot, "--stiffness": stiffness,
+                               "--evolution": None if evolution == "aging" else evolution},
                         bootstrap=bootstrap, offset=offset, json=json)
         return
     if law.strip().lower() == "rate-state":
@@ -132,6 +133,8 @@ def identify(
         return
     if stiffness is not None:
         raise BadInput("--stiffness is for --law rate-state (a velocity-step record)")
+    if evolution != "aging":
+        raise BadInput(f"--evolution {evolution!r} is for --law rate-state (a velocity-step record)")
     for flag, given in (("--mass", mass), ("--speed", speed)):
         if given is None:
             raise BadInput(f"{flag} is required (the slider's mass and the belt speed of the record)")
