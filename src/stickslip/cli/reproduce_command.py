@@ -25,7 +25,7 @@ def reproduce(
 ) -> None:
     """Recompute every figure and claim of the paper; write report.md and report.html.
 
-    A folder an earlier ``reproduce`` wrote is refreshed (it holds the marker file
+    A folder an earlier reproduce wrote is refreshed (it holds the marker file
     .stickslip-reproduce); any other non-empty folder is refused unless --overwrite.
 
     Example: stickslip reproduce --out results --quality tiny
