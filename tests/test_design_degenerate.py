@@ -125,7 +125,7 @@ def test_machine_file_undetermined_verdict_says_why(tmp_path: Path,
     # past the speeds where steady sliding is proven within this horizon the runs are
     # undetermined: the critical speed is where the proof ends, and it says so (before: the
     # undetermined runs counted as steady, and the search's bound was reported)
-    assert "steady sliding proven only above V_c=" in out
+    assert "steady sliding proven at the runs above V_c=" in out
     assert "the run just past it is undetermined, not proven stick-slip" in out
     assert "run(s) undetermined" in out and "V_c=0 m/s" not in out
     d = json.loads(run_cli(["design", "--config", str(machine), "--t-max", "1", "--json"], capsys)[1])

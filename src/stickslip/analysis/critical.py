@@ -544,8 +544,8 @@ def onset_note(onset: Onset, what: str, si_at: Callable[[float], float], unit: s
         parts.append(f"an undetermined run stopped the bisection: the critical {what} lies between "
                      f"{a:.4g} and {b:.4g} {unit}")
     if onset.undetermined_above and not (onset.above_range or onset.at_lower_bound):
-        parts.append(f"steady sliding is proven up to the critical {what}, but the run just past it "
-                     "is undetermined, not proven stick-slip")
+        parts.append(f"steady sliding is proven at the runs before the critical {what}, but the run "
+                     "just past it is undetermined, not proven stick-slip")
     if onset.n_undetermined and count_runs:
         messages = {status.label: status.message.split(";")[0] for status in RunStatus}
         why = ", ".join(f"{n}: {messages[label]}" for label, n in onset.undetermined_by)

@@ -138,14 +138,14 @@ class CriticalPoint:
         stops being proven, and the text says so instead of claiming stick-slip beyond it.
         ``with_lambda`` adds ``(lambda_c=...)`` after the values.
         """
-        values = f"V_c={self.speed:.4g} m/s / above W_c={self.load:.4g} N"
-        if with_lambda:
-            values += f" (lambda_c={self.lam:.4g})"
+        speed, load = f"V_c={self.speed:.4g} m/s", f"W_c={self.load:.4g} N"
+        lam = f" (lambda_c={self.lam:.4g})" if with_lambda else ""
         if self.undetermined_above:
-            text = (f"steady sliding proven only above {values.replace(' / above ', ' / below ')} "
-                    "(the run just past it is undetermined, not proven stick-slip)")
+            # the searches prove steady sliding at their runs, not at every speed between them
+            text = (f"steady sliding proven at the runs above {speed} / below {load}{lam}, the "
+                    "onset searched (the run just past it is undetermined, not proven stick-slip)")
         else:
-            text = f"stick-slip below {values}"
+            text = f"stick-slip below {speed} / above {load}{lam}"
         if self.undetermined:
             text += (f" ({self.undetermined} run(s) undetermined: counted as not proven steady; "
                      "a longer horizon, --t-max, may decide them)")
