@@ -212,6 +212,9 @@ def test_the_record_argument_has_a_help_text(capsys: pytest.CaptureFixture[str])
     assert code == 0
     line = next(x for x in out.splitlines() if x.strip().startswith("RECORD"))
     assert "CSV record" in line
+    # listed once: click 8.5 added a "Positional arguments" section beside typer's "Arguments"
+    assert sum(x.strip().startswith("RECORD") for x in out.splitlines()) == 1
+    assert "Positional arguments" not in out
 
 
 def test_a_refused_record_is_named(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

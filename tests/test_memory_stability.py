@@ -165,6 +165,16 @@ def test_cli_stability_plot_refused(tmp_path: Path, capsys: pytest.CaptureFixtur
     assert code == 2 and out == "" and "--map draws" in err and len(err.strip().splitlines()) == 1
 
 
+def test_cli_stability_mu_max_refused_with_memory(tmp_path: Path,
+                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    """--mu-max bounds the contact's search over mu; a memory law's linearisation has none (it
+    was silently ignored)."""
+    path, _ = _system(tmp_path, LUGRE)
+    code, out, err = run_cli(["stability", "--config", str(path), "--mu-max", "3"], capsys)
+    assert code == 2 and out == "" and "--mu-max 3" in err and "leave it out" in err
+    assert len(err.strip().splitlines()) == 1
+
+
 def test_cli_stability_refuses_a_contact_with_memory(tmp_path: Path,
                                                      capsys: pytest.CaptureFixture[str]) -> None:
     """A [contact] table beside a law with memory is refused, not ignored (no engine has both)."""

@@ -10,7 +10,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from stickslip import rigid_base, simulate
+from stickslip import Foundation, elastic_foundation, rigid_base, simulate
+from stickslip.analysis.disturbance import safe_disturbance
 from stickslip.analysis.stability import steady_sliding_stability
 from stickslip.model.friction import LinearFriction
 from stickslip.model.parameters import Slider
@@ -49,3 +50,28 @@ def test_simulate_says_neutral(capsys: pytest.CaptureFixture[str]) -> None:
     assert "neither grows nor decays" in disturbance
     result = simulate(rigid_base(0.0), Slider(2.0), record=False)
     assert result.steady_sliding_neutral and not result.steady_sliding_stable
+
+
+def test_a_badly_scaled_structure_is_not_called_neutral() -> None:
+    """A foundation far stiffer than the slider: ``||A||_F ~ 1e12`` made the round-off bound
+    0.22 and a growth rate of -0.1 "neutral"; the balanced matrix's norm (~1e6) bounds it.
+
+    Source: on a foundation that does not move, the slider's eigenvalues tend to the rigid
+    base's, ``-zeta +- i sqrt(1 - zeta^2)`` (Eq. 22), growth rate ``-zeta``.
+    """
+    structure = elastic_foundation(0.1, Foundation(1.0, 1e6, 0.1))
+    stability = steady_sliding_stability(structure, Slider(3.0))
+    assert stability.growth_rate == pytest.approx(-0.1, rel=1e-6)
+    assert stability.stable and not stability.neutral and stability.round_off < 1e-6
+
+
+def test_the_safe_disturbance_rests_on_a_checked_lyapunov_function() -> None:
+    """The same structure made SciPy's Lyapunov solver warn in its own words on stderr; its
+    solution is now checked (``a' P + P a`` negative definite) and the warning not shown."""
+    import warnings
+
+    structure = elastic_foundation(0.1, Foundation(1.0, 1e6, 0.1))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        safe = safe_disturbance(structure, Slider(3.0))
+    assert safe.energy > 0.0 and safe.certificate in ("energy", "lyapunov")

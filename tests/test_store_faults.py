@@ -138,6 +138,13 @@ def _stickslip(*args: str) -> list[str]:
     return [sys.executable, "-c", "from stickslip.cli.main import run; run()", *args]
 
 
+def _lock_text(lock: Path) -> str:
+    try:
+        return lock.read_text().strip()
+    except FileNotFoundError:
+        return ""
+
+
 def test_second_run_on_the_same_out_refuses_at_once(tmp_path: Path) -> None:
     out = tmp_path / "m.nc"
     lock = tmp_path / "m.nc.lock"
@@ -147,7 +154,8 @@ def test_second_run_on_the_same_out_refuses_at_once(tmp_path: Path) -> None:
                              text=True)
     try:
         deadline = time.monotonic() + 120
-        while not lock.exists() and first.poll() is None and time.monotonic() < deadline:
+        # the lock file is created (O_EXCL) a moment before its PID is written: wait for both
+        while not _lock_text(lock) and first.poll() is None and time.monotonic() < deadline:
             time.sleep(0.01)
         os.kill(first.pid, signal.SIGSTOP)  # frozen while holding the lock: no race
         assert lock.read_text().split()[0] == str(first.pid)

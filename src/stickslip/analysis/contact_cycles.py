@@ -61,6 +61,10 @@ SAME_PERIOD = 1e-6
 SAME_STATE = 1e-6
 #: Forward-difference step of the return map, as a share of each entry's scale.
 JACOBIAN_STEP = 1e-6
+#: Moduli below this are zero to the estimate's resolution: a forward difference of step
+#: ``h`` errs by ``O(h)`` (curvature) plus the engine's rounding over ``h``; the summary
+#: prints them as ``< 1e-05`` (their digits, which differ between machines, are noise).
+MULTIPLIER_RESOLUTION = 10.0 * JACOBIAN_STEP
 #: What a periodic verdict of the engine is.
 OBSERVED = "observed, not proven: a state repeated to 1e-9; no contraction bound is checked"
 
@@ -150,6 +154,7 @@ class ContactCycle:
                 else [[float(x.real), float(x.imag)] for x in m],
                 "multiplier_moduli_estimated": None if m is None
                 else [float(abs(x)) for x in m],
+                "multiplier_resolution": MULTIPLIER_RESOLUTION,
                 "stable_estimated": None if m is None else bool(np.all(np.abs(m) < 1.0)),
                 "stability": self.stability_note, "return_map_closure": self.closure,
                 "trivial_multiplier_estimated": self.trivial}
@@ -183,7 +188,9 @@ class ContactCycleSearch:
             d = c.to_dict()
             events = ", ".join(f"{k} {v}" for k, v in d["events_per_period"].items())
             mods = d["multiplier_moduli_estimated"]
-            stab = ("|multipliers| " + ", ".join(f"{x:.4g}" for x in mods) + " (estimated: "
+            stab = ("|multipliers| " + ", ".join(f"{x:.4g}" if x >= MULTIPLIER_RESOLUTION
+                                                 else f"< {MULTIPLIER_RESOLUTION:.0e}"
+                                                 for x in mods) + " (estimated: "
                     + ("stable" if d["stable_estimated"] else "UNSTABLE") + ")"
                     if mods is not None else f"stability {c.stability_note}")
             lines.append(

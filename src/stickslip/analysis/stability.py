@@ -70,10 +70,11 @@ class SteadySlidingStability:
     def neutral(self) -> bool:
         """``|growth_rate| <= round_off``: neither growing nor decaying, to round-off.
 
-        ``round_off = ROUND_OFF_FACTOR * eps * ||A||_F`` (per unit ``tau``, ``A`` the
-        first-order matrix) bounds the round-off error of a computed growth rate: a
-        backward-stable eigensolver returns the eigenvalues of ``A + E`` with
-        ``||E|| ~ n eps ||A||``, and the factor leaves room for non-normal matrices. Neutral
+        ``round_off`` (:func:`growth_round_off`: ``ROUND_OFF_FACTOR * eps * ||B||_F``, per
+        unit ``tau``, ``B`` the balanced first-order matrix) bounds the round-off error of a
+        computed growth rate: a backward-stable eigensolver returns the eigenvalues of
+        ``B + E`` with ``||E|| ~ n eps ||B||``, and the factor leaves room for non-normal
+        matrices. Neutral
         is marginally stable: an undamped structure, or a weakening that exactly cancels the
         damping.
         """
@@ -285,7 +286,7 @@ def steady_sliding_stability(structure: Structure, slider: Slider) -> SteadySlid
         g = float(np.max(e.real))
         if g > growth:
             slope, eig, growth = s, e, g
-            round_off = ROUND_OFF_FACTOR * float(np.finfo(float).eps * np.linalg.norm(matrix))
+            round_off = growth_round_off(matrix)
     rh: bool | None = None
     if structure.n_dof == 1:
         scale = float(np.sqrt(structure.mass[0, 0] * structure.stiffness[0, 0]))
@@ -295,6 +296,33 @@ def steady_sliding_stability(structure: Structure, slider: Slider) -> SteadySlid
         rh = routh_hurwitz_2dof(structure, slope)
     return SteadySlidingStability(slope, -0.5 * slope + 0.0, eig, growth, growth < -round_off, rh,
                                   left != right, round_off)
+
+
+def growth_round_off(matrix: FloatArray) -> float:
+    """Round-off bound of the growth rate computed from ``matrix``: ``1000 eps ||B||_F``.
+
+    ``B = T^-1 A T`` is ``A`` balanced (diagonal ``T``, the similarity LAPACK's eigensolver
+    applies before its QR iteration, ``scipy.linalg.matrix_balance``), so the computed
+    eigenvalues are exact for ``B + E`` with ``||E|| ~ n eps ||B||``, and the factor
+    (:data:`ROUND_OFF_FACTOR`) leaves room for non-normal matrices. ``||A||_F`` bounds the
+    same error but, on a badly scaled structure, by far too much: a foundation ``10^6`` times
+    stiffer than the slider (``||A||_F ~ 10^12``, ``||B||_F ~ 10^6``) made a growth rate of
+    -0.1 "neutral".
+
+    Parameters
+    ----------
+    matrix : ndarray, shape (2n, 2n)
+        First-order matrix (:func:`slip_matrix`), per unit ``tau``.
+
+    Returns
+    -------
+    float
+        The bound, per unit ``tau``.
+    """
+    from scipy.linalg import matrix_balance
+
+    balanced, _ = matrix_balance(matrix)
+    return ROUND_OFF_FACTOR * float(np.finfo(float).eps * np.linalg.norm(balanced))
 
 
 def growth_rate(structure: Structure, delta: float) -> float:

@@ -150,6 +150,10 @@ def _command_class() -> type[Any]:
             super().__init__(*args, **kwargs)
             _restore_argument_help(self)
 
+        def format_arguments(self, ctx: Any, formatter: Any) -> None:
+            """Nothing: typer lists the arguments in its own section with the options (click
+            8.5 added a "Positional arguments" section, so ``RECORD`` was listed twice)."""
+
         def get_short_help_str(self, limit: int = 45) -> str:
             if self.short_help or not self.help:
                 return str(super().get_short_help_str(limit))

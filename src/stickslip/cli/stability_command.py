@@ -12,14 +12,17 @@ from stickslip.cli.options import JSON, OVERWRITE
 
 #: Largest friction coefficient ``--mu-max`` accepts.
 MU_MAX_LIMIT = 100.0
+#: ``--mu-max`` when not given.
+MU_MAX_DEFAULT = 2.0
 
 
 def stability(
     config: Annotated[Path, typer.Option(
         "--config", help="machine.toml in SI with a [structure] (contact_dof, normal_dof) and a "
         "[contact] table (normal_stiffness, optional normal_damping)")],
-    mu_max: Annotated[float, typer.Option(
-        "--mu-max", help="largest friction coefficient searched for the critical one")] = 2.0,
+    mu_max: Annotated[float | None, typer.Option(
+        "--mu-max", help="largest friction coefficient searched for the critical one "
+        f"[default: {MU_MAX_DEFAULT:g}]", show_default=False)] = None,
     plot: Annotated[Path | None, typer.Option(
         "--plot", help="write the root locus over mu here (frequencies and real parts)")] = None,
     map_plot: Annotated[Path | None, typer.Option(
@@ -45,7 +48,7 @@ def stability(
     """
     from stickslip.cli.console import check_distinct_outputs, check_figure_path
 
-    if not 0.0 < mu_max <= MU_MAX_LIMIT:
+    if mu_max is not None and not 0.0 < mu_max <= MU_MAX_LIMIT:
         raise BadInput(f"--mu-max {mu_max!r} must be above 0 and at most {MU_MAX_LIMIT:g}")
     check_distinct_outputs(plot=plot, map=map_plot)
     if plot is not None:
@@ -62,9 +65,14 @@ def stability(
             raise BadInput("--plot draws the root locus over mu of the contact's complex-eigenvalue "
                            "analysis; with a friction law with memory, --map draws the growth "
                            "rate over speed and load")
+        if mu_max is not None:
+            raise BadInput(f"--mu-max {mu_max:g} bounds the search over mu of the contact's "
+                           "complex-eigenvalue analysis; with a friction law with memory the "
+                           "linearisation of steady sliding searches no mu (leave it out)")
         memory_stability_command(memory_file, config, map_plot, json)
         return
-    result, ranges, machine, contact, index = _analyse(config, mu_max)
+    result, ranges, machine, contact, index = _analyse(
+        config, MU_MAX_DEFAULT if mu_max is None else mu_max)
     payload = result.to_dict()
     payload.update({"config": str(config), "machine": machine.name,
                     "contact_dof": machine.contact_dof, "normal_dof": index,
