@@ -24,7 +24,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the oracle lives
 
 from tests.test_contact_engine import brake_pad, oracle
 
-from stickslip.analysis.contact_engine import simulate_contact
+from stickslip.analysis.contact.engine import simulate_contact
 
 
 def best_of(fn, repeats: int) -> tuple[float, object]:  # type: ignore[no-untyped-def]

@@ -40,7 +40,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from tests.record_oracle import coulomb, noisy, simulate_rig
 
-from stickslip.analysis.identification import MeasuredRecord, identify
+from stickslip.analysis.identification.record_fit import MeasuredRecord, identify
 
 TRUTH = {"m": 1.0, "k": 1.0e4, "c": 5.0, "mu_s": 0.6, "mu_k": 0.4, "load": 100.0, "speed": 0.05}
 PERIOD = 0.1124  # s, of this rig's stick-slip cycle (from the simulator's breakaway times)
@@ -131,7 +131,7 @@ def _two_at_once(record: MeasuredRecord, known: dict[str, float], threads: int |
 
 
 def _phases(record: MeasuredRecord, known: dict[str, float]):  # type: ignore[no-untyped-def]
-    from stickslip.analysis.identification_estimates import estimate
+    from stickslip.analysis.identification.estimates import estimate
 
     return estimate(record, mass=known["m"], load=known["load"], speed=known["speed"]).stick_phases
 

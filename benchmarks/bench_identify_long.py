@@ -11,7 +11,7 @@ independent solve_ivp rig simulator of ``tests/record_oracle.py``, sampled at 10
 ``rows`` samples (1e6 rows: 100 s, about 890 periods; :func:`make_record`), force and
 displacement with 0.5 % noise, written as CSV. The command runs as a subprocess, as a user
 runs it; printed: its wall time and peak resident memory (``ru_maxrss`` of the child), the
-window the fit used (:func:`stickslip.analysis.identification.fit_window`: at most 30 periods
+window the fit used (:func:`stickslip.analysis.identification.record_fit.fit_window`: at most 30 periods
 and 20,000 samples) and the fitted values beside the truth. Measured on 2 shared cores
 (2026-11-25): 1e5 rows 14.5 s and 377 MiB; 1e6 rows 34.3 s and 880 MiB, k 9999.77 +/- 1.3
 N/m, mu_s 0.600005, mu_k 0.399989 (truth 10000, 0.6, 0.4). Goal (issue 32): 1e6 rows in under 60 s and 2 GB.

@@ -42,8 +42,8 @@ from collections.abc import Callable
 import numpy as np
 import scipy.integrate
 
-from stickslip.analysis.memory_friction import integrate_run, state_scales, steady_state
-from stickslip.analysis.memory_simulation import initial_state
+from stickslip.analysis.memory.friction import integrate_run, state_scales, steady_state
+from stickslip.analysis.memory.simulation import initial_state
 from stickslip.model.state_friction import (
     LuGreFriction,
     MemorySystem,

@@ -17,14 +17,16 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
-from stickslip.analysis.complex_eigenvalue_maps import root_locus, stability_map
-from stickslip.analysis.complex_eigenvalues import complex_eigenvalue_analysis
-from stickslip.analysis.friction_coupling import (
+from stickslip.analysis.contact import (
     FrictionCoupledSystem,
+    complex_eigenvalue_analysis,
     coupled_system,
     critical_friction,
+    hoffmann_critical_mu,
+    hoffmann_stiffness,
+    root_locus,
+    stability_map,
 )
-from stickslip.analysis.squeal_minimal_model import hoffmann_critical_mu, hoffmann_stiffness
 from stickslip.model.contact import Contact
 from stickslip.model.machine import Machine
 from stickslip.model.physical import PhysicalFriction

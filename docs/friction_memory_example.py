@@ -18,11 +18,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from stickslip.analysis.memory_friction import (
-    hopf_stiffness,
-    rice_ruina_critical_stiffness,
-)
-from stickslip.analysis.memory_simulation import simulate_memory
+from stickslip.analysis.memory import hopf_stiffness, rice_ruina_critical_stiffness, simulate_memory
 from stickslip.model.state_friction import (
     LuGreFriction,
     MemorySystem,
@@ -152,7 +148,7 @@ def rice_ruina(out: Path) -> None:
 
 def stability_map(out: Path) -> None:
     """The growth-rate map of the rate-and-state slider of the stability section, its critical speed."""
-    from stickslip.analysis.memory_stability import memory_stability, rice_ruina_critical_speed
+    from stickslip.analysis.memory import memory_stability, rice_ruina_critical_speed
     from stickslip.sweep.memory_map import memory_stability_map
 
     law = RateStateFriction(a=0.01, b=0.015, d_c=1e-5, mu_ref=0.6, v_ref=1e-6)

@@ -16,8 +16,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from stickslip.analysis.identification import REFUSE_CHI2, RecordError, identify
-from stickslip.analysis.identification_estimates import MeasuredRecord
+from stickslip.analysis.identification.estimates import MeasuredRecord
+from stickslip.analysis.identification.record_fit import REFUSE_CHI2, RecordError, identify
 from stickslip.io.record import read_columns_toml, read_record
 from tests.cli_helpers import run_cli
 
@@ -135,8 +135,8 @@ def test_a_force_only_sine_is_refused_by_its_residuals(capsys: pytest.CaptureFix
 def test_residuals_above_twice_the_noise_and_a_mass_off_by_10_give_warnings() -> None:
     # the rule of MISMATCH_CHI2 and MASS_FACTOR, at chosen chi-squares; the implied mass of
     # the example record is 0.865 kg (k / omega^2 of its slip phases; the truth is 1 kg)
-    from stickslip.analysis.identification import MASS_FACTOR, MISMATCH_CHI2, _judge
-    from stickslip.analysis.identification_estimates import estimate
+    from stickslip.analysis.identification.estimates import estimate
+    from stickslip.analysis.identification.record_fit import MASS_FACTOR, MISMATCH_CHI2, _judge
 
     record = read_record(EXAMPLE)
     est = estimate(record, mass=1.0, load=100.0, speed=0.05)
@@ -177,13 +177,13 @@ def test_table_law_does_not_overwrite_its_friction_csv_without_overwrite(
 def test_a_long_record_is_fitted_on_a_window_by_the_stated_rule() -> None:
     # before: the dense Jacobian grew with samples x periods (1e5 rows: 272 s and 4.9 GB);
     # benchmarks/bench_identify_long.py measures 1e6 rows (34 s, 880 MiB on 2 cores)
-    from stickslip.analysis.identification import (
+    from stickslip.analysis.identification.estimates import estimate
+    from stickslip.analysis.identification.record_fit import (
         MAX_FIT_PERIODS,
         MAX_FIT_SAMPLES,
         MIN_KEPT_PER_PERIOD,
         fit_window,
     )
-    from stickslip.analysis.identification_estimates import estimate
     from tests.record_oracle import coulomb, simulate_rig
 
     # the rig repeats itself exactly from its second breakaway (same state at each breakaway)

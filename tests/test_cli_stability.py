@@ -2,7 +2,7 @@
 
 The brake pad of examples/brake_pad is the minimal model of Hoffmann et al. (2002): its
 undamped flutter boundary is the closed form ((k11 - k22 - k_n)^2 + 4 k12^2) / (-4 k12 k_n)
-of stickslip.analysis.squeal_minimal_model, evaluated here from the file's own numbers.
+of stickslip.analysis.contact.squeal_minimal_model, evaluated here from the file's own numbers.
 """
 
 from __future__ import annotations

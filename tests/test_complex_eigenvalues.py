@@ -3,7 +3,7 @@
 References:
 - the undamped flutter boundary of the minimal model of Hoffmann et al. (2002), Mech. Res.
   Commun. 29, 197-205: the zero of the discriminant of its 2x2 quadratic eigenproblem, derived
-  in stickslip.analysis.squeal_minimal_model and docs/brake_squeal.md (re-derived here from the
+  in stickslip.analysis.contact.squeal_minimal_model and docs/brake_squeal.md (re-derived here from the
   characteristic polynomial, not taken from the library);
 - with damping, the Routh-Hurwitz condition of the characteristic quartic (Hurwitz 1895),
   computed here from the polynomial's coefficients;
@@ -23,15 +23,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from stickslip.analysis.complex_eigenvalue_maps import operating_ranges, root_locus, stability_map
-from stickslip.analysis.complex_eigenvalues import complex_eigenvalue_analysis
-from stickslip.analysis.friction_coupling import (
+from stickslip.analysis.contact.eigenvalue_maps import operating_ranges, root_locus, stability_map
+from stickslip.analysis.contact.eigenvalues import complex_eigenvalue_analysis
+from stickslip.analysis.contact.friction_coupling import (
     FrictionCoupledSystem,
     critical_friction,
     friction_at,
     verdict_of,
 )
-from stickslip.analysis.squeal_minimal_model import hoffmann_critical_mu, hoffmann_stiffness
+from stickslip.analysis.contact.squeal_minimal_model import hoffmann_critical_mu, hoffmann_stiffness
 from stickslip.model.contact import Contact
 from stickslip.model.machine import Machine
 from stickslip.model.physical import PhysicalFriction

@@ -293,9 +293,9 @@ def test_bisection_splits_at_a_third_verdict_and_stops_at_an_undetermined_one(
     # the search alone, on made-up verdict zones (no engine): stick-slip below 0.028 m/s,
     # slip-oscillation up to 0.029 (between two scan values: met by the first midpoint),
     # steady sliding up to 0.2, undetermined up to 0.3, stick-slip above
-    from stickslip.analysis import contact_pool
-    from stickslip.analysis.contact_boundary import contact_boundary
-    from stickslip.analysis.contact_engine import ContactSystem
+    from stickslip.analysis.contact import pool as contact_pool
+    from stickslip.analysis.contact.boundary import contact_boundary
+    from stickslip.analysis.contact.engine import ContactSystem
     from stickslip.analysis.verdict import Verdict
 
     def zones(system: object, speed: float, load: float, *_: object) -> contact_pool.ContactPoint:

@@ -8,7 +8,7 @@ lambda = 0.1 / V) on a massless Jenkins element with k_t / k = 10 and contact da
 - the event-driven solve_ivp oracle of tests/test_contact_engine.py (``jenkins_oracle``,
   DOP853, rtol 1e-11, sharing no code with the engine);
 - ``stickslip simulate --config`` on the same file;
-- direct runs of :func:`~stickslip.analysis.contact_engine.simulate_contact` from states
+- direct runs of :func:`~stickslip.analysis.contact.engine.simulate_contact` from states
   built here from the equations (steady sliding: ``x* = mu_k W / k``, ``e* = -mu_k W / k_t``);
 - the contraction of a run's own breakaway states onto the cycle (for the multipliers).
 """
@@ -24,9 +24,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from stickslip.analysis._contact_pool import run_many
-from stickslip.analysis.contact_continuation import continue_contact
-from stickslip.analysis.contact_engine import ContactSystem, simulate_contact
+from stickslip.analysis.contact._pool import run_many
+from stickslip.analysis.contact.continuation import continue_contact
+from stickslip.analysis.contact.engine import ContactSystem, simulate_contact
 from tests.cli_helpers import run_cli
 from tests.test_cli_contact_simulate import one_error
 from tests.test_contact_engine import jenkins_oracle
@@ -82,7 +82,7 @@ def test_estimated_multiplier_is_the_contraction_of_a_run_onto_the_cycle() -> No
     # source: the run from start-up converges on the cycle; successive breakaway states'
     # differences shrink by the dominant multiplier's modulus each period (one nonzero
     # multiplier: the stick phase resets the slider's velocity)
-    from stickslip.analysis.contact_cycles import find_contact_cycles
+    from stickslip.analysis.contact.cycles import find_contact_cycles
 
     system = slider(0.1 / 1.62)
     result = find_contact_cycles(system)

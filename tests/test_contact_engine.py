@@ -5,7 +5,7 @@ Sources of the reference values:
   undamped 1 DOF stick-slip period and amplitude, and the exact damped boundary.
 - scipy's ``expm`` of the augmented matrix, unbalanced, for the exact flow.
 - An event-driven ``scipy.integrate.solve_ivp`` (DOP853, rtol 1e-11) written here from the
-  equations in the docstring of ``stickslip.analysis.contact_engine``, sharing no code with it.
+  equations in the docstring of ``stickslip.analysis.contact.engine``, sharing no code with it.
 """
 
 from __future__ import annotations
@@ -19,8 +19,8 @@ import pytest
 import scipy.linalg
 from scipy.integrate import solve_ivp
 
-from stickslip.analysis._contact_events import AffineFlow, Found, first_event
-from stickslip.analysis.contact_engine import ContactSystem, simulate_contact
+from stickslip.analysis.contact._events import AffineFlow, Found, first_event
+from stickslip.analysis.contact.engine import ContactSystem, simulate_contact
 from stickslip.analysis.theory import critical_lambda_exact
 from stickslip.analysis.verdict import Verdict
 

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from stickslip.analysis.identification import MeasuredRecord, RecordError, identify
+from stickslip.analysis.identification.record_fit import MeasuredRecord, RecordError, identify
 from tests.cli_helpers import run_cli
 from tests.record_oracle import coulomb, linear, noisy, simulate_rig, stribeck
 

@@ -19,7 +19,7 @@ import pytest
 from threadpoolctl import threadpool_info
 
 from stickslip.analysis.blas_threads import blas_limited as _blas_limited
-from stickslip.analysis.identification import (
+from stickslip.analysis.identification.record_fit import (
     TABLE_QUANTILES,
     MeasuredRecord,
     identify,
@@ -134,7 +134,7 @@ def test_undetermined_rule_for_shape_and_table_parameters():
     """UNDETERMINED_RULE's standard-error part, at its thresholds: a Stribeck shape parameter
     is undetermined above half its value; a table value and mu_k above mu_s (not above their
     own value, which may be near zero); k above its value."""
-    from stickslip.analysis.identification_result import undetermined
+    from stickslip.analysis.identification.result import undetermined
 
     values = {"k": K, "mu_s": MU_S, "mu_k": MU_K, "c": C}
     for name in ("exponent", "stribeck_velocity"):

@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from stickslip.analysis.lugre_fit import fit_lugre
+from stickslip.analysis.identification.lugre_fit import fit_lugre
 from stickslip.cli.main import run
 
 TRUTH = {"sigma0": 1e5, "sigma1": math.sqrt(1e5), "sigma2": 0.4, "F_c": 1.0, "F_s": 1.5,

@@ -1,7 +1,7 @@
 """``basin --config`` with friction with memory (sweep.memory_basin, issue 33).
 
 Reference: each start ``(x, v)`` is the state ``simulate_memory`` builds for a kick ``F``
-(``x`` the steady deflection, ``v = -F V``: analysis.memory_simulation.initial_state), so a
+(``x`` the steady deflection, ``v = -F V``: analysis.memory.simulation.initial_state), so a
 basin of such starts must label each as ``simulate --initial-kick F`` does; for Canudas de
 Wit's bistable slider (tests/test_memory_cycle_search.py) kicks -1 and 2 end in stick-slip and
 0.25 in steady sliding.
@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from stickslip.analysis.memory_simulation import initial_state, simulate_memory
+from stickslip.analysis.memory.simulation import initial_state, simulate_memory
 from stickslip.io.machine_file import read_machine_file
 from stickslip.sweep.memory_basin import memory_basin, sample_memory_box
 from tests.cli_helpers import run_cli

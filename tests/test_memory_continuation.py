@@ -1,4 +1,4 @@
-"""``continue --config`` with friction with memory (analysis.memory_continuation, issue 33).
+"""``continue --config`` with friction with memory (analysis.memory.continuation, issue 33).
 
 References: the 1-DOF rate-and-state slider (m 1 kg, k 8000 N/m, N 10 N, a 0.01, b 0.015,
 d_c 10 um) has one Hopf point, at the speed where Rice and Ruina's k_c(V) equals k:
@@ -19,9 +19,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from stickslip.analysis.memory_continuation import continue_memory_orbits
-from stickslip.analysis.memory_simulation import simulate_memory
-from stickslip.analysis.memory_stability import linear_spectrum
+from stickslip.analysis.memory.continuation import continue_memory_orbits
+from stickslip.analysis.memory.simulation import simulate_memory
+from stickslip.analysis.memory.stability import linear_spectrum
 from stickslip.io.machine_file import read_machine_file
 from stickslip.model.state_friction import SpeedSchedule
 from tests.cli_helpers import run_cli
@@ -96,7 +96,7 @@ def test_lugre_subcritical_hopf_gives_the_unstable_orbit_that_bounds_steady_slid
     assert first.period == pytest.approx(2.0 * math.pi / omega, rel=0.01)
     point = points[len(points) // 2]
     at = replace(system, schedule=SpeedSchedule.constant(point.speed))
-    from stickslip.analysis.memory_friction import steady_state
+    from stickslip.analysis.memory.friction import steady_state
 
     y_ss = steady_state(at, point.speed)
     inside = simulate_memory(at, initial=y_ss + 0.9 * (point.orbit.y0 - y_ss))

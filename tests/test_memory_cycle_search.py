@@ -1,4 +1,4 @@
-"""``cycles --config`` with friction with memory (analysis.memory_cycle_search, issue 33).
+"""``cycles --config`` with friction with memory (analysis.memory.cycle_search, issue 33).
 
 References: the LuGre example of Canudas de Wit et al. (1995) is bistable at 0.1 m/s (steady
 sliding linearly stable, eigenvalues -0.2 +/- 1.4i 1/s by the hand linearisation of
@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from stickslip.analysis.memory_cycle_search import find_memory_cycles
+from stickslip.analysis.memory.cycle_search import find_memory_cycles
 from stickslip.io.machine_file import read_machine_file
 from tests.cli_helpers import run_cli
 from tests.memory_machines import LUGRE

@@ -1,4 +1,4 @@
-"""Linear stability of steady sliding with friction with memory (analysis.memory_stability, issue 33).
+"""Linear stability of steady sliding with friction with memory (analysis.memory.stability, issue 33).
 
 References, all closed forms derived independently of the code under test:
 
@@ -25,7 +25,7 @@ import pytest
 import xarray as xr
 from scipy.optimize import brentq
 
-from stickslip.analysis.memory_stability import linear_spectrum, memory_stability, spectrum_sign
+from stickslip.analysis.memory.stability import linear_spectrum, memory_stability, spectrum_sign
 from stickslip.io.machine_file import read_machine_file
 from stickslip.sweep.memory_map import memory_stability_map
 from tests.cli_helpers import run_cli

@@ -4,7 +4,7 @@ Sources:
 * Rice and Ruina (1983), J. Appl. Mech. 50, 343-349: the 1-DOF spring-slider with
   rate-and-state friction is linearly unstable for ``k < k_c = N (b - a)/d_c (1 + m V^2/(N a d_c))``
   (both evolution laws; ``m = 0``: ``k_c = N (b - a)/d_c``) and the Hopf frequency is
-  ``omega_c = (V/d_c) sqrt((b - a)/a)`` (derivation in :mod:`stickslip.analysis.memory_friction`).
+  ``omega_c = (V/d_c) sqrt((b - a)/a)`` (derivation in :mod:`stickslip.analysis.memory.friction`).
 * Canudas de Wit, Olsson, Astrom and Lischinsky (1995), IEEE TAC 40(3), 419-425, the stick-slip
   example: m = 1 kg, k = 2 N/m, V = 0.1 m/s, sigma0 = 1e5 N/m, sigma1 = sqrt(1e5) N s/m,
   sigma2 = 0.4 N s/m, F_c = 1 N, F_s = 1.5 N, v_s = 0.001 m/s. As sigma0 grows (bristles of
@@ -22,9 +22,9 @@ import math
 import numpy as np
 import pytest
 
-from stickslip.analysis import memory_cycles as mc
-from stickslip.analysis import memory_friction as mf
-from stickslip.analysis import memory_simulation as ms
+from stickslip.analysis.memory import cycles as mc
+from stickslip.analysis.memory import friction as mf
+from stickslip.analysis.memory import simulation as ms
 from stickslip.analysis.verdict import Verdict
 from stickslip.model.state_friction import (
     LuGreFriction,

@@ -17,8 +17,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from stickslip.analysis import rate_state_fit
-from stickslip.analysis.rate_state_fit import fit_rate_state, load_point_steps, model_mu
+from stickslip.analysis.identification import rate_state_fit
+from stickslip.analysis.identification.rate_state_fit import fit_rate_state, load_point_steps, model_mu
 from stickslip.cli.main import run
 from stickslip.model.state_friction import RateStateFriction, SpeedSchedule
 

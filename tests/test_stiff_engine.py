@@ -26,7 +26,7 @@ import pytest
 import scipy.integrate
 import scipy.linalg
 
-from stickslip.analysis import memory_friction as mf
+from stickslip.analysis.memory import friction as mf
 from stickslip.kernel import stiff
 from stickslip.model.state_friction import (
     LuGreFriction,

@@ -68,10 +68,10 @@ _EXPORTS: dict[str, str] = {
     "LuGreFriction": "stickslip.model.state_friction",
     "MemorySystem": "stickslip.model.state_friction",
     "SpeedSchedule": "stickslip.model.state_friction",
-    "MemoryResult": "stickslip.analysis.memory_simulation",
-    "simulate_memory": "stickslip.analysis.memory_simulation",
-    "hopf_stiffness": "stickslip.analysis.memory_friction",
-    "rice_ruina_critical_stiffness": "stickslip.analysis.memory_friction",
+    "MemoryResult": "stickslip.analysis.memory.simulation",
+    "simulate_memory": "stickslip.analysis.memory.simulation",
+    "hopf_stiffness": "stickslip.analysis.memory.friction",
+    "rice_ruina_critical_stiffness": "stickslip.analysis.memory.friction",
     "EngineOptions": "stickslip.analysis.simulation",
     "SimulationResult": "stickslip.analysis.simulation",
     "TimeHistory": "stickslip.analysis.simulation",
@@ -137,9 +137,9 @@ _EXPORTS: dict[str, str] = {
     "basin_map": "stickslip.sweep.basin_maps",
     "BasinMap": "stickslip.sweep.basin_maps",
     "ExecutionOptions": "stickslip.sweep.execution",
-    "identify": "stickslip.analysis.identification",
-    "IdentificationResult": "stickslip.analysis.identification_result",
-    "MeasuredRecord": "stickslip.analysis.identification_estimates",
+    "identify": "stickslip.analysis.identification.record_fit",
+    "IdentificationResult": "stickslip.analysis.identification.result",
+    "MeasuredRecord": "stickslip.analysis.identification.estimates",
     "read_record": "stickslip.io.record",
     "continue_cycles": "stickslip.analysis.continuation",
     "ContinuationResult": "stickslip.analysis.continuation",
@@ -294,11 +294,11 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         response_curves,
         response_peak,
     )
-    from stickslip.analysis.identification import identify
-    from stickslip.analysis.identification_estimates import MeasuredRecord
-    from stickslip.analysis.identification_result import IdentificationResult
-    from stickslip.analysis.memory_friction import hopf_stiffness, rice_ruina_critical_stiffness
-    from stickslip.analysis.memory_simulation import MemoryResult, simulate_memory
+    from stickslip.analysis.identification.estimates import MeasuredRecord
+    from stickslip.analysis.identification.record_fit import identify
+    from stickslip.analysis.identification.result import IdentificationResult
+    from stickslip.analysis.memory.friction import hopf_stiffness, rice_ruina_critical_stiffness
+    from stickslip.analysis.memory.simulation import MemoryResult, simulate_memory
     from stickslip.analysis.simulation import EngineOptions, SimulationResult, TimeHistory, simulate
     from stickslip.analysis.stability import (
         SteadySlidingStability,

@@ -7,6 +7,10 @@ Modules, bottom to top (each imports only from those above it in this list, and 
 ``stability_tuning``, ``dva`` (resolving a foundation choice), ``analytic_boundary``,
 ``design``. ``tuning`` is the deprecated former home of the tuning (one release).
 
+Families beyond the paper have sub-packages, each with a lazy face: ``memory`` (friction with
+memory: rate-and-state and LuGre), ``contact`` (normal-load coupling, separation, complex
+eigenvalues, tangential compliance) and ``identification`` (a machine from a measured record).
+
 Names load on first use (PEP 562); every name of ``__all__`` is public, the rest is private.
 The function ``frequency_response`` shares its name with its module, so it is reached as
 ``stickslip.frequency_response`` (or from its module), not from this face.
@@ -16,7 +20,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from stickslip._lazy import lazy_exports
+from stickslip._lazy import alias_moved_modules, lazy_exports
 
 #: Public name -> module that defines it.
 _EXPORTS: dict[str, str] = {
@@ -181,6 +185,37 @@ __all__ = [
 ]
 
 __getattr__, __dir__ = lazy_exports(__name__, globals(), _EXPORTS)
+
+#: Modules that moved into the family sub-packages ``memory``, ``contact`` and
+#: ``identification`` (their former names import, with a DeprecationWarning, for one release).
+_MOVED_INTO_FAMILIES = {
+    "memory_arclength": "memory.arclength",
+    "memory_continuation": "memory.continuation",
+    "memory_cycle_search": "memory.cycle_search",
+    "memory_cycles": "memory.cycles",
+    "memory_design": "memory.design",
+    "memory_friction": "memory.friction",
+    "memory_simulation": "memory.simulation",
+    "memory_stability": "memory.stability",
+    "contact_boundary": "contact.boundary",
+    "contact_continuation": "contact.continuation",
+    "contact_cycles": "contact.cycles",
+    "contact_design": "contact.design",
+    "contact_engine": "contact.engine",
+    "contact_pool": "contact.pool",
+    "complex_eigenvalue_maps": "contact.eigenvalue_maps",
+    "complex_eigenvalues": "contact.eigenvalues",
+    "friction_coupling": "contact.friction_coupling",
+    "squeal_minimal_model": "contact.squeal_minimal_model",
+    "identification_estimates": "identification.estimates",
+    "identification_problem": "identification.problem",
+    "identification_result": "identification.result",
+    "fit_statistics": "identification.fit_statistics",
+    "lugre_fit": "identification.lugre_fit",
+    "rate_state_fit": "identification.rate_state_fit",
+}
+alias_moved_modules({f"{__name__}.{old}": f"{__name__}.{new}"
+                     for old, new in _MOVED_INTO_FAMILIES.items()})
 
 
 if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only

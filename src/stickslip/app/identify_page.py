@@ -3,9 +3,9 @@
 Upload a measured stick-slip record (CSV: time and force and/or displacement, the format of
 ``stickslip identify``), give the slider mass, the normal load and the belt speed, choose the
 friction law; the page shows the fitted stiffness, damping and friction law with their
-standard errors (:meth:`~stickslip.analysis.identification_result.IdentificationResult.summary`),
+standard errors (:meth:`~stickslip.analysis.identification.result.IdentificationResult.summary`),
 the fit figure, and the machine file of ``--write-config``, which it downloads or takes on to
-the slider page. The fit is :func:`stickslip.analysis.identification.identify` on the record
+the slider page. The fit is :func:`stickslip.analysis.identification.record_fit.identify` on the record
 read by :func:`stickslip.io.record.record_from_text` (the command line's reader, from memory:
 nothing of the upload is written to the server's disk), in a worker process
 (:mod:`stickslip.app.workers`).
@@ -53,7 +53,7 @@ def identify_upload(content: bytes, name: str, known_text: Mapping[str, str], la
     """
     from pathlib import PurePath
 
-    from stickslip.analysis.identification import identify
+    from stickslip.analysis.identification.record_fit import identify
     from stickslip.io.record import parse_columns, record_from_text
     from stickslip.model.units import to_si
 

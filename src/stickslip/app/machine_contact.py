@@ -7,12 +7,12 @@ and ``stickslip.cli.stability_command``, which the app may not import: the same 
 same order, so the same numbers), from the uploaded files only. The page shows
 
 * the complex-eigenvalue analysis of steady sliding
-  (:func:`~stickslip.analysis.complex_eigenvalues.complex_eigenvalue_analysis`, ``mu_max`` 2
+  (:func:`~stickslip.analysis.contact.eigenvalues.complex_eigenvalue_analysis`, ``mu_max`` 2
   as the command's default): verdict, modes, critical friction coefficients with and without
   damping and the root locus; a Jenkins element is refused by that analysis, and its
   sentence is shown as information;
 * the time history from the start-up state
-  (:func:`~stickslip.analysis.contact_engine.simulate_contact`, the command's defaults):
+  (:func:`~stickslip.analysis.contact.engine.simulate_contact`, the command's defaults):
   verdict, certificate, period (s), amplitude (m), separation, the event counts, and the last
   periods drawn by :func:`stickslip.plot.contact_history.contact_history_plot`.
 
@@ -72,10 +72,10 @@ class ContactHistory:
     Attributes
     ----------
     payload : dict
-        :meth:`~stickslip.analysis.contact_engine.ContactRun.to_dict` with ``machine``,
+        :meth:`~stickslip.analysis.contact.engine.ContactRun.to_dict` with ``machine``,
         ``n_dof``, ``contact_dof`` and ``normal_dof`` (those of ``stickslip simulate --json``).
     history : dict
-        :meth:`~stickslip.analysis.contact_engine.ContactRun.history` over the last
+        :meth:`~stickslip.analysis.contact.engine.ContactRun.history` over the last
         :data:`PERIODS_DRAWN` periods (``t_s`` in s, displacements in m, force in N).
     """
 
@@ -158,7 +158,7 @@ def stability_in_worker(cm: ContactMachine) -> tuple[Any, Any]:
     ValueError
         One line naming the file (e.g. steady sliding without contact).
     """
-    from stickslip.analysis.complex_eigenvalues import complex_eigenvalue_analysis
+    from stickslip.analysis.contact.eigenvalues import complex_eigenvalue_analysis
 
     try:
         result = complex_eigenvalue_analysis(cm.machine, cm.contact, normal_dof=cm.normal_index,
@@ -188,7 +188,7 @@ def simulate_in_worker(cm: ContactMachine) -> ContactHistory:
     """
     import numpy as np
 
-    from stickslip.analysis.contact_engine import contact_system, simulate_contact
+    from stickslip.analysis.contact.engine import contact_system, simulate_contact
 
     try:
         system = contact_system(cm.machine, cm.contact, normal_dof=cm.normal_index)

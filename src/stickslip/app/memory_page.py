@@ -1,7 +1,7 @@
 """The slider page with a friction law with memory (rate-and-state, LuGre).
 
 What ``stickslip design --config`` reports for such a machine
-(:func:`~stickslip.analysis.memory_design.memory_design`): the runs from stick and from steady
+(:func:`~stickslip.analysis.memory.design.memory_design`): the runs from stick and from steady
 sliding nudged off it, the linear verdict with the critical stiffness, speeds and loads, and
 the start-up run's time history. The computation takes a few seconds and is cached per input.
 """
@@ -40,8 +40,8 @@ def memory_design_report(key: tuple[tuple[str, str], ...]) -> tuple[dict[str, An
 def memory_report(system: MemorySystem) -> tuple[dict[str, Any], bytes]:
     """The design report (JSON-ready) and the start-up run's figure (PNG) of ``system``
     (module-level: the machine page runs it in its worker process)."""
-    from stickslip.analysis.memory_design import STARTUP_KICK, memory_design
-    from stickslip.analysis.memory_simulation import simulate_memory
+    from stickslip.analysis.memory.design import STARTUP_KICK, memory_design
+    from stickslip.analysis.memory.simulation import simulate_memory
     from stickslip.plot.memory_history import memory_history_plot
 
     report = memory_design(system)

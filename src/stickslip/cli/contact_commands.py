@@ -2,7 +2,7 @@
 
 A machine file's ``[structure] normal_dof`` and ``[contact]`` table (or a flat file's paper
 slider with a ``[contact] tangential_stiffness``) run on the exact contact engine
-(:mod:`stickslip.analysis.contact_engine`). Its periodic verdicts are observed (a state
+(:mod:`stickslip.analysis.contact.engine`). Its periodic verdicts are observed (a state
 repeated to 1e-9), not proven; every answer says so.
 """
 
@@ -14,7 +14,7 @@ from typing import Any
 
 import typer
 
-from stickslip.analysis.contact_pool import DEFAULT_WORKERS
+from stickslip.analysis.contact.pool import DEFAULT_WORKERS
 from stickslip.cli.console import BadInput, print_json
 
 __all__ = ["DEFAULT_WORKERS", "progress_bar", "refuse_options", "typed_options"]
@@ -46,7 +46,7 @@ def progress_bar(json: bool, label: str, unit: str = "runs") -> Any:
 def contact_cycles_command(ctx: typer.Context, config: Path, machine_file: Any, *,
                            json: bool) -> None:
     """``cycles --config`` with a contact (:func:`find_contact_cycles`)."""
-    from stickslip.analysis.contact_cycles import find_contact_cycles
+    from stickslip.analysis.contact.cycles import find_contact_cycles
     from stickslip.cli.contact_simulation import contact_run_system
 
     refuse_options(ctx, ("seeds", "max_period", "seed"), "cycles")

@@ -1,6 +1,6 @@
 """``stickslip design --config`` for a machine with its contact (normal DOF, Jenkins element).
 
-The variants assessed (:func:`~stickslip.analysis.contact_design.design_contact`): a machine
+The variants assessed (:func:`~stickslip.analysis.contact.design.design_contact`): a machine
 with a ``[structure]`` as given; the paper's slider (flat ``m``, ``k``, ``c``) on the rigid base
 and on a foundation, the file's ``m_a``, ``k_a``, ``c_a`` or else the one Eqs. 28-30 recommend
 for the rigid contact (then assessed with the contact). With a normal DOF, steady sliding's
@@ -28,7 +28,7 @@ def contact_variants(config: Path, machine_file: Any
     """The contact systems to assess, by name, the report's notes and the foundation (SI)."""
     from dataclasses import replace
 
-    from stickslip.analysis.contact_engine import contact_system
+    from stickslip.analysis.contact.engine import contact_system
     from stickslip.analysis.theory import optimal_foundation_fit
     from stickslip.cli.contact_simulation import contact_run_system
     from stickslip.cli.machine_config import config_system
@@ -68,7 +68,7 @@ def contact_variants(config: Path, machine_file: Any
 def contact_design_command(config: Path, machine_file: Any, given: list[str], *,
                            json: bool) -> None:
     """Print (or ``--json``) the contact machine's design report."""
-    from stickslip.analysis.contact_design import design_contact
+    from stickslip.analysis.contact.design import design_contact
     from stickslip.cli.progress import DesignProgress
 
     if given:

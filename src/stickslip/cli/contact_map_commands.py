@@ -4,11 +4,11 @@
 
 A machine file with a ``[structure] normal_dof`` and ``[contact]`` table, or a ``[contact]
 tangential_stiffness`` (a Jenkins element), runs on the exact contact engine
-(:mod:`stickslip.analysis.contact_engine`), one run per operating point from the start-up
+(:mod:`stickslip.analysis.contact.engine`), one run per operating point from the start-up
 state, in worker processes (``--workers``, default 2; Ctrl-C ends them). ``map`` gives each
 (speed, load) cell its verdict, period, amplitude and separation
 (:mod:`stickslip.sweep.contact_map`); ``boundary`` finds the speeds or loads where the
-start-up verdict changes (:mod:`stickslip.analysis.contact_boundary`).
+start-up verdict changes (:mod:`stickslip.analysis.contact.boundary`).
 """
 
 from __future__ import annotations
@@ -35,7 +35,7 @@ CONTACT_RTOL = 1e-3
 
 def _workers(workers: int | None) -> int:
     """``--workers``: default 2, at most the machine's cores; one line if not a whole number >= 1."""
-    from stickslip.analysis.contact_pool import DEFAULT_WORKERS
+    from stickslip.analysis.contact.pool import DEFAULT_WORKERS
     from stickslip.sweep.executors import capped_workers
 
     if workers is None:
@@ -57,7 +57,7 @@ def _t_max(t_max: float | None) -> float | None:
 
 
 def contact_system_of(config: Path, machine_file: MachineFile) -> tuple[Any, Any]:
-    """The file's :class:`~stickslip.analysis.contact_engine.ContactSystem` and machine (one line
+    """The file's :class:`~stickslip.analysis.contact.engine.ContactSystem` and machine (one line
     if the file is wrong or pairs the contact with a friction law with memory)."""
     from stickslip.cli.contact_simulation import contact_run_system
     from stickslip.cli.machine_config import refuse_contact_with_memory
@@ -144,7 +144,7 @@ def contact_boundary_command(ctx: typer.Context, config: Path, *, param: str | N
                              workers: int | None, json: bool) -> None:
     """``boundary --config`` for a contact machine: the speeds or loads where the start-up
     verdict changes, each crossing bisected to ``--rtol`` with its bracket."""
-    from stickslip.analysis.contact_boundary import MAX_SCAN, PARAMS, contact_boundary
+    from stickslip.analysis.contact.boundary import MAX_SCAN, PARAMS, contact_boundary
     from stickslip.cli.machine_config import load_machine_file
 
     machine_file = load_machine_file(config, normal_coupling=True)

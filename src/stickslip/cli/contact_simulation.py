@@ -2,7 +2,7 @@
 
 The machine file's ``[structure] normal_dof`` and ``[contact]`` table (or a flat file's
 paper slider with a ``[contact] tangential_stiffness``) run on the exact contact engine,
-:mod:`stickslip.analysis.contact_engine`: stick, slip, separation and re-contact, answers in
+:mod:`stickslip.analysis.contact.engine`: stick, slip, separation and re-contact, answers in
 seconds, metres and newtons.
 """
 
@@ -21,14 +21,14 @@ REFUSED = {"initial": "--initial", "t_plot_start": "--plot-from", "initial_kick"
 
 
 def contact_run_system(config: Path, machine_file: Any) -> tuple[Any, Any]:
-    """The :class:`~stickslip.analysis.contact_engine.ContactSystem` of a file, and its machine.
+    """The :class:`~stickslip.analysis.contact.engine.ContactSystem` of a file, and its machine.
 
     Raises
     ------
     BadInput
         One line naming the file when a value is wrong or the machine is not supported.
     """
-    from stickslip.analysis.contact_engine import contact_system
+    from stickslip.analysis.contact.engine import contact_system
     from stickslip.cli.machine_config import collect_inputs, config_system
     from stickslip.io.machine_file import machine_from_file
     from stickslip.model.machine import machine_from_physical_system
@@ -58,7 +58,7 @@ def simulate_contact_command(ctx: typer.Context, config: Path, machine_file: Any
                              plot: Path | None, json: bool) -> None:
     """Run a contact machine and print the answer (``--json``: verdict, period_s, amplitude_m,
     separated, the last events, the machine; ``--history-times``: the time history)."""
-    from stickslip.analysis.contact_engine import simulate_contact
+    from stickslip.analysis.contact.engine import simulate_contact
     from stickslip.cli.time_options import parse_history_times, parse_t_max
 
     typed = [flag for name, flag in REFUSED.items()

@@ -143,7 +143,7 @@ def _contact_continuation(ctx: typer.Context, config: Path, machine_file: Any, p
                           range_: str, *, points: int | None, out: Path | None,
                           plot: Path | None, overwrite: bool, json: bool) -> None:
     """``continue --config`` with a contact (:func:`continue_contact`): ``--out`` .csv or .json."""
-    from stickslip.analysis.contact_continuation import (
+    from stickslip.analysis.contact.continuation import (
         DEFAULT_POINTS,
         MAX_POINTS,
         PARAMETERS,
@@ -201,10 +201,10 @@ def _contact_continuation(ctx: typer.Context, config: Path, machine_file: Any, p
 def _memory_continuation(ctx: typer.Context, machine_file: Any, param: str, range_: str, *,
                          out: Path | None, plot: Path | None, overwrite: bool, json: bool) -> None:
     """``continue --config`` for a friction law with memory
-    (:func:`~stickslip.analysis.memory_continuation.continue_memory_orbits`)."""
+    (:func:`~stickslip.analysis.memory.continuation.continue_memory_orbits`)."""
     from click.core import ParameterSource
 
-    from stickslip.analysis.memory_continuation import continue_memory_orbits
+    from stickslip.analysis.memory.continuation import continue_memory_orbits
     from stickslip.cli.memory_stability_commands import memory_system
 
     if param != "speed":

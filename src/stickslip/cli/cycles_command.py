@@ -96,7 +96,7 @@ def _refuse_contact(machine_file: Any) -> None:
 
 def _memory_cycles(machine_file: Any, config: Path, json: bool) -> None:
     """``cycles --config`` for a friction law with memory (:func:`find_memory_cycles`)."""
-    from stickslip.analysis.memory_cycle_search import find_memory_cycles
+    from stickslip.analysis.memory.cycle_search import find_memory_cycles
     from stickslip.cli.console import BadInput
     from stickslip.cli.memory_stability_commands import memory_system
 

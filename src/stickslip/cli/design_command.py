@@ -185,9 +185,9 @@ def design(
 
 def memory_design_command(config: Path, given: list[str], *, json: bool) -> None:
     """``design --config`` for a friction law with memory
-    (:func:`~stickslip.analysis.memory_design.memory_design`): the runs from stick and from near
+    (:func:`~stickslip.analysis.memory.design.memory_design`): the runs from stick and from near
     steady sliding, the linear verdict, the critical stiffness, speeds and loads."""
-    from stickslip.analysis.memory_design import memory_design
+    from stickslip.analysis.memory.design import memory_design
     from stickslip.cli.memory_stability_commands import memory_system
 
     machine_file = load_machine_file(config)

@@ -41,7 +41,7 @@ def _parse_fixed(items: list[str]) -> dict[str, float]:
 
 def _parse_table_speeds(text: str) -> list[float]:
     """``--table-speeds "0, 1 cm/s, 3 cm/s"``: knot speeds [m/s], units allowed on each."""
-    from stickslip.analysis.identification import MAX_TABLE_KNOTS
+    from stickslip.analysis.identification.record_fit import MAX_TABLE_KNOTS
     from stickslip.model.units import to_si
 
     items = [item.strip() for item in text.split(",")]
@@ -110,8 +110,8 @@ def identify(
 
     Example: stickslip identify rig.csv --law lugre --load "1 N" --json
     """
-    from stickslip.analysis.identification import LAWS, check_known
-    from stickslip.analysis.identification import identify as run_identify
+    from stickslip.analysis.identification.record_fit import LAWS, check_known
+    from stickslip.analysis.identification.record_fit import identify as run_identify
     from stickslip.io.atomic import atomic_write_text
     from stickslip.io.record import parse_columns, read_columns_toml, read_record
     from stickslip.model.units import to_si
@@ -202,11 +202,11 @@ def identify(
 
 def _identify_rate_state(record: Path, *, load: str, stiffness: str | None, evolution: str,
                          given: dict[str, Any], bootstrap: int, offset: str, json: bool) -> None:
-    """``identify --law rate-state``: :func:`~stickslip.analysis.rate_state_fit.fit_rate_state`
+    """``identify --law rate-state``: :func:`~stickslip.analysis.identification.rate_state_fit.fit_rate_state`
     on a CSV of time (s), load-point displacement (m) and friction coefficient, in that order
     (a header line is skipped)."""
 
-    from stickslip.analysis.rate_state_fit import fit_rate_state
+    from stickslip.analysis.identification.rate_state_fit import fit_rate_state
     from stickslip.model.units import to_si
 
     for flag, value in given.items():
@@ -267,9 +267,9 @@ def _three_columns(record: Path, what: str) -> Any:
 
 def _identify_lugre(record: Path, *, load: str, given: dict[str, Any], bootstrap: int,
                     offset: str, json: bool) -> None:
-    """``identify --law lugre``: :func:`~stickslip.analysis.lugre_fit.fit_lugre` on a CSV of
+    """``identify --law lugre``: :func:`~stickslip.analysis.identification.lugre_fit.fit_lugre` on a CSV of
     time (s), sliding velocity (m/s) and friction force (N), in that order."""
-    from stickslip.analysis.lugre_fit import fit_lugre
+    from stickslip.analysis.identification.lugre_fit import fit_lugre
     from stickslip.model.units import to_si
 
     for flag, value in given.items():

@@ -1,7 +1,7 @@
 """``stability --config`` and ``map --config`` for a machine whose friction has memory.
 
 Both judge steady sliding by its linearisation, structure and state variable together
-(:mod:`stickslip.analysis.memory_stability`): ``stability`` at the file's operating point
+(:mod:`stickslip.analysis.memory.stability`): ``stability`` at the file's operating point
 (eigenvalues with round-off bounds, the verdict, the critical stiffness and the critical
 speeds), ``map`` over a grid of drive speeds and normal loads (the growth rate of every cell).
 No simulation runs, so neither takes a horizon.
@@ -38,11 +38,11 @@ def memory_stability_command(machine_file: MachineFile, config: Path, map_plot: 
     """``stability --config`` for a law with memory: the verdict at the operating point.
 
     ``map_plot`` draws the growth rate over a decade of drive speed and normal load either side
-    of the operating point (:func:`~stickslip.analysis.memory_stability.memory_stability_map`).
+    of the operating point (:func:`~stickslip.analysis.memory.stability.memory_stability_map`).
     """
     import numpy as np
 
-    from stickslip.analysis.memory_stability import memory_stability
+    from stickslip.analysis.memory.stability import memory_stability
     from stickslip.sweep.memory_map import memory_stability_map
 
     system = memory_system(machine_file)
@@ -109,7 +109,7 @@ def memory_boundary_command(machine_file: MachineFile, config: Path, *, param: s
     """
     import math
 
-    from stickslip.analysis.memory_stability import (
+    from stickslip.analysis.memory.stability import (
         SPEED_DECADES,
         SPEED_POINTS,
         SPEED_RTOL,

@@ -223,7 +223,7 @@ def _simulate_memory_dimensionless(ctx: typer.Context, *, lam: float, zeta: floa
     dimensionless (``period``, ``amplitude``; the ``*_s`` and ``*_m`` keys are then in tau
     and ``V / omega_n``).
     """
-    from stickslip.analysis.memory_simulation import simulate_memory
+    from stickslip.analysis.memory.simulation import simulate_memory
     from stickslip.model import chain_structure
     from stickslip.model.state_friction import MemorySystem, SpeedSchedule
     from stickslip.model.state_friction_input import parse_state_friction
@@ -272,7 +272,7 @@ def _simulate_memory(ctx: typer.Context, machine_file: Any, *, t_max: str | None
     """``simulate --config`` with a friction law with memory: the smooth stiff engine, in SI."""
     import math
 
-    from stickslip.analysis.memory_simulation import simulate_memory
+    from stickslip.analysis.memory.simulation import simulate_memory
 
     _refuse_exact_engine_options(ctx, plot)
     try:

@@ -89,8 +89,8 @@ def stability(
 
 def _analyse(config: Path, mu_max: float) -> tuple[Any, Any, Any, Any, int | None]:
     """The analysis of ``config``: result, operating ranges, machine, contact, normal DOF index."""
-    from stickslip.analysis.complex_eigenvalue_maps import operating_ranges
-    from stickslip.analysis.complex_eigenvalues import complex_eigenvalue_analysis
+    from stickslip.analysis.contact.eigenvalue_maps import operating_ranges
+    from stickslip.analysis.contact.eigenvalues import complex_eigenvalue_analysis
     from stickslip.cli.machine_config import collect_inputs, config_system, load_machine_file
     from stickslip.io.machine_file import machine_from_file
     from stickslip.model.contact import NO_STABILITY_WITH_COMPLIANCE
@@ -124,8 +124,8 @@ def _speed_map(result: Any, machine: Any, contact: Any, index: int | None) -> An
     """The (mu, speed) map over a decade either side of the machine's speed."""
     import numpy as np
 
-    from stickslip.analysis.complex_eigenvalue_maps import stability_map
-    from stickslip.analysis.friction_coupling import coupled_system
+    from stickslip.analysis.contact.eigenvalue_maps import stability_map
+    from stickslip.analysis.contact.friction_coupling import coupled_system
 
     speeds = machine.speed * np.logspace(-1.0, 1.0, 25)
     systems = [coupled_system(machine, contact, normal_dof=index, speed=float(v))[0] for v in speeds]

@@ -35,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from stickslip.analysis.identification_estimates import MeasuredRecord, RecordError
+from stickslip.analysis.identification.estimates import MeasuredRecord, RecordError
 from stickslip.io.toml_file import read_toml_file
 
 ROLES: dict[str, tuple[str, str]] = {

@@ -31,12 +31,12 @@ sticks to the belt while the element's force is within ``mu_s N`` and slips at `
 This module holds the :class:`Contact` object (SI, checked at construction) and its reader
 from a TOML table, :func:`contact_from_table` (units as everywhere in machine files).
 Which commands use it: ``stickslip simulate`` (time histories with stick, slip and
-separation on the exact contact engine, :mod:`stickslip.analysis.contact_engine`; the
+separation on the exact contact engine, :mod:`stickslip.analysis.contact.engine`; the
 Jenkins element too), ``stickslip stability`` (the complex-eigenvalue analysis of steady
-sliding, :mod:`stickslip.analysis.complex_eigenvalues`; without the Jenkins element) and
+sliding, :mod:`stickslip.analysis.contact.eigenvalues`; without the Jenkins element) and
 ``stickslip cycles``, ``basin`` and ``continue`` (runs of the contact engine:
-:mod:`stickslip.analysis.contact_cycles`, :mod:`stickslip.sweep.contact_basin`,
-:mod:`stickslip.analysis.contact_continuation`). Every other command refuses such a machine in
+:mod:`stickslip.analysis.contact.cycles`, :mod:`stickslip.sweep.contact_basin`,
+:mod:`stickslip.analysis.contact.continuation`). Every other command refuses such a machine in
 one line (:data:`NOT_SUPPORTED`).
 """
 

@@ -14,7 +14,7 @@ from matplotlib.axes import Axes
 from stickslip.plot.figure import PlotResult
 
 if TYPE_CHECKING:
-    from stickslip.analysis.contact_continuation import ContactContinuation
+    from stickslip.analysis.contact.continuation import ContactContinuation
 
 #: Axis label of each parameter (mathtext, SI unit).
 PARAM_LABELS = {"speed": r"belt speed $V$ (m/s)", "load": r"preload $W$ (N)"}
@@ -35,7 +35,7 @@ def contact_continuation_plot(data: ContactContinuation, *,
     Parameters
     ----------
     data : ContactContinuation
-        From :func:`stickslip.analysis.contact_continuation.continue_contact`.
+        From :func:`stickslip.analysis.contact.continuation.continue_contact`.
     ax : Axes or pair of Axes, optional
         Two axes (period, amplitude); one axes (period, amplitude on its twin); None: a new
         figure with two panels sharing the parameter axis.

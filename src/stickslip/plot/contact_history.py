@@ -1,7 +1,7 @@
 """The time history of a machine with its contact: displacements and normal force, phases marked.
 
 The figure of :func:`contact_history_plot` draws what
-:meth:`stickslip.analysis.contact_engine.ContactRun.history` returns (the history of
+:meth:`stickslip.analysis.contact.engine.ContactRun.history` returns (the history of
 ``stickslip simulate --config ... --history-times``): the tangential displacement of the
 contact DOF (m), the normal displacement (m, when the machine has a normal DOF) and the normal
 force (N) against time (s), with the stick phases and the separations shaded. It follows the
@@ -72,7 +72,7 @@ def contact_history_plot(history: Mapping[str, Sequence[Any]], *,
     history : mapping
         ``t_s`` (s), ``tangential_m`` (m), ``normal_force_N`` (N), ``mode`` (labels) and, for a
         machine with a normal DOF, ``normal_m`` (m): the dictionary of
-        :meth:`~stickslip.analysis.contact_engine.ContactRun.history`.
+        :meth:`~stickslip.analysis.contact.engine.ContactRun.history`.
     ax : sequence of Axes, optional
         Three axes (tangential, normal, force), or two without ``normal_m``; a new figure
         when None.

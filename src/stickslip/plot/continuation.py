@@ -14,7 +14,7 @@ from stickslip.plot.figure import PlotResult, new_axes
 
 if TYPE_CHECKING:
     from stickslip.analysis.continuation import ContinuationResult
-    from stickslip.analysis.memory_continuation import MemoryContinuation
+    from stickslip.analysis.memory.continuation import MemoryContinuation
 
 #: Colour per branch kind.
 KIND_COLORS = {"stick-slip": "black", "slip-oscillation": "tab:blue"}
@@ -170,7 +170,7 @@ def memory_continuation_plot(data: MemoryContinuation, *, ax: Axes | None = None
     Parameters
     ----------
     data : MemoryContinuation
-        From :func:`stickslip.analysis.memory_continuation.continue_memory_orbits`.
+        From :func:`stickslip.analysis.memory.continuation.continue_memory_orbits`.
     ax : Axes, optional
         Axes to draw into; new figure when None.
     title : str, optional

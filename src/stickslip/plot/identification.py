@@ -12,7 +12,7 @@ from stickslip.plot.figure import PlotResult, new_grid
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-    from stickslip.analysis.identification_result import IdentificationResult
+    from stickslip.analysis.identification.result import IdentificationResult
 
 _LABELS = {"F": ("force F", "N"), "x": ("displacement x", "m"), "v": ("velocity v", "m/s")}
 

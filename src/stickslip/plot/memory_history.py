@@ -24,7 +24,7 @@ def memory_history_plot(history: Mapping[str, Sequence[float]], *, drive_speed: 
     ----------
     history : mapping
         ``t_s`` (s), ``x_m`` (m), ``slip_speed_m_s`` (m/s) and ``mu`` of
-        :class:`~stickslip.analysis.memory_simulation.MemoryResult` ``.history``.
+        :class:`~stickslip.analysis.memory.simulation.MemoryResult` ``.history``.
     drive_speed : float
         The drive speed ``V``, m/s (a dotted line in the slip-speed panel; a slip speed below
         1 % of it is shaded as quasi-stick).

@@ -16,7 +16,7 @@ from stickslip.plot.figure import PlotResult, new_axes, new_grid
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-    from stickslip.analysis.complex_eigenvalue_maps import RootLocus, StabilityMap
+    from stickslip.analysis.contact.eigenvalue_maps import RootLocus, StabilityMap
     from stickslip.sweep.memory_map import MemoryStabilityMap
 
 
@@ -31,7 +31,7 @@ def root_locus_plot(data: RootLocus, *, ax: Sequence[Axes] | None = None,
     Parameters
     ----------
     data : RootLocus
-        From :func:`stickslip.analysis.complex_eigenvalue_maps.root_locus`.
+        From :func:`stickslip.analysis.contact.eigenvalue_maps.root_locus`.
     ax : sequence of two Axes, optional
         Frequency panel, real-part panel; new figure when None.
     title : str, optional
@@ -78,7 +78,7 @@ def stability_map_plot(data: StabilityMap, *, ax: Axes | None = None, log_y: boo
     Parameters
     ----------
     data : StabilityMap
-        From :func:`stickslip.analysis.complex_eigenvalue_maps.stability_map`.
+        From :func:`stickslip.analysis.contact.eigenvalue_maps.stability_map`.
     ax : Axes, optional
         Axes to draw into; new figure when None.
     log_y : bool

@@ -1,7 +1,7 @@
 """Basin stability of a machine with its contact: a verdict of the contact engine per start.
 
 ``stickslip basin --config`` for a machine with a ``[contact]``. Each start is steady sliding
-(the slip-forward equilibrium, :func:`~stickslip.analysis.contact_cycles.steady_sliding_state`;
+(the slip-forward equilibrium, :func:`~stickslip.analysis.contact.cycles.steady_sliding_state`;
 the start-up state where it does not exist) with these entries replaced (SI, ground frame,
 displacements from where every spring is at its natural length and the contact carries the
 preload):
@@ -14,7 +14,7 @@ A box names some of these columns (an unnamed one keeps its base value); without
 default box (:func:`default_box`): ``x* +- V / omega_ref`` (the engine's length unit),
 ``v`` from ``-V`` to ``V`` and, with a normal DOF, ``y* +- 0.5 N_0 / k_n`` (half the steady
 compression of the contact spring). Each start is run to its verdict by
-:func:`~stickslip.analysis.contact_engine.simulate_contact` in a bounded pool of worker
+:func:`~stickslip.analysis.contact.engine.simulate_contact` in a bounded pool of worker
 processes; its periodic verdicts are observed (a state repeated to 1e-9), not proven. The
 fraction of starts per verdict is an estimate with the binomial standard error
 ``sqrt(p (1 - p) / n)``.
@@ -32,9 +32,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis._contact_modes import SLIP_FORWARD, ContactSystem
-from stickslip.analysis._contact_pool import ContactOutcome, run_many
-from stickslip.analysis.contact_cycles import OBSERVED, steady_sliding_state
+from stickslip.analysis.contact._modes import SLIP_FORWARD, ContactSystem
+from stickslip.analysis.contact._pool import ContactOutcome, run_many
+from stickslip.analysis.contact.cycles import OBSERVED, steady_sliding_state
 from stickslip.analysis.verdict import VERDICTS
 from stickslip.model._validate import random_seed
 

@@ -2,11 +2,11 @@
 
 A machine with a contact (a normal DOF with separation, a Jenkins element) has no
 dimensionless ``lambda`` that sums up its operating point, so each cell ``(V, W)`` is its own
-run of the exact contact engine (:func:`stickslip.analysis.contact_engine.simulate_contact`)
+run of the exact contact engine (:func:`stickslip.analysis.contact.engine.simulate_contact`)
 from the start-up state of ``system.at(speed=V, load=W)``: the verdict, the period (s), the
 amplitude (m, half the peak-to-peak displacement of the contact DOF over the period) and
 whether the contact lifted off. The runs are pure Python and spread over worker processes
-(:class:`stickslip.analysis.contact_pool.ContactPool`); their cost is that of one
+(:class:`stickslip.analysis.contact.pool.ContactPool`); their cost is that of one
 ``simulate --config`` each (milliseconds for the paper's slider on a Jenkins element,
 seconds for the brake pad near its flutter point).
 """
@@ -23,8 +23,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis._contact_modes import ContactSystem
-from stickslip.analysis.contact_pool import DEFAULT_WORKERS, ContactPool
+from stickslip.analysis.contact._modes import ContactSystem
+from stickslip.analysis.contact.pool import DEFAULT_WORKERS, ContactPool
 from stickslip.analysis.verdict import VERDICTS
 
 FloatArray = NDArray[np.float64]

@@ -3,7 +3,7 @@
 Each start is steady sliding at the drive speed with the contact DOF moved to ``x`` (m, from
 where the springs are relaxed) and given the velocity ``v`` (m/s, ground frame); the other DOFs
 and the state variable keep their steady values. Each is run by
-:func:`~stickslip.analysis.memory_simulation.simulate_memory` (the smooth stiff engine, its
+:func:`~stickslip.analysis.memory.simulation.simulate_memory` (the smooth stiff engine, its
 verdict: steady sliding linearly stable and reached, or a periodic orbit proven by shooting),
 one after the other. The fraction of starts per verdict is an estimate with the binomial
 standard error ``sqrt(p (1 - p) / n)``.
@@ -21,8 +21,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.memory_friction import steady_state
-from stickslip.analysis.memory_simulation import simulate_memory
+from stickslip.analysis.memory.friction import steady_state
+from stickslip.analysis.memory.simulation import simulate_memory
 from stickslip.analysis.verdict import VERDICTS, Verdict
 from stickslip.model._validate import random_seed
 from stickslip.model.state_friction import MemorySystem

@@ -1,6 +1,6 @@
 """The linear stability of steady sliding over drive speed and normal load, friction with memory.
 
-Each cell is the eigenvalue problem of :func:`stickslip.analysis.memory_stability.linear_spectrum`
+Each cell is the eigenvalue problem of :func:`stickslip.analysis.memory.stability.linear_spectrum`
 (the linearisation with the state variable, with round-off bounds): a small dense problem per
 cell, no simulation, so a 10^4-cell map takes seconds (``benchmarks/bench_state_friction.py``).
 """
@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.memory_stability import VERDICTS, linear_spectra, spectrum_sign
+from stickslip.analysis.memory.stability import VERDICTS, linear_spectra, spectrum_sign
 from stickslip.model.state_friction import MemorySystem
 
 FloatArray = NDArray[np.float64]

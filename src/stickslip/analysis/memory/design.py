@@ -5,12 +5,12 @@ values (Eq. 36) and a foundation tuned by Eqs. 28-30. With a law with memory (ra
 LuGre) none of those closed forms holds, so the design answers with the machine's own law:
 
 - **steady sliding**: the linearisation with the state variable
-  (:func:`~stickslip.analysis.memory_stability.memory_stability`): its verdict, the Hopf
+  (:func:`~stickslip.analysis.memory.stability.memory_stability`): its verdict, the Hopf
   stiffness, and the critical drive speeds where the growth rate changes sign, scanned over
-  :data:`~stickslip.analysis.memory_stability.SPEED_DECADES` decades either side of ``V``;
+  :data:`~stickslip.analysis.memory.stability.SPEED_DECADES` decades either side of ``V``;
 - **critical loads**: the same scan along the normal load ``N`` at the operating speed
-  (:func:`~stickslip.analysis.memory_stability.critical_loads`);
-- **two runs** at the operating point (:func:`~stickslip.analysis.memory_simulation.simulate_memory`):
+  (:func:`~stickslip.analysis.memory.stability.critical_loads`);
+- **two runs** at the operating point (:func:`~stickslip.analysis.memory.simulation.simulate_memory`):
   one from the start stuck to the drive (kick ``F = -1``: the slider moves with the drive
   while its position and state are those of steady sliding, the analogue of the paper's
   start-up, from stick) and one from steady sliding nudged off it (kick :data:`NUDGE`). A
@@ -29,8 +29,8 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from stickslip.analysis.memory_simulation import MemoryResult, simulate_memory
-from stickslip.analysis.memory_stability import (
+from stickslip.analysis.memory.simulation import MemoryResult, simulate_memory
+from stickslip.analysis.memory.stability import (
     SPEED_DECADES,
     SPEED_POINTS,
     MemoryStability,
@@ -162,7 +162,7 @@ def memory_design(system: MemorySystem, *, t_max: float | None = None) -> Memory
         Structure, load, law and drive speed (SI).
     t_max : float, optional
         Length of each run, s (default
-        :func:`~stickslip.analysis.memory_simulation.default_horizon`).
+        :func:`~stickslip.analysis.memory.simulation.default_horizon`).
 
     Returns
     -------

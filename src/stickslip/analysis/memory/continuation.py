@@ -3,16 +3,16 @@
 The bifurcation diagram of ``stickslip continue --config`` for rate-and-state and LuGre:
 
 * **Hopf points**: the speeds where steady sliding changes stability, from its linearisation
-  with the state variable (:func:`stickslip.analysis.memory_stability.critical_speeds`, bisected
+  with the state variable (:func:`stickslip.analysis.memory.stability.critical_speeds`, bisected
   to 1e-10), with the growth rate along the range.
 * **Branches**: orbits found by runs from kicked steady sliding
-  (:func:`~stickslip.analysis.memory_cycle_search.find_memory_cycles`) at :data:`SEED_POINTS`
+  (:func:`~stickslip.analysis.memory.cycle_search.find_memory_cycles`) at :data:`SEED_POINTS`
   speeds of the range, and the orbit born at each Hopf point that no such branch reached
-  (:func:`~stickslip.analysis.memory_arclength.hopf_seed`: shooting from the critical
+  (:func:`~stickslip.analysis.memory.arclength.hopf_seed`: shooting from the critical
   eigenvector just beside the Hopf point; at a subcritical Hopf point this is the *unstable*
   orbit that bounds the basin of steady sliding). Each is continued both ways by
   pseudo-arclength steps in ``(orbit, ln V)``
-  (:mod:`stickslip.analysis.memory_arclength`), which pass folds (named with their speed). A
+  (:mod:`stickslip.analysis.memory.arclength`), which pass folds (named with their speed). A
   failed step is halved; after a success the step grows by 1.5 up to :data:`MAX_STEP` of the
   range. A branch stops at the range's end, or where the step falls below :data:`MIN_STEP` of
   the range: where the orbit shrinks into a Hopf point, or turns sharper than the smallest
@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.memory_arclength import (
+from stickslip.analysis.memory.arclength import (
     FOLD_MIN_SIZE,
     SectionOrbit,
     arclength_step,
@@ -44,15 +44,15 @@ from stickslip.analysis.memory_arclength import (
     hopf_seed,
     tangent_at,
 )
-from stickslip.analysis.memory_cycle_search import find_memory_cycles
-from stickslip.analysis.memory_cycles import PeriodicOrbit, shoot_cycle
-from stickslip.analysis.memory_friction import (
+from stickslip.analysis.memory.cycle_search import find_memory_cycles
+from stickslip.analysis.memory.cycles import PeriodicOrbit, shoot_cycle
+from stickslip.analysis.memory.friction import (
     integrate_run,
     observables,
     state_scales,
     steady_state,
 )
-from stickslip.analysis.memory_stability import critical_speeds, growth_rate
+from stickslip.analysis.memory.stability import critical_speeds, growth_rate
 from stickslip.model.state_friction import MemorySystem, SpeedSchedule
 
 FloatArray = NDArray[np.float64]

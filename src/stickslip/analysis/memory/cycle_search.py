@@ -1,10 +1,10 @@
 """The periodic motions a machine with friction with memory settles on, from many starts.
 
-Each start is a run of :func:`~stickslip.analysis.memory_simulation.simulate_memory`: steady
+Each start is a run of :func:`~stickslip.analysis.memory.simulation.simulate_memory`: steady
 sliding at the drive speed with the contact kicked to move at ``-F V`` (``F`` in
 :data:`DEFAULT_KICKS`: ``-1`` starts stuck to the drive, large ``F`` throws it forward). A run
 that settles on a periodic orbit has it proven by Newton shooting on the section ``q_c' = 0``
-with its Floquet multipliers (:func:`~stickslip.analysis.memory_cycles.shoot_cycle`); the
+with its Floquet multipliers (:func:`~stickslip.analysis.memory.cycles.shoot_cycle`); the
 distinct orbits are listed (periods within 1e-6, amplitudes within 1e-5 relative are one), with
 the kicks that reach each, and so are the starts that end in steady sliding.
 
@@ -19,7 +19,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from stickslip.analysis.memory_simulation import MemoryResult, simulate_memory
+from stickslip.analysis.memory.simulation import MemoryResult, simulate_memory
 from stickslip.analysis.verdict import Verdict
 from stickslip.model.state_friction import MemorySystem
 

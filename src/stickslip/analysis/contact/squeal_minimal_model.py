@@ -30,7 +30,7 @@ damping that is unequal between the two modes can lower it (Hoffmann and Gaul 20
 of damping on mode-coupling instability in friction induced oscillations", ZAMM 83,
 524-534), the destabilising effect of damping.
 
-Its linearisation is that of :mod:`stickslip.analysis.complex_eigenvalues` with ``M = m I``
+Its linearisation is that of :mod:`stickslip.analysis.contact.eigenvalues` with ``M = m I``
 and this ``K``; the tests check that analysis's critical ``mu`` against
 :func:`hoffmann_critical_mu`.
 """

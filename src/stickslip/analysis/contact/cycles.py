@@ -2,7 +2,7 @@ r"""The attractors of a machine with its contact, reached from a few determinist
 
 ``stickslip cycles --config`` for a machine with a ``[contact]`` (normal DOF, separation, a
 Jenkins element). Each start is one run of the exact contact engine
-(:func:`~stickslip.analysis.contact_engine.simulate_contact`) to its verdict. The starts
+(:func:`~stickslip.analysis.contact.engine.simulate_contact`) to its verdict. The starts
 (:func:`contact_starts`, always 8):
 
 * the **start-up** state (every spring at its natural length, the contact preloaded, moving
@@ -44,9 +44,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis._contact_modes import SLIP_FORWARD, ContactSystem
-from stickslip.analysis._contact_pool import ContactOutcome, run_many
-from stickslip.analysis.contact_engine import simulate_contact
+from stickslip.analysis.contact._modes import SLIP_FORWARD, ContactSystem
+from stickslip.analysis.contact._pool import ContactOutcome, run_many
+from stickslip.analysis.contact.engine import simulate_contact
 
 FloatArray = NDArray[np.float64]
 

@@ -128,7 +128,7 @@ class FitParameter:
 
 @dataclass(frozen=True)
 class IdentificationResult:
-    """Outcome of :func:`stickslip.analysis.identification.identify`.
+    """Outcome of :func:`stickslip.analysis.identification.record_fit.identify`.
 
     Attributes
     ----------
@@ -184,7 +184,7 @@ class IdentificationResult:
     bootstrap: int = 0
     table_visited: tuple[bool, ...] = ()
     warnings: tuple[str, ...] = ()
-    window: str = ""  # the part of a long record fitted (analysis.identification.fit_window)
+    window: str = ""  # the part of a long record fitted (analysis.identification.record_fit.fit_window)
 
     # ------------------------------------------------------------------ values
     def values(self) -> dict[str, float]:

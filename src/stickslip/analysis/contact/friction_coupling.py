@@ -77,10 +77,10 @@ roots merge at a stationary point of ``g``: ``g'(\lambda^*) = 0``, found between
 merging roots (a sign change of ``g'``), and ``\mu^* = -1 / (k_n g(\lambda^*))``.
 
 The analysis of a machine file (eigenvalues, verdict, both critical coefficients) is
-:func:`stickslip.analysis.complex_eigenvalues.complex_eigenvalue_analysis`; the minimal model
+:func:`stickslip.analysis.contact.eigenvalues.complex_eigenvalue_analysis`; the minimal model
 of Hoffmann et al. (2002), whose undamped flutter boundary has a closed form, is
-:mod:`stickslip.analysis.squeal_minimal_model`; root loci and maps over (mu, speed) or
-(mu, load) are :mod:`stickslip.analysis.complex_eigenvalue_maps`.
+:mod:`stickslip.analysis.contact.squeal_minimal_model`; root loci and maps over (mu, speed) or
+(mu, load) are :mod:`stickslip.analysis.contact.eigenvalue_maps`.
 """
 
 from __future__ import annotations

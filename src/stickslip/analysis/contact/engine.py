@@ -34,7 +34,7 @@ Friction (Coulomb, ``mu_s > mu_k``)
 Every mode (stick, slip forward, slip backward, separation) is affine in the state,
 ``z' = A z + c``, and is solved exactly with the matrix exponential of the augmented system.
 Events are found on the exact flow by the graze-proof search of
-:mod:`stickslip.analysis._contact_events`; their kinds: ``breakaway forward`` and ``breakaway
+:mod:`stickslip.analysis.contact._events`; their kinds: ``breakaway forward`` and ``breakaway
 backward`` (``F = +-mu_s N`` in stick), ``belt speed`` (``v_r = 0`` in slip: stick when the
 stick force is within ``mu_s N``, else slip the other way), ``lift-off`` (``N = 0``),
 ``re-contact`` (the spring compressed again), ``re-contact by the damper`` (``N``
@@ -66,8 +66,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis._contact_events import Found, Settled, first_event
-from stickslip.analysis._contact_modes import (
+from stickslip.analysis.blas_threads import one_blas_thread
+from stickslip.analysis.contact._events import Found, Settled, first_event
+from stickslip.analysis.contact._modes import (
     MODE_LABELS,
     SLIP_BACKWARD,
     SLIP_FORWARD,
@@ -75,7 +76,6 @@ from stickslip.analysis._contact_modes import (
     ContactSystem,
     ModeSystem,
 )
-from stickslip.analysis.blas_threads import one_blas_thread
 from stickslip.analysis.verdict import Verdict
 
 if TYPE_CHECKING:

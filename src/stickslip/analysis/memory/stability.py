@@ -1,7 +1,7 @@
 """Stability of steady sliding with friction with memory: verdict, critical stiffness and speeds, maps.
 
 Steady sliding at the drive speed ``V`` is the equilibrium ``y_ss`` of
-``y' = f(y)`` (:func:`~stickslip.analysis.memory_friction.steady_state`): the contact at rest
+``y' = f(y)`` (:func:`~stickslip.analysis.memory.friction.steady_state`): the contact at rest
 relative to the ground, the springs holding the steady friction force, the state variable at
 its steady value. Its linearisation ``delta' = J delta`` with the exact Jacobian ``J = df/dy``
 (:func:`stickslip.kernel.stiff.jacobian`; structure *and* state variable) decides
@@ -11,12 +11,12 @@ decides nothing: *neutral*, never rounded to either side.
 
 Round-off bound. ``J`` mixes positions (m), velocities (m/s) and the state (``psi`` or the
 bristle deflection), so it is balanced first: ``D^-1 J D`` with ``D`` the natural scales of
-the components (:func:`~stickslip.analysis.memory_friction.state_scales`), the same eigenvalues;
+the components (:func:`~stickslip.analysis.memory.friction.state_scales`), the same eigenvalues;
 each eigenvalue then carries the first-order bound of
-:func:`~stickslip.analysis.friction_coupling.bounded_eigenvalues`.
+:func:`~stickslip.analysis.contact.friction_coupling.bounded_eigenvalues`.
 
 Critical values. The Hopf boundary in stiffness is
-:func:`~stickslip.analysis.memory_friction.hopf_stiffness` (for the 1-DOF rate-and-state slider it
+:func:`~stickslip.analysis.memory.friction.hopf_stiffness` (for the 1-DOF rate-and-state slider it
 equals Rice and Ruina's ``k_c = N (b - a)/d_c (1 + m V^2/(N a d_c))``). In speed, the growth rate
 ``g(V) = max Re eig J(V)`` is scanned on a logarithmic grid (:data:`SPEED_DECADES` either side of
 ``V``, :data:`SPEED_POINTS` points) and every sign change is bisected to :data:`SPEED_RTOL`:
@@ -38,8 +38,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.friction_coupling import bounded_eigenvalues
-from stickslip.analysis.memory_friction import (
+from stickslip.analysis.contact.friction_coupling import bounded_eigenvalues
+from stickslip.analysis.memory.friction import (
     hopf_stiffness,
     kernel_system,
     rice_ruina_critical_stiffness,

@@ -4,7 +4,7 @@ What finite-element codes call CEA: linearise the equations of motion about stea
 where the friction force depends on the normal force and the normal force on the motion, and
 read stability from the eigenvalues (in 1/s: frequencies in Hz, damping ratios). The
 equations, their signs and units, and the search for the critical friction coefficient are
-derived in :mod:`stickslip.analysis.friction_coupling`; this module applies them to a
+derived in :mod:`stickslip.analysis.contact.friction_coupling`; this module applies them to a
 :class:`~stickslip.model.machine.Machine` and its :class:`~stickslip.model.contact.Contact`
 (``stickslip stability --config machine.toml``).
 """
@@ -19,8 +19,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from stickslip.analysis.blas_threads import one_blas_thread
-from stickslip.analysis.complex_eigenvalue_maps import RootLocus, root_locus
-from stickslip.analysis.friction_coupling import (
+from stickslip.analysis.contact.eigenvalue_maps import RootLocus, root_locus
+from stickslip.analysis.contact.friction_coupling import (
     MU_MAX,
     N_SCAN,
     CriticalFriction,

@@ -1,6 +1,6 @@
 """The first event on an exact affine flow ``z' = A z + c``, found so that no root is skipped.
 
-A phase of :mod:`stickslip.analysis.contact_engine` is one linear mode: its solution is
+A phase of :mod:`stickslip.analysis.contact.engine` is one linear mode: its solution is
 ``z(t) = E(t) z_0 + d(t)`` with ``[[E, d], [0, 1]] = expm([[A, c], [0, 0]] t)``, exact but for
 rounding. Its events are affine functions ``g(z) = a . z + b`` that are positive while the mode
 holds; the event is the first time one reaches zero.

@@ -18,7 +18,7 @@ so ``mu_ref`` is the friction of steady sliding there.
 The fit. The unknowns are ``a``, ``b``, ``d_c`` (positive; fitted as logarithms) and
 ``mu_ref``; the run starts from steady sliding at the first speed. The model is the stiff
 engine's run of the quasi-static slider through the steps
-(:func:`~stickslip.analysis.memory_friction.integrate_run`, ``rtol`` :data:`FIT_RTOL`), sampled
+(:func:`~stickslip.analysis.memory.friction.integrate_run`, ``rtol`` :data:`FIT_RTOL`), sampled
 at the record's times; the residuals ``mu_model - mu`` are minimised by
 ``scipy.optimize.least_squares`` (trust-region reflective, finite-difference Jacobian) from
 :data:`STARTS` first guesses, the best kept. Standard errors are those of the linearised
@@ -37,8 +37,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.fit_statistics import checked_record, linearised_errors
-from stickslip.analysis.memory_friction import integrate_run
+from stickslip.analysis.identification.fit_statistics import checked_record, linearised_errors
+from stickslip.analysis.memory.friction import integrate_run
 from stickslip.model.state_friction import MemorySystem, RateStateFriction, SpeedSchedule
 
 FloatArray = NDArray[np.float64]

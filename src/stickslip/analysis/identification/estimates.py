@@ -19,7 +19,7 @@ Everything that is exact about a stick phase is used to start the fit:
   and stick-onset forces is ``mu_k W`` and the slip duration gives ``omega = sqrt(k / m)``.
 
 These are starting values, not answers: the least-squares fit of
-:mod:`stickslip.analysis.identification` refines them against the exact engine.
+:mod:`stickslip.analysis.identification.record_fit` refines them against the exact engine.
 """
 
 from __future__ import annotations

@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.memory_friction import (
+from stickslip.analysis.memory.friction import (
     DEFAULT_RTOL,
     MAX_STEPS,
     FloatArray,

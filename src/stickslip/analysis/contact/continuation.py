@@ -30,9 +30,9 @@ from typing import Any
 
 import numpy as np
 
-from stickslip.analysis._contact_modes import ContactSystem
-from stickslip.analysis._contact_pool import ContactOutcome, run_many, run_one
-from stickslip.analysis.contact_cycles import OBSERVED
+from stickslip.analysis.contact._modes import ContactSystem
+from stickslip.analysis.contact._pool import ContactOutcome, run_many, run_one
+from stickslip.analysis.contact.cycles import OBSERVED
 
 #: The parameters and their units.
 PARAMETERS = {"speed": "m/s", "load": "N"}

@@ -2,10 +2,10 @@
 
 :func:`simulate_memory` runs a :class:`~stickslip.model.state_friction.MemorySystem` from steady
 sliding at the first drive speed (or kicked off it) through its speed schedule on the smooth
-stiff engine and judges it at the last speed (see :mod:`stickslip.analysis.memory_friction`):
+stiff engine and judges it at the last speed (see :mod:`stickslip.analysis.memory.friction`):
 ``steady-sliding`` when steady sliding is linearly stable and the run ends within
 :data:`STEADY_TOLERANCE` of it; ``stick-slip`` or ``slip-oscillation`` when Newton shooting
-(:mod:`stickslip.analysis.memory_cycles`) from the run's last section crossing converges to a
+(:mod:`stickslip.analysis.memory.cycles`) from the run's last section crossing converges to a
 periodic orbit whose nontrivial Floquet multipliers lie inside the unit circle (stick-slip when
 the slip speed falls below :data:`QUASI_STICK` times the drive speed: a quasi-stick phase);
 otherwise ``undetermined``, with the reason.
@@ -19,8 +19,8 @@ from typing import Any
 
 import numpy as np
 
-from stickslip.analysis.memory_cycles import PeriodicOrbit, shoot_cycle
-from stickslip.analysis.memory_friction import (
+from stickslip.analysis.memory.cycles import PeriodicOrbit, shoot_cycle
+from stickslip.analysis.memory.friction import (
     DEFAULT_RTOL,
     FloatArray,
     SteadySliding,

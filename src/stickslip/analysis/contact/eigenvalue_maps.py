@@ -1,10 +1,10 @@
 """Stability of steady sliding over two parameters: (mu, speed), (mu, load) or (mu, any).
 
-Speed and load enter the linearisation of :mod:`stickslip.analysis.friction_coupling` only
+Speed and load enter the linearisation of :mod:`stickslip.analysis.contact.friction_coupling` only
 through the friction law's slope term ``mu'(V) N_0`` on the tangential DOF: with the Coulomb
 law (``mu' = 0``) steady sliding's eigenvalues depend on neither, and a map over speed is
 the same at every speed. A structural parameter changes the matrices themselves: build one
-:class:`~stickslip.analysis.friction_coupling.FrictionCoupledSystem` per value.
+:class:`~stickslip.analysis.contact.friction_coupling.FrictionCoupledSystem` per value.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from stickslip.analysis.blas_threads import one_blas_thread
-from stickslip.analysis.friction_coupling import (
+from stickslip.analysis.contact.friction_coupling import (
     MU_MAX,
     FrictionCoupledSystem,
     coupled_system,

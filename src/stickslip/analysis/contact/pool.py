@@ -1,6 +1,6 @@
 """Many contact-engine runs of one machine at other operating points, in a bounded process pool.
 
-The contact engine (:func:`stickslip.analysis.contact_engine.simulate_contact`) is pure Python
+The contact engine (:func:`stickslip.analysis.contact.engine.simulate_contact`) is pure Python
 and holds the GIL, so its runs are spread over worker *processes* (:data:`START_METHOD`), each
 running one operating point after another. A batch of one run, or a pool of one worker, runs
 in this process instead. The workers ignore SIGINT:
@@ -24,7 +24,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from stickslip.analysis._contact_modes import ContactSystem
+from stickslip.analysis.contact._modes import ContactSystem
 from stickslip.analysis.verdict import Verdict
 
 #: Most runs of one call (each is a full contact-engine run).
@@ -80,7 +80,7 @@ def run_point(system: ContactSystem, speed: float, load: float, t_max: float | N
         Belt speed (m/s) and preload (N), positive.
     t_max : float, optional
         Horizon in natural times ``1 / omega_ref`` of the contact DOF (default that of
-        :func:`~stickslip.analysis.contact_engine.simulate_contact`, 5000).
+        :func:`~stickslip.analysis.contact.engine.simulate_contact`, 5000).
     max_events : int
         Bound on mode switches.
 
@@ -89,7 +89,7 @@ def run_point(system: ContactSystem, speed: float, load: float, t_max: float | N
     ContactPoint
         The verdict, period (s), amplitude (m) and separation.
     """
-    from stickslip.analysis.contact_engine import simulate_contact
+    from stickslip.analysis.contact.engine import simulate_contact
 
     moved = system.at(speed=speed, load=load)
     horizon = None if t_max is None else t_max / moved.omega_ref

@@ -11,7 +11,7 @@ divided by the state's scales at the step's first speed (:func:`state_scales`), 
 Equations ``r(u) = (P(y, V) - y) / scale`` over the same components (``P`` the return map;
 its contact-velocity component is 0 on the section). Their Jacobian is ``[A | b]`` with
 ``A = (I - f g^T / (g . f)) Phi(T) - I`` (the return time's variation projected out, as in
-:func:`~stickslip.analysis.memory_cycles.shoot_cycle`) restricted to those components, and
+:func:`~stickslip.analysis.memory.cycles.shoot_cycle`) restricted to those components, and
 ``b = dr/dp`` by a forward difference of the return map in ``p`` (step :data:`DP`). The tangent
 ``t`` is the null vector of ``[A | b]`` (the last right singular vector), oriented along the
 previous one. A step predicts ``u + h t`` and corrects by Newton on ``r(u) = 0``,
@@ -34,7 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.memory_cycles import (
+from stickslip.analysis.memory.cycles import (
     MIN_ORBIT_SIZE,
     SHOOTING_TOLERANCE,
     PeriodicOrbit,
@@ -42,7 +42,7 @@ from stickslip.analysis.memory_cycles import (
     return_map,
     shoot_cycle,
 )
-from stickslip.analysis.memory_friction import kernel_system, state_scales, steady_state
+from stickslip.analysis.memory.friction import kernel_system, state_scales, steady_state
 from stickslip.kernel import stiff
 from stickslip.model.state_friction import MemorySystem
 
@@ -238,7 +238,7 @@ def hopf_seed(system_at: Callable[[float], MemorySystem], speed: float
     ``Re(phi_c e^{i theta}) = 0`` crossing upwards, scaled so that the contact's velocity
     oscillates by a share of ``V`` (:data:`HOPF_AMPLITUDES`: the linear regime needs it below
     ``V``, or the slip speed reverses). Newton shooting
-    (:func:`~stickslip.analysis.memory_cycles.shoot_cycle`) from that guess is tried at
+    (:func:`~stickslip.analysis.memory.cycles.shoot_cycle`) from that guess is tried at
     :data:`HOPF_OFFSETS` on both sides and :data:`HOPF_AMPLITUDES`, the first orbit that is
     not steady sliding kept.
 

@@ -2,7 +2,7 @@
 
 One :class:`FitProblem` per friction law holds the record, what is known and what is free,
 and evaluates the weighted residuals of the whole signal through the exact engine (multiple
-shooting over the record's segments, see :mod:`stickslip.analysis.identification`, whose
+shooting over the record's segments, see :mod:`stickslip.analysis.identification.record_fit`, whose
 docstring gives the method). Split from that module, which runs the fits and reports them.
 """
 
@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 from scipy.optimize import least_squares
 from scipy.signal import savgol_filter
 
-from stickslip.analysis.identification_estimates import (
+from stickslip.analysis.identification.estimates import (
     MeasuredRecord,
     RecordEstimates,
 )

@@ -9,14 +9,14 @@ output) integrates a :class:`~stickslip.model.state_friction.MemorySystem`. Verd
   bisection on the eigenvalues (no simulation). For the 1-DOF slider with rate-and-state
   friction it is Rice and Ruina's (1983) critical stiffness, :func:`rice_ruina_critical_stiffness`.
   A run is called ``steady-sliding`` when steady sliding is linearly stable and the run ends
-  within :data:`~stickslip.analysis.memory_simulation.STEADY_TOLERANCE` (relative, every
+  within :data:`~stickslip.analysis.memory.simulation.STEADY_TOLERANCE` (relative, every
   component) of it.
 * **cycles**: a periodic orbit is a fixed point of the return map to the Poincare section
   ``q_c' = 0`` crossed upwards. It is found by Newton shooting from the run's last crossing,
   with the map's Jacobian from the variational equations integrated with the orbit; the
   Floquet multipliers are the eigenvalues of the monodromy matrix ``Phi(T)``
-  (:mod:`stickslip.analysis.memory_cycles`). A stable cycle is the run's verdict
-  (:mod:`stickslip.analysis.memory_simulation`): ``stick-slip`` with a quasi-stick phase, else
+  (:mod:`stickslip.analysis.memory.cycles`). A stable cycle is the run's verdict
+  (:mod:`stickslip.analysis.memory.simulation`): ``stick-slip`` with a quasi-stick phase, else
   ``slip-oscillation``.
 * otherwise ``undetermined``, with the reason.
 

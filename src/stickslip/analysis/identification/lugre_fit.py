@@ -16,7 +16,7 @@ The fit. The unknowns are ``sigma0`` (N/m), ``sigma1``, ``sigma2`` (N s/m), ``F_
 (N, ``F_s >= F_c``) and ``v_s`` (m/s), fitted as logarithms (``F_s - F_c`` too) by
 ``scipy.optimize.least_squares`` from :data:`SIGMA0_STARTS` first guesses of ``sigma0``, the
 best kept. Standard errors are those of the linearised problem (as for the rate-and-state
-fit, :mod:`stickslip.analysis.rate_state_fit`); a parameter whose standard error exceeds its
+fit, :mod:`stickslip.analysis.identification.rate_state_fit`); a parameter whose standard error exceeds its
 value is *undetermined*, and so are ``sigma0`` and ``sigma1`` whenever the velocity never
 reverses (no pre-sliding): the standard errors are local, and without a reversal other
 bristle parameters fit the record to its noise while their local errors look small. With the
@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.fit_statistics import checked_record, linearised_errors
+from stickslip.analysis.identification.fit_statistics import checked_record, linearised_errors
 from stickslip.kernel.lugre_response import lugre_force
 
 FloatArray = NDArray[np.float64]

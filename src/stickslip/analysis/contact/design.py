@@ -2,7 +2,7 @@
 
 The paper's closed forms (Eq. 36) and its foundation tuning (Eqs. 28-30) assume a rigid
 contact under a constant normal load. With a contact the design answers by the contact
-engine (:func:`~stickslip.analysis.contact_engine.simulate_contact`) for each variant of the
+engine (:func:`~stickslip.analysis.contact.engine.simulate_contact`) for each variant of the
 machine (the machine as given; for the paper's slider also the rigid base and the foundation,
 given or recommended by Eqs. 28-30 for the rigid contact, then assessed with the contact):
 
@@ -10,7 +10,7 @@ given or recommended by Eqs. 28-30 for the rigid contact, then assessed with the
   contact lifted off (observed, not proven, as the engine says);
 - the **critical belt speed and load**: every change of the start-up verdict along the speed
   (the load held) and along the load (the speed held), over :data:`DECADES` decade either side
-  of the operating point (:func:`~stickslip.analysis.contact_boundary.contact_boundary`: a scan
+  of the operating point (:func:`~stickslip.analysis.contact.boundary.contact_boundary`: a scan
   and bisection to :data:`RTOL`; a change next to an undetermined run is never a boundary).
 
 Steady sliding's complex-eigenvalue analysis (machines with a normal DOF) is the caller's:
@@ -23,10 +23,10 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from stickslip.analysis._contact_modes import ContactSystem
-from stickslip.analysis.contact_boundary import ContactBoundary, contact_boundary
-from stickslip.analysis.contact_engine import ContactRun, simulate_contact
-from stickslip.analysis.contact_pool import DEFAULT_WORKERS
+from stickslip.analysis.contact._modes import ContactSystem
+from stickslip.analysis.contact.boundary import ContactBoundary, contact_boundary
+from stickslip.analysis.contact.engine import ContactRun, simulate_contact
+from stickslip.analysis.contact.pool import DEFAULT_WORKERS
 
 #: Decades of speed and load either side of the operating point searched for verdict changes.
 DECADES = 1.0

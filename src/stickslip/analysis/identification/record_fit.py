@@ -45,13 +45,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from stickslip.analysis.blas_threads import blas_limited
-from stickslip.analysis.identification_estimates import (
+from stickslip.analysis.identification.estimates import (
     MeasuredRecord,
     RecordError,
     RecordEstimates,
     estimate,
 )
-from stickslip.analysis.identification_problem import (
+from stickslip.analysis.identification.problem import (
     LAW_PARAMETERS,
     FitProblem,
     build_problem,
@@ -59,7 +59,7 @@ from stickslip.analysis.identification_problem import (
     solve_fit,
     two_sided_jacobian,
 )
-from stickslip.analysis.identification_result import (
+from stickslip.analysis.identification.result import (
     PARAMETER_UNITS,
     UNDETERMINED_RULE,
     FitParameter,
@@ -106,7 +106,7 @@ MAX_FIT_PERIODS = 30
 MAX_FIT_SAMPLES = 20_000
 MIN_KEPT_PER_PERIOD = 200
 #: The residuals are judged against the record's own noise (the weights are one over each
-#: channel's white-noise level, :func:`~stickslip.analysis.identification_estimates.noise_level`),
+#: channel's white-noise level, :func:`~stickslip.analysis.identification.estimates.noise_level`),
 #: so a model that describes the record has a reduced chi-square near 1. Above this one (the
 #: residuals twice the noise) the result carries a warning that the model does not describe
 #: the record.
@@ -118,7 +118,7 @@ MISMATCH_CHI2 = 4.0
 REFUSE_CHI2 = 100.0
 NOISE_FLOOR = 1e-5
 #: A stated mass beyond this factor of the mass the record's slip phases imply
-#: (``k / omega^2``, :class:`~stickslip.analysis.identification_estimates.RecordEstimates`) is
+#: (``k / omega^2``, :class:`~stickslip.analysis.identification.estimates.RecordEstimates`) is
 #: flagged: the slip phases of a 1 kg slider last 1000**0.5 times less than those of 1000 kg.
 MASS_FACTOR = 10.0
 

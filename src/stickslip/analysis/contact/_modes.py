@@ -1,6 +1,6 @@
 """The modes of a machine with its contact as affine systems ``z' = A z + c`` (SI units).
 
-The equations are those of :mod:`stickslip.analysis.contact_engine` (its docstring). Every
+The equations are those of :mod:`stickslip.analysis.contact.engine` (its docstring). Every
 quantity that the modes need (the normal force, the friction force, the relative velocity,
 the event functions) is affine in the state and kept here as a row ``r`` of length
 ``d + 1``: its value at ``z`` is ``r[:d] . z + r[d]``.
@@ -17,7 +17,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis._contact_events import AffineFlow
+from stickslip.analysis.contact._events import AffineFlow
 
 FloatArray = NDArray[np.float64]
 
@@ -74,7 +74,7 @@ def _value(row: FloatArray, z: FloatArray) -> float:
 
 @dataclass(frozen=True)
 class ContactSystem:
-    """A machine with its contact, in SI units (see :mod:`stickslip.analysis.contact_engine`).
+    """A machine with its contact, in SI units (see :mod:`stickslip.analysis.contact.engine`).
 
     Parameters
     ----------

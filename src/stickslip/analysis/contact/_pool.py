@@ -1,8 +1,8 @@
 """Many runs of the contact engine, in a bounded pool of worker processes, summarised.
 
-The engine (:func:`~stickslip.analysis.contact_engine.simulate_contact`) is pure Python and
+The engine (:func:`~stickslip.analysis.contact.engine.simulate_contact`) is pure Python and
 holds the GIL, so independent runs go to worker processes
-(:class:`~stickslip.analysis.contact_pool.WorkerPool`, the contact commands' one pool: its
+(:class:`~stickslip.analysis.contact.pool.WorkerPool`, the contact commands' one pool: its
 workers ignore SIGINT, and a Ctrl-C in the parent ends them before the ``KeyboardInterrupt``
 goes on; the command line prints one line, exit 130). Each run comes back as a small
 picklable :class:`ContactOutcome` (not the whole run, whose mode cache is large).
@@ -17,9 +17,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis._contact_modes import STICK, ContactSystem
-from stickslip.analysis.contact_engine import ContactRun, simulate_contact
-from stickslip.analysis.contact_pool import WorkerPool
+from stickslip.analysis.contact._modes import STICK, ContactSystem
+from stickslip.analysis.contact.engine import ContactRun, simulate_contact
+from stickslip.analysis.contact.pool import WorkerPool
 
 FloatArray = NDArray[np.float64]
 
@@ -101,7 +101,7 @@ def run_many(jobs: Sequence[tuple[ContactSystem, FloatArray | None]], *,
 
     ``workers = 1`` runs in this process. With more, the first job runs here and is timed: when
     the others would take longer than ``pool_threshold`` seconds here, they go to the worker
-    processes of :class:`~stickslip.analysis.contact_pool.WorkerPool` (at most one per job),
+    processes of :class:`~stickslip.analysis.contact.pool.WorkerPool` (at most one per job),
     else they run here too (cheap runs: a pool would cost more to start than it saves).
     ``progress(done, total)`` after each run.
     """

@@ -2,7 +2,7 @@
 
 A machine with a contact (a normal DOF, separation, a Jenkins element) has no closed-form
 boundary: the start-up verdict of the contact engine
-(:func:`stickslip.analysis.contact_engine.simulate_contact`) is computed along one operating
+(:func:`stickslip.analysis.contact.engine.simulate_contact`) is computed along one operating
 parameter, the belt speed ``V`` (m/s) or the preload ``W`` (N), the other held at the
 machine's own value. The search:
 
@@ -19,7 +19,7 @@ machine's own value. The search:
 Each crossing is the bracket ``[a, b]`` with the verdict at ``a`` (``below``) and at ``b``
 (``above``); a boundary's value is the bracket's geometric midpoint. The midpoints of all open
 brackets of a round run together, in the process pool of
-:func:`stickslip.analysis.contact_pool.run_points`. A verdict change narrower than a scan
+:func:`stickslip.analysis.contact.pool.run_points`. A verdict change narrower than a scan
 step (two changes between neighbouring scan values) is not seen.
 """
 
@@ -33,8 +33,8 @@ from typing import Any
 
 import numpy as np
 
-from stickslip.analysis._contact_modes import ContactSystem
-from stickslip.analysis.contact_pool import DEFAULT_WORKERS, ContactPoint, ContactPool
+from stickslip.analysis.contact._modes import ContactSystem
+from stickslip.analysis.contact.pool import DEFAULT_WORKERS, ContactPoint, ContactPool
 from stickslip.analysis.verdict import Verdict
 
 #: The operating parameters and their SI units.
@@ -173,7 +173,7 @@ def contact_boundary(system: ContactSystem, param: str, lo: float, hi: float, *,
     rtol : float
         Each boundary's bracket ends within ``hi / lo <= 1 + rtol``.
     workers : int
-        Worker processes (:func:`~stickslip.analysis.contact_pool.run_points`).
+        Worker processes (:func:`~stickslip.analysis.contact.pool.run_points`).
     t_max : float, optional
         Horizon of each run in natural times of the contact DOF (default 5000).
     max_events : int
