@@ -72,6 +72,17 @@ _EXPORTS: dict[str, str] = {
     "simulate_memory": "stickslip.analysis.memory.simulation",
     "hopf_stiffness": "stickslip.analysis.memory.friction",
     "rice_ruina_critical_stiffness": "stickslip.analysis.memory.friction",
+    "memory_stability": "stickslip.analysis.memory.stability",
+    "MemoryStability": "stickslip.analysis.memory.stability",
+    "find_memory_cycles": "stickslip.analysis.memory.cycle_search",
+    # the contact itself: normal-load coupling, separation, complex eigenvalues, compliance
+    "Machine": "stickslip.model.machine",
+    "Contact": "stickslip.model.contact",
+    "contact_system": "stickslip.analysis.contact.engine",
+    "simulate_contact": "stickslip.analysis.contact.engine",
+    "ContactRun": "stickslip.analysis.contact.engine",
+    "find_contact_cycles": "stickslip.analysis.contact.cycles",
+    "complex_eigenvalue_analysis": "stickslip.analysis.contact.eigenvalues",
     "EngineOptions": "stickslip.analysis.simulation",
     "SimulationResult": "stickslip.analysis.simulation",
     "TimeHistory": "stickslip.analysis.simulation",
@@ -159,6 +170,8 @@ __all__ = [
     "BasinMap",
     "BasinResult",
     "BoundaryResult",
+    "Contact",
+    "ContactRun",
     "ContinuationResult",
     "CoulombFriction",
     "Crossing",
@@ -173,9 +186,11 @@ __all__ = [
     "InitialState",
     "LinearFriction",
     "LuGreFriction",
+    "Machine",
     "MapConfig",
     "MeasuredRecord",
     "MemoryResult",
+    "MemoryStability",
     "MemorySystem",
     "Mode",
     "OccurrenceMap",
@@ -206,6 +221,8 @@ __all__ = [
     "basin_map",
     "basin_stability",
     "chain_structure",
+    "complex_eigenvalue_analysis",
+    "contact_system",
     "continue_cycles",
     "critical_lambda_approx",
     "critical_lambda_exact",
@@ -217,7 +234,9 @@ __all__ = [
     "equilibrium_state",
     "equivalent_damping",
     "equivalent_damping_fit",
+    "find_contact_cycles",
     "find_cycles",
+    "find_memory_cycles",
     "foundation_to_dimensionless",
     "foundation_to_physical",
     "frequency_response",
@@ -225,6 +244,7 @@ __all__ = [
     "hopf_weakenings",
     "identify",
     "lowest_onset",
+    "memory_stability",
     "occurrence_map",
     "optimal_foundation_exact",
     "optimal_foundation_fit",
@@ -244,6 +264,7 @@ __all__ = [
     "safe_disturbance",
     "sample_box",
     "simulate",
+    "simulate_contact",
     "simulate_memory",
     "stability_margin",
     "startup_state",
@@ -280,6 +301,9 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         tuning_curve,
     )
     from stickslip.analysis.analytic_boundary import AnalyticBoundary, analytic_boundaries
+    from stickslip.analysis.contact.cycles import find_contact_cycles
+    from stickslip.analysis.contact.eigenvalues import complex_eigenvalue_analysis
+    from stickslip.analysis.contact.engine import ContactRun, contact_system, simulate_contact
     from stickslip.analysis.continuation import ContinuationResult, continue_cycles
     from stickslip.analysis.critical import Crossing, lowest_onset
     from stickslip.analysis.cycles import Cycle, CycleSearch, cycle_exists, find_cycles
@@ -297,8 +321,10 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from stickslip.analysis.identification.estimates import MeasuredRecord
     from stickslip.analysis.identification.record_fit import identify
     from stickslip.analysis.identification.result import IdentificationResult
+    from stickslip.analysis.memory.cycle_search import find_memory_cycles
     from stickslip.analysis.memory.friction import hopf_stiffness, rice_ruina_critical_stiffness
     from stickslip.analysis.memory.simulation import MemoryResult, simulate_memory
+    from stickslip.analysis.memory.stability import MemoryStability, memory_stability
     from stickslip.analysis.simulation import EngineOptions, SimulationResult, TimeHistory, simulate
     from stickslip.analysis.stability import (
         SteadySlidingStability,
@@ -322,10 +348,12 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from stickslip.io.csv import write_map_csv
     from stickslip.io.netcdf import read_dataset, write_dataset
     from stickslip.io.record import read_record
+    from stickslip.model.contact import Contact
     from stickslip.model.dva import DvaSpec
     from stickslip.model.friction import CoulombFriction, LinearFriction, StribeckFriction, TableFriction
     from stickslip.model.friction_input import parse_friction, read_friction_table
     from stickslip.model.initial import STARTUP_DESCRIPTION, InitialState, startup_state
+    from stickslip.model.machine import Machine
     from stickslip.model.parameters import Foundation, Slider
     from stickslip.model.physical import (
         PhysicalFoundation,
