@@ -561,3 +561,58 @@ def test_a_range_beyond_the_engine_is_refused_by_its_parameter(args: list[str], 
     assert code == 2 and out == ""
     (line,) = err.strip().splitlines()
     assert named in line and "beyond the supported range (magnitude at most 1e+06" in line
+
+
+def _random_chain(n: int, seed: int):  # type: ignore[no-untyped-def]
+    """An ``n``-DOF chain (contact on DOF 0) with uneven masses, springs and dashpots."""
+    from stickslip.model.structure import Structure
+
+    rng = np.random.default_rng(seed)
+    mass = np.diag(rng.uniform(0.5, 2.0, n))
+    mass[0, 0] = 1.0
+    springs, dashpots = rng.uniform(0.5, 3.0, n), rng.uniform(0.01, 0.2, n)
+    springs[0] = 1.0
+    stiffness, damping = np.zeros((n, n)), np.zeros((n, n))
+    for i in range(n):  # element i joins DOF i to DOF i + 1 (the last to the ground)
+        for mat, value in ((stiffness, springs[i]), (damping, dashpots[i])):
+            mat[i, i] += value
+            if i + 1 < n:
+                mat[i + 1, i + 1] += value
+                mat[i, i + 1] -= value
+                mat[i + 1, i] -= value
+    return Structure(mass, damping, stiffness, name=f"chain {n}")
+
+
+@pytest.mark.parametrize(("n", "seed"), [(8, 1), (20, 2), (40, 3)])
+def test_hopf_weakenings_of_a_large_structure_are_where_the_eigenvalues_cross(n: int, seed: int) -> None:
+    # beyond POLYNOMIAL_MAX_DOF the crossings come from the zeros of G(s) - G(-s); the oracle is
+    # numpy's eigenvalue solver: a pair of eigenvalues is on the axis at each crossing, and the first loss of
+    # stability is where brentq on the growth rate finds it (a 50-DOF reduced frame gave no
+    # crossing at all from the characteristic polynomial)
+    from scipy.optimize import brentq
+
+    structure = _random_chain(n, seed)
+    hopf = hopf_weakenings(structure)
+    assert hopf.size > 0
+    from stickslip.analysis.stability import slip_matrix
+
+    for d in hopf:  # a pair of eigenvalues sits on the imaginary axis
+        assert np.min(np.abs(np.linalg.eigvals(slip_matrix(structure, -2.0 * d)).real)) < 1e-9
+    first = critical_weakening(structure)
+    assert first == hopf[0]
+    assert growth_rate(structure, 0.999 * first) < 0.0 < growth_rate(structure, 1.001 * first)
+    oracle = brentq(lambda x: growth_rate(structure, x), 0.5 * first, 1.5 * first, xtol=1e-15)
+    assert first == pytest.approx(oracle, rel=1e-9)
+
+
+@pytest.mark.parametrize("n", [2, 3, 4])
+def test_both_hopf_methods_agree_where_the_polynomial_is_used(n: int) -> None:
+    # up to POLYNOMIAL_MAX_DOF the polynomial's roots (bit-identical to before); the zeros of the
+    # pencil must give the same crossings there
+    from stickslip.analysis.stability import POLYNOMIAL_MAX_DOF, _hopf_weakenings_from_zeros
+
+    assert n <= POLYNOMIAL_MAX_DOF
+    structure = _random_chain(n, 10 + n)
+    from_zeros = sorted(_hopf_weakenings_from_zeros(structure.mass, structure.damping,
+                                                    structure.stiffness))
+    np.testing.assert_allclose(from_zeros, hopf_weakenings(structure), rtol=1e-9)

@@ -61,6 +61,10 @@ WARM_UP_RUNS: tuple[tuple[str, tuple[str, ...]], ...] = (
      ("map", "--config", "{tmp}/machine.toml", "--speed", "0.005,0.05", "--load", "20,100",
       "--out", "{tmp}/vw.nc", "--json")),
     ("basin (Coulomb)", ("basin", "--lam", "2.5", "--zeta", "0.1", "--samples", "1000", "--json")),
+    # stick-slip states on a foundation: the proven balls' kernels, which ProvenBalls calls
+    # from Python (simulate --config and map --config reach them too)
+    ("basin (N DOF, proven cycle balls)",
+     ("basin", "--lam", "10", "--zeta", "0.1", "--dva", "optimal", "--samples", "64", "--json")),
     ("continuation", ("continue", "--param", "lam", "--range", "0.5:3", "--zeta", "0.1", "--json")),
     ("cycles", ("cycles", "--lam", "2", "--zeta", "0.1", "--json")),
 )

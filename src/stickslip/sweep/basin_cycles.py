@@ -154,7 +154,9 @@ class ProvenBalls:
             f_c, i_c = float_summary[c], int_summary[c]
             p, result = self.prove(states[c])
             if p >= 0:
-                engine.record_ball_cycle(f_c, i_c, self.data, p, f_c[engine.F_T_CERTIFIED])
+                # its Python body: eight assignments, where a call through numba's dispatcher
+                # compiled a signature of its own on a user's first run after `make`
+                engine.record_ball_cycle.py_func(f_c, i_c, self.data, p, f_c[engine.F_T_CERTIFIED])
             elif result is None or result.status is not RunStatus.CERTIFIED_CYCLE:
                 i_c[engine.I_STATUS] = RunStatus.UNPROVEN_CYCLE.code
             else:
