@@ -601,6 +601,8 @@ def test_hopf_weakenings_of_a_large_structure_are_where_the_eigenvalues_cross(n:
     first = critical_weakening(structure)
     assert first == hopf[0]
     assert growth_rate(structure, 0.999 * first) < 0.0 < growth_rate(structure, 1.001 * first)
+    # no earlier loss of stability was skipped: stable at 200 weakenings below the first crossing
+    assert all(growth_rate(structure, d) < 0.0 for d in np.linspace(0.0, 0.999 * first, 200))
     oracle = brentq(lambda x: growth_rate(structure, x), 0.5 * first, 1.5 * first, xtol=1e-15)
     assert first == pytest.approx(oracle, rel=1e-9)
 

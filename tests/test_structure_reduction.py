@@ -106,6 +106,8 @@ def test_critical_weakening_of_the_reduced_model_is_where_its_eigenvalues_cross(
     assert growth_rate(structure, 0.0) < 0.0 and np.isfinite(first)
     oracle = brentq(lambda x: growth_rate(structure, x), 0.5 * first, 1.5 * first, xtol=1e-15)
     assert first == pytest.approx(oracle, rel=1e-9)
+    # no earlier loss of stability was skipped (numpy's eigenvalues at 100 weakenings below it)
+    assert all(growth_rate(structure, d) < 0.0 for d in np.linspace(0.0, 0.999 * first, 100))
 
 
 @pytest.mark.slow  # two eigen-solutions of the 602-state full model: ~50 s on a shared core
