@@ -56,13 +56,20 @@ a mode with ``s = \sigma + i\omega`` has frequency ``\omega / 2\pi`` Hz and damp
 Critical friction coefficient
 -----------------------------
 ``critical_mu`` is the smallest ``\mu > 0`` at which an eigenvalue crosses into the right
-half plane, the law's slope ``\mu'(V)`` held at its value (``N_0`` follows ``\mu``). It is
-found by a scan of ``[0, mu_max]`` and bisection, with a bracket whose ends are decided by
-eigenvalues beyond their error bound: each eigenvalue's first-order perturbation bound
-``kappa_i * 4n * eps * ||A||_F`` (``kappa_i`` its condition number from the left and right
-eigenvectors, Wilkinson) is added to its real part before a sign is read. The lower end is
-proven stable (damped structure) and the upper end proven unstable. The scan resolves
-instability windows wider than its step (``mu_max / n_scan``).
+half plane, the law's slope ``\mu'(V)`` held at its value (``N_0`` follows ``\mu``). An
+eigenvalue reaches the imaginary axis only at a real root of ``det(2A(\mu) \odot I)`` (a pair
+``\pm i\omega``) or of ``det A(\mu)`` (zero), and both are polynomial eigenvalue problems in
+``\mu`` (:mod:`stickslip.analysis.contact.axis_crossings`): their real roots cut ``(0,
+mu_max]`` into intervals of constant stability, one eigenvalue check decides each, and the
+critical value is the root where the first unstable interval begins (exact: no window is
+skipped, however narrow). A sign is read only beyond the eigenvalue's error bound: each
+eigenvalue's first-order perturbation bound ``kappa_i * 4n * eps * ||A||_F`` (``kappa_i`` its
+condition number from the left and right eigenvectors, Wilkinson) is added to its real part.
+The bracket comes from bisection between the two intervals' check points: its lower end is
+proven stable and its upper end proven unstable. Where the roots cannot prove (an undamped
+system, a singular pencil, more than 22 DOF (16 with a slope), an interval neutral within
+round-off) the range is scanned at ``n_scan`` steps with bisection, which resolves instability
+windows wider than its step (``mu_max / n_scan``), and the method says so.
 
 ``critical_mu_undamped`` is the same with every velocity term removed (``C``, ``c_n`` and the
 slope): the eigenvalues are then ``\pm i\omega`` until two modes coalesce (flutter) or one
@@ -213,17 +220,55 @@ class FrictionCoupledSystem:
         return _eigen(*self.matrices(mu))
 
 
-def _eigen(m: FloatArray, c: FloatArray, k: FloatArray) -> tuple[ComplexArray, FloatArray]:
-    n = m.shape[0]
+def reference_rate(m: FloatArray, k: FloatArray) -> float:
+    """``omega_ref = sqrt(max |diag(M^-1 K)|)`` (1/s): the scale of :func:`first_order_matrix`.
+
+    Parameters
+    ----------
+    m, k : ndarray, shape (n, n)
+        Mass (kg) and stiffness (N/m).
+
+    Returns
+    -------
+    float
+        The reference rate, 1/s.
+    """
     mk = np.linalg.solve(m, k)
-    mc = np.linalg.solve(m, c)
-    # scaled state (omega_ref q, q'): the same eigenvalues, entries of the size of the frequencies
-    w_ref = math.sqrt(max(float(np.max(np.abs(np.diag(mk)))), 1e-300))
+    return math.sqrt(max(float(np.max(np.abs(np.diag(mk)))), 1e-300))
+
+
+def first_order_matrix(m: FloatArray, c: FloatArray, k: FloatArray, w_ref: float, *,
+                       identity: bool = True) -> FloatArray:
+    """``A = [[0, w I], [-M^-1 K / w, -M^-1 C]]``: the first-order form in the state ``(w q, q')``.
+
+    The same eigenvalues as ``[[0, I], [-M^-1 K, -M^-1 C]]`` (a diagonal similarity), with
+    entries of the size of the frequencies. Linear in ``(K, C)`` apart from the identity block.
+
+    Parameters
+    ----------
+    m, c, k : ndarray, shape (n, n)
+        Mass (kg), damping (N s/m) and stiffness (N/m).
+    w_ref : float
+        The scale ``w``, 1/s (:func:`reference_rate`).
+    identity : bool
+        Include the block ``w I`` (False: the part linear in ``K`` and ``C`` alone).
+
+    Returns
+    -------
+    ndarray, shape (2n, 2n)
+        The matrix, 1/s.
+    """
+    n = m.shape[0]
     a = np.zeros((2 * n, 2 * n))
-    a[:n, n:] = w_ref * np.eye(n)
-    a[n:, :n] = -mk / w_ref
-    a[n:, n:] = -mc
-    return bounded_eigenvalues(a)
+    if identity:
+        a[:n, n:] = w_ref * np.eye(n)
+    a[n:, :n] = -np.linalg.solve(m, k) / w_ref
+    a[n:, n:] = -np.linalg.solve(m, c)
+    return a
+
+
+def _eigen(m: FloatArray, c: FloatArray, k: FloatArray) -> tuple[ComplexArray, FloatArray]:
+    return bounded_eigenvalues(first_order_matrix(m, c, k, reference_rate(m, k)))
 
 
 def bounded_eigenvalues(a: FloatArray) -> tuple[ComplexArray, FloatArray]:
@@ -376,6 +421,13 @@ def critical_friction(system: FrictionCoupledSystem, *, mu_max: float = MU_MAX,
                       n_scan: int = N_SCAN) -> CriticalFriction:
     """The smallest ``mu`` in ``(0, mu_max]`` where steady sliding turns unstable (module docstring).
 
+    A damped system is searched exactly: every ``mu`` where an eigenvalue can reach the
+    imaginary axis is a real root of ``det(2A(mu) (.) I) det A(mu)``
+    (:mod:`~stickslip.analysis.contact.axis_crossings`), and one eigenvalue check between
+    consecutive roots decides each interval. Where that cannot prove (an undamped system, a
+    singular or too large pencil, an interval within round-off of neutral) the range is
+    scanned at ``n_scan`` steps and the method says so.
+
     Parameters
     ----------
     system : FrictionCoupledSystem
@@ -384,7 +436,8 @@ def critical_friction(system: FrictionCoupledSystem, *, mu_max: float = MU_MAX,
     mu_max : float
         Largest friction coefficient searched, dimensionless (> 0).
     n_scan : int
-        Scan steps over ``[0, mu_max]`` before bisection (>= 2).
+        Scan steps over ``[0, mu_max]`` where the exact search cannot prove (>= 2); also
+        sets how finely the branches are followed to name the modes.
 
     Returns
     -------
@@ -397,22 +450,61 @@ def critical_friction(system: FrictionCoupledSystem, *, mu_max: float = MU_MAX,
         raise ValueError(f"n_scan = {n_scan!r} must be from 2 to 100000")
     undamped = (not np.any(system.damping) and system.normal_damping == 0.0
                 and system.slope == 0.0)
-    mus = np.linspace(0.0, mu_max, n_scan + 1)
-    verdicts = [verdict_of(*system.eigenvalues(float(mu))) for mu in mus]
     start = system.eigenvalues(0.0)[0]
-    if verdicts[0] == 1:
+    if verdict_of(*system.eigenvalues(0.0)) == 1:
         big = start[np.argmax(start.real)]
         return CriticalFriction(0.0, (0.0, 0.0), "unstable at mu = 0",
                                 abs(big.imag) / (2 * math.pi), (), mu_max,
                                 "unstable without friction coupling (the structure or the "
                                 "friction law's slope)")
-    if 1 not in verdicts:
-        return CriticalFriction(None, None, "none", None, (), mu_max,
-                                f"no eigenvalue proven unstable at {n_scan + 1} values of mu in "
-                                f"[0, {mu_max:g}]")
-    first = verdicts.index(1)
-    lo, hi = float(mus[first - 1]), float(mus[first])
-    proven_lo = verdicts[first - 1] == -1
+    exact = None if undamped else _exact_search(system, mu_max)
+    if exact is not None and exact[0] is None:
+        return CriticalFriction(None, None, "none", None, (), mu_max, exact[1])
+    if exact is not None:
+        root, lo, hi = exact[0], exact[2], exact[3]
+        n_track, below = max(2, math.ceil(4 * n_scan * lo / mu_max)), lo
+    else:
+        mus = np.linspace(0.0, mu_max, n_scan + 1)
+        verdicts = [verdict_of(*system.eigenvalues(float(mu))) for mu in mus]
+        if 1 not in verdicts:
+            return CriticalFriction(None, None, "none", None, (), mu_max,
+                                    f"no eigenvalue proven unstable at {n_scan + 1} values of mu "
+                                    f"in [0, {mu_max:g}] (a scan: windows narrower than "
+                                    f"{mu_max / n_scan:g} can be missed)")
+        first = verdicts.index(1)
+        lo, hi = _bisected(system, float(mus[first - 1]), float(mus[first]), undamped)
+        root, n_track, below = None, max(first, 2) * 4, float(mus[first - 1])
+    proven_lo = verdict_of(*system.eigenvalues(lo)) == -1
+    branches = track_branches(system, np.append(np.linspace(0.0, lo, n_track), hi))
+    at_hi = branches[-1]
+    j = int(np.argmax(at_hi.real + 1e-12 * np.abs(at_hi) * np.sign(at_hi.imag)))
+    crossing = at_hi[j]
+    numbers = _mode_numbers(branches[0])
+    others = [i for i in range(len(at_hi)) if i != j and at_hi[i].real < 0.0
+              and at_hi[i].imag * crossing.imag >= 0.0
+              and abs(at_hi[i].imag - crossing.imag) <= 0.1 * abs(crossing)]
+    modes = [int(numbers[j])] + ([int(numbers[min(others, key=lambda i: abs(at_hi[i] - crossing))])]
+                                 if others else [])
+    kind = "flutter" if abs(crossing.imag) > 1e-6 * abs(crossing) else "divergence"
+    ends = "lower end proven stable, upper end proven unstable" if proven_lo else \
+        "upper end proven unstable"
+    if exact is not None and root is not None:
+        mu, method = root, f"{exact[1]}; bracket by bisection: {ends}"
+    else:
+        mu, method = 0.5 * (lo + hi), f"scan and bisection: {ends}"
+    if undamped and kind == "flutter" and system.normal_dof is not None:
+        exact_mu = _coalescence(system, below, crossing)
+        if exact_mu is not None and lo - 1e-9 * hi <= exact_mu <= hi:
+            mu = exact_mu
+            method = ("mode coalescence, g'(lambda*) = 0 (exact), inside the bisection bracket "
+                      "whose upper end is proven unstable")
+    return CriticalFriction(mu, (lo, hi), kind, abs(crossing.imag) / (2 * math.pi),
+                            tuple(sorted({m for m in modes if m > 0})), mu_max, method)
+
+
+def _bisected(system: FrictionCoupledSystem, lo: float, hi: float,
+              undamped: bool) -> tuple[float, float]:
+    """``(lo, hi)`` halved while ``hi`` stays proven unstable and ``lo`` not (bounded: 200 steps)."""
     for _ in range(MAX_BISECTIONS):
         mid = 0.5 * (lo + hi)
         if not lo < mid < hi:
@@ -424,28 +516,38 @@ def critical_friction(system: FrictionCoupledSystem, *, mu_max: float = MU_MAX,
             lo = mid
         else:  # neutral within round-off: the bracket is as tight as the eigenvalues allow
             break
-    branches = track_branches(system, np.append(np.linspace(0.0, lo, max(first, 2) * 4), hi))
-    at_hi = branches[-1]
-    j = int(np.argmax(at_hi.real + 1e-12 * np.abs(at_hi) * np.sign(at_hi.imag)))
-    crossing = at_hi[j]
-    numbers = _mode_numbers(branches[0])
-    others = [i for i in range(len(at_hi)) if i != j and at_hi[i].real < 0.0
-              and at_hi[i].imag * crossing.imag >= 0.0
-              and abs(at_hi[i].imag - crossing.imag) <= 0.1 * abs(crossing)]
-    modes = [int(numbers[j])] + ([int(numbers[min(others, key=lambda i: abs(at_hi[i] - crossing))])]
-                                 if others else [])
-    kind = "flutter" if abs(crossing.imag) > 1e-6 * abs(crossing) else "divergence"
-    mu = 0.5 * (lo + hi)
-    method = ("scan and bisection: lower end proven stable, upper end proven unstable"
-              if proven_lo else "scan and bisection: upper end proven unstable")
-    if undamped and kind == "flutter" and system.normal_dof is not None:
-        exact = _coalescence(system, float(mus[first - 1]), crossing)
-        if exact is not None and lo - 1e-9 * hi <= exact <= hi:
-            mu = exact
-            method = ("mode coalescence, g'(lambda*) = 0 (exact), inside the bisection bracket "
-                      "whose upper end is proven unstable")
-    return CriticalFriction(mu, (lo, hi), kind, abs(crossing.imag) / (2 * math.pi),
-                            tuple(sorted({m for m in modes if m > 0})), mu_max, method)
+    return lo, hi
+
+
+def _exact_search(system: FrictionCoupledSystem,
+                  mu_max: float) -> tuple[float | None, str, float, float] | None:
+    """The exact critical ``mu`` from the axis crossings, or None where they cannot prove.
+
+    Returns ``(mu, method, lo, hi)``: ``mu`` the root where the first interval proven
+    unstable begins (None: every interval proven stable), ``(lo, hi)`` its bisection bracket.
+    """
+    from stickslip.analysis.contact.axis_crossings import crossing_candidates, interval_points
+
+    roots = crossing_candidates(system, mu_max)
+    if roots is None:
+        return None
+    verdicts = [verdict_of(*system.eigenvalues(float(x))) for x in interval_points(roots, mu_max)]
+    first = verdicts.index(1) if 1 in verdicts else len(verdicts)
+    if 0 in verdicts[:first]:
+        return None  # an interval within round-off of neutral: not decided
+    counted = (f"{len(roots)} real root{'s' if len(roots) != 1 else ''} of "
+               f"det(2A(mu) (.) I) det A(mu) in (0, {mu_max:g})")
+    if first == len(verdicts):
+        return (None, f"exact: no eigenvalue crosses the imaginary axis in (0, {mu_max:g}] "
+                      f"({counted}; each interval between them proven stable)", 0.0, 0.0)
+    points = interval_points(roots, mu_max)
+    root = float(roots[first - 1]) if first else 0.0
+    lo, hi = _bisected(system, float(points[first - 1]) if first else 0.0, float(points[first]),
+                       False)
+    if not lo - 1e-9 * max(1.0, hi) <= root <= hi + 1e-9 * max(1.0, hi):
+        return None  # the roots and the eigenvalues disagree: not proven
+    return (root, f"exact: the first real root of det(2A(mu) (.) I) det A(mu) past which the "
+                  f"spectrum is unstable ({counted}, one eigenvalue check between each two)", lo, hi)
 
 
 def _coalescence(system: FrictionCoupledSystem, mu_lo: float, crossing: complex) -> float | None:
