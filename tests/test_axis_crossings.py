@@ -19,7 +19,8 @@ from stickslip.analysis.contact.axis_crossings import (
     crossing_candidates,
     steady_normal_force_pole,
 )
-from stickslip.analysis.contact.friction_coupling import FrictionCoupledSystem, critical_friction
+from stickslip.analysis.contact.critical_coefficient import critical_friction
+from stickslip.analysis.contact.friction_coupling import FrictionCoupledSystem
 
 
 def _growth(system: FrictionCoupledSystem, mu: float) -> float:

@@ -23,14 +23,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from stickslip.analysis.contact.critical_coefficient import critical_friction
 from stickslip.analysis.contact.eigenvalue_maps import operating_ranges, root_locus, stability_map
 from stickslip.analysis.contact.eigenvalues import complex_eigenvalue_analysis
-from stickslip.analysis.contact.friction_coupling import (
-    FrictionCoupledSystem,
-    critical_friction,
-    friction_at,
-    verdict_of,
-)
+from stickslip.analysis.contact.friction_coupling import FrictionCoupledSystem, friction_at, verdict_of
 from stickslip.analysis.contact.squeal_minimal_model import hoffmann_critical_mu, hoffmann_stiffness
 from stickslip.model.contact import Contact
 from stickslip.model.machine import Machine

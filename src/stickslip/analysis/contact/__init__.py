@@ -38,10 +38,10 @@ _EXPORTS: dict[str, str] = {
     "operating_ranges": "stickslip.analysis.contact.eigenvalue_maps",
     "root_locus": "stickslip.analysis.contact.eigenvalue_maps",
     "stability_map": "stickslip.analysis.contact.eigenvalue_maps",
-    "CriticalFriction": "stickslip.analysis.contact.friction_coupling",
+    "CriticalFriction": "stickslip.analysis.contact.critical_coefficient",
     "FrictionCoupledSystem": "stickslip.analysis.contact.friction_coupling",
     "coupled_system": "stickslip.analysis.contact.friction_coupling",
-    "critical_friction": "stickslip.analysis.contact.friction_coupling",
+    "critical_friction": "stickslip.analysis.contact.critical_coefficient",
     "hoffmann_critical_mu": "stickslip.analysis.contact.squeal_minimal_model",
     "hoffmann_stiffness": "stickslip.analysis.contact.squeal_minimal_model",
 }
@@ -92,6 +92,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         ContactContinuation,
         continue_contact,
     )
+    from stickslip.analysis.contact.critical_coefficient import CriticalFriction, critical_friction
     from stickslip.analysis.contact.cycles import (
         ContactCycle,
         ContactCycleSearch,
@@ -120,12 +121,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         contact_system,
         simulate_contact,
     )
-    from stickslip.analysis.contact.friction_coupling import (
-        CriticalFriction,
-        FrictionCoupledSystem,
-        coupled_system,
-        critical_friction,
-    )
+    from stickslip.analysis.contact.friction_coupling import FrictionCoupledSystem, coupled_system
     from stickslip.analysis.contact.pool import (
         run_points,
     )

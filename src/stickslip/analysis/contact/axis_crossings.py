@@ -42,13 +42,14 @@ beyond :data:`MAX_PENCIL` rows (the bialternate sum grows as ``2 n^2`` for ``n``
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 from numpy.typing import NDArray
 
-if TYPE_CHECKING:
-    from stickslip.analysis.contact.friction_coupling import FrictionCoupledSystem
+from stickslip.analysis.contact.friction_coupling import (
+    FrictionCoupledSystem,
+    first_order_matrix,
+    reference_rate,
+)
 
 FloatArray = NDArray[np.float64]
 
@@ -130,8 +131,6 @@ def matrix_coefficients(system: FrictionCoupledSystem) -> tuple[FloatArray, Floa
     tuple
         ``P_0``, ``P_1``, ``P_2`` (1/s, shape (2n, 2n)) and ``a``.
     """
-    from stickslip.analysis.contact.friction_coupling import first_order_matrix, reference_rate
-
     n, t, nd = system.n_dof, system.tangential_dof, system.normal_dof
     m = np.asarray(system.mass, dtype=float)
     k0 = system.contact_stiffness()

@@ -17,11 +17,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from stickslip.analysis.blas_threads import one_blas_thread
+from stickslip.analysis.contact.critical_coefficient import MU_MAX, critical_friction
 from stickslip.analysis.contact.friction_coupling import (
-    MU_MAX,
     FrictionCoupledSystem,
     coupled_system,
-    critical_friction,
     track_branches,
     verdict_of,
 )

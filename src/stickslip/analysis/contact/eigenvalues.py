@@ -19,14 +19,16 @@ import numpy as np
 from numpy.typing import NDArray
 
 from stickslip.analysis.blas_threads import one_blas_thread
-from stickslip.analysis.contact.eigenvalue_maps import RootLocus, root_locus
-from stickslip.analysis.contact.friction_coupling import (
+from stickslip.analysis.contact.critical_coefficient import (
     MU_MAX,
     N_SCAN,
     CriticalFriction,
+    critical_friction,
+)
+from stickslip.analysis.contact.eigenvalue_maps import RootLocus, root_locus
+from stickslip.analysis.contact.friction_coupling import (
     FrictionCoupledSystem,
     coupled_system,
-    critical_friction,
     verdict_of,
 )
 
