@@ -130,7 +130,7 @@ def stage_breakdown(st: Structure, slider: Slider, repeats: int) -> str:
 
     def loop() -> None:
         engine.run_prepared(inner.mass, lam, gamma, bands[0], prepared, z0, opts.t_max,
-                            opts.max_events, opts.cycle_tol, opts.max_period, False, False, False)
+                            opts.max_events, opts.cycle_tol, opts.max_period, False, False, False, False)
 
     stages = {
         "structure": best_time(lambda: (st.contact_first(), startup_state(inner, slider)), repeats),

@@ -155,3 +155,33 @@ def test_no_shortcut_with_a_foundation() -> None:
     (f_join, i_join), (f_full, i_full) = _both(structure, slider, states)
     np.testing.assert_array_equal(i_join, i_full)
     np.testing.assert_array_equal(f_join, f_full)
+
+
+@pytest.mark.parametrize("friction", [None, StribeckFriction(0.2, tolerance=1e-4)])
+def test_lean_n_dof_runs_give_the_labels_and_times_of_full_runs(friction) -> None:  # type: ignore[no-untyped-def]
+    # N DOF basin runs are lean (engine.run_prepared: no extremes, the quick event search,
+    # "the same roots to rounding"): against full runs of the same states, the same statuses,
+    # steps and stick phases, and end and certificate times to rounding
+    structure = elastic_foundation(0.05, Foundation(1.0, 1.0, 0.1))
+    slider = (Slider(3.0) if friction is None
+              else Slider(0.05 * 0.2 * float(np.exp(5.0)), friction=friction))
+    states = sample_box(structure, slider, 40, {"xi": (-0.7, 0.7), "v": (-0.7, 1.3),
+                                                "xi_a": (-0.2, 0.2), "v_a": (-0.2, 0.2)}, seed=2)
+    edges, intercepts, slopes = slider.friction.bands(slider.lam, slider.gamma)
+    prepared = engine.prepared_tables(structure.mass, structure.damping, structure.stiffness,
+                                      float(slider.lam), float(slider.gamma), edges, intercepts,
+                                      slopes)
+    statuses = set()
+    for state in states:
+        runs = [engine.run_prepared(structure.mass, float(slider.lam), float(slider.gamma), edges,
+                                    prepared, np.ascontiguousarray(state), T_MAX, MAX_EVENTS,
+                                    CYCLE_TOL, MAX_PERIOD, False, False, False, lean)
+                for lean in (True, False)]
+        (f_lean, i_lean), (f_full, i_full) = (run[4:6] for run in runs)
+        np.testing.assert_array_equal(i_lean, i_full)
+        statuses.add(int(i_full[engine.I_STATUS]))
+        for k in (engine.F_T_END, engine.F_T_CERTIFIED, engine.F_PERIOD):
+            assert f_lean[k] == pytest.approx(f_full[k], rel=1e-9, abs=1e-12, nan_ok=True)
+        assert np.isnan(f_lean[engine.F_MAX_VELOCITY])  # not tracked
+    # both verdicts are among the states (the case is bistable)
+    assert {engine.STATUS_STEADY, engine.STATUS_CYCLE} <= statuses

@@ -90,7 +90,7 @@ def _direct(structure, slider, z0, t_max, stop_at_stick):  # type: ignore[no-unt
                              slider.gamma, edges, intercepts, slopes)
     return engine.run_prepared(structure.mass, slider.lam, slider.gamma, edges, prepared,
                                np.asarray(z0, dtype=np.float64), t_max, 100 * OPTS.max_events,
-                               OPTS.cycle_tol, OPTS.max_period, False, False, True)
+                               OPTS.cycle_tol, OPTS.max_period, False, False, True, False)
 
 
 def _ring_points(kernel, factor: float, angles) -> np.ndarray:  # type: ignore[no-untyped-def]

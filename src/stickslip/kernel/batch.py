@@ -133,7 +133,7 @@ def run_prepared_cells(shared, masses, dampings, stiffnesses, structure_index, l
                                  stiffnesses[s], lams[c], gammas[c], edges[c, : nb + 1],
                                  intercepts[c, :nb], slopes[c, :nb], True)
         result = run_prepared(masses[s], lams[c], gammas[c], edges[c, : nb + 1], prepared, z0,
-                              t_max, max_events, cycle_tol, max_period, False, False, False)
+                              t_max, max_events, cycle_tol, max_period, False, False, False, False)
         copy_vector(float_summary[c], result[4])
         copy_vector(int_summary[c], result[5])
     return float_summary, int_summary
@@ -219,8 +219,11 @@ def run_states(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, 
     With ``join_startup`` and a single degree of freedom, each state is run only until its
     first stick phase, whose continuation is then taken from the start-up run
     (:func:`join_startup_summary`); other systems, and ``join_startup=False``, run every state
-    to its own verdict. The shortcut's summaries carry no velocity maximum (NaN), and a slip
-    oscillation certified before any stick has no amplitude (NaN; see
+    to its own verdict; for more than one degree of freedom without tracking extremes or the
+    exhaustive event search (the ``lean`` runs of :func:`~stickslip.kernel.engine.run_prepared`:
+    the same roots to rounding, no velocity maximum, no amplitude of a cycle certified in the
+    run; the basin keeps labels and end times). The shortcut's summaries carry no velocity
+    maximum (NaN), and a slip oscillation certified before any stick has no amplitude (NaN; see
     :func:`~stickslip.kernel.engine.run_prepared`); verdicts, periods, certificate times,
     and the cycles of stick-slip runs (the start-up run's) are complete.
 
@@ -263,6 +266,8 @@ def run_prepared_states(mass, stiffness, lam, gamma, edges, prepared, r_in, r_hi
     int_summary = np.empty((n_states, N_INT), dtype=np.int64)
     nz = z0s.shape[1]
     shortcut = join_startup and nz == 2
+    # N DOF: a state keeps its label and end time only (engine.run_prepared's lean runs)
+    lean = nz > 2
     startup = startup_vector(stiffness, lam, gamma)
     stick_row = prepared[7]
     if shortcut:
@@ -280,7 +285,7 @@ def run_prepared_states(mass, stiffness, lam, gamma, edges, prepared, r_in, r_hi
         t_longer = t_max + lam * (2.0 + 2.0 * gamma) / stick_row[0]
         canonical = run_prepared(mass, lam, gamma, edges, prepared, startup, t_longer, max_events,
                                  cycle_tol, max_period, np.bool_(False), np.bool_(False),
-                                 np.bool_(False))  # the states' signature: one compile
+                                 np.bool_(False), np.bool_(False))  # the states' signature: one compile
         copy_vector(startup_f, canonical[4])
         copy_vector(startup_i, canonical[5])
         status = startup_i[I_STATUS]
@@ -303,7 +308,8 @@ def run_prepared_states(mass, stiffness, lam, gamma, edges, prepared, r_in, r_hi
             escape_summary(float_summary[c], int_summary[c], startup_f, startup_i)
             continue
         result = run_prepared(mass, lam, gamma, edges, prepared, z0s[c], t_max, max_events,
-                              cycle_tol, max_period, np.bool_(False), np.bool_(False), shortcut)
+                              cycle_tol, max_period, np.bool_(False), np.bool_(False), shortcut,
+                              lean)
         copy_vector(float_summary[c], result[4])
         copy_vector(int_summary[c], result[5])
         if shortcut and result[5][I_STATUS] == STATUS_STUCK:

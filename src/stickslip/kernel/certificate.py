@@ -206,7 +206,7 @@ def _trial(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, prep
     # cheap rejection first: one turn, which must not stick nor come back further out
     seg_t, seg_mode, seg_state, _, fsum, isum, _ = run_prepared(
         mass, lam, gamma, edges, prepared, z0, 1.25 * period, np.int64(TRIAL_EVENTS), 1e-12,
-        np.int64(4), np.bool_(True), np.bool_(False), np.bool_(True))
+        np.int64(4), np.bool_(True), np.bool_(False), np.bool_(True), np.bool_(False))
     if isum[I_STATUS] == STATUS_STUCK:
         return empty, 0.0
     if isum[I_STATUS] != STATUS_STEADY:
@@ -221,7 +221,7 @@ def _trial(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, prep
     # the motion, recorded until the energy certificate holds (stop_at_stick: a stick ends it)
     seg_t, seg_mode, seg_state, _, fsum, isum, _ = run_prepared(
         mass, lam, gamma, edges, prepared, z0, TRIAL_PERIODS * period, np.int64(TRIAL_EVENTS), 1e-12,
-        np.int64(4), np.bool_(True), np.bool_(False), np.bool_(True))
+        np.int64(4), np.bool_(True), np.bool_(False), np.bool_(True), np.bool_(False))
     if isum[I_STATUS] != STATUS_STEADY:
         return empty, 0.0
     n_samples = int(fsum[F_T_CERTIFIED] / dt) + 1

@@ -263,7 +263,7 @@ def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_m
     """
     prepared = prepared_tables(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
     return run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle_tol,
-                        max_period, record, run_to_t_max, False)
+                        max_period, record, run_to_t_max, False, False)
 
 
 def prepared_tables(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes):
@@ -275,14 +275,16 @@ def prepared_tables(mass, damping, stiffness, lam, gamma, edges, intercepts, slo
 
 @njit(cache=True)
 def _summaries(fsum, isum, status, t, last_bound, max_v, t_last_stick, n_stick, n_bk, n_seg,
-               n_steps, stop_at_stick):
+               n_steps, quick):
     """Complete the float and integer summaries at the end of a run (layouts ``F_*``, ``I_*``)."""
     fsum[F_LYAPUNOV_BOUND] = last_bound
     fsum[F_MAX_VELOCITY] = max_v
-    if stop_at_stick:
-        # extremes are not tracked: the velocity maximum, and a slip oscillation's xi range
+    if quick:
+        # extremes are not tracked: the velocity maximum, and the xi range of a cycle certified
+        # in the run (a proven ball's numbers, F_CYCLE_MISMATCH NaN, are the ball's own)
         fsum[F_MAX_VELOCITY] = np.nan
-        if status == STATUS_OSCILLATION:
+        if status == STATUS_OSCILLATION or (status == STATUS_CYCLE
+                                            and not np.isnan(fsum[F_CYCLE_MISMATCH])):
             fsum[F_AMPLITUDE] = np.nan
             fsum[F_XI_MIN] = np.nan
             fsum[F_XI_MAX] = np.nan
@@ -298,7 +300,7 @@ def _summaries(fsum, isum, status, t, last_bound, max_v, t_last_stick, n_stick, 
 
 @njit(cache=True)
 def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle_tol, max_period,
-                 record, run_to_t_max, stop_at_stick):
+                 record, run_to_t_max, stop_at_stick, lean):
     """:func:`run` with the per-system data of :func:`~stickslip.kernel.system.prepare_bands` computed once.
 
     Many runs of one system (basin stability: one system, many initial states) share the
@@ -315,6 +317,12 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
     of a slip oscillation it certifies (its period is exact); and its event search is the
     ``quick`` one of :func:`first_reach` (the same roots to rounding).
 
+    ``lean`` runs the same way without stopping at a stick phase: the N-DOF basin, whose
+    labels and end times are all it keeps (the cycle's amplitude, period and extremes of a
+    proven ball come from its proof, :mod:`stickslip.kernel.cycle_balls`). Its extremes are
+    NaN, those of a cycle certified by a repeating breakaway state too (whose candidates the
+    basin proves again, :mod:`stickslip.sweep.basin_cycles`).
+
     Why this function is longer than the house's 120 lines: the step is written out here,
     its small helpers inlined, the mode's arrays bound once per phase, and only events
     (rare) and the exact searches (rare) go through calls. numba counts a reference for every
@@ -330,6 +338,7 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
     n = mass.shape[0]
     nz = 2 * n
     m = nz + 1
+    quick = stop_at_stick or lean  # no extremes, the quick event search
     (ahat, phi, hstep, sig_rows, f_start, f_sign, f_offset, stick_row, lyap, kappa, n_lyap,
      ev_count, ev_next, ev_vel, _eq_mode, z_eq, lyap_lo, lyap_hi, margin, sec_mode,
      sec_event, trap_radius, trap_data, ball_data, ball_norm) = prepared
@@ -422,7 +431,7 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
         have_u[0] = 0
         if t + h > t_max:
             h = t_max - t
-            taylor_vectors(ahat_m, w, u, stop_at_stick)
+            taylor_vectors(ahat_m, w, u, quick)
             have_u[0] = 1
             taylor_state(u, h, w1)
         else:
@@ -438,22 +447,22 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             if event_free(sig0, sig1, start, sign, offset, h):
                 continue
             s = first_reach(sig_m, start, sign, offset, sig0, sig1, w, h, ahat_m, u, have_u, row,
-                            coef, bp, departing and ev_next[mode, e] == NEXT_BELT, stop_at_stick)
+                            coef, bp, departing and ev_next[mode, e] == NEXT_BELT, quick)
             if s < s_ev:
                 s_ev = s
                 e_ev = e
         s_end = h
         if e_ev >= 0:
             if have_u[0] == 0:
-                taylor_vectors(ahat_m, w, u, stop_at_stick)
+                taylor_vectors(ahat_m, w, u, quick)
                 have_u[0] = 1
             taylor_state(u, s_ev, w_end)
-            if not stop_at_stick:  # the value ranges are not tracked (sig1 is only theirs)
+            if not quick:  # the value ranges are not tracked (sig1 is only theirs)
                 signature(sig_m, w_end, sig1)
             s_end = s_ev
         else:
             copy_vector(w_end, w1)
-        if mode == STICK or not stop_at_stick:
+        if mode == STICK or not quick:
             if mode == STICK:  # xi' = 1: xi's extremes are the step's ends, the velocity the belt's
                 lo, hi, vhi = w[0], w_end[0], 1.0
             else:
@@ -548,7 +557,7 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             break
 
     _summaries(fsum, isum, status, t, last_bound, max_v, t_last_stick, n_stick, n_rec[0], n_seg,
-               n_steps, stop_at_stick)
+               n_steps, quick)
     n_keep = min(n_seg, cap) if record else 0
     return (
         seg_t[:n_keep].copy(),

@@ -344,7 +344,7 @@ def first_return_outwards(mass, damping, stiffness, lam, gamma, edges, intercept
     budget = TURN_EVENTS_PER_BAND * edges.shape[0] + 64  # a turn crosses each edge twice
     seg_t, seg_mode, seg_state, _, fsum, isum, _ = run_prepared(
         mass, lam, gamma, edges, prepared, z0, 1.05 * 2.0 * np.pi / omega_min, budget, 1e-12,
-        np.int64(4), np.bool_(True), np.bool_(False), np.bool_(True))
+        np.int64(4), np.bool_(True), np.bool_(False), np.bool_(True), np.bool_(False))
     times = np.arange(int(fsum[F_T_END] / dt)) * dt
     states, _ = evaluate_prepared(prepared[0], prepared[1], prepared[2], seg_t,
                          seg_mode, seg_state, times)
@@ -410,7 +410,7 @@ def _trial(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, prep
     # the motion, recorded until it reaches the belt speed (stop_at_stick ends the run there)
     seg_t, seg_mode, seg_state, _, fsum, isum, _ = run_prepared(
         mass, lam, gamma, edges, prepared, z0, TRIAL_PERIODS * period, np.int64(TRIAL_EVENTS), 1e-12,
-        np.int64(4), np.bool_(True), np.bool_(False), np.bool_(True))
+        np.int64(4), np.bool_(True), np.bool_(False), np.bool_(True), np.bool_(False))
     if isum[I_STATUS] != STATUS_STUCK:
         return empty, empty, 0  # decayed, oscillates, or too slow
     t_stick = fsum[F_T_END]
