@@ -82,7 +82,6 @@ def _copy(tmp_path: Path, replace: dict[str, str] | None = None, extra: str = ""
     ({'normal_stiffness = "5e7 N/m"': 'normal_stiffnes = "5e7 N/m"'}, "", "unknown keys normal_stiffnes"),
     ({'normal_stiffness = "5e7 N/m"': ""}, "", "normal_dof = 1 needs [contact] normal_stiffness"),
     ({}, 'normal_damping = "-1 N*s/m"\n', "normal_damping = -1.0 must not be negative"),
-    ({}, 'tangential_stiffness = "1e8 N/m"\n', "tangential contact compliance is not in the"),
 ])
 def test_bad_contact_is_refused_in_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str],
                                             replace: dict[str, str], extra: str, why: str) -> None:

@@ -136,15 +136,6 @@ def contact_machine(machine_file: Any) -> ContactMachine:
     return ContactMachine(machine, contact, index, label, reduction)
 
 
-def stability_refusal(cm: ContactMachine) -> str | None:
-    """The sentence of ``stickslip stability`` refusing this machine, or None when it takes it."""
-    from stickslip.model.contact import NO_STABILITY_WITH_COMPLIANCE
-
-    if cm.contact is not None and cm.contact.has_tangential_compliance:
-        return f"{cm.label}: {NO_STABILITY_WITH_COMPLIANCE}"
-    return None
-
-
 def stability_in_worker(cm: ContactMachine) -> tuple[Any, Any]:
     """The complex-eigenvalue analysis and its root locus (run by a worker process).
 
@@ -257,16 +248,12 @@ def show_contact_machine(machine_file: Any, digest: str) -> None:
     payload: dict[str, Any] = {"machine": cm.machine.name}
     _queue_run(("contact-run", digest), cm)  # behind the analysis, while the page draws it
     st.subheader("Steady sliding: complex-eigenvalue analysis")
-    refusal = stability_refusal(cm)
-    if refusal is not None:  # the command's refusal, as information (the file name literal)
-        show_info(refusal)
-    else:
-        try:
-            result, locus = wait_for(("contact-stability", digest), stability_in_worker, cm,
-                                     what="Analysing steady sliding")
-            payload["stability"] = _show_stability(result, locus, cm.machine.name, digest)
-        except Exception as exc:
-            show_failure(exc, "The complex-eigenvalue analysis")
+    try:
+        result, locus = wait_for(("contact-stability", digest), stability_in_worker, cm,
+                                 what="Analysing steady sliding")
+        payload["stability"] = _show_stability(result, locus, cm.machine.name, digest)
+    except Exception as exc:
+        show_failure(exc, "The complex-eigenvalue analysis")
     st.subheader("Time history from the start-up state")
     try:
         run = wait_for(("contact-run", digest), simulate_in_worker, cm,

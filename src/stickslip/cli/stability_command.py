@@ -93,19 +93,17 @@ def _analyse(config: Path, mu_max: float) -> tuple[Any, Any, Any, Any, int | Non
     from stickslip.analysis.contact.eigenvalues import complex_eigenvalue_analysis
     from stickslip.cli.machine_config import collect_inputs, config_system, load_machine_file
     from stickslip.io.machine_file import machine_from_file
-    from stickslip.model.contact import NO_STABILITY_WITH_COMPLIANCE
     from stickslip.model.machine import machine_from_physical_system
 
     machine_file = load_machine_file(config, normal_coupling=True)
     try:
         contact = machine_file.contact()
-        if contact is not None and contact.has_tangential_compliance:
-            raise ValueError(f"{machine_file.label}: {NO_STABILITY_WITH_COMPLIANCE}")
         if machine_file.has_structure:
             values = collect_inputs({}, config, normal_coupling=True)
             machine, reduction = machine_from_file(machine_file, values, normal_coupling=True)
         else:
-            machine, reduction = machine_from_physical_system(config_system(config)), None
+            system = config_system(config, normal_coupling=True)
+            machine, reduction = machine_from_physical_system(system), None
         index = None if contact is None else contact.normal_dof
         if reduction is not None and index is not None:
             index = reduction.kept_dofs.index(index)

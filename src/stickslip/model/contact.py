@@ -33,7 +33,8 @@ from a TOML table, :func:`contact_from_table` (units as everywhere in machine fi
 Which commands use it: ``stickslip simulate`` (time histories with stick, slip and
 separation on the exact contact engine, :mod:`stickslip.analysis.contact.engine`; the
 Jenkins element too), ``stickslip stability`` (the complex-eigenvalue analysis of steady
-sliding, :mod:`stickslip.analysis.contact.eigenvalues`; without the Jenkins element) and
+sliding, :mod:`stickslip.analysis.contact.eigenvalues`; the Jenkins element too,
+:func:`stickslip.analysis.contact.friction_coupling.jenkins_state_matrix`) and
 ``stickslip cycles``, ``basin`` and ``continue`` (runs of the contact engine:
 :mod:`stickslip.analysis.contact.cycles`, :mod:`stickslip.sweep.contact_basin`,
 :mod:`stickslip.analysis.contact.continuation`). Every other command refuses such a machine in
@@ -63,13 +64,6 @@ NOT_SUPPORTED = ("a machine with its contact ([structure] normal_dof and the [co
                  "in `stickslip simulate`, `stability`, `design`, `map`, `boundary`, `cycles`, "
                  "`basin` and `continue`; this command (absorber tuning) assumes a rigid contact: "
                  "remove them to run it")
-
-#: Why ``stickslip stability`` (and the web app's machine page) has no analysis of a Jenkins
-#: element: the sentence both say, after the file's name.
-NO_STABILITY_WITH_COMPLIANCE = ("[contact] tangential_stiffness: the tangential contact compliance "
-                                "is not in the complex-eigenvalue analysis of this version "
-                                "(remove it for stability)")
-
 
 @dataclass(frozen=True)
 class Contact:

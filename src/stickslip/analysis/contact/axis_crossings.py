@@ -42,12 +42,15 @@ beyond :data:`MAX_PENCIL` rows (the bialternate sum grows as ``2 n^2`` for ``n``
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 from numpy.typing import NDArray
 
 from stickslip.analysis.contact.friction_coupling import (
     FrictionCoupledSystem,
     first_order_matrix,
+    jenkins_state_matrix,
     reference_rate,
 )
 
@@ -114,12 +117,17 @@ def steady_normal_force_pole(system: FrictionCoupledSystem) -> float:
     return float(system.normal_stiffness * g[system.normal_dof])
 
 
-def matrix_coefficients(system: FrictionCoupledSystem) -> tuple[FloatArray, FloatArray, FloatArray, float]:
+def matrix_coefficients(system: FrictionCoupledSystem,
+                        ) -> tuple[FloatArray, FloatArray, FloatArray, float] | None:
     """``P_0, P_1, P_2`` and ``a``: ``(1 + a mu) A(mu) = P_0 + mu P_1 + mu^2 P_2`` (module docstring).
 
     ``A`` is the scaled first-order matrix of
     :func:`~stickslip.analysis.contact.friction_coupling.first_order_matrix` (the same
     eigenvalues as the unscaled one). Without a slope, ``a`` is taken as 0: ``A`` is affine.
+    With a Jenkins element
+    (:func:`~stickslip.analysis.contact.friction_coupling.jenkins_state_matrix`) ``A`` is
+    affine in ``mu`` when ``N_0`` is constant in it (no slope, or no normal DOF): then
+    ``P_0 = A(0)``, ``P_1 = A(1) - A(0)``; otherwise None (the caller scans).
 
     Parameters
     ----------
@@ -128,9 +136,12 @@ def matrix_coefficients(system: FrictionCoupledSystem) -> tuple[FloatArray, Floa
 
     Returns
     -------
-    tuple
-        ``P_0``, ``P_1``, ``P_2`` (1/s, shape (2n, 2n)) and ``a``.
+    tuple or None
+        ``P_0``, ``P_1``, ``P_2`` (1/s, shape (2n, 2n)) and ``a``; None where ``A`` is not of
+        that form.
     """
+    if system.tangential_stiffness is not None:
+        return _jenkins_coefficients(system)
     n, t, nd = system.n_dof, system.tangential_dof, system.normal_dof
     m = np.asarray(system.mass, dtype=float)
     k0 = system.contact_stiffness()
@@ -148,6 +159,21 @@ def matrix_coefficients(system: FrictionCoupledSystem) -> tuple[FloatArray, Floa
     pole = steady_normal_force_pole(system) if system.slope != 0.0 else 0.0
     p0 = a0 + system.slope * system.load * a2
     return p0, a1 + pole * a0, pole * a1, pole
+
+
+def _jenkins_coefficients(system: FrictionCoupledSystem,
+                          ) -> tuple[FloatArray, FloatArray, FloatArray, float] | None:
+    """``A(0)``, ``A(1) - A(0)`` and zeros for a Jenkins element whose ``A`` is affine in ``mu``."""
+    if system.slope != 0.0 and system.normal_dof is not None:
+        return None  # N_0(mu) in the massless element's lag: not a polynomial of degree one
+    w_ref = reference_rate(system.mass, system.contact_stiffness())
+    a0, a1 = jenkins_state_matrix(system, 0.0, w_ref), jenkins_state_matrix(system, 1.0, w_ref)
+    if a0 is not None and a1 is not None:
+        return a0, a1 - a0, np.zeros_like(a0), 0.0
+    if system.tangential_damping == 0.0 and system.slope == 0.0:
+        # the extension follows the load: the rigid contact's spectrum (FrictionCoupledSystem)
+        return matrix_coefficients(replace(system, tangential_stiffness=None, contact_mass=None))
+    return None
 
 
 def polynomial_real_roots(b0: FloatArray, b1: FloatArray, b2: FloatArray | None,
@@ -211,7 +237,10 @@ def crossing_candidates(system: FrictionCoupledSystem, mu_max: float) -> FloatAr
         Increasing values, merged where closer than ``1e-9 max(1, mu)`` (module docstring);
         None when the search cannot prove (a singular pencil or one too large).
     """
-    p0, p1, p2, pole = matrix_coefficients(system)
+    coefficients = matrix_coefficients(system)
+    if coefficients is None:
+        return None
+    p0, p1, p2, pole = coefficients
     quadratic = pole != 0.0
     found = []
     for transform in (bialternate_sum, None):

@@ -146,7 +146,7 @@ def critical_friction(system: FrictionCoupledSystem, *, mu_max: float = MU_MAX,
     if not 2 <= n_scan <= 100_000:
         raise ValueError(f"n_scan = {n_scan!r} must be from 2 to 100000")
     undamped = (not np.any(system.damping) and system.normal_damping == 0.0
-                and system.slope == 0.0)
+                and system.slope == 0.0 and system.tangential_damping == 0.0)
     start = system.eigenvalues(0.0)[0]
     if verdict_of(*system.eigenvalues(0.0)) == 1:
         big = start[np.argmax(start.real)]
@@ -189,7 +189,8 @@ def critical_friction(system: FrictionCoupledSystem, *, mu_max: float = MU_MAX,
         mu, method = root, f"{exact[1]}; bracket by bisection: {ends}"
     else:
         mu, method = 0.5 * (lo + hi), f"scan and bisection: {ends}"
-    if undamped and kind == "flutter" and system.normal_dof is not None:
+    if undamped and kind == "flutter" and system.normal_dof is not None \
+            and system.contact_mass is None:  # (a massless element then follows the load)
         exact_mu = _coalescence(system, below, crossing)
         if exact_mu is not None and lo - 1e-9 * hi <= exact_mu <= hi:
             mu = exact_mu

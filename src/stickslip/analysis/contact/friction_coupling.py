@@ -53,6 +53,41 @@ Eigenvalues ``s`` (1/s) are those of the first-order form ``[[0, I], [-M^{-1}K, 
 a mode with ``s = \sigma + i\omega`` has frequency ``\omega / 2\pi`` Hz and damping ratio
 ``-\sigma / |s|``. Steady sliding is asymptotically stable when every ``\sigma < 0``.
 
+The Jenkins element
+-------------------
+The Jenkins element (``[contact] tangential_stiffness``) puts a contact point ``p`` between the
+tangential DOF ``q_t`` and the belt: a spring ``k_t`` and damper ``c_t`` act on the extension
+``e = q_t - p`` (m), and the belt's friction acts on the point. Its force on the structure is
+``F_e = -(k_t e + c_t \dot e)``, and the point, of mass ``m_c`` (or massless), slides at
+``v_p = \dot q_t - \dot e`` with the relative velocity ``v_r = V - v_p``:
+
+.. math::
+
+    m_c \dot v_p = \mu(v_r) N + k_t e + c_t \dot e
+    \qquad (m_c = 0:\ k_t e + c_t \dot e = -\mu(v_r) N),
+
+the equations of the contact engine's slip modes
+(:mod:`stickslip.analysis.contact.engine`). In steady sliding the structure and the point are
+at rest (``v_p = 0``, ``v_r = V``), ``k_t e_0 = -\mu N_0`` and ``F_e = \mu N_0``: the same
+equilibrium and ``N_0`` as the rigid contact. For a small motion, with
+``\delta N = -k_n x_n - c_n \dot x_n`` and ``\delta(\mu N) = \mu \delta N + \mu' N_0 \delta v_r``:
+
+* **massive point** (states ``x, \dot x, \delta e, \delta v_p``): ``\delta\dot e = \dot x_t -
+  \delta v_p``, ``\delta F_e = -(k_t \delta e + c_t \delta\dot e)`` and ``m_c \delta\dot v_p =
+  \mu \delta N - \mu' N_0 \delta v_p - \delta F_e``;
+* **massless point** (states ``x, \dot x, \delta e``): ``(c_t + \mu' N_0) \delta\dot e =
+  -k_t \delta e - \mu \delta N + \mu' N_0 \dot x_t``. When ``c_t + \mu' N_0 = 0`` the extension
+  is not a state: with ``c_t = 0`` and the Coulomb law it follows the load, ``k_t \delta e =
+  -\mu \delta N``, ``\delta F_e = \mu \delta N``, and the eigenvalues are the rigid contact's
+  (:meth:`FrictionCoupledSystem.eigenvalues` takes that path); a damper that cancels the
+  slope exactly leaves no linearisation (NaN eigenvalues, neutral within no bound);
+
+and the structure ``M \ddot x + (C + c_n e_n e_n^T) \dot x + (K + k_n e_n e_n^T) x = e_t
+\delta F_e``. The friction coupling ``\mu \delta N`` reaches the structure through the point,
+and the law's slope damps (or feeds) the point's motion rather than the tangential DOF's.
+As ``k_t`` grows the spectrum tends to the rigid contact's, plus the element's own fast
+eigenvalues (tested).
+
 The critical friction coefficient, where steady sliding first turns unstable as ``\mu`` grows,
 is :mod:`stickslip.analysis.contact.critical_coefficient`.
 
@@ -100,6 +135,13 @@ class FrictionCoupledSystem:
         Preload ``W``, N.
     slope : float
         ``d mu / d v_r`` of the friction law at the sliding speed, s/m (0: Coulomb).
+    tangential_stiffness : float or None
+        ``k_t`` of a Jenkins element between ``tangential_dof`` and the belt, N/m; None: a
+        rigid tangential contact (:func:`jenkins_state_matrix`).
+    tangential_damping : float
+        Its damper ``c_t``, N s/m.
+    contact_mass : float or None
+        Mass of its contact point, kg; None: massless.
     """
 
     mass: FloatArray
@@ -111,15 +153,30 @@ class FrictionCoupledSystem:
     normal_damping: float = 0.0
     load: float = 1.0
     slope: float = 0.0
+    tangential_stiffness: float | None = None
+    tangential_damping: float = 0.0
+    contact_mass: float | None = None
 
     @property
     def n_dof(self) -> int:
         """Number of degrees of freedom."""
         return int(self.mass.shape[0])
 
+    @property
+    def n_eigenvalues(self) -> int:
+        """How many eigenvalues :meth:`eigenvalues` gives: ``2n``, one more for a Jenkins element
+        whose massless point's extension is a state, two more for a massive point."""
+        if self.tangential_stiffness is None:
+            return 2 * self.n_dof
+        if self.contact_mass is not None:
+            return 2 * self.n_dof + 2
+        follows_load = self.tangential_damping == 0.0 and self.slope == 0.0
+        return 2 * self.n_dof + (0 if follows_load else 1)
+
     def undamped(self) -> FrictionCoupledSystem:
-        """The same system without any velocity term (``C = 0``, ``c_n = 0``, slope 0)."""
-        return replace(self, damping=np.zeros_like(self.damping), normal_damping=0.0, slope=0.0)
+        """The same system without any velocity term (``C = 0``, ``c_n = 0``, ``c_t = 0``, slope 0)."""
+        return replace(self, damping=np.zeros_like(self.damping), normal_damping=0.0, slope=0.0,
+                       tangential_damping=0.0)
 
     def contact_stiffness(self) -> FloatArray:
         """``K_0 = K + k_n e_n e_n^T`` (N/m): the structure pressed on the belt, without friction."""
@@ -145,6 +202,9 @@ class FrictionCoupledSystem:
 
     def matrices(self, mu: float) -> tuple[FloatArray, FloatArray, FloatArray]:
         """``(M, C(mu), K(mu))`` of the linearisation about steady sliding (module docstring).
+
+        The rigid tangential contact's; a Jenkins element adds states
+        (:meth:`eigenvalues`).
 
         Parameters
         ----------
@@ -178,11 +238,81 @@ class FrictionCoupledSystem:
         Returns
         -------
         values : ndarray of complex, shape (2n,)
-            ``s = sigma + i omega``, sorted by ``omega`` then ``sigma``.
+            ``s = sigma + i omega``, sorted by ``omega`` then ``sigma`` (a Jenkins element
+            adds one, or two with a massive contact point).
         bounds : ndarray, shape (2n,)
             First-order bound on each eigenvalue's round-off error (module docstring).
         """
+        if self.tangential_stiffness is not None:
+            a = jenkins_state_matrix(self, mu, reference_rate(self.mass, self.contact_stiffness()))
+            if a is not None:
+                return bounded_eigenvalues(a)
+            if self.tangential_damping != 0.0 or self.slope != 0.0:
+                # the damper cancels the slope: no linearisation (neutral, never proven)
+                return (np.full(self.n_eigenvalues, np.nan, dtype=complex),
+                        np.full(self.n_eigenvalues, np.inf))
         return _eigen(*self.matrices(mu))
+
+
+def jenkins_state_matrix(system: FrictionCoupledSystem, mu: float, w_ref: float) -> FloatArray | None:
+    """The first-order matrix of steady sliding on the Jenkins element (module docstring).
+
+    Parameters
+    ----------
+    system : FrictionCoupledSystem
+        With ``tangential_stiffness`` set.
+    mu : float
+        Friction coefficient at the sliding speed, dimensionless.
+    w_ref : float
+        The state's scale ``w``, 1/s
+        (:func:`~stickslip.analysis.contact.friction_coupling.reference_rate`).
+
+    Returns
+    -------
+    ndarray, shape (2n + 1, 2n + 1) or (2n + 2, 2n + 2), or None
+        ``A`` (1/s) in the state ``(w x, \\dot x, w \\delta e[, \\delta v_p])`` (a diagonal
+        similarity of the SI state, the same eigenvalues); None
+        for a massless point whose extension is not a state (``c_t + \\mu' N_0 = 0``).
+    """
+    assert system.tangential_stiffness is not None
+    n, t, nd = system.n_dof, system.tangential_dof, system.normal_dof
+    kt, ct, mc = system.tangential_stiffness, system.tangential_damping, system.contact_mass
+    slope_force = system.slope * system.normal_force(mu) if system.slope != 0.0 else 0.0
+    d = 2 * n + (1 if mc is None else 2)
+    ie, ivp = 2 * n, 2 * n + 1
+
+    def unit(i: int, value: float = 1.0) -> FloatArray:
+        row = np.zeros(d)
+        row[i] = value
+        return row
+
+    normal = np.zeros(d) if nd is None else -(unit(nd, system.normal_stiffness)
+                                              + unit(n + nd, system.normal_damping))
+    a = np.zeros((d, d))
+    if mc is None:
+        lag = ct + slope_force
+        if lag == 0.0:
+            return None
+        a[ie] = (-unit(ie, kt) - mu * normal + unit(n + t, slope_force)) / lag
+    else:
+        a[ie] = unit(n + t) - unit(ivp)
+    element = -(unit(ie, kt) + ct * a[ie])  # delta F_e on the structure
+    if mc is not None:
+        a[ivp] = (mu * normal - unit(ivp, slope_force) - element) / mc
+    m = np.asarray(system.mass, dtype=float)
+    c0 = np.array(system.damping, dtype=float)
+    if nd is not None:
+        c0[nd, nd] += system.normal_damping
+    k0 = system.contact_stiffness()
+    force = np.zeros((n, d))
+    force[:, :n], force[:, n:2 * n] = -k0, -c0
+    force[t] += element
+    a[:n, n:2 * n] = np.eye(n)
+    a[n:2 * n] = np.linalg.solve(m, force)
+    scale = np.ones(d)
+    scale[:n] = w_ref
+    scale[ie] = w_ref
+    return np.asarray(scale[:, None] * a / scale[None, :], dtype=float)
 
 
 def reference_rate(m: FloatArray, k: FloatArray) -> float:
@@ -318,7 +448,7 @@ def track_branches(system: FrictionCoupledSystem, mus: FloatArray) -> ComplexArr
     """
     from scipy.optimize import linear_sum_assignment
 
-    out = np.empty((len(mus), 2 * system.n_dof), dtype=complex)
+    out = np.empty((len(mus), system.n_eigenvalues), dtype=complex)
     for i, mu in enumerate(mus):
         values, _ = system.eigenvalues(float(mu))
         if i:
@@ -375,9 +505,6 @@ def coupled_system(machine: Machine, contact: Contact | None, *, normal_dof: int
     tuple
         The system and the friction coefficient at the sliding speed.
     """
-    if contact is not None and contact.has_tangential_compliance:
-        raise ValueError("[contact] tangential_stiffness: the tangential contact compliance is not "
-                         "in the complex-eigenvalue analysis of this version (remove it here)")
     at = machine.with_operating_point(speed=speed, load=load)
     mu, slope = friction_at(at)
     index = None
@@ -390,4 +517,8 @@ def coupled_system(machine: Machine, contact: Contact | None, *, normal_dof: int
     system = FrictionCoupledSystem(at.mass, at.damping, at.stiffness, at.contact_dof, index,
                                    normal_stiffness=kn, normal_damping=cn, load=at.load,
                                    slope=slope)
+    if contact is not None and contact.has_tangential_compliance:
+        system = replace(system, tangential_stiffness=contact.tangential_stiffness,
+                         tangential_damping=contact.tangential_damping,
+                         contact_mass=contact.mass)
     return system, mu
