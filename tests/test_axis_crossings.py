@@ -131,3 +131,26 @@ def test_where_the_roots_cannot_prove_the_scan_answers_and_says_so() -> None:
     small = _random_system(rng, 3, 0.0)
     assert crossing_candidates(small, 2.0) is not None
     assert crossing_candidates(small.undamped(), 2.0) is None
+
+
+def _undamped_marginal(system: FrictionCoupledSystem, mu: float) -> bool:
+    """Oracle: every squared frequency of M^-1 K(mu) real and positive (numpy)."""
+    m, _, k = system.matrices(mu)
+    lam = np.linalg.eigvals(np.linalg.solve(m, k))
+    return bool(np.all(np.abs(lam.imag) <= 1e-9 * np.abs(lam)) and np.all(lam.real > 0.0))
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_exact_undamped_critical_mu_against_the_squared_frequencies(seed: int) -> None:
+    # the first mu where two squared frequencies merge (flutter) or one reaches 0 (divergence)
+    rng = np.random.default_rng(200 + seed)
+    for _ in range(10):
+        system = _random_system(rng, int(rng.integers(2, 7)), 0.0).undamped()
+        found = critical_friction(system, mu_max=3.0)
+        assert found.method.startswith("exact"), found.method
+        top = 3.0 if found.mu is None else found.mu
+        grid = np.linspace(0.0, 3.0, 601)
+        assert all(_undamped_marginal(system, float(mu)) for mu in grid[grid < top * (1 - 1e-7)])
+        if found.mu is not None:
+            assert _undamped_marginal(system, found.mu * (1 - 1e-6))
+            assert not _undamped_marginal(system, found.mu * (1 + 1e-6))

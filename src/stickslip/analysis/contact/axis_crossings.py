@@ -251,13 +251,91 @@ def crossing_candidates(system: FrictionCoupledSystem, mu_max: float) -> FloatAr
         found.append(roots)
     if quadratic and 0.0 < -1.0 / pole < mu_max:
         found.append(np.array([-1.0 / pole]))
-    values = np.sort(np.concatenate(found))
+    return _merged(np.concatenate(found), mu_max)
+
+
+def _merged(values: FloatArray, mu_max: float) -> FloatArray:
+    """The values in ``(0, mu_max)``, sorted, merged where closer than ``1e-9 max(1, mu)``."""
+    values = np.sort(values)
     values = values[(values > 0.0) & (values < mu_max)]
     merged: list[float] = []
     for v in values:
         if not merged or v - merged[-1] > 1e-9 * max(1.0, abs(v)):
             merged.append(float(v))
     return np.array(merged)
+
+
+def coalescence_candidates(system: FrictionCoupledSystem, mu_max: float) -> FloatArray | None:
+    r"""Every ``mu`` in ``(0, mu_max)`` where the undamped spectrum can change its kind.
+
+    Undamped, the squared frequencies ``\lambda = \omega^2`` solve ``g(\lambda) = -1 /
+    (\mu k_n)`` with ``g(\lambda) = \sum_i \alpha_i \beta_i / (\lambda_i - \lambda)`` (the
+    mass-normalised modes of ``K_0``; module docstring of
+    :mod:`~stickslip.analysis.contact.critical_coefficient`), plus the modes friction does not
+    couple (``\alpha_i \beta_i = 0``), which stay. As ``\mu`` grows the level
+    ``-1 / (\mu k_n)`` moves monotonically; two real roots merge (flutter) or part only where
+    it passes a stationary value of ``g`` (``g' = 0``: a double root), and a root changes sign
+    only where it passes ``g(0)`` (divergence); roots never cross a pole. So the kind of
+    spectrum is constant between the values ``\mu = -1 / (k_n g(\lambda^*))`` for the
+    stationary points ``\lambda^*`` and ``\mu = -1 / (k_n g(0))``. The stationary points are
+    the zeros of ``g'(\lambda) = \sum_i w_i / (\lambda_i - \lambda)^2``, the transfer
+    function of the Jordan blocks ``[[\lambda_i, 1], [0, \lambda_i]]`` with input ``e_2`` and
+    output ``w_i e_1``: the finite eigenvalues of its Rosenbrock pencil (QZ), polished by
+    Newton's method on ``g'``.
+
+    Parameters
+    ----------
+    system : FrictionCoupledSystem
+        Undamped, with a normal DOF and a rigid tangential contact (or a massless element
+        that follows the load).
+    mu_max : float
+        End of the range, dimensionless.
+
+    Returns
+    -------
+    ndarray or None
+        Increasing values in ``(0, mu_max)``; None beyond :data:`MAX_PENCIL` rows.
+    """
+    import scipy.linalg
+
+    t, nd = system.tangential_dof, system.normal_dof
+    assert nd is not None
+    lam, phi = scipy.linalg.eigh(system.contact_stiffness(), system.mass)
+    w = phi[t, :] * phi[nd, :]
+    scale = float(np.max(np.abs(w))) if w.size else 0.0
+    keep = np.abs(w) > 1e-14 * scale
+    lam, w = lam[keep], w[keep]
+    m = lam.size
+    if 2 * m + 1 > MAX_PENCIL or m == 0:
+        return None if m else np.array([])
+    a = np.zeros((2 * m + 1, 2 * m + 1))
+    for i in range(m):
+        a[2 * i, 2 * i] = a[2 * i + 1, 2 * i + 1] = lam[i]
+        a[2 * i, 2 * i + 1] = 1.0
+        a[2 * i + 1, 2 * m] = 1.0  # input into the block's second state
+        a[2 * m, 2 * i] = w[i]  # output from its first
+    e = np.eye(2 * m + 1)
+    e[2 * m, 2 * m] = 0.0
+    alpha, beta = scipy.linalg.eig(a, e, right=False, homogeneous_eigvals=True)
+    finite = np.abs(beta) > 1e-12 * np.abs(alpha)
+    zeros = alpha[finite] / beta[finite]
+    stationary = zeros[np.abs(zeros.imag) <= REAL_TOL * np.maximum(1.0, np.abs(zeros))].real
+
+    def g(x: float, power: int) -> float:
+        return float(np.sum(w / (lam - x) ** power))
+
+    polished = []
+    for x in stationary:
+        for _ in range(8):  # Newton on g' (g'' = 2 sum w / (lambda_i - x)^3), bounded
+            step = g(x, 2) / (2.0 * g(x, 3)) if g(x, 3) != 0.0 else 0.0
+            if not np.isfinite(step):
+                break
+            x = x - step
+        polished.append(x)
+    levels = [g(x, 1) for x in polished] + ([g(0.0, 1)] if np.all(lam != 0.0) else [])
+    kn = system.normal_stiffness
+    mus = np.array([-1.0 / (kn * v) for v in levels if np.isfinite(v) and kn * v < 0.0])
+    return _merged(mus, mu_max)
 
 
 def interval_points(candidates: FloatArray, mu_max: float) -> FloatArray:

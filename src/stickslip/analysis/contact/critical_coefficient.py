@@ -28,8 +28,15 @@ the coalescence condition: in the mass-normalised modes ``\Phi`` of
 ``\lambda = \omega^2`` of the coupled system solve
 ``1 + \mu k_n g(\lambda) = 0`` with ``g(\lambda) = \sum_i \alpha_i \beta_i / (\lambda_i - \lambda)``,
 ``\alpha_i = \Phi_{t i}``, ``\beta_i = \Phi_{n i}`` (the matrix determinant lemma). Two real
-roots merge at a stationary point of ``g``: ``g'(\lambda^*) = 0``, found between the two
-merging roots (a sign change of ``g'``), and ``\mu^* = -1 / (k_n g(\lambda^*))``.
+roots merge at a stationary point of ``g``: ``g'(\lambda^*) = 0``, and
+``\mu^* = -1 / (k_n g(\lambda^*))``. Every stationary point is computed (the zeros of ``g'``,
+:func:`~stickslip.analysis.contact.axis_crossings.coalescence_candidates`), and with
+``\mu = -1 / (k_n g(0))`` (a frequency reaching zero) they are the only values where the
+undamped spectrum can change its kind; one eigenvalue check between each two finds the first
+interval proven unstable, and its left end is the exact value (no flutter window skipped).
+Where that search does not apply (no normal DOF, a massive contact point, a pencil too large)
+the range is scanned and the coalescence found between the two merging roots (a sign change
+of ``g'``) makes the value exact inside the scan's bracket.
 """
 
 from __future__ import annotations
@@ -42,7 +49,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from stickslip.analysis.blas_threads import one_blas_thread
-from stickslip.analysis.contact.axis_crossings import crossing_candidates, interval_points
+from stickslip.analysis.contact.axis_crossings import (
+    coalescence_candidates,
+    crossing_candidates,
+    interval_points,
+)
 from stickslip.analysis.contact.friction_coupling import (
     FrictionCoupledSystem,
     track_branches,
@@ -154,7 +165,7 @@ def critical_friction(system: FrictionCoupledSystem, *, mu_max: float = MU_MAX,
                                 abs(big.imag) / (2 * math.pi), (), mu_max,
                                 "unstable without friction coupling (the structure or the "
                                 "friction law's slope)")
-    exact = None if undamped else _exact_search(system, mu_max)
+    exact = _exact_search(system, mu_max, undamped)
     if exact is not None and exact[0] is None:
         return CriticalFriction(None, None, "none", None, (), mu_max, exact[1])
     if exact is not None:
@@ -189,7 +200,7 @@ def critical_friction(system: FrictionCoupledSystem, *, mu_max: float = MU_MAX,
         mu, method = root, f"{exact[1]}; bracket by bisection: {ends}"
     else:
         mu, method = 0.5 * (lo + hi), f"scan and bisection: {ends}"
-    if undamped and kind == "flutter" and system.normal_dof is not None \
+    if exact is None and undamped and kind == "flutter" and system.normal_dof is not None \
             and system.contact_mass is None:  # (a massless element then follows the load)
         exact_mu = _coalescence(system, below, crossing)
         if exact_mu is not None and lo - 1e-9 * hi <= exact_mu <= hi:
@@ -217,33 +228,46 @@ def _bisected(system: FrictionCoupledSystem, lo: float, hi: float,
     return lo, hi
 
 
-def _exact_search(system: FrictionCoupledSystem,
-                  mu_max: float) -> tuple[float | None, str, float, float] | None:
+def _exact_search(system: FrictionCoupledSystem, mu_max: float,
+                  undamped: bool) -> tuple[float | None, str, float, float] | None:
     """The exact critical ``mu`` from the axis crossings, or None where they cannot prove.
 
-    Returns ``(mu, method, lo, hi)``: ``mu`` the root where the first interval proven
-    unstable begins (None: every interval proven stable), ``(lo, hi)`` its bisection bracket.
+    Damped: the real roots of ``det(2A (.) I) det A`` (every interval before the first
+    unstable one proven stable). Undamped (a normal DOF, a rigid contact or a massless element
+    that follows the load): the values where the spectrum can change its kind
+    (:func:`~stickslip.analysis.contact.axis_crossings.coalescence_candidates`; the intervals
+    before the first unstable one are marginal, never proven stable). Returns
+    ``(mu, method, lo, hi)``: ``mu`` the value where the first interval proven unstable
+    begins (None: none is), ``(lo, hi)`` its bisection bracket.
     """
-    roots = crossing_candidates(system, mu_max)
+    if undamped:
+        if system.normal_dof is None or system.contact_mass is not None:
+            return None
+        roots = coalescence_candidates(system, mu_max)
+        what, settled = "the stationary values of g and g(0)", 0
+    else:
+        roots = crossing_candidates(system, mu_max)
+        what, settled = "the real roots of det(2A(mu) (.) I) det A(mu)", -1
     if roots is None:
         return None
-    verdicts = [verdict_of(*system.eigenvalues(float(x))) for x in interval_points(roots, mu_max)]
+    points = interval_points(roots, mu_max)
+    verdicts = [verdict_of(*system.eigenvalues(float(x))) for x in points]
     first = verdicts.index(1) if 1 in verdicts else len(verdicts)
-    if 0 in verdicts[:first]:
+    if any(v != settled for v in verdicts[:first]):
         return None  # an interval within round-off of neutral: not decided
-    counted = (f"{len(roots)} real root{'s' if len(roots) != 1 else ''} of "
-               f"det(2A(mu) (.) I) det A(mu) in (0, {mu_max:g})")
+    counted = f"{len(roots)} of them in (0, {mu_max:g})"
+    checked = "proven stable" if settled == -1 else "marginal (undamped)"
     if first == len(verdicts):
         return (None, f"exact: no eigenvalue crosses the imaginary axis in (0, {mu_max:g}] "
-                      f"({counted}; each interval between them proven stable)", 0.0, 0.0)
-    points = interval_points(roots, mu_max)
+                      f"(it can only at {what}: {counted}; each interval between them "
+                      f"{checked})", 0.0, 0.0)
     root = float(roots[first - 1]) if first else 0.0
     lo, hi = _bisected(system, float(points[first - 1]) if first else 0.0, float(points[first]),
-                       False)
+                       undamped)
     if not lo - 1e-9 * max(1.0, hi) <= root <= hi + 1e-9 * max(1.0, hi):
         return None  # the roots and the eigenvalues disagree: not proven
-    return (root, f"exact: the first real root of det(2A(mu) (.) I) det A(mu) past which the "
-                  f"spectrum is unstable ({counted}, one eigenvalue check between each two)", lo, hi)
+    return (root, f"exact: the first of {what} past which the spectrum is unstable "
+                  f"({counted}, one eigenvalue check between each two)", lo, hi)
 
 
 def _coalescence(system: FrictionCoupledSystem, mu_lo: float, crossing: complex) -> float | None:
