@@ -1,6 +1,7 @@
-"""Benchmark: the paper's map, this tree against another commit's, in one run (A/B, bit for bit).
+"""Benchmark: the paper's map (or a basin), this tree against another commit's, in one run (A/B).
 
     .venv/bin/python benchmarks/bench_map_ab.py --commit fb2436e [--n 200] [--repeats 3]
+    .venv/bin/python benchmarks/bench_map_ab.py --commit f1d5108 --case basin [--n 20000]
 
 The other commit's ``src`` is extracted with ``git archive`` into a cache folder (its numba
 cache kept there) and imported in a subprocess; both build the paper's Fig. 8b map (lambda
@@ -11,6 +12,10 @@ old, ...), and the verdict, stick count, period, amplitude and stick ratio
 arrays are compared bit for bit. ``bench_map.py`` holds the A/B against the kernel from before
 the friction laws (its runner calls that commit's internal kernel); this one uses the public
 API, so any commit since then is a baseline.
+
+``--case basin``: bench_basin.py's "foundation weak" basin (``--n`` states, default 20,000,
+seed 1) with ``stickslip.basin_stability`` on all numba threads, in the same interleaved
+rounds; the labels are compared (samples/s and this/old printed).
 """
 
 from __future__ import annotations
@@ -26,7 +31,7 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 
-RUNNER = r"""
+MAP_RUNNER = r"""
 import sys, time, numpy as np
 from stickslip import occurrence_map
 from stickslip.sweep.execution import ExecutionOptions
@@ -44,6 +49,26 @@ names = ("verdict", "n_stick", "period", "amplitude", "stick_ratio")
 np.savez(sys.argv[3], seconds=best, **{k: ds[k].values for k in names})
 """
 
+BASIN_RUNNER = r"""
+import sys, time, numpy as np
+sys.path.insert(0, sys.argv[4])  # this tree's benchmarks folder: the case
+from bench_basin import foundation_weak_case
+from stickslip.sweep.basin import basin_stability, sample_box
+n, repeats = int(sys.argv[1]), int(sys.argv[2])
+structure, slider, box = foundation_weak_case()
+states = sample_box(structure, slider, n, box, seed=1)
+basin_stability(structure, slider, states[:64])
+best = np.inf
+for _ in range(repeats):
+    result = basin_stability(structure, slider, states)
+    best = min(best, result.elapsed)
+np.savez(sys.argv[3], seconds=best, verdict=result.verdict)
+"""
+
+#: per case: the runner, the arrays compared, the unit counted
+CASES = {"map": (MAP_RUNNER, ("verdict", "n_stick", "period", "amplitude", "stick_ratio"), "cells"),
+         "basin": (BASIN_RUNNER, ("verdict",), "samples")}
+
 
 def sources(commit: str) -> Path:
     """The ``src`` folder of ``commit``, extracted once into a cache folder."""
@@ -56,10 +81,10 @@ def sources(commit: str) -> Path:
     return folder / "src"
 
 
-def timed(src: Path, n: int, repeats: int, out: Path) -> dict[str, np.ndarray]:
+def timed(case: str, src: Path, n: int, repeats: int, out: Path) -> dict[str, np.ndarray]:
     env = {**os.environ, "PYTHONPATH": str(src)}
-    subprocess.run([sys.executable, "-c", RUNNER, str(n), str(repeats), str(out)], check=True,
-                   env=env, cwd=out.parent)
+    subprocess.run([sys.executable, "-c", CASES[case][0], str(n), str(repeats), str(out),
+                    str(ROOT / "benchmarks")], check=True, env=env, cwd=out.parent)
     with np.load(out) as data:
         return {k: data[k] for k in data.files}
 
@@ -67,10 +92,15 @@ def timed(src: Path, n: int, repeats: int, out: Path) -> dict[str, np.ndarray]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--commit", required=True, help="the baseline commit (any since 6c94c46)")
-    parser.add_argument("--n", type=int, default=200)
+    parser.add_argument("--case", choices=sorted(CASES), default="map")
+    parser.add_argument("--n", type=int, default=None,
+                        help="map side (default 200) or basin states (default 20000)")
     parser.add_argument("--repeats", type=int, default=3, help="timed maps per process")
     parser.add_argument("--rounds", type=int, default=2, help="processes per side, interleaved")
     args = parser.parse_args()
+    n = args.n if args.n is not None else (200 if args.case == "map" else 20_000)
+    if n < 2 or args.repeats < 1 or args.rounds < 1:
+        parser.error("--n must be at least 2, --repeats and --rounds at least 1")
     with tempfile.TemporaryDirectory() as tmp:
         # interleaved rounds (old, new, new, old, ...): a machine that speeds up or slows down
         # during the run favours neither; each side keeps its best
@@ -79,7 +109,7 @@ def main() -> None:
             order = ("old", "new") if round_ % 2 == 0 else ("new", "old")
             for side in order:
                 src = sources(args.commit) if side == "old" else ROOT / "src"
-                got = timed(src, args.n, args.repeats, Path(tmp) / f"{side}{round_}.npz")
+                got = timed(args.case, src, n, args.repeats, Path(tmp) / f"{side}{round_}.npz")
                 best = old if side == "old" else new
                 if best is None or float(got["seconds"]) < float(best["seconds"]):
                     if side == "old":
@@ -87,15 +117,16 @@ def main() -> None:
                     else:
                         new = got
         assert old is not None and new is not None
-    cells = args.n * args.n
-    same = all(np.array_equal(old[k], new[k], equal_nan=True)
-               for k in ("verdict", "n_stick", "period", "amplitude", "stick_ratio"))
-    print(f"paper's map {args.n}x{args.n} (Fig. 8b, optimal foundation, 2 threads, best of "
-          f"{args.repeats} x {args.rounds} rounds): commit {args.commit} "
-          f"{cells / float(old['seconds']):,.0f} cells/s, "
-          f"this tree {cells / float(new['seconds']):,.0f} cells/s, this/old "
-          f"{float(old['seconds']) / float(new['seconds']):.2f}x; bit-identical: {same}")
-
+    _, keys, unit = CASES[args.case]
+    count = n * n if args.case == "map" else n
+    same = all(np.array_equal(old[k], new[k], equal_nan=True) for k in keys)
+    what = (f"paper's map {n}x{n} (Fig. 8b, optimal foundation, 2 threads" if args.case == "map"
+            else f"foundation weak basin, {n} states (bench_basin.py, all threads")
+    print(f"{what}, best of {args.repeats} x {args.rounds} rounds): commit {args.commit} "
+          f"{count / float(old['seconds']):,.0f} {unit}/s, "
+          f"this tree {count / float(new['seconds']):,.0f} {unit}/s, this/old "
+          f"{float(old['seconds']) / float(new['seconds']):.2f}x; "
+          f"{'bit-identical' if args.case == 'map' else 'labels equal'}: {same}")
 
 if __name__ == "__main__":
     main()

@@ -85,8 +85,9 @@ equilibrium and ``N_0`` as the rigid contact. For a small motion, with
 and the structure ``M \ddot x + (C + c_n e_n e_n^T) \dot x + (K + k_n e_n e_n^T) x = e_t
 \delta F_e``. The friction coupling ``\mu \delta N`` reaches the structure through the point,
 and the law's slope damps (or feeds) the point's motion rather than the tangential DOF's.
-As ``k_t`` grows the spectrum tends to the rigid contact's, plus the element's own fast
-eigenvalues (tested).
+As ``k_t`` grows the spectrum tends to the rigid contact's with the point's mass added to the
+tangential DOF, plus the element's own fast eigenvalues (tested: the gap closes like
+``1 / k_t``).
 
 The critical friction coefficient, where steady sliding first turns unstable as ``\mu`` grows,
 is :mod:`stickslip.analysis.contact.critical_coefficient`.
