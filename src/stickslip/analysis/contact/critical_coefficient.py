@@ -129,18 +129,19 @@ def critical_friction(system: FrictionCoupledSystem, *, mu_max: float = MU_MAX,
                       n_scan: int = N_SCAN) -> CriticalFriction:
     """The smallest ``mu`` in ``(0, mu_max]`` where steady sliding turns unstable (module docstring).
 
-    A damped system is searched exactly: every ``mu`` where an eigenvalue can reach the
-    imaginary axis is a real root of ``det(2A(mu) (.) I) det A(mu)``
-    (:mod:`~stickslip.analysis.contact.axis_crossings`), and one eigenvalue check between
-    consecutive roots decides each interval. Where that cannot prove (an undamped system, a
-    singular or too large pencil, an interval within round-off of neutral) the range is
-    scanned at ``n_scan`` steps and the method says so.
+    The search is exact: every ``mu`` where an eigenvalue can reach the imaginary axis is a
+    real root of ``det(2A(mu) (.) I) det A(mu)`` (damped) or a stationary value of the
+    coalescence function (undamped) (:mod:`~stickslip.analysis.contact.axis_crossings`), and
+    one eigenvalue check between consecutive roots decides each interval. Where that cannot
+    prove (a singular or too large pencil, an undamped massive contact point, an interval
+    within round-off of neutral) the range is scanned at ``n_scan`` steps and the method says
+    so.
 
     Parameters
     ----------
     system : FrictionCoupledSystem
         The structure and its contact; pass ``system.undamped()`` for the flutter boundary
-        of the undamped structure (then refined by the exact coalescence condition).
+        of the undamped structure.
     mu_max : float
         Largest friction coefficient searched, dimensionless (> 0).
     n_scan : int
