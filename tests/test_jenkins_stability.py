@@ -160,3 +160,36 @@ def test_stability_command_analyses_the_jenkins_example(tmp_path: Path) -> None:
     assert reals[1] == pytest.approx(-0.1, rel=1e-9) and reals[2] == pytest.approx(-0.1, rel=1e-9)
     assert data["verdict"] == "stable"
     assert data["critical"]["method"].startswith("exact")
+
+
+@pytest.mark.parametrize("mc", [None, 0.05])
+def test_exact_critical_mu_with_element_slope_and_normal_dof(mc: float | None) -> None:
+    # f(mu) A(mu) quadratic (f = c_t (1 + a mu) + slope W or 1 + a mu): the roots decide; the
+    # oracle is the growth rate of the linearisation (checked above against the equations'
+    # Jacobian) on a grid and on both sides of the root
+    rng = np.random.default_rng(7)
+    exact = crossed = 0
+    for _ in range(12):
+        k = rng.normal(size=(3, 3))
+        system = dataclasses.replace(
+            _machine(float(rng.uniform(1e4, 1e5)), float(rng.uniform(1.0, 50.0)), mc,
+                     slope=float(rng.uniform(-0.01, 0.01))),
+            stiffness=np.diag([4.0e4, 3.0e4, 2.0e4]) + 3e3 * (k + k.T))
+
+        def growth(mu: float, system: FrictionCoupledSystem = system) -> float:
+            values, _ = system.eigenvalues(mu)
+            return float(values.real.max())
+
+        if growth(0.0) >= 0.0:
+            continue
+        found = critical_friction(system, mu_max=6.0)
+        print(f"m_c = {mc}: critical mu {found.mu} ({found.kind})")
+        assert found.method.startswith("exact"), found.method
+        exact += 1
+        crossed += found.mu is not None
+        top = 6.0 if found.mu is None else found.mu
+        grid = np.linspace(0.0, 6.0, 601)
+        assert all(growth(float(mu)) < 0.0 for mu in grid[grid < top * (1 - 1e-7)])
+        if found.mu is not None:
+            assert growth(found.mu * (1 - 1e-6)) < 0.0 < growth(found.mu * (1 + 1e-6))
+    assert exact >= 4 and crossed >= 2

@@ -118,16 +118,20 @@ def steady_normal_force_pole(system: FrictionCoupledSystem) -> float:
 
 
 def matrix_coefficients(system: FrictionCoupledSystem,
-                        ) -> tuple[FloatArray, FloatArray, FloatArray, float] | None:
-    """``P_0, P_1, P_2`` and ``a``: ``(1 + a mu) A(mu) = P_0 + mu P_1 + mu^2 P_2`` (module docstring).
+                        ) -> tuple[FloatArray, FloatArray, FloatArray | None, FloatArray] | None:
+    """``P_0, P_1, P_2`` and breakpoints: ``f(mu) A(mu) = P_0 + mu P_1 + mu^2 P_2`` (module docstring).
 
     ``A`` is the scaled first-order matrix of
     :func:`~stickslip.analysis.contact.friction_coupling.first_order_matrix` (the same
-    eigenvalues as the unscaled one). Without a slope, ``a`` is taken as 0: ``A`` is affine.
-    With a Jenkins element
+    eigenvalues as the unscaled one) and ``f`` a scalar polynomial of degree at most one: 1
+    without a slope (``A`` affine, ``P_2`` None), ``1 + a mu`` with one. With a Jenkins element
     (:func:`~stickslip.analysis.contact.friction_coupling.jenkins_state_matrix`) ``A`` is
     affine in ``mu`` when ``N_0`` is constant in it (no slope, or no normal DOF): then
-    ``P_0 = A(0)``, ``P_1 = A(1) - A(0)``; otherwise None (the caller scans).
+    ``P_0 = A(0)``, ``P_1 = A(1) - A(0)``. With a slope and a normal DOF, ``N_0 = W / (1 + a
+    mu)`` enters the massless point's lag ``c_t + mu' N_0`` and the massive point's friction:
+    ``f = c_t (1 + a mu) + mu' W`` (massless) or ``1 + a mu`` (massive) makes ``f A``
+    quadratic, whose coefficients come from three values of ``mu`` (Lagrange interpolation,
+    exact to rounding).
 
     Parameters
     ----------
@@ -137,7 +141,9 @@ def matrix_coefficients(system: FrictionCoupledSystem,
     Returns
     -------
     tuple or None
-        ``P_0``, ``P_1``, ``P_2`` (1/s, shape (2n, 2n)) and ``a``; None where ``A`` is not of
+        ``P_0``, ``P_1``, ``P_2`` (1/s, shape (2n, 2n) or larger; ``P_2`` None when ``A`` is
+        affine) and the breakpoints (the zeros of ``f`` and ``1 + a mu``, where ``A`` has a
+        pole: the contact lifts off or the point's lag vanishes); None where ``A`` is not of
         that form.
     """
     if system.tangential_stiffness is not None:
@@ -158,18 +164,41 @@ def matrix_coefficients(system: FrictionCoupledSystem,
     a2 = first_order_matrix(m, c2, np.zeros((n, n)), w_ref, identity=False)
     pole = steady_normal_force_pole(system) if system.slope != 0.0 else 0.0
     p0 = a0 + system.slope * system.load * a2
-    return p0, a1 + pole * a0, pole * a1, pole
+    if pole == 0.0:
+        return p0, a1, None, np.array([])
+    return p0, a1 + pole * a0, pole * a1, np.array([-1.0 / pole])
 
 
 def _jenkins_coefficients(system: FrictionCoupledSystem,
-                          ) -> tuple[FloatArray, FloatArray, FloatArray, float] | None:
-    """``A(0)``, ``A(1) - A(0)`` and zeros for a Jenkins element whose ``A`` is affine in ``mu``."""
-    if system.slope != 0.0 and system.normal_dof is not None:
-        return None  # N_0(mu) in the massless element's lag: not a polynomial of degree one
+                          ) -> tuple[FloatArray, FloatArray, FloatArray | None, FloatArray] | None:
+    """:func:`matrix_coefficients` for a Jenkins element (its docstring)."""
     w_ref = reference_rate(system.mass, system.contact_stiffness())
+    if system.slope != 0.0 and system.normal_dof is not None:
+        a = steady_normal_force_pole(system)
+        load_slope = system.slope * system.load
+        ct = system.tangential_damping
+
+        def f(mu: float) -> float:
+            massive = system.contact_mass is not None
+            return (1.0 + a * mu) if massive else ct * (1.0 + a * mu) + load_slope
+
+        usable = [x for x in (0.0, 1.0, 2.0, 3.0, 4.0) if f(x) != 0.0 and 1.0 + a * x != 0.0][:3]
+        samples = []
+        for x in usable:
+            sample = jenkins_state_matrix(system, x, w_ref)
+            if sample is None:
+                return None
+            samples.append(f(x) * sample)
+        values = np.stack(samples)
+        coefficients = np.linalg.solve(np.vander(usable, 3, increasing=True),
+                                       values.reshape(3, -1)).reshape(values.shape)
+        breaks = [-1.0 / a] if a != 0.0 else []
+        if system.contact_mass is None and ct * a != 0.0:
+            breaks.append(-(ct + load_slope) / (ct * a))
+        return coefficients[0], coefficients[1], coefficients[2], np.array(breaks)
     a0, a1 = jenkins_state_matrix(system, 0.0, w_ref), jenkins_state_matrix(system, 1.0, w_ref)
     if a0 is not None and a1 is not None:
-        return a0, a1 - a0, np.zeros_like(a0), 0.0
+        return a0, a1 - a0, None, np.array([])
     if system.tangential_damping == 0.0 and system.slope == 0.0:
         # the extension follows the load: the rigid contact's spectrum (FrictionCoupledSystem)
         return matrix_coefficients(replace(system, tangential_stiffness=None, contact_mass=None))
@@ -240,17 +269,15 @@ def crossing_candidates(system: FrictionCoupledSystem, mu_max: float) -> FloatAr
     coefficients = matrix_coefficients(system)
     if coefficients is None:
         return None
-    p0, p1, p2, pole = coefficients
-    quadratic = pole != 0.0
-    found = []
+    p0, p1, p2, breaks = coefficients
+    found = [breaks]
     for transform in (bialternate_sum, None):
-        b = [p if transform is None else transform(p) for p in (p0, p1, p2)]
-        roots = polynomial_real_roots(b[0], b[1], b[2] if quadratic else None, 0.0, mu_max)
+        b0, b1 = (p if transform is None else transform(p) for p in (p0, p1))
+        b2 = None if p2 is None else (p2 if transform is None else transform(p2))
+        roots = polynomial_real_roots(b0, b1, b2, 0.0, mu_max)
         if roots is None:
             return None
         found.append(roots)
-    if quadratic and 0.0 < -1.0 / pole < mu_max:
-        found.append(np.array([-1.0 / pole]))
     return _merged(np.concatenate(found), mu_max)
 
 
