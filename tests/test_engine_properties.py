@@ -22,6 +22,7 @@ from stickslip import (
     Slider,
     Verdict,
     chain_structure,
+    rigid_base,
     simulate,
 )
 
@@ -82,6 +83,9 @@ def test_verdict_matches_status(system) -> None:  # type: ignore[no-untyped-def]
         # a repeat that no divisor proves (hypothesis found an undamped third DOF, lambda 8,
         # gamma 0: a multiplier on the unit circle, so no ball contracts)
         RunStatus.UNPROVEN_CYCLE: Verdict.UNDETERMINED,
+        # a 1-DOF cycle whose stick phases all last no time (hypothesis found zeta 0, gamma 0:
+        # touches of the belt speed): a slip oscillation
+        RunStatus.CERTIFIED_OSCILLATION: Verdict.SLIP_OSCILLATION,
     }
     assert result.verdict is expected[result.status]
     assert result.t_end <= 300.0
@@ -107,3 +111,18 @@ def test_t_max_is_a_reported_status() -> None:
     assert result.status is RunStatus.T_MAX
     assert result.t_end == 2.0
     assert result.certificate == ""
+
+
+def test_touching_the_belt_speed_without_sticking_is_a_slip_oscillation() -> None:
+    # hypothesis's example: undamped, no kinetic friction (gamma = 0). After the start-up stick
+    # phase the slider only touches the belt speed (stick phases of zero duration) and crosses
+    # it between slip-I and slip-II: periodic, but with no stick phase, so not stick-slip
+    result = simulate(rigid_base(0.0), Slider(0.9466785280815826, gamma=0.0),
+                      options=EngineOptions(t_max=300.0, max_events=1000))
+    assert result.verdict is Verdict.SLIP_OSCILLATION
+    times, modes = result.segment_times, result.segment_modes
+    ends = np.append(times[1:], result.t_end)
+    later_stick = (modes == Mode.STICK) & (times > 0.0)
+    assert np.all(ends[later_stick] == times[later_stick])  # no stick phase after start-up
+    assert np.any(modes == Mode.SLIP_II)
+

@@ -556,6 +556,11 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
                 status = STATUS_MAX_EVENTS
             break
 
+    if n == 1 and status == STATUS_CYCLE and fsum[F_STICK_RATIO] == 0.0:
+        # every stick phase of the cycle lasted no time (touches of the belt speed, e.g. an
+        # undamped slider without kinetic friction): a slip oscillation, not stick-slip. With
+        # one DOF the state at the belt speed is fixed by xi, so the repeat is exact as a proof.
+        status = STATUS_OSCILLATION
     _summaries(fsum, isum, status, t, last_bound, max_v, t_last_stick, n_stick, n_rec[0], n_seg,
                n_steps, quick)
     n_keep = min(n_seg, cap) if record else 0
