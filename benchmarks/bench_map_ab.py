@@ -16,6 +16,11 @@ API, so any commit since then is a baseline.
 ``--case basin``: bench_basin.py's "foundation weak" basin (``--n`` states, default 20,000,
 seed 1) with ``stickslip.basin_stability`` on all numba threads, in the same interleaved
 rounds; the labels are compared (samples/s and this/old printed).
+
+``--case cea``: the critical friction coefficient with and without damping
+(``critical_friction``) of a random damped ``--n``-DOF machine with a normal DOF (default 4,
+seed 3), analyses/s and this/old; the values are printed for both sides (the exact search may
+differ from a scan's bisection in the last digits).
 """
 
 from __future__ import annotations
@@ -65,9 +70,27 @@ for _ in range(repeats):
 np.savez(sys.argv[3], seconds=best, verdict=result.verdict)
 """
 
+CEA_RUNNER = r"""
+import sys, time, numpy as np
+from stickslip.analysis.contact import FrictionCoupledSystem, critical_friction
+n_dof, repeats = int(sys.argv[1]), int(sys.argv[2])
+rng = np.random.default_rng(3)
+a, b = rng.normal(size=(n_dof, n_dof)), rng.normal(size=(n_dof, n_dof))
+system = FrictionCoupledSystem(np.eye(n_dof), 0.05 * b @ b.T, a @ a.T + n_dof * np.eye(n_dof), 0, 1,
+                               normal_stiffness=2.0, normal_damping=0.01)
+critical_friction(system)
+best = np.inf
+for _ in range(repeats):
+    t0 = time.perf_counter()
+    found = [critical_friction(system).mu, critical_friction(system.undamped()).mu]
+    best = min(best, time.perf_counter() - t0)
+np.savez(sys.argv[3], seconds=best, mu=np.array([np.nan if m is None else m for m in found]))
+"""
+
 #: per case: the runner, the arrays compared, the unit counted
 CASES = {"map": (MAP_RUNNER, ("verdict", "n_stick", "period", "amplitude", "stick_ratio"), "cells"),
-         "basin": (BASIN_RUNNER, ("verdict",), "samples")}
+         "basin": (BASIN_RUNNER, ("verdict",), "samples"),
+         "cea": (CEA_RUNNER, (), "analyses")}
 
 
 def sources(commit: str) -> Path:
@@ -98,7 +121,7 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=3, help="timed maps per process")
     parser.add_argument("--rounds", type=int, default=2, help="processes per side, interleaved")
     args = parser.parse_args()
-    n = args.n if args.n is not None else (200 if args.case == "map" else 20_000)
+    n = args.n if args.n is not None else {"map": 200, "basin": 20_000, "cea": 4}[args.case]
     if n < 2 or args.repeats < 1 or args.rounds < 1:
         parser.error("--n must be at least 2, --repeats and --rounds at least 1")
     with tempfile.TemporaryDirectory() as tmp:
@@ -118,15 +141,17 @@ def main() -> None:
                         new = got
         assert old is not None and new is not None
     _, keys, unit = CASES[args.case]
-    count = n * n if args.case == "map" else n
+    count = {"map": n * n, "basin": n, "cea": 1}[args.case]
     same = all(np.array_equal(old[k], new[k], equal_nan=True) for k in keys)
-    what = (f"paper's map {n}x{n} (Fig. 8b, optimal foundation, 2 threads" if args.case == "map"
-            else f"foundation weak basin, {n} states (bench_basin.py, all threads")
+    what = {"map": f"paper's map {n}x{n} (Fig. 8b, optimal foundation, 2 threads",
+            "basin": f"foundation weak basin, {n} states (bench_basin.py, all threads",
+            "cea": f"critical mu, damped and undamped, random {n}-DOF machine (one thread"}[args.case]
     print(f"{what}, best of {args.repeats} x {args.rounds} rounds): commit {args.commit} "
           f"{count / float(old['seconds']):,.0f} {unit}/s, "
           f"this tree {count / float(new['seconds']):,.0f} {unit}/s, this/old "
           f"{float(old['seconds']) / float(new['seconds']):.2f}x; "
-          f"{'bit-identical' if args.case == 'map' else 'labels equal'}: {same}")
+          + (f"critical mu old {old['mu']}, new {new['mu']}" if args.case == "cea" else
+             f"{'bit-identical' if args.case == 'map' else 'labels equal'}: {same}"))
 
 if __name__ == "__main__":
     main()
