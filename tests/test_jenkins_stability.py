@@ -193,3 +193,12 @@ def test_exact_critical_mu_with_element_slope_and_normal_dof(mc: float | None) -
         if found.mu is not None:
             assert growth(found.mu * (1 - 1e-6)) < 0.0 < growth(found.mu * (1 + 1e-6))
     assert exact >= 4 and crossed >= 2
+
+
+def test_the_command_and_the_app_search_the_analysis_range() -> None:
+    """``stickslip stability``'s default ``--mu-max`` (kept in the command for its start-up
+    time) is the analysis's default range, which the app's machine page uses unchanged."""
+    from stickslip.analysis.contact.critical_coefficient import MU_MAX
+    from stickslip.cli.stability_command import MU_MAX_DEFAULT
+
+    assert MU_MAX_DEFAULT == MU_MAX

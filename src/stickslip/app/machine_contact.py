@@ -9,8 +9,8 @@ same order, so the same numbers), from the uploaded files only. The page shows
 * the complex-eigenvalue analysis of steady sliding
   (:func:`~stickslip.analysis.contact.eigenvalues.complex_eigenvalue_analysis`, ``mu_max`` 2
   as the command's default): verdict, modes, critical friction coefficients with and without
-  damping and the root locus; a Jenkins element is refused by that analysis, and its
-  sentence is shown as information;
+  damping and the root locus (a Jenkins element's extension and, when it has a mass, its
+  point's velocity are states of that analysis);
 * the time history from the start-up state
   (:func:`~stickslip.analysis.contact.engine.simulate_contact`, the command's defaults):
   verdict, certificate, period (s), amplitude (m), separation, the event counts, and the last
@@ -32,8 +32,6 @@ APPLIES = ("This machine has a contact ([structure] normal_dof and [contact], or
            "element): the page shows its complex-eigenvalue analysis ('stickslip stability') "
            "and its time history ('stickslip simulate'). The design, the absorbers and the "
            "bifurcation diagram do not take a contact in this version.")
-#: Largest friction coefficient searched for the critical ones (``stickslip stability``'s default).
-MU_MAX = 2.0
 #: Periods of the motion drawn (or natural periods of the contact DOF when none repeats).
 PERIODS_DRAWN = 4
 #: Samples of the drawn time history.
@@ -142,7 +140,8 @@ def stability_in_worker(cm: ContactMachine) -> tuple[Any, Any]:
     Returns
     -------
     StabilityResult, RootLocus
-        As ``stickslip stability --config`` computes them (``--mu-max`` :data:`MU_MAX`).
+        As ``stickslip stability --config`` computes them (the default ``--mu-max``, the
+        analysis's :data:`~stickslip.analysis.contact.critical_coefficient.MU_MAX`).
 
     Raises
     ------
@@ -152,8 +151,7 @@ def stability_in_worker(cm: ContactMachine) -> tuple[Any, Any]:
     from stickslip.analysis.contact.eigenvalues import complex_eigenvalue_analysis
 
     try:
-        result = complex_eigenvalue_analysis(cm.machine, cm.contact, normal_dof=cm.normal_index,
-                                             mu_max=MU_MAX)
+        result = complex_eigenvalue_analysis(cm.machine, cm.contact, normal_dof=cm.normal_index)
     except ValueError as exc:
         raise ValueError(f"{cm.label}: {exc}") from None
     return result, result.root_locus()
