@@ -202,3 +202,53 @@ def test_the_command_and_the_app_search_the_analysis_range() -> None:
     from stickslip.cli.stability_command import MU_MAX_DEFAULT
 
     assert MU_MAX_DEFAULT == MU_MAX
+
+
+@pytest.mark.parametrize("ct, slope", [(0.0, 0.0), (30.0, 0.004)])
+def test_a_massive_point_is_one_more_dof_with_a_rigid_contact(ct: float, slope: float) -> None:
+    # oracle: the Jenkins state matrix (checked above against the contact engine's flow and
+    # the equations' Jacobian); point_as_dof builds the (n + 1)-DOF rigid contact separately
+    rng = np.random.default_rng(11)
+    for _ in range(6):
+        k = rng.normal(size=(3, 3))
+        system = dataclasses.replace(
+            _machine(float(rng.uniform(1e4, 1e5)), ct, float(rng.uniform(0.01, 0.5)), slope),
+            stiffness=np.diag([4.0e4, 3.0e4, 2.0e4]) + 3e3 * (k + k.T))
+        rigid = system.point_as_dof()
+        assert rigid.n_dof == 4 and rigid.tangential_stiffness is None
+        for mu in (0.0, 0.3, 1.1):
+            jenkins, _ = system.eigenvalues(mu)
+            augmented, _ = rigid.eigenvalues(mu)
+            assert _matched(jenkins, augmented) <= 1e-9 * float(np.abs(jenkins).max())
+            assert rigid.normal_force(mu) == pytest.approx(system.normal_force(mu), rel=1e-12)
+
+
+def test_undamped_critical_mu_of_a_massive_point_is_exact() -> None:
+    # the undamped spectrum is marginal until two modes coalesce: the oracle is a 4,001-point
+    # numpy scan of the Jenkins state matrix's eigenvalues (unstable where a real part exceeds
+    # 1e-7 of the largest modulus), which must bracket the exact value, and both sides of it
+    rng = np.random.default_rng(5)
+    crossed = 0
+    for _ in range(10):
+        k = rng.normal(size=(3, 3))
+        system = dataclasses.replace(
+            _machine(float(rng.uniform(1e4, 1e5)), 0.0, float(rng.uniform(0.01, 0.5))),
+            stiffness=np.diag([4.0e4, 3.0e4, 2.0e4]) + 3e3 * (k + k.T)).undamped()
+
+        def unstable(mu: float, system: FrictionCoupledSystem = system) -> bool:
+            values, _ = system.eigenvalues(mu)
+            return bool(values.real.max() > 1e-7 * float(np.abs(values).max()))
+
+        found = critical_friction(system, mu_max=4.0)
+        print(f"undamped massive point: critical mu {found.mu} ({found.kind}); {found.method}")
+        assert found.method.startswith("exact"), found.method
+        grid = np.linspace(0.0, 4.0, 4001)
+        flags = [unstable(float(mu)) for mu in grid]
+        if found.mu is None:
+            assert not any(flags)
+            continue
+        crossed += 1
+        first = flags.index(True)
+        assert grid[first - 1] <= found.mu <= grid[first]
+        assert not unstable(found.mu * (1 - 1e-6)) and unstable(found.mu * (1 + 1e-4))
+    assert crossed >= 3

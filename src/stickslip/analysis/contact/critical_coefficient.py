@@ -14,10 +14,10 @@ skipped, however narrow). A sign is read only beyond the eigenvalue's error boun
 eigenvalue's first-order perturbation bound ``kappa_i * 4n * eps * ||A||_F`` (``kappa_i`` its
 condition number from the left and right eigenvectors, Wilkinson) is added to its real part.
 The bracket comes from bisection between the two intervals' check points: its lower end is
-proven stable and its upper end proven unstable. Where the roots cannot prove (an undamped
-system, a singular pencil, more than 22 DOF (16 with a slope), an interval neutral within
-round-off) the range is scanned at ``n_scan`` steps with bisection, which resolves instability
-windows wider than its step (``mu_max / n_scan``), and the method says so.
+proven stable and its upper end proven unstable. Where the roots cannot prove (a singular
+pencil, more than 22 DOF (16 with a slope), an interval neutral within round-off) the range
+is scanned at ``n_scan`` steps with bisection, which resolves instability windows wider than
+its step (``mu_max / n_scan``), and the method says so.
 
 ``critical_mu_undamped`` is the same with every velocity term removed (``C``, ``c_n`` and the
 slope): the eigenvalues are then ``\pm i\omega`` until two modes coalesce (flutter) or one
@@ -34,8 +34,10 @@ roots merge at a stationary point of ``g``: ``g'(\lambda^*) = 0``, and
 ``\mu = -1 / (k_n g(0))`` (a frequency reaching zero) they are the only values where the
 undamped spectrum can change its kind; one eigenvalue check between each two finds the first
 interval proven unstable, and its left end is the exact value (no flutter window skipped).
-Where that search does not apply (no normal DOF, a massive contact point, a pencil too large)
-the range is scanned and the coalescence found between the two merging roots (a sign change
+A massive contact point of a Jenkins element is one more DOF with a rigid contact there
+(:meth:`~stickslip.analysis.contact.friction_coupling.FrictionCoupledSystem.point_as_dof`), so
+the same search applies to it. Where that search does not apply (no normal DOF, a pencil too
+large) the range is scanned and the coalescence found between the two merging roots (a sign change
 of ``g'``) makes the value exact inside the scan's bracket.
 """
 
@@ -133,8 +135,8 @@ def critical_friction(system: FrictionCoupledSystem, *, mu_max: float = MU_MAX,
     real root of ``det(2A(mu) (.) I) det A(mu)`` (damped) or a stationary value of the
     coalescence function (undamped) (:mod:`~stickslip.analysis.contact.axis_crossings`), and
     one eigenvalue check between consecutive roots decides each interval. Where that cannot
-    prove (a singular or too large pencil, an undamped massive contact point, an interval
-    within round-off of neutral) the range is scanned at ``n_scan`` steps and the method says
+    prove (a singular or too large pencil, an interval within round-off of neutral, undamped
+    without a normal DOF) the range is scanned at ``n_scan`` steps and the method says
     so.
 
     Parameters
@@ -201,15 +203,21 @@ def critical_friction(system: FrictionCoupledSystem, *, mu_max: float = MU_MAX,
         mu, method = root, f"{exact[1]}; bracket by bisection: {ends}"
     else:
         mu, method = 0.5 * (lo + hi), f"scan and bisection: {ends}"
-    if exact is None and undamped and kind == "flutter" and system.normal_dof is not None \
-            and system.contact_mass is None:  # (a massless element then follows the load)
-        exact_mu = _coalescence(system, below, crossing)
+    if exact is None and undamped and kind == "flutter" and system.normal_dof is not None:
+        exact_mu = _coalescence(_rigid_form(system), below, crossing)
         if exact_mu is not None and lo - 1e-9 * hi <= exact_mu <= hi:
             mu = exact_mu
             method = ("mode coalescence, g'(lambda*) = 0 (exact), inside the bisection bracket "
                       "whose upper end is proven unstable")
     return CriticalFriction(mu, (lo, hi), kind, abs(crossing.imag) / (2 * math.pi),
                             tuple(sorted({m for m in modes if m > 0})), mu_max, method)
+
+
+def _rigid_form(system: FrictionCoupledSystem) -> FrictionCoupledSystem:
+    """The undamped system with a rigid tangential contact: itself (a rigid contact, or a
+    massless element that follows the load) or, for a massive contact point, the structure
+    with the point as one more DOF (:meth:`FrictionCoupledSystem.point_as_dof`)."""
+    return system if system.contact_mass is None else system.point_as_dof()
 
 
 def _bisected(system: FrictionCoupledSystem, lo: float, hi: float,
@@ -234,17 +242,19 @@ def _exact_search(system: FrictionCoupledSystem, mu_max: float,
     """The exact critical ``mu`` from the axis crossings, or None where they cannot prove.
 
     Damped: the real roots of ``det(2A (.) I) det A`` (every interval before the first
-    unstable one proven stable). Undamped (a normal DOF, a rigid contact or a massless element
-    that follows the load): the values where the spectrum can change its kind
+    unstable one proven stable). Undamped (a normal DOF; a rigid contact, a massless element
+    that follows the load, or a massive point as one more DOF,
+    :meth:`~stickslip.analysis.contact.friction_coupling.FrictionCoupledSystem.point_as_dof`):
+    the values where the spectrum can change its kind
     (:func:`~stickslip.analysis.contact.axis_crossings.coalescence_candidates`; the intervals
     before the first unstable one are marginal, never proven stable). Returns
     ``(mu, method, lo, hi)``: ``mu`` the value where the first interval proven unstable
     begins (None: none is), ``(lo, hi)`` its bisection bracket.
     """
     if undamped:
-        if system.normal_dof is None or system.contact_mass is not None:
+        if system.normal_dof is None:
             return None
-        roots = coalescence_candidates(system, mu_max)
+        roots = coalescence_candidates(_rigid_form(system), mu_max)
         what, settled = "the stationary values of g and g(0)", 0
     else:
         roots = crossing_candidates(system, mu_max)

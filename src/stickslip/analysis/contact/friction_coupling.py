@@ -179,6 +179,39 @@ class FrictionCoupledSystem:
         return replace(self, damping=np.zeros_like(self.damping), normal_damping=0.0, slope=0.0,
                        tangential_damping=0.0)
 
+    def point_as_dof(self) -> FrictionCoupledSystem:
+        """A massive contact point as one more DOF of the structure, with a rigid contact there.
+
+        The point (mass ``m_c``) is joined to ``tangential_dof`` by the element (``k_t``,
+        ``c_t``) and slides on the belt: its equations are those of a DOF ``p`` with
+        ``m_c x_p'' = k_t (x_t - x_p) + c_t (x_t' - x_p') + mu N`` and ``N = W - k_n q_n -
+        c_n q_n'``, which is the rigid contact of this class on the structure with ``M + m_c
+        e_p e_p^T``, ``C + c_t d d^T`` and ``K + k_t d d^T`` (``d = e_t - e_p``), friction on
+        ``p``. The law's slope then acts on ``x_p'``, as in :func:`jenkins_state_matrix`. In
+        steady sliding the element carries ``mu N_0``, so ``N_0`` is unchanged.
+
+        Returns
+        -------
+        FrictionCoupledSystem
+            ``n + 1`` DOF, ``tangential_dof = n`` (the point), no element.
+        """
+        assert self.tangential_stiffness is not None and self.contact_mass is not None
+        n, t = self.n_dof, self.tangential_dof
+        d = np.zeros(n + 1)
+        d[t], d[n] = 1.0, -1.0
+
+        def grown(matrix: FloatArray, point: float, element: float) -> FloatArray:
+            out = np.zeros((n + 1, n + 1))
+            out[:n, :n] = matrix
+            out[n, n] = point
+            return out + element * np.outer(d, d)
+
+        return replace(self, mass=grown(self.mass, self.contact_mass, 0.0),
+                       damping=grown(self.damping, 0.0, self.tangential_damping),
+                       stiffness=grown(self.stiffness, 0.0, self.tangential_stiffness),
+                       tangential_dof=n, tangential_stiffness=None, tangential_damping=0.0,
+                       contact_mass=None)
+
     def contact_stiffness(self) -> FloatArray:
         """``K_0 = K + k_n e_n e_n^T`` (N/m): the structure pressed on the belt, without friction."""
         k0 = np.array(self.stiffness, dtype=float)
