@@ -206,7 +206,7 @@ def baseline_growth(speed: float, load: float) -> float:
 
 def stability_map_case(n_speed: int = 100, n_load: int = 100) -> None:
     """A 10^4-cell rate-and-state stability map: the tool's against the baseline's, one run."""
-    from stickslip.sweep.memory_map import memory_stability_map
+    from stickslip.sweep.memory.maps import memory_stability_map
 
     speeds, loads = np.geomspace(1e-5, 1e-1, n_speed), np.geomspace(1.0, 100.0, n_load)
     memory_stability_map(MAP_SYSTEM, speeds[:2], loads[:2])  # compile / load the cache

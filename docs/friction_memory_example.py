@@ -149,7 +149,7 @@ def rice_ruina(out: Path) -> None:
 def stability_map(out: Path) -> None:
     """The growth-rate map of the rate-and-state slider of the stability section, its critical speed."""
     from stickslip.analysis.memory import memory_stability, rice_ruina_critical_speed
-    from stickslip.sweep.memory_map import memory_stability_map
+    from stickslip.sweep.memory.maps import memory_stability_map
 
     law = RateStateFriction(a=0.01, b=0.015, d_c=1e-5, mu_ref=0.6, v_ref=1e-6)
     system = MemorySystem(np.array([[1.0]]), np.array([[0.0]]), np.array([[8000.0]]), 0, 10.0,

@@ -117,7 +117,7 @@ def test_a_machine_name_with_dollars_draws_as_typed() -> None:
     """A ``[structure] name`` is the user's text: Matplotlib must not read it as mathtext."""
     import io
 
-    from stickslip.plot.contact_history import contact_history_plot
+    from stickslip.plot.contact.history import contact_history_plot
 
     name = r"pad $\frac$ x"  # as mathtext this fails to parse (checked: ParseSyntaxException)
     history = {"t_s": [0.0, 1.0], "tangential_m": [0.0, 1.0], "normal_force_N": [1.0, 0.0],

@@ -82,7 +82,7 @@ def test_bad_memory_field_is_one_line() -> None:
 
 
 def test_memory_history_plot_axes_in_si() -> None:
-    from stickslip.plot.memory_history import memory_history_plot
+    from stickslip.plot.memory.history import memory_history_plot
 
     history = {"t_s": [0.0, 1.0, 2.0], "x_m": [0.0, 0.1, 0.2],
                "slip_speed_m_s": [0.0, 0.05, 0.1], "mu": [1.5, 1.2, 1.0]}

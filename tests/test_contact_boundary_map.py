@@ -275,7 +275,7 @@ def test_ctrl_c_ends_the_workers_with_one_line(tmp_path: Path) -> None:
 
 def test_contact_map_plot_draws_separation(tmp_path: Path) -> None:
     # the plot of a small map: one image, a legend with the verdicts present
-    from stickslip.sweep.contact_map import ContactMap
+    from stickslip.sweep.contact.maps import ContactMap
 
     data = ContactMap(np.array([0.01, 0.1]), np.array([1.0, 2.0]),
                       np.array([[1, 1], [0, 3]], dtype=np.int8), np.full((2, 2), np.nan),

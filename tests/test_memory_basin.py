@@ -1,4 +1,4 @@
-"""``basin --config`` with friction with memory (sweep.memory_basin, issue 33).
+"""``basin --config`` with friction with memory (sweep.memory.basin, issue 33).
 
 Reference: each start ``(x, v)`` is the state ``simulate_memory`` builds for a kick ``F``
 (``x`` the steady deflection, ``v = -F V``: analysis.memory.simulation.initial_state), so a
@@ -17,7 +17,7 @@ import pytest
 
 from stickslip.analysis.memory.simulation import initial_state, simulate_memory
 from stickslip.io.machine_file import read_machine_file
-from stickslip.sweep.memory_basin import memory_basin, sample_memory_box
+from stickslip.sweep.memory.basin import memory_basin, sample_memory_box
 from tests.cli_helpers import run_cli
 from tests.memory_machines import LUGRE
 

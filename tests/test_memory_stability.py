@@ -27,7 +27,7 @@ from scipy.optimize import brentq
 
 from stickslip.analysis.memory.stability import linear_spectrum, memory_stability, spectrum_sign
 from stickslip.io.machine_file import read_machine_file
-from stickslip.sweep.memory_map import memory_stability_map
+from stickslip.sweep.memory.maps import memory_stability_map
 from tests.cli_helpers import run_cli
 from tests.memory_machines import LUGRE, RATE_STATE
 

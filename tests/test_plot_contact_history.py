@@ -1,4 +1,4 @@
-"""The figure of a contact machine's time history (``stickslip.plot.contact_history``).
+"""The figure of a contact machine's time history (``stickslip.plot.contact.history``).
 
 A hand-made history with known phases (source: written here, a stick, a slip, a separation
 and a slip again) checks what is drawn: every axis labelled with its unit, the curves being
@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from stickslip.plot.contact_history import contact_history_plot, phase_spans
+from stickslip.plot.contact.history import contact_history_plot, phase_spans
 
 MODES = ["stick"] * 3 + ["slip forward"] * 2 + ["separation"] * 4 + ["slip forward"]
 

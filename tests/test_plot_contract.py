@@ -27,13 +27,14 @@ from stickslip.analysis.frequency_response import response_curves
 from stickslip.analysis.simulation import EngineOptions, SimulationResult, simulate
 from stickslip.analysis.theory import optimal_foundation_fit
 from stickslip.model import Slider, elastic_foundation, rigid_base
-from stickslip.plot import absorber, basin, contact_map, design, maps, simulation
+from stickslip.plot import absorber, basin, design, maps, simulation
+from stickslip.plot.contact import maps as contact_map
 from stickslip.plot.figure import PlotResult
 from stickslip.reproduction.steps_design import EXAMPLE
 from stickslip.sweep import stick_slip_boundary
 from stickslip.sweep.basin import BasinResult, basin_stability, sample_box
 from stickslip.sweep.basin_maps import BasinMap, basin_map
-from stickslip.sweep.contact_map import ContactMap
+from stickslip.sweep.contact.maps import ContactMap
 from stickslip.sweep.occurrence import OccurrenceMap, occurrence_map
 
 PLOT_MODULES: tuple[ModuleType, ...] = (simulation, absorber, maps, design, basin, contact_map)

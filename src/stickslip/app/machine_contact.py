@@ -2,7 +2,7 @@
 
 A machine file with ``[structure] normal_dof`` and a ``[contact]`` table (normal-load
 coupling, separation, brake squeal) or a ``[contact] tangential_stiffness`` (a Jenkins
-element) is built here as the command line builds it (``stickslip.cli.contact_simulation``
+element) is built here as the command line builds it (``stickslip.cli.contact.simulation``
 and ``stickslip.cli.stability_command``, which the app may not import: the same readers, the
 same order, so the same numbers), from the uploaded files only. The page shows
 
@@ -14,7 +14,7 @@ same order, so the same numbers), from the uploaded files only. The page shows
 * the time history from the start-up state
   (:func:`~stickslip.analysis.contact.engine.simulate_contact`, the command's defaults):
   verdict, certificate, period (s), amplitude (m), separation, the event counts, and the last
-  periods drawn by :func:`stickslip.plot.contact_history.contact_history_plot`.
+  periods drawn by :func:`stickslip.plot.contact.history.contact_history_plot`.
 
 Both run in the worker process (:mod:`stickslip.app.workers`): the brake pad's run takes
 several seconds.
@@ -314,7 +314,7 @@ def _show_run(run: ContactHistory, digest: str) -> dict[str, Any]:
     import streamlit as st
 
     from stickslip.app.figures import cached_png
-    from stickslip.plot.contact_history import contact_history_plot
+    from stickslip.plot.contact.history import contact_history_plot
 
     p = run.payload
     cols = st.columns(4)

@@ -42,7 +42,7 @@ def memory_report(system: MemorySystem) -> tuple[dict[str, Any], bytes]:
     (module-level: the machine page runs it in its worker process)."""
     from stickslip.analysis.memory.design import STARTUP_KICK, memory_design
     from stickslip.analysis.memory.simulation import simulate_memory
-    from stickslip.plot.memory_history import memory_history_plot
+    from stickslip.plot.memory.history import memory_history_plot
 
     report = memory_design(system)
     payload = report.to_dict()

@@ -262,9 +262,9 @@ def _contact_basin(ctx: typer.Context, config: Path, machine_file: Any, *, sampl
     """``basin --config`` with a contact (:func:`contact_basin`): ``labels.csv`` under --out."""
     import numpy as np
 
-    from stickslip.cli.contact_commands import DEFAULT_WORKERS, progress_bar, refuse_options, typed_options
-    from stickslip.cli.contact_simulation import contact_run_system
-    from stickslip.sweep.contact_basin import (
+    from stickslip.cli.contact.commands import DEFAULT_WORKERS, progress_bar, refuse_options, typed_options
+    from stickslip.cli.contact.simulation import contact_run_system
+    from stickslip.sweep.contact.basin import (
         columns,
         contact_basin,
         default_box,
@@ -336,9 +336,9 @@ def _memory_basin(ctx: typer.Context, machine_file: Any, config: Path, *, sample
     import numpy as np
     from click.core import ParameterSource
 
-    from stickslip.cli.memory_stability_commands import memory_system
+    from stickslip.cli.memory.stability_commands import memory_system
     from stickslip.cli.progress import ProgressBar
-    from stickslip.sweep.memory_basin import COLUMNS, memory_basin, sample_memory_box
+    from stickslip.sweep.memory.basin import COLUMNS, memory_basin, sample_memory_box
 
     if ctx.get_parameter_source("t_max") is ParameterSource.COMMANDLINE:
         raise BadInput("--t-max is the dimensionless horizon of the curve laws; with friction "

@@ -149,8 +149,8 @@ def _contact_continuation(ctx: typer.Context, config: Path, machine_file: Any, p
         PARAMETERS,
         continue_contact,
     )
-    from stickslip.cli.contact_commands import DEFAULT_WORKERS, progress_bar, refuse_options
-    from stickslip.cli.contact_simulation import contact_run_system
+    from stickslip.cli.contact.commands import DEFAULT_WORKERS, progress_bar, refuse_options
+    from stickslip.cli.contact.simulation import contact_run_system
     from stickslip.io.atomic import atomic_write_text
 
     refuse_options(ctx, ("seeds", "max_period", "max_steps"), "continue")
@@ -205,7 +205,7 @@ def _memory_continuation(ctx: typer.Context, machine_file: Any, param: str, rang
     from click.core import ParameterSource
 
     from stickslip.analysis.memory.continuation import continue_memory_orbits
-    from stickslip.cli.memory_stability_commands import memory_system
+    from stickslip.cli.memory.stability_commands import memory_system
 
     if param != "speed":
         raise BadInput(f"--param {param!r}: a machine with friction with memory is continued in "

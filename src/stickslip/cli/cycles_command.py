@@ -55,7 +55,7 @@ def cycles(
 
         machine_file = load_machine_file(config, normal_coupling=True)
         if machine_file.has_contact and not machine_file.has_memory_law:
-            from stickslip.cli.contact_commands import contact_cycles_command
+            from stickslip.cli.contact.commands import contact_cycles_command
 
             contact_cycles_command(ctx, config, machine_file, json=json)
             return
@@ -98,7 +98,7 @@ def _memory_cycles(machine_file: Any, config: Path, json: bool) -> None:
     """``cycles --config`` for a friction law with memory (:func:`find_memory_cycles`)."""
     from stickslip.analysis.memory.cycle_search import find_memory_cycles
     from stickslip.cli.console import BadInput
-    from stickslip.cli.memory_stability_commands import memory_system
+    from stickslip.cli.memory.stability_commands import memory_system
 
     system = memory_system(machine_file)
     if len(system.schedule.speeds) > 1:

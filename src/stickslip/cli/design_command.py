@@ -136,7 +136,7 @@ def design(
                                                             max_foundation_deflection))
               if value is not None]
     if config is not None and load_machine_file(config, normal_coupling=True).has_contact:
-        from stickslip.cli.contact_design_command import contact_design_command
+        from stickslip.cli.contact.design_command import contact_design_command
 
         contact_design_command(config, load_machine_file(config, normal_coupling=True), given,
                                json=json)
@@ -188,7 +188,7 @@ def memory_design_command(config: Path, given: list[str], *, json: bool) -> None
     (:func:`~stickslip.analysis.memory.design.memory_design`): the runs from stick and from near
     steady sliding, the linear verdict, the critical stiffness, speeds and loads."""
     from stickslip.analysis.memory.design import memory_design
-    from stickslip.cli.memory_stability_commands import memory_system
+    from stickslip.cli.memory.stability_commands import memory_system
 
     machine_file = load_machine_file(config)
     if given:

@@ -217,7 +217,7 @@ def map_command(
 
         found = load_machine_file(machine_file, normal_coupling=True)
         if found.has_contact:  # contact-engine runs in worker processes
-            from stickslip.cli.contact_map_commands import contact_map_command
+            from stickslip.cli.contact.map_commands import contact_map_command
 
             contact_map_command(ctx, machine_file, found, speed, load, out=out, t_max=t_max,
                                 csv=csv, plot=plot, overwrite=overwrite, json=json, workers=workers)
@@ -402,14 +402,14 @@ def boundary_command(
     refuse_mix(ctx, machine_file, ("zeta", "zeta_spacing", "dva", "k_scale", "gamma", "friction",
                                    "criterion", "lam_min", "lam_max"))
     if machine_file is not None:
-        from stickslip.cli.memory_stability_commands import has_memory_law, memory_boundary
+        from stickslip.cli.memory.stability_commands import has_memory_law, memory_boundary
 
         if has_memory_law(machine_file):
             memory_boundary(ctx, machine_file, param=param, range_text=range_text, scan=scan,
                             json=json)
             return
     if machine_file is not None:
-        from stickslip.cli.contact_map_commands import contact_boundary_command
+        from stickslip.cli.contact.map_commands import contact_boundary_command
 
         contact_boundary_command(ctx, machine_file, param=param, range_text=range_text, scan=scan,
                                  rtol=rtol, t_max=t_max, workers=workers, json=json)
@@ -533,7 +533,7 @@ def operating_map_command(config: Path, speed: str | None, load: str | None, *, 
         if chosen == "dask":
             raise BadInput("--backend dask: a map with a friction law with memory is an "
                            "eigenvalue map, computed in this process")
-        from stickslip.cli.memory_stability_commands import memory_map_command
+        from stickslip.cli.memory.stability_commands import memory_map_command
 
         memory_map_command(machine_file, config, np.asarray(axes[0].values),
                            np.asarray(axes[1].values), out=out, csv=csv, plot=plot,

@@ -181,7 +181,7 @@ def _ran_on_another_engine(ctx: typer.Context, config: Path, *, t_max: str | Non
 
     machine_file = load_machine_file(config, normal_coupling=True)
     if machine_file.has_contact and not machine_file.has_memory_law:
-        from stickslip.cli.contact_simulation import simulate_contact_command
+        from stickslip.cli.contact.simulation import simulate_contact_command
 
         simulate_contact_command(ctx, config, machine_file, t_max=t_max,
                                  max_events=max_events, history_times=history_times,

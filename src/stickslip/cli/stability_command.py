@@ -59,7 +59,7 @@ def stability(
 
     memory_file = load_machine_file(config, normal_coupling=True)
     if memory_file.has_memory_law:  # the linearisation with the state variable
-        from stickslip.cli.memory_stability_commands import memory_stability_command
+        from stickslip.cli.memory.stability_commands import memory_stability_command
 
         if plot is not None:
             raise BadInput("--plot draws the root locus over mu of the contact's complex-eigenvalue "

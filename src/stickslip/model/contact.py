@@ -36,7 +36,7 @@ Jenkins element too), ``stickslip stability`` (the complex-eigenvalue analysis o
 sliding, :mod:`stickslip.analysis.contact.eigenvalues`; the Jenkins element too,
 :func:`stickslip.analysis.contact.friction_coupling.jenkins_state_matrix`) and
 ``stickslip cycles``, ``basin`` and ``continue`` (runs of the contact engine:
-:mod:`stickslip.analysis.contact.cycles`, :mod:`stickslip.sweep.contact_basin`,
+:mod:`stickslip.analysis.contact.cycles`, :mod:`stickslip.sweep.contact.basin`,
 :mod:`stickslip.analysis.contact.continuation`). Every other command refuses such a machine in
 one line (:data:`NOT_SUPPORTED`).
 """

@@ -17,7 +17,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
     from stickslip.analysis.contact.eigenvalue_maps import RootLocus, StabilityMap
-    from stickslip.sweep.memory_map import MemoryStabilityMap
+    from stickslip.sweep.memory.maps import MemoryStabilityMap
 
 
 def root_locus_plot(data: RootLocus, *, ax: Sequence[Axes] | None = None,
@@ -126,7 +126,7 @@ def memory_map_plot(data: MemoryStabilityMap, *, ax: Axes | None = None,
     Parameters
     ----------
     data : MemoryStabilityMap
-        From :func:`stickslip.sweep.memory_map.memory_stability_map`.
+        From :func:`stickslip.sweep.memory.maps.memory_stability_map`.
     ax : Axes, optional
         Axes to draw into; new figure when None.
     title : str, optional

@@ -158,8 +158,8 @@ class ContactContinuation:
 
     def plot(self, **kwargs: Any) -> Any:
         """Period and amplitude against the parameter, a ``PlotResult``
-        (:func:`stickslip.plot.contact_continuation.contact_continuation_plot`)."""
-        from stickslip.plot.contact_continuation import contact_continuation_plot
+        (:func:`stickslip.plot.contact.continuation.contact_continuation_plot`)."""
+        from stickslip.plot.contact.continuation import contact_continuation_plot
 
         return contact_continuation_plot(self, **kwargs)
 

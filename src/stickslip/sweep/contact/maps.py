@@ -141,8 +141,8 @@ class ContactMap:
                 f"{n / max(self.elapsed_s, 1e-9):.3g} runs/s")
 
     def plot(self, **kwargs: Any) -> Any:
-        """The verdict map, a ``PlotResult`` (:func:`stickslip.plot.contact_map.contact_map_plot`)."""
-        from stickslip.plot.contact_map import contact_map_plot
+        """The verdict map, a ``PlotResult`` (:func:`stickslip.plot.contact.maps.contact_map_plot`)."""
+        from stickslip.plot.contact.maps import contact_map_plot
 
         return contact_map_plot(self, **kwargs)
 

@@ -47,7 +47,7 @@ def contact_cycles_command(ctx: typer.Context, config: Path, machine_file: Any, 
                            json: bool) -> None:
     """``cycles --config`` with a contact (:func:`find_contact_cycles`)."""
     from stickslip.analysis.contact.cycles import find_contact_cycles
-    from stickslip.cli.contact_simulation import contact_run_system
+    from stickslip.cli.contact.simulation import contact_run_system
 
     refuse_options(ctx, ("seeds", "max_period", "seed"), "cycles")
     system, machine = contact_run_system(config, machine_file)

@@ -30,7 +30,7 @@ def contact_variants(config: Path, machine_file: Any
 
     from stickslip.analysis.contact.engine import contact_system
     from stickslip.analysis.theory import optimal_foundation_fit
-    from stickslip.cli.contact_simulation import contact_run_system
+    from stickslip.cli.contact.simulation import contact_run_system
     from stickslip.cli.machine_config import config_system
     from stickslip.model.machine import machine_from_physical_system
     from stickslip.model.physical import foundation_to_physical

@@ -43,7 +43,7 @@ def memory_stability_command(machine_file: MachineFile, config: Path, map_plot: 
     import numpy as np
 
     from stickslip.analysis.memory.stability import memory_stability
-    from stickslip.sweep.memory_map import memory_stability_map
+    from stickslip.sweep.memory.maps import memory_stability_map
 
     system = memory_system(machine_file)
     result = memory_stability(system)
@@ -72,7 +72,7 @@ def memory_map_command(machine_file: Any, config: Path, speeds: Any, loads: Any,
     """
     from stickslip.cli.progress import ProgressBar
     from stickslip.io.netcdf import write_dataset
-    from stickslip.sweep.memory_map import MAX_MAP_CELLS, memory_stability_map
+    from stickslip.sweep.memory.maps import MAX_MAP_CELLS, memory_stability_map
 
     n_cells = len(speeds) * len(loads)
     if n_cells > MAX_MAP_CELLS:
@@ -169,7 +169,7 @@ def has_memory_law(config: Path) -> bool:
 def memory_boundary(ctx: typer.Context, config: Path, *, param: str | None,
                     range_text: str | None, scan: int, json: bool) -> None:
     """``boundary --config`` for a friction law with memory (an eigenvalue search)."""
-    from stickslip.cli.contact_commands import typed_options
+    from stickslip.cli.contact.commands import typed_options
     from stickslip.cli.machine_config import load_machine_file
     from stickslip.cli.options import parse_range
 

@@ -1,13 +1,13 @@
 """``map --config`` and ``boundary --config`` for a machine with its contact.
 
-(``cycles``, ``basin`` and ``continue`` with a contact: :mod:`stickslip.cli.contact_commands`.)
+(``cycles``, ``basin`` and ``continue`` with a contact: :mod:`stickslip.cli.contact.commands`.)
 
 A machine file with a ``[structure] normal_dof`` and ``[contact]`` table, or a ``[contact]
 tangential_stiffness`` (a Jenkins element), runs on the exact contact engine
 (:mod:`stickslip.analysis.contact.engine`), one run per operating point from the start-up
 state, in worker processes (``--workers``, default 2; Ctrl-C ends them). ``map`` gives each
 (speed, load) cell its verdict, period, amplitude and separation
-(:mod:`stickslip.sweep.contact_map`); ``boundary`` finds the speeds or loads where the
+(:mod:`stickslip.sweep.contact.maps`); ``boundary`` finds the speeds or loads where the
 start-up verdict changes (:mod:`stickslip.analysis.contact.boundary`).
 """
 
@@ -24,7 +24,7 @@ from stickslip.cli.console import (
     BadInput,
     print_json,
 )
-from stickslip.cli.contact_commands import typed_options
+from stickslip.cli.contact.commands import typed_options
 from stickslip.cli.options import check_map_outputs
 from stickslip.io.machine_file import MachineFile
 
@@ -59,7 +59,7 @@ def _t_max(t_max: float | None) -> float | None:
 def contact_system_of(config: Path, machine_file: MachineFile) -> tuple[Any, Any]:
     """The file's :class:`~stickslip.analysis.contact.engine.ContactSystem` and machine (one line
     if the file is wrong or pairs the contact with a friction law with memory)."""
-    from stickslip.cli.contact_simulation import contact_run_system
+    from stickslip.cli.contact.simulation import contact_run_system
     from stickslip.cli.machine_config import refuse_contact_with_memory
 
     refuse_contact_with_memory(machine_file)
@@ -67,7 +67,7 @@ def contact_system_of(config: Path, machine_file: MachineFile) -> tuple[Any, Any
 
 
 def _machine_description(machine: Any, system: Any) -> dict[str, Any]:
-    from stickslip.cli.contact_simulation import _contact_summary
+    from stickslip.cli.contact.simulation import _contact_summary
 
     return {"name": machine.name, "n_dof": system.n_dof, "contact_dof": system.tangential_dof,
             "normal_dof": system.normal_dof, "mu_s": system.mu_s, "mu_k": system.mu_k,
@@ -87,7 +87,7 @@ def contact_map_command(ctx: typer.Context, config: Path, machine_file: MachineF
     import numpy as np
 
     from stickslip.io.lock import output_lock
-    from stickslip.sweep.contact_map import MAX_CONTACT_CELLS, contact_map
+    from stickslip.sweep.contact.maps import MAX_CONTACT_CELLS, contact_map
 
     typed = typed_options(ctx, ("backend", "scheduler", "chunk_size", "scheduler_timeout"))
     if typed:

@@ -16,7 +16,7 @@ from stickslip.plot.maps import COLORS
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-    from stickslip.sweep.contact_map import ContactMap
+    from stickslip.sweep.contact.maps import ContactMap
 
 
 def _log_spaced(values: Any) -> bool:
@@ -31,7 +31,7 @@ def contact_map_plot(data: ContactMap, *, ax: Axes | None = None, legend: bool =
     Parameters
     ----------
     data : ContactMap
-        From :func:`stickslip.sweep.contact_map.contact_map`.
+        From :func:`stickslip.sweep.contact.maps.contact_map`.
     ax : matplotlib Axes, optional
         Drawn into; a new figure is made when omitted.
     legend : bool
