@@ -60,7 +60,10 @@ class ModeSystem:
         damper's only while that force is still negative at ``z``.
         """
         tol = FORCE_TOLERANCE * abs(float(self.candidate[-1]))
-        inside = _value(self.compression, z) > tol
+        # without a damper only the spring lifts off, so a compression left at the start is the
+        # located lift-off's rounding: the spring's re-contact is watched (at once, if need be)
+        damper = any(k == "spring released" for _, k in self.rows)
+        inside = damper and _value(self.compression, z) > tol
         watch = {"re-contact": not inside, "spring released": inside,
                  "re-contact by the damper": inside or _value(self.candidate, z) < -tol}
         rows = [(r, k) for r, k in self.rows if watch.get(k, True)]

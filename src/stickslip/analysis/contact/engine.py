@@ -97,6 +97,10 @@ DIVISOR_TOLERANCE = 1e-6
 DEFAULT_HORIZON = 5000.0
 #: Most mode switches at one instant before the run stops (accumulating switches).
 MAX_AT_ONE_INSTANT = 20
+#: Events closer than this, relative to the time, are at one instant: a few units of double
+#: precision's rounding of ``t`` (a lift-off and a re-contact 1e-18 s apart at t = 2 ms are
+#: the rounding of one event, not a motion with a period).
+SAME_INSTANT = 1e-12
 #: Default budget of sampled states over the whole run.
 MAX_SAMPLES = 20_000_000
 
@@ -316,7 +320,7 @@ def simulate_contact(system: ContactSystem, *, t_max: float | None = None,
         kind = kinds[found.index]
         new_mode, z = system.switch(mode, kind, found.z)
         events.append(ContactEvent(t, kind, mode, new_mode))
-        instant = instant + 1 if found.dt == 0.0 else 0
+        instant = instant + 1 if found.dt <= SAME_INSTANT * t else 0
         if instant > MAX_AT_ONE_INSTANT:
             certificate = (f"{instant} mode switches at t = {t:.9g} s without time passing (the "
                            "modes accumulate there); no verdict")
@@ -324,7 +328,7 @@ def simulate_contact(system: ContactSystem, *, t_max: float | None = None,
         previous = returns.setdefault(kind, [])
         matched = _repeat(system, previous, z)
         repeat, within = matched if matched is not None else (None, REPEAT_TOLERANCE)
-        if repeat is not None and t - previous[-repeat][0] <= 0.0:
+        if repeat is not None and t - previous[-repeat][0] <= SAME_INSTANT * t:
             repeat = None  # the same instant: not a period
         previous.append((t, z.copy()))
         if repeat is not None:
