@@ -258,3 +258,13 @@ def test_bootstrap_intervals_cover_the_truth():
         lo, hi = result.parameters[name].interval
         assert lo <= result.parameters[name].value <= hi
         assert hi - lo < 0.02 * value
+
+
+@pytest.mark.parametrize("scale", [1e6, 1e300])
+def test_a_force_in_the_wrong_units_is_refused_before_any_fit(scale: float) -> None:
+    # a bad-input audit: the example's force times 1e10 ran the fit for 193 s before refusing,
+    # and times 1e300 overflowed numpy on its way to "no oscillation". |F| <= mu_s W plus the
+    # slip's overshoot for a slider held by a spring; beyond 1000 W it is refused at once.
+    rig = _rig()
+    with pytest.raises(RecordError, match=r"times the normal load .*check the force's units"):
+        identify(MeasuredRecord(rig.t, F=scale * rig.F), KNOWN)

@@ -121,6 +121,10 @@ NOISE_FLOOR = 1e-5
 #: (``k / omega^2``, :class:`~stickslip.analysis.identification.estimates.RecordEstimates`) is
 #: flagged: the slip phases of a 1 kg slider last 1000**0.5 times less than those of 1000 kg.
 MASS_FACTOR = 10.0
+#: A load-cell force beyond this many times the normal load is refused before any fit: the
+#: spring holds the slider against friction, ``|F| <= mu_s W`` in stick plus the slip's
+#: overshoot, so a friction coefficient of a thousand means wrong units (of F or --load).
+FORCE_FACTOR = 1e3
 
 __all__ = ["LAWS", "UNDETERMINED_RULE", "IdentificationResult", "MeasuredRecord", "RecordError",
            "identify"]
@@ -295,6 +299,12 @@ def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulo
     if fit_offset is None:
         fit_offset = record.x is not None and record.F is not None
     try:
+        if record.F is not None and float(np.max(np.abs(record.F))) > FORCE_FACTOR * load:
+            peak = float(np.max(np.abs(record.F)))
+            raise RecordError(f"the force F reaches {peak:.3g} N, {peak / load:.3g} times the "
+                              f"normal load {load:.4g} N; friction that strong is not a sliding "
+                              f"contact (beyond {FORCE_FACTOR:g} times): check the force's units "
+                              "and --load")
         with blas_limited(blas_threads):
             used, window = fit_window(record, estimate(record, mass=mass, load=load, speed=speed))
             return _identify(used, known, law, mass=mass, load=load, speed=speed, bootstrap=bootstrap,
