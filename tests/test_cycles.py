@@ -84,6 +84,24 @@ def test_cycles_command_json(capsys: pytest.CaptureFixture[str]) -> None:
     assert cycle["period"] == pytest.approx(simulate(rigid_base(0.1), Slider(3.0)).period, rel=1e-9)
 
 
+def test_a_cycle_slower_than_the_horizon_is_said_and_found_with_a_longer_one(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    # a bad-input audit: at lambda = 1e4 the cycle's period (~1.7e4) exceeds the default
+    # horizon (5000) and "none found" was printed as if no cycle existed. Oracle: simulate's
+    # certified period with a long horizon.
+    code, out, err = run_cli(["cycles", "--lam", "1e4", "--zeta", "0.1", "--seeds", "2"], capsys)
+    assert code == 0, err
+    assert "within the horizon" in out and "raise --t-max" in out
+    code, out, err = run_cli(["cycles", "--lam", "1e4", "--zeta", "0.1", "--seeds", "2",
+                              "--t-max", "1e5", "--json"], capsys)
+    assert code == 0, err
+    payload = json.loads(out)
+    [cycle] = payload["cycles"]
+    expected = simulate(rigid_base(0.1), Slider(1e4), options=EngineOptions(t_max=1e5)).period
+    assert cycle["period"] == pytest.approx(expected, rel=1e-9)
+    assert payload["t_max"] == 1e5
+
+
 # --- the exact Jacobian of the return map ------------------------------------------------------
 
 #: central-difference step of the oracle, relative (the step the search used before)

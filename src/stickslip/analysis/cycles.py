@@ -27,6 +27,7 @@ either piece and reported once (the slip-I piece first).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -108,6 +109,10 @@ class CycleSearch:
     n_map_evaluations: int
     #: slip oscillations (:mod:`stickslip.analysis.slip_oscillations`), when searched for
     slip_oscillations: tuple[Any, ...] = ()
+    #: map evaluations that ended at the horizon ``t_max`` (or an event budget) before their
+    #: breakaways: a cycle slower than the horizon is not searched
+    n_cut_short: int = 0
+    t_max: float = math.nan
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready: ``cycles`` and ``slip_oscillations`` (lists) and the search's size."""
@@ -122,6 +127,8 @@ class CycleSearch:
             "friction": self.slider.friction.describe(),
             "n_seeds": self.n_seeds,
             "n_map_evaluations": self.n_map_evaluations,
+            "n_runs_cut_short": self.n_cut_short,
+            "t_max": self.t_max,
         }
 
 
@@ -248,7 +255,8 @@ def find_cycles(
                 break
     cycles.sort(key=lambda c: (c.stick_phases, c.amplitude))
     return CycleSearch(structure, slider, tuple(cycles), len(starts),
-                       sum(m.evaluations for m in pmaps.values()))
+                       sum(m.evaluations for m in pmaps.values()),
+                       n_cut_short=sum(m.cut_short for m in pmaps.values()), t_max=opts.t_max)
 
 
 def cycle_exists(structure: Structure, slider: Slider, **kwargs: Any) -> bool:

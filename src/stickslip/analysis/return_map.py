@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from stickslip.analysis.engine_run import EngineOptions, SimulationResult, run_engine
-from stickslip.analysis.verdict import Verdict
+from stickslip.analysis.verdict import RunStatus, Verdict
 from stickslip.kernel.linalg import expm
 from stickslip.kernel.system import SLIP_I, SLIP_II, STICK, mode_kind_band, mode_matrices
 from stickslip.model.initial import InitialState
@@ -51,6 +51,8 @@ class ReturnMap:
         self.options = EngineOptions(t_max=options.t_max, max_events=RETURN_EVENTS * len(intercepts))
         self.n = structure.n_dof
         self.evaluations = 0
+        #: runs that ended at the horizon or an event budget before their breakaways
+        self.cut_short = 0
         n2 = 2 * self.n
         ahat, stick_row = mode_matrices(
             np.ascontiguousarray(structure.mass, dtype=np.float64),
@@ -115,6 +117,9 @@ class ReturnMap:
             times = [t for t in result.breakaway_times if t > 1e-9][:count]
             if len(times) >= count or result.verdict is not Verdict.STICK_SLIP:
                 break
+        if len(times) < count and result.status in (RunStatus.T_MAX, RunStatus.MAX_EVENTS,
+                                                    RunStatus.MAX_STEPS):
+            self.cut_short += 1
         if len(times) < count or (on_section and
                                   self.breakaway_direction(result, times[-1]) != self.direction):
             return None  # fewer breakaways, or the k-th is not onto this section's slip mode

@@ -27,6 +27,9 @@ def cycles(
     seeds: Annotated[int, typer.Option("--seeds", help="random starts that seed Newton's method")] = 24,
     max_period: Annotated[int, typer.Option("--max-period", help="longest cycle, in stick phases")] = 2,
     seed: Annotated[int, typer.Option("--seed", help="seed of the starts")] = 0,
+    t_max: Annotated[str | None, typer.Option(
+        "--t-max", help="horizon of each seeding run: dimensionless tau (default 5000), or a time "
+        "with units with --config (\"40 s\"); a cycle slower than it is not searched")] = None,
     json: JSON = False,
 ) -> None:
     """Periodic motions at a point, stable and unstable: stick-slip cycles (fixed points of the
@@ -37,8 +40,10 @@ def cycles(
     Your machine: stickslip cycles --config machine.toml --json
     """
     from stickslip.analysis.cycles import find_cycles
+    from stickslip.analysis.engine_run import EngineOptions
     from stickslip.cli.console import BadInput
     from stickslip.cli.machine_config import configured_machine, refuse_mix, require_dimensionless
+    from stickslip.cli.time_options import parse_t_max
     from stickslip.model.parameters import Slider
     from stickslip.model.structure import chain_structure
 
@@ -54,6 +59,9 @@ def cycles(
         from stickslip.cli.machine_config import load_machine_file
 
         machine_file = load_machine_file(config, normal_coupling=True)
+        if t_max is not None and (machine_file.has_contact or machine_file.has_memory_law):
+            raise BadInput(f"--t-max {t_max!r}: the cycles of a machine with a contact or a "
+                           "friction law with memory take their own horizons; leave it out")
         if machine_file.has_contact and not machine_file.has_memory_law:
             from stickslip.cli.contact.commands import contact_cycles_command
 
@@ -70,8 +78,10 @@ def cycles(
         slider = Slider(lam, gamma=gamma, friction=parse_friction_option(friction))
         found = parse_dva(dva, zeta, k_scale)
         structure = chain_structure(zeta, () if found is None else (found,))
+    horizon = parse_t_max(t_max, None if run is None else run.reference.time_scale)
+    options = EngineOptions() if horizon is None else EngineOptions(t_max=horizon)
     result = find_cycles(structure, slider, seeds=seeds, max_period=max_period, seed=seed,
-                         slip_oscillations=True)
+                         options=options, slip_oscillations=True)
     payload = result.to_dict()
     if run is not None:
         # seconds and metres: tau = omega_n t (Eq. 17), displacements in V / omega_n (Eqs. 15-16)
@@ -119,7 +129,8 @@ def _print(p: dict[str, Any]) -> None:
     lines = [f"cycles      {p['structure']} (lambda={p['lambda']:.6g}, zeta={p['zeta']:.6g}, "
              f"gamma={p['gamma']:.6g}), friction {p['friction']}"]
     if not p["cycles"]:
-        lines.append(f"none found  from {p['n_seeds']} starts: no stick-slip cycle of the periods searched")
+        lines.append(f"none found  from {p['n_seeds']} starts: no stick-slip cycle of the periods searched"
+                     + (" within the horizon" if p["n_runs_cut_short"] else ""))
     for i, c in enumerate(p["cycles"], start=1):
         mults = ", ".join(f"{m['abs']:.4g}" for m in c["multipliers"])
         why = (f"|Floquet multipliers| {mults}" if mults else
@@ -136,6 +147,10 @@ def _print(p: dict[str, Any]) -> None:
                      f"{'stable' if c['stable'] else 'UNSTABLE'} (|Floquet multipliers| {mults}; "
                      f"found by {', '.join(c['found_by'])})")
     lines.append(f"search      {p['n_seeds']} starts, {p['n_map_evaluations']} return-map evaluations")
+    if p["n_runs_cut_short"]:
+        lines.append(f"horizon     {p['n_runs_cut_short']} of them ended at tau = {p['t_max']:g} "
+                     "(or an event budget) before their next breakaway: a cycle slower than that "
+                     "is not searched; raise --t-max")
     typer.echo("\n".join(lines))
 
 
