@@ -197,6 +197,8 @@ def test_map_config_stribeck_cells_have_their_own_law(tmp_path: Path,
     (["--speed", "0.1", "--load", "-5,10"], "--load"),
     (["--speed", "0.1"], "--load"),
     (["--speed", "1:2:1000", "--load", "1:2:1000"], "operating points"),
+    # a bad-input audit: lambda = 6e7 at 1e-9 m/s ran (all undetermined) where simulate refuses
+    (["--speed", "1e-9", "--load", "100"], "narrow the speed or load range"),
 ])
 def test_map_config_bad_axes_one_line(args: list[str], word: str, tmp_path: Path,
                                       capsys: pytest.CaptureFixture[str]) -> None:

@@ -44,6 +44,7 @@ from stickslip.analysis.verdict import VERDICTS, RunStatus
 from stickslip.io.netcdf import FINGERPRINT_ATTR, read_dataset
 from stickslip.io.provenance import package_version
 from stickslip.kernel import engine
+from stickslip.model._validate import friction_range
 from stickslip.model.friction import CoulombFriction, FrictionLaw
 from stickslip.model.initial import STARTUP_DESCRIPTION
 from stickslip.sweep.cycle_check import prove_map_cycles
@@ -238,6 +239,11 @@ class OperatingCells:
                 slider = point.slider()  # lambda and the law's own shape at (V, W)
                 reference = point.reference_system()
                 c = i * loads.size + j
+                try:  # as simulate refuses it
+                    friction_range(slider.lam, slider.gamma)
+                except ValueError as exc:
+                    raise ValueError(f"at V = {speed:g} m/s and W = {load:g} N: {exc}; narrow "
+                                     "the speed or load range") from None
                 lam[c] = slider.lam
                 laws.append(slider.friction)
                 time_scale[c] = reference.time_scale
