@@ -250,3 +250,18 @@ def test_a_run_that_stays_at_unstable_steady_sliding_says_to_kick_it(
     code, out, err = _run(["simulate", "--config", str(path), "--initial-kick", "0.5", "--json"], capsys)
     assert code == 0, err
     assert json.loads(out)["verdict"] in ("stick-slip", "slip-oscillation")
+
+
+def test_history_times_beyond_the_run_are_said(capsys: pytest.CaptureFixture[str]) -> None:
+    # a bad-input audit: the rate-and-state example's run stops at its verdict (17.9 s) and the
+    # history at 20 s came back null without a word
+    example = Path(__file__).resolve().parent.parent / "examples" / "friction_memory" / "rate_state.toml"
+    code, out, err = _run(["simulate", "--config", str(example), "--initial-kick", "0.5",
+                           "--history-times", "0:20:5", "--json"], capsys)
+    assert code == 0, err
+    payload = json.loads(out)
+    beyond = [t for t, x in zip(payload["history"]["t_s"], payload["history"]["x_m"], strict=True)
+              if x is None]
+    assert beyond and min(beyond) > payload["t_end_s"]
+    [line] = err.strip().splitlines()
+    assert line.startswith("stickslip: warning:") and f"{len(beyond)} of its 5 times" in line

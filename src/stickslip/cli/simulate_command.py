@@ -14,6 +14,7 @@ from stickslip.cli.console import (
     parse_dva,
     parse_friction_option,
     print_json,
+    warn,
     warn_fitted_range,
 )
 from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE, OVERWRITE
@@ -272,6 +273,8 @@ def _simulate_memory(ctx: typer.Context, machine_file: Any, *, t_max: str | None
     """``simulate --config`` with a friction law with memory: the smooth stiff engine, in SI."""
     import math
 
+    import numpy as np
+
     from stickslip.analysis.memory.simulation import simulate_memory
 
     _refuse_exact_engine_options(ctx, plot)
@@ -301,6 +304,11 @@ def _simulate_memory(ctx: typer.Context, machine_file: Any, *, t_max: str | None
                                  history_times=times)
     except ValueError as exc:
         raise BadInput(str(exc)) from None
+    if times is not None and float(times[-1]) > result.t_end:
+        beyond = int(np.sum(times > result.t_end))
+        warn(f"--history-times {history_times!r}: {beyond} of its {times.size} times lie beyond "
+             f"the end of the run ({result.t_end:.6g} s, where it stopped); their history "
+             "entries are null")
     payload = result.to_dict()
     payload["config"] = str(machine_file.path)
     if json:
