@@ -337,3 +337,27 @@ def test_figures_follow_the_plotting_contract() -> None:
     # the map: growth of the one row equals the largest real part at each mu
     for j, mu in enumerate(grid.mu):
         assert grid.growth[0, j] == float(np.max(result.system.eigenvalues(float(mu))[0].real))
+
+
+def test_without_a_normal_dof_the_undamped_spectrum_does_not_depend_on_mu(tmp_path: Path) -> None:
+    # the friction force is mu W, a constant, so no mu couples the modes (it was scanned at 401
+    # values, and the text printed "damping ratio -0" and "normal_dof None"): oracle, numpy's
+    # eigenvalues at several mu
+    k = np.array([[3.0e4, -1.0e4], [-1.0e4, 2.0e4]])
+    system = FrictionCoupledSystem(np.diag([1.0, 2.0]), np.zeros((2, 2)), k, 0, None, load=100.0)
+    spectra = [np.sort_complex(system.eigenvalues(mu)[0]) for mu in (0.0, 0.4, 1.7)]
+    assert all(np.allclose(s, spectra[0], rtol=1e-12) for s in spectra)
+    found = critical_friction(system)
+    assert found.mu is None and found.method.startswith("exact")
+    path = tmp_path / "m.toml"
+    path.write_text('m = "2 kg"\nk = "50 kN/m"\nmu_s = 0.5\nmu_k = 0.3\nload = "500 N"\n'
+                    'speed = "5 cm/s"\n', encoding="utf-8")
+    from typer.testing import CliRunner
+
+    from stickslip.cli.main import app
+
+    result = CliRunner().invoke(app, ["stability", "--config", str(path)])
+    assert result.exit_code == 0, result.output
+    out = result.output
+    assert "normal_dof none" in out and " -0 " not in out and "-0-" not in out
+    assert "exact: without a normal DOF" in out

@@ -189,7 +189,7 @@ def _jsonable(value: Any) -> Any:
         return _jsonable(value.tolist())
     if isinstance(value, (np.floating, float)):
         x = float(value)
-        return x if math.isfinite(x) else None
+        return x + 0.0 if math.isfinite(x) else None  # + 0.0: a rounded -0 prints as 0
     if isinstance(value, np.integer):
         return int(value)
     if isinstance(value, np.bool_):
@@ -198,7 +198,7 @@ def _jsonable(value: Any) -> Any:
 
 
 def print_json(payload: dict[str, Any]) -> None:
-    """Print exactly one JSON object on stdout (non-finite numbers become null)."""
+    """Print exactly one JSON object on stdout (non-finite numbers become null, -0 is 0)."""
     sys.stdout.write(json.dumps(_jsonable(payload), allow_nan=False) + "\n")
 
 

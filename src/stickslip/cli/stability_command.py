@@ -145,7 +145,8 @@ def _critical_line(c: dict[str, Any], mu: float) -> str:
 
 
 def _print(p: dict[str, Any]) -> None:
-    lines = [f"stability   {p['machine']}: contact_dof {p['contact_dof']}, normal_dof {p['normal_dof']}",
+    normal = ("none (a constant normal load)" if p["normal_dof"] is None else p["normal_dof"])
+    lines = [f"stability   {p['machine']}: contact_dof {p['contact_dof']}, normal_dof {normal}",
              f"steady      mu(V) = {p['mu']:.6g}, d mu/d v_r = {p['friction_slope_s_per_m']:.6g} s/m, "
              f"N = {p['normal_force_N']:.6g} N",
              f"verdict     {p['verdict'].upper() if p['verdict'] == 'unstable' else p['verdict']}"
@@ -154,10 +155,12 @@ def _print(p: dict[str, Any]) -> None:
     lines.append("modes       frequency [Hz]  damping ratio  real part [1/s]")
     for m in p["modes"]:
         flag = "  <- unstable" if m["growth_rate_per_s"] > 0 and p["verdict"] == "unstable" else ""
-        lines.append(f"            {m['frequency_hz']:14.6g}  {m['damping_ratio']:13.4g}  "
-                     f"{m['growth_rate_per_s']:15.6g}{flag}")
+        # + 0.0: a rounded -0 prints as 0
+        lines.append(f"            {m['frequency_hz']:14.6g}  {m['damping_ratio'] + 0.0:13.4g}  "
+                     f"{m['growth_rate_per_s'] + 0.0:15.6g}{flag}")
     values = p["eigenvalues"]
-    lines.append("eigenvalues " + (", ".join(f"{re:.6g}{im:+.6g}j" for re, im in values) + " [1/s]"
+    lines.append("eigenvalues " + (", ".join(f"{re + 0.0:.6g}{im + 0.0:+.6g}j" for re, im in values)
+                                   + " [1/s]"
                                    if len(values) <= 12 else f"{len(values)} (listed by --json)"))
     lines.append(f"natural     {', '.join(f'{f:.6g}' for f in p['natural_frequencies_hz'])} Hz "
                  "(modes 1, 2, ...: the structure pressed on the belt, mu = 0)")

@@ -36,9 +36,11 @@ undamped spectrum can change its kind; one eigenvalue check between each two fin
 interval proven unstable, and its left end is the exact value (no flutter window skipped).
 A massive contact point of a Jenkins element is one more DOF with a rigid contact there
 (:meth:`~stickslip.analysis.contact.friction_coupling.FrictionCoupledSystem.point_as_dof`), so
-the same search applies to it. Where that search does not apply (no normal DOF, a pencil too
-large) the range is scanned and the coalescence found between the two merging roots (a sign change
-of ``g'``) makes the value exact inside the scan's bracket.
+the same search applies to it. Without a normal DOF the friction force is ``mu W``, a
+constant, and the undamped eigenvalues do not depend on ``mu``: the check at one ``mu``
+decides the whole range. Where the search does not apply (a pencil too large) the range is
+scanned and the coalescence found between the two merging roots (a sign change of ``g'``)
+makes the value exact inside the scan's bracket.
 """
 
 from __future__ import annotations
@@ -135,8 +137,7 @@ def critical_friction(system: FrictionCoupledSystem, *, mu_max: float = MU_MAX,
     real root of ``det(2A(mu) (.) I) det A(mu)`` (damped) or a stationary value of the
     coalescence function (undamped) (:mod:`~stickslip.analysis.contact.axis_crossings`), and
     one eigenvalue check between consecutive roots decides each interval. Where that cannot
-    prove (a singular or too large pencil, an interval within round-off of neutral, undamped
-    without a normal DOF) the range is scanned at ``n_scan`` steps and the method says
+    prove (a singular or too large pencil, an interval within round-off of neutral) the range is scanned at ``n_scan`` steps and the method says
     so.
 
     Parameters
@@ -251,9 +252,13 @@ def _exact_search(system: FrictionCoupledSystem, mu_max: float,
     ``(mu, method, lo, hi)``: ``mu`` the value where the first interval proven unstable
     begins (None: none is), ``(lo, hi)`` its bisection bracket.
     """
+    if undamped and system.normal_dof is None:
+        # the friction force is mu W, a constant: the eigenvalues do not depend on mu
+        if verdict_of(*system.eigenvalues(0.5 * mu_max)) != 0:
+            return None  # not marginal within round-off: not decided here
+        return (None, "exact: without a normal DOF the friction force is mu W and the undamped "
+                      "linearisation does not depend on mu: marginal at every mu", 0.0, 0.0)
     if undamped:
-        if system.normal_dof is None:
-            return None
         roots = coalescence_candidates(_rigid_form(system), mu_max)
         what, settled = "the stationary values of g and g(0)", 0
     else:
