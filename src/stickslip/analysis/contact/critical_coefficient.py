@@ -137,8 +137,8 @@ def critical_friction(system: FrictionCoupledSystem, *, mu_max: float = MU_MAX,
     real root of ``det(2A(mu) (.) I) det A(mu)`` (damped) or a stationary value of the
     coalescence function (undamped) (:mod:`~stickslip.analysis.contact.axis_crossings`), and
     one eigenvalue check between consecutive roots decides each interval. Where that cannot
-    prove (a singular or too large pencil, an interval within round-off of neutral) the range is scanned at ``n_scan`` steps and the method says
-    so.
+    prove (a singular or too large pencil, an interval within round-off of neutral) the range
+    is scanned at ``n_scan`` steps and the method says so.
 
     Parameters
     ----------
