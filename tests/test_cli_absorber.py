@@ -138,3 +138,10 @@ def test_bad_input_writes_no_figure(tmp_path: Path, capsys: pytest.CaptureFixtur
 def test_commands_are_registered_in_the_real_app(capsys: pytest.CaptureFixture[str]) -> None:
     code, out, _ = _run_main(["frf", "--zeta", "0.2", "--dva", "none", "--json"], capsys)
     assert code == 0 and json.loads(out)["Omega_peak"] == pytest.approx(math.sqrt(1 - 0.08))
+
+
+def test_an_undamped_resonance_is_said_unbounded(app: typer.Typer) -> None:
+    # |H| = 1 / |1 - Omega^2| has no maximum at zeta = 0 (a bad-input audit saw "H_max inf")
+    code, out = _invoke(app, ["frf", "--zeta", "0", "--dva", "none"])
+    assert code == 0, out
+    assert "H_max       unbounded (undamped resonance) at Omega = 1" in out and " inf" not in out

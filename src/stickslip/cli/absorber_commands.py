@@ -6,6 +6,7 @@ Eqs. 28-33).
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -36,6 +37,8 @@ def _zeta(value: float) -> float:
 def _fmt(x: object) -> str:
     if x is None:
         return "-"
+    if isinstance(x, float) and math.isinf(x):
+        return "unbounded (undamped resonance)"  # |H| of an undamped mode at its frequency
     return f"{x:.6g}" if isinstance(x, float) else str(x)
 
 
