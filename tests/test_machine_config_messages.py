@@ -65,3 +65,17 @@ def test_a_bad_friction_table_names_the_file_once(command: list[str], tmp_path: 
     assert code == 2 and out == ""
     assert err.startswith("stickslip: error: --config 'm.toml': [friction]: unknown keys vs"), err
     assert err.count("--config 'm.toml'") == 1
+
+
+@pytest.mark.parametrize("command", [["simulate"], ["stability"], ["cycles"], ["design"]])
+def test_a_law_the_package_lacks_is_named(command: list[str], tmp_path: Path,
+                                         capsys: pytest.CaptureFixture[str],
+                                         monkeypatch: pytest.MonkeyPatch) -> None:
+    # a bad-input audit: law = "rate_state" (underscore) was reported as "lacks mu_s, mu_k"
+    monkeypatch.chdir(tmp_path)
+    Path("m.toml").write_text('load = "10 N"\nspeed = "1 mm/s"\nm = "1 kg"\nk = "8000 N/m"\n\n'
+                              '[friction]\nlaw = "rate_state"\na = 0.01\n')
+    code, out, err = run_cli([command[0], "--config", "m.toml", *command[1:]], capsys)
+    assert code == 2 and out == ""
+    assert err.strip() == ("stickslip: error: --config 'm.toml': [friction]: law = 'rate_state' is "
+                           "not one of coulomb, linear, stribeck, table, rate-state, lugre"), err

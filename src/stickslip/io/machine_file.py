@@ -47,6 +47,7 @@ from typing import Any
 import numpy as np
 
 from stickslip.io.toml_file import read_toml_file
+from stickslip.model.inputs import law_name
 from stickslip.model.units import QUANTITIES, to_si
 
 #: The paper's slider and foundation keys, replaced by ``[structure]``.
@@ -328,6 +329,8 @@ def read_machine_file(path: Path, *, label: str | None = None,
     if tables["absorber"] is not None and tables["structure"] is None:
         raise ValueError(f"{label}: [absorber] needs a [structure] (for the paper's slider, the "
                          "foundation is m_a, k_a, c_a)")
+    if tables["friction"] is not None:  # a law it does not have, before what its keys lack
+        law_name(tables["friction"], f"{label}: [friction]")
     return MachineFile(path, dict(section), tables["friction"], tables["structure"],
                        tables["absorber"], tables["contact"], shown_as=label, files=files,
                        max_dof=max_dof)

@@ -47,6 +47,10 @@ LAW_KEYS: dict[str, frozenset[str]] = {
     "table": frozenset({"table"}),
 }
 
+#: Friction laws with memory (the smooth stiff engine): their ``[friction]`` keys are read by
+#: :mod:`stickslip.model.state_friction_input`.
+MEMORY_LAWS = ("rate-state", "lugre")
+
 Source = Callable[[str], str | None]
 
 
@@ -143,6 +147,36 @@ def missing_system_quantities(values: Mapping[str, Any]) -> tuple[list[str], lis
     return missing, (given if given and len(given) != len(FOUNDATION_QUANTITIES) else [])
 
 
+def law_name(table: Mapping[str, Any], where: str) -> str:
+    """The ``law`` of a ``[friction]`` table, lower case (``coulomb`` when absent).
+
+    Parameters
+    ----------
+    table : mapping
+        The ``[friction]`` table.
+    where : str
+        Where it comes from, for the message.
+
+    Returns
+    -------
+    str
+        One of :data:`LAW_KEYS` or :data:`MEMORY_LAWS`.
+
+    Raises
+    ------
+    InputProblems
+        Not a string, or not a law this package has (the message names it and the laws).
+    """
+    law = table.get("law", "coulomb")
+    if not isinstance(law, str):
+        raise InputProblems([("law", f"{where}: law = {law!r} must be a string")])
+    name = law.strip().lower()
+    if name not in LAW_KEYS and name not in MEMORY_LAWS:
+        raise InputProblems([("law", f"{where}: law = {law!r} is not one of "
+                                     f"{', '.join((*LAW_KEYS, *MEMORY_LAWS))}")])
+    return name
+
+
 def friction_fields(table: Mapping[str, Any], *, source: Source | None = None,
                     table_columns: tuple[Sequence[float], Sequence[float]] | None = None,
                     where: str = "[friction]") -> dict[str, Any]:
@@ -192,10 +226,7 @@ def friction_fields(table: Mapping[str, Any], *, source: Source | None = None,
     if unknown:
         raise InputProblems([("law", f"{where}: unknown keys {', '.join(unknown)} (allowed: law, "
                                      f"table, {', '.join(FRICTION_QUANTITIES)})")])
-    law = table.get("law", "coulomb")
-    if not isinstance(law, str):
-        raise InputProblems([("law", f"{where}: law = {law!r} must be a string")])
-    values: dict[str, Any] = {"law": law.strip().lower()}
+    values: dict[str, Any] = {"law": law_name(table, where)}
     allowed = LAW_KEYS.get(values["law"])
     if allowed is not None:
         foreign = sorted(set(table) - allowed - {"law"})

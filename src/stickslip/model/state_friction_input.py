@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from stickslip.model.inputs import MEMORY_LAWS
 from stickslip.model.state_friction import (
     LuGreFriction,
     MemorySystem,
@@ -24,7 +25,6 @@ RATE_STATE_KEYS = {"a": "a", "b": "b", "d_c": "d_c", "mu_ref": "mu_ref", "v_ref"
                    "evolution": None}
 LUGRE_KEYS = {"sigma0": "sigma0", "sigma1": "sigma1", "sigma2": "sigma2", "mu_c": "mu_c",
               "mu_s": "lugre_mu_s", "stribeck_velocity": "lugre_stribeck_velocity"}
-MEMORY_LAWS = ("rate-state", "lugre")
 
 
 def state_friction_from_table(table: dict[str, Any], *, source: str = "[friction]") -> StateFriction:

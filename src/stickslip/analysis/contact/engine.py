@@ -301,7 +301,8 @@ def simulate_contact(system: ContactSystem, *, t_max: float | None = None,
             found = first_event(ms.flow, z, normals, levels, horizon - t,
                                 max_samples=max_samples - used, stop=stop)
         except RuntimeError as exc:
-            certificate = f"{exc}; increase max_samples or shorten t_max"
+            certificate = (f"{exc}; the run's sampling budget (max_samples, {max_samples:,}) is "
+                           "spent: a shorter horizon (t_max, --t-max) needs fewer")
             break
         used += found.samples
         if isinstance(found, Settled) or (stop is not None and not isinstance(found, Found)
