@@ -263,6 +263,10 @@ def test_bad_input_to_the_engine() -> None:
         ContactSystem(np.eye(1), np.zeros((1, 1)), np.eye(1), 0, None, 1.0, 1.0, 0.2, 0.3)
     with pytest.raises(ValueError, match="t_max"):
         simulate_contact(slider(1.0, 0.1), t_max=-1.0)
+    # a bad-input audit: k_t = 1e30 N/m on a 1 N/m slider gave a "period" of 1.6e-13 s
+    with pytest.raises(ValueError, match=r"tangential_stiffness = 1e\+30 N/m is beyond 1e\+12 times"):
+        ContactSystem(np.eye(1), np.zeros((1, 1)), np.eye(1), 0, None, 1.0, 1.0, 0.3, 0.2,
+                      tangential_stiffness=1e30, tangential_damping=1.0)
 
 
 @pytest.mark.parametrize("depth", [1e-10, 0.0])

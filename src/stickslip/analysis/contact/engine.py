@@ -301,8 +301,8 @@ def simulate_contact(system: ContactSystem, *, t_max: float | None = None,
             found = first_event(ms.flow, z, normals, levels, horizon - t,
                                 max_samples=max_samples - used, stop=stop)
         except RuntimeError as exc:
-            certificate = (f"{exc}; the run's sampling budget (max_samples, {max_samples:,}) is "
-                           "spent: a shorter horizon (t_max, --t-max) needs fewer")
+            certificate = (f"{exc}: no verdict (a shorter horizon, t_max or --t-max, or a "
+                           "less stiff contact needs fewer samples)")
             break
         used += found.samples
         if isinstance(found, Settled) or (stop is not None and not isinstance(found, Found)
