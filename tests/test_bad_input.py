@@ -95,7 +95,8 @@ SIM_OPTIONS: dict[str, tuple[Callable[[float], str], Callable[[float], bool]]] =
     "--zeta": (_text, NON_NEGATIVE),
     "--gamma": (_text, NON_NEGATIVE),
     "--t-max": (_text, _finite_positive),
-    "--plot-from": (_text, lambda x: math.isfinite(x) and x >= 0.0),
+    # without --plot it sets nothing: refused whatever its value (with it: test_plot_from_values)
+    "--plot-from": (_text, lambda x: False),
     "--dva": (lambda x: f"{_text(x)},1,0.1", RATIO),
     "--dva ": (lambda x: f"1,{_text(x)},0.1", RATIO),
     "--dva  ": (lambda x: f"1,1,{_text(x)}", NON_NEGATIVE),
@@ -426,6 +427,23 @@ def test_initial_states_with_a_state_column_the_structure_lacks(here: Path,
     assert "the column(s) xi_a name state coordinates this structure does not have" in err
 
 
+
+@pytest.mark.parametrize("args, message", [
+    (["simulate", "--lam", "3", "--zeta", "0.1", "--plot-from", "5"], "give --plot too"),
+    (["basin", "--lam", "2.5", "--zeta", "0.1", "--initial-states", "f.csv", "--samples", "5"],
+     "--samples draws the states, --initial-states gives them"),
+    (["basin", "--lam", "2.5", "--zeta", "0.1", "--initial-states", "f.csv", "--seed", "7",
+      "--samples", "5"], "--samples and --seed draw the states"),
+])
+def test_an_option_the_others_make_idle_is_refused(args: list[str], message: str, here: Path,
+                                                   capsys: pytest.CaptureFixture[str]) -> None:
+    # a bad-input audit: these were accepted and silently ignored
+    (here / "f.csv").write_text("xi,v\n0.1,0.2\n", encoding="utf-8")
+    code, _, err = run_cli(args, capsys)
+    assert code == 2 and err.count("\n") == 1 and message in err, err
+    assert _listing(here) == ["f.csv"]
+
+
 @pytest.mark.parametrize("extra, message", [
     (["--mass", "1 kg", "--speed", "0.05 m/s"], "--evolution 'slip' is for --law rate-state"),
     (["--law", "lugre"], "--evolution is not used by --law lugre"),
@@ -437,3 +455,11 @@ def test_identify_refuses_an_evolution_law_it_would_ignore(extra: list[str], mes
     code, _, err = run_cli(["identify", str(record), "--load", "100 N", "--evolution", "slip", *extra],
                            capsys)
     assert code == 2 and err.count("\n") == 1 and message in err
+
+
+@pytest.mark.parametrize("value", ["-1", "nan", "inf"])
+def test_plot_from_values(value: str, here: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # with --plot, a start time that is not a finite tau >= 0 is refused before the run
+    out = _check(["simulate", "--lam", "3", "--zeta", "0.1", "--plot-from", value, "--plot",
+                  "p.png"], False, capsys, here)
+    assert out == ""

@@ -17,6 +17,7 @@ from stickslip.cli.console import (
     parse_dva,
     parse_friction_option,
     print_json,
+    typed_options,
 )
 from stickslip.cli.map_commands import WORKERS
 from stickslip.cli.options import (
@@ -150,6 +151,11 @@ def basin(
     )
 
     refuse_mix(ctx, config)
+    drawn = typed_options(ctx, ("samples", "seed"))
+    if initial_states is not None and drawn:
+        verb = "draw" if len(drawn) > 1 else "draws"
+        raise BadInput(f"{' and '.join(drawn)} {verb} the states, --initial-states gives them; "
+                       "give one of the two")
     run = None
     if config is not None:
         from stickslip.cli.machine_config import load_machine_file
@@ -262,7 +268,7 @@ def _contact_basin(ctx: typer.Context, config: Path, machine_file: Any, *, sampl
     """``basin --config`` with a contact (:func:`contact_basin`): ``labels.csv`` under --out."""
     import numpy as np
 
-    from stickslip.cli.contact.commands import DEFAULT_WORKERS, progress_bar, refuse_options, typed_options
+    from stickslip.cli.contact.commands import DEFAULT_WORKERS, progress_bar, refuse_options
     from stickslip.cli.contact.simulation import contact_run_system
     from stickslip.sweep.contact.basin import (
         columns,

@@ -275,3 +275,10 @@ def _writable(folder: Path) -> bool:
             return True
     except OSError:
         return False
+
+
+def typed_options(ctx: Any, names: tuple[str, ...]) -> list[str]:
+    """The options among ``names`` (parameter names) given on the command line, as flags."""
+    # by name: Typer may ship its own copy of click, whose ParameterSource is another enum
+    return [f"--{n.replace('_', '-')}" for n in names if n in ctx.params
+            and getattr(ctx.get_parameter_source(n), "name", None) == "COMMANDLINE"]

@@ -14,6 +14,7 @@ from stickslip.cli.console import (
     parse_dva,
     parse_friction_option,
     print_json,
+    typed_options,
     warn,
     warn_fitted_range,
 )
@@ -111,6 +112,8 @@ def simulate(
     from stickslip.model import Slider, chain_structure
 
     refuse_mix(ctx, config)
+    if plot is None and typed_options(ctx, ("t_plot_start",)):
+        raise BadInput("--plot-from sets the first time drawn in --plot's figure; give --plot too")
     foundation = None
     run = None
     if config is not None and _ran_on_another_engine(

@@ -15,17 +15,10 @@ from typing import Any
 import typer
 
 from stickslip.analysis.contact.pool import DEFAULT_WORKERS
-from stickslip.cli.console import BadInput, print_json
+from stickslip.cli.console import BadInput, print_json, typed_options
 
-__all__ = ["DEFAULT_WORKERS", "progress_bar", "refuse_options", "typed_options"]
+__all__ = ["DEFAULT_WORKERS", "progress_bar", "refuse_options"]
 
-
-
-def typed_options(ctx: typer.Context, names: tuple[str, ...]) -> list[str]:
-    """The options among ``names`` given on the command line, as flags."""
-    # by name: Typer may ship its own copy of click, whose ParameterSource is another enum
-    return [f"--{n.replace('_', '-')}" for n in names if n in ctx.params
-            and getattr(ctx.get_parameter_source(n), "name", None) == "COMMANDLINE"]
 
 
 def refuse_options(ctx: typer.Context, names: tuple[str, ...], command: str) -> None:

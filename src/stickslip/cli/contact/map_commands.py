@@ -23,8 +23,8 @@ import typer
 from stickslip.cli.console import (
     BadInput,
     print_json,
+    typed_options,
 )
-from stickslip.cli.contact.commands import typed_options
 from stickslip.cli.options import check_map_outputs
 from stickslip.io.machine_file import MachineFile
 

@@ -169,7 +169,7 @@ def has_memory_law(config: Path) -> bool:
 def memory_boundary(ctx: typer.Context, config: Path, *, param: str | None,
                     range_text: str | None, scan: int, json: bool) -> None:
     """``boundary --config`` for a friction law with memory (an eigenvalue search)."""
-    from stickslip.cli.contact.commands import typed_options
+    from stickslip.cli.console import typed_options
     from stickslip.cli.machine_config import load_machine_file
     from stickslip.cli.options import parse_range
 
