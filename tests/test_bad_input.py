@@ -434,6 +434,8 @@ def test_initial_states_with_a_state_column_the_structure_lacks(here: Path,
      "--samples draws the states, --initial-states gives them"),
     (["basin", "--lam", "2.5", "--zeta", "0.1", "--initial-states", "f.csv", "--seed", "7",
       "--samples", "5"], "--samples and --seed draw the states"),
+    (["continue", "--param", "lam", "--range", "0.5:5", "--lam", "3"],
+     "--lam is the continued parameter"),
 ])
 def test_an_option_the_others_make_idle_is_refused(args: list[str], message: str, here: Path,
                                                    capsys: pytest.CaptureFixture[str]) -> None:

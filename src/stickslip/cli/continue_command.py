@@ -14,6 +14,7 @@ from stickslip.cli.console import (
     check_output_path,
     parse_dva,
     print_json,
+    typed_options,
 )
 from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE, OVERWRITE, PLOT, parse_range
 
@@ -94,6 +95,9 @@ def continue_branches(
     if param not in allowed:
         raise BadInput(f"--param {param!r} is not one of {', '.join(allowed)}"
                        + ("" if config is None else " (a machine file's parameters)"))
+    if config is None and param in ("lam", "zeta", "gamma") and typed_options(ctx, (param,)):
+        raise BadInput(f"--{param} is the continued parameter (--param {param}): its values come "
+                       f"from --range; leave --{param} out")
     lo, hi = parse_range(range_, param if config is not None else None)
     if not 1 <= seeds <= 10_000:
         raise BadInput(f"--seeds {seeds} must be from 1 to 10000")
