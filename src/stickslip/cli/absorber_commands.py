@@ -18,6 +18,7 @@ from stickslip.cli.console import (
     parse_dva,
     print_json,
     save_plot,
+    typed_options,
     warn_fitted_range,
 )
 from stickslip.cli.options import JSON, OVERWRITE
@@ -175,6 +176,11 @@ def tune(
         raise BadInput(str(exc)) from None
     if objective not in ("absorber", "stick-slip", "stability"):
         raise BadInput(f"--objective {objective!r} must be 'absorber', 'stick-slip' or 'stability'")
+    idle = typed_options(ctx, ("gamma", "lam_max")) if objective != "stick-slip" else []
+    if idle:
+        verb, pronoun = ("set", "them") if len(idle) > 1 else ("sets", "it")
+        raise BadInput(f"{' and '.join(idle)} {verb} the stick-slip objective; --objective "
+                       f"{objective} does not use {pronoun}")
     warn_fitted_range("optimal", [zeta])  # every objective is compared with Eqs. (28)-(31)
     if objective == "stick-slip":
         _tune_stick_slip(zeta, gamma, mass_ratio, lam_max, json)
