@@ -154,9 +154,8 @@ def find_cycles(
     structure, slider : Structure, Slider
         The system (dimensionless), any friction law.
     seeds : int
-        Initial states drawn uniformly in ``[-box, box]`` for every position and
-        ``[-box, 1.5]`` for every velocity (shifted coordinates), plus the startup state; the
-        breakaway states their runs reach seed Newton's method.
+        Starts drawn uniformly in ``[-box, box]`` (positions), ``[-box, 1.5]`` (velocities) and
+        the startup state; their runs' breakaway states seed Newton's method.
     box : float
         Half-width of the seeding box (units ``V/omega_n`` and ``V``).
     max_period : int
@@ -164,7 +163,7 @@ def find_cycles(
     seed : int
         Random seed of the seeding.
     options : EngineOptions, optional
-        Horizon of the seeding runs.
+        Horizon of the seeding runs (the result counts those it cut short).
     slip_oscillations : bool
         Also look for the periodic motions that never stick, stable and unstable
         (:func:`stickslip.analysis.slip_oscillations.find_slip_oscillations`, its own seeds).
