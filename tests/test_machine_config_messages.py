@@ -79,3 +79,14 @@ def test_a_law_the_package_lacks_is_named(command: list[str], tmp_path: Path,
     assert code == 2 and out == ""
     assert err.strip() == ("stickslip: error: --config 'm.toml': [friction]: law = 'rate_state' is "
                            "not one of coulomb, linear, stribeck, table, rate-state, lugre"), err
+
+
+def test_an_empty_value_is_said_empty(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                      monkeypatch: pytest.MonkeyPatch) -> None:
+    # a bad-input audit: m = "" was reported as "lacks m"
+    monkeypatch.chdir(tmp_path)
+    Path("m.toml").write_text(FLAT.replace('"0.538 kg"', '""').replace('"10 kg"', '"10 N"'))
+    code, out, err = run_cli(["simulate", "--config", "m.toml"], capsys)
+    assert code == 2 and out == ""
+    assert err.strip() == ("stickslip: error: --config 'm.toml': m = '' is empty; give a value "
+                           "with its unit (e.g. m = \"2 kg\") or leave the key out"), err

@@ -321,6 +321,10 @@ def read_machine_file(path: Path, *, label: str | None = None,
     unknown = sorted(set(section) - set(QUANTITIES))
     if unknown:
         raise ValueError(f"{label}: unknown keys {', '.join(unknown)}")
+    blank = sorted(k for k, v in section.items() if isinstance(v, str) and not v.strip())
+    if blank:  # written but empty: not the same as a key left out
+        raise ValueError(f"{label}: {blank[0]} = {section[blank[0]]!r} is empty; give a value with "
+                         f"its unit (e.g. m = \"2 kg\") or leave the key out")
     if tables["structure"] is not None:
         both = [k for k in PAPER_STRUCTURE_KEYS if k in section]
         if both:
