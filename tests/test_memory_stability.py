@@ -55,6 +55,50 @@ def test_rate_state_critical_stiffness_and_speed(tmp_path: Path) -> None:
     assert result.to_dict()["rice_ruina"]["critical_speed_m_per_s"] == pytest.approx(v_c, rel=1e-14)
 
 
+DAMPED = """
+[system]
+m = "2 kg"
+k = "3000 N/m"
+c = "5 N*s/m"
+load = "20 N"
+speed = "3 mm/s"
+[friction]
+law = "rate-state"
+a = 0.012
+b = 0.02
+d_c = "20 um"
+mu_ref = 0.5
+v_ref = "1 um/s"
+evolution = "slip"
+"""
+
+
+def test_damped_slider_hopf_stiffness_and_the_undamped_closed_form(tmp_path: Path) -> None:
+    # Derivation: about steady sliding dF = (N a/V) dv + N dpsi, dpsi' = -(b/d_c) dv - (V/d_c) dpsi
+    # and dv = -dx'; with L = V/d_c and C = c + N a/V the characteristic polynomial is
+    # m s^3 + (m L + C) s^2 + (k + L C - N b/d_c) s + k L, whose Hopf boundary (a2 a1 = a3 a0) is
+    # k = (m L + C)(N (b - a)/d_c - c V/d_c)/C; c = 0 gives Rice and Ruina's k_c (38000 N/m
+    # here, while the damped boundary is 32838.2 N/m: the summary must not pass one for the other)
+    _, system = _system(tmp_path, DAMPED)
+    m, c, load, v, a, b, d_c = 2.0, 5.0, 20.0, 3e-3, 0.012, 0.02, 2e-5
+    big_c = c + load * a / v
+    k_hopf = (m * v / d_c + big_c) * (load * (b - a) / d_c - c * v / d_c) / big_c
+    result = memory_stability(system)
+    assert result.critical_stiffness == pytest.approx(k_hopf, rel=1e-9)
+    assert result.to_dict()["rice_ruina"]["critical_stiffness_N_per_m"] == pytest.approx(
+        load * (b - a) / d_c * (1.0 + m * v**2 / (load * a * d_c)), rel=1e-12)
+    text = result.summary()
+    assert "critical k  32838.2352" in text
+    assert "closed form of an undamped slider" in text
+    assert "critical V  0.031953" in text  # the damped boundary along the speed
+    # no critical speed in the scan about 1e-5 m/s (1e-7 to 1e-3 m/s): "none", with no unit
+    slow = memory_stability(system, speed=1e-5).summary()
+    assert "critical V  none (scan" in slow
+    assert "none m/s" not in slow
+    _, undamped_system = _system(tmp_path, DAMPED.replace('c = "5 N*s/m"', 'c = "0 N*s/m"'))
+    assert "undamped slider" not in memory_stability(undamped_system).summary()
+
+
 def test_rate_state_map_matches_rice_ruina_everywhere(tmp_path: Path) -> None:
     _, system = _system(tmp_path, RATE_STATE)
     speeds, loads = np.geomspace(1e-5, 1e-1, 30), np.geomspace(1.0, 100.0, 20)

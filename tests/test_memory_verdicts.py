@@ -115,6 +115,47 @@ def test_a_start_at_zero_slip_speed_leaves_it(stiffness_factor: float) -> None:
     assert stuck.amplitude == pytest.approx(kicked.amplitude, rel=1e-5)
 
 
+AUDITED_STUCK_STARTS = [  # (law, m kg, k N/m, N, V m/s, period s of an independent integration)
+    # periods: scipy Radau (rtol 1e-10 to 1e-12) with Newton shooting on q' = 0, written apart
+    # from this package (audit of 2026-11-27); each start at slip speed 0 stopped with "the step
+    # size fell to round-off" (the slip speed, held to rtol V, flipped sign with the friction)
+    (RateStateFriction(a=0.01, b=0.015, d_c=1e-5, mu_ref=0.6, v_ref=1e-6, evolution="aging"),
+     1.0, 400.004, 1.0, 1e-6, 282.66820906),
+    (RateStateFriction(a=0.01, b=0.015, d_c=1e-5, mu_ref=0.6, v_ref=1e-6, evolution="slip"),
+     1.0, 400.004, 1.0, 1e-6, 236.71102581),
+    (RateStateFriction(a=0.008, b=0.012, d_c=5e-5, mu_ref=0.7, v_ref=1e-5, evolution="slip"),
+     5.0, 6000.0, 100.0, 1e-3, 0.7870999963),
+]
+
+
+@pytest.mark.parametrize(("law", "m", "k", "load", "speed", "period"), AUDITED_STUCK_STARTS)
+def test_a_stuck_start_resolves_its_initial_layer(law: RateStateFriction, m: float, k: float,
+                                                    load: float, speed: float,
+                                                    period: float) -> None:
+    # From slip speed 0 the friction rises from 0 to mu N within slip speeds of 1e-40 m/s and
+    # less: the slip speed is held to the accuracy of the force it sets, and the layer at t = 0
+    # is resolved with steps as small as it needs. The start reaches the kicked start's cycle.
+    system = _slider(law, m=m, k=k, load=load, speed=speed)
+    stuck = ms.simulate_memory(system, kick=-1.0)
+    kicked = ms.simulate_memory(system, kick=0.5)
+    assert stuck.verdict is kicked.verdict, stuck.reason
+    assert stuck.verdict in (Verdict.STICK_SLIP, Verdict.SLIP_OSCILLATION)
+    assert stuck.period == pytest.approx(period, rel=1e-7)
+    assert kicked.period == pytest.approx(period, rel=1e-7)
+
+
+def test_the_initial_state_is_reported_as_theta() -> None:
+    # the JSON's initial state names the law's state "theta (s)", as the history does: from
+    # steady sliding theta = d_c/V (the aging law's theta' = 1 - V theta/d_c = 0), 0.05 s here,
+    # not the engine's psi (0.6447 here)
+    law = RateStateFriction(a=0.008, b=0.012, d_c=5e-5, mu_ref=0.7, v_ref=1e-5)
+    result = ms.simulate_memory(_slider(law, m=5.0, k=6000.0, load=100.0, speed=1e-3),
+                                t_max=1.0)
+    out = result.to_dict()
+    assert out["friction"]["state"] == "theta (s)"
+    assert out["initial_state"][-1] == pytest.approx(5e-5 / 1e-3, rel=1e-12)
+
+
 def test_stable_steady_sliding_is_reached() -> None:
     law = RateStateFriction(a=0.01, b=0.015, d_c=1e-5, mu_ref=0.6, v_ref=1e-6)
     k_c = mf.rice_ruina_critical_stiffness(1.0, 0.01, 0.015, 1e-5, 1.0, 1e-5)
@@ -203,6 +244,18 @@ def test_slip_reversals_and_quasi_stick_of_the_lugre_cycle() -> None:
     result = ms.simulate_memory(_slider(law, m=1.0, k=2.0, load=1.0, speed=0.1), kick=-1.0,
                                 t_max=60.0)
     assert result.min_slip_speed < 0.0
+    # the smallest slip speed is that of the dip itself, not of the samples: 50 times denser
+    # uniform samples of the cycle (an independent Radau integration gave -3.262e-4 m/s; the
+    # 4001 samples alone said -3.167e-4) find none smaller and one within 1e-3 of it
+    assert result.orbit is not None
+    dense = np.linspace(0.0, result.period, 200_001)
+    one = _slider(law, m=1.0, k=2.0, load=1.0, speed=0.1)
+    run = mf.integrate_run(one, result.orbit.y0, result.period, history_times=dense)
+    assert run.history is not None
+    dense_min = float(np.nanmin(mf.observables(one, run.history, np.full(dense.size, 0.1))["slip"]))
+    assert result.min_slip_speed <= dense_min + 1e-12
+    assert result.min_slip_speed == pytest.approx(dense_min, rel=1e-3)
+    assert result.min_slip_speed == pytest.approx(-3.262e-4, rel=1e-3)
     times = np.array(result.slip_reversals)
     assert times.size >= 14
     assert np.all(np.diff(times) > 0.0)

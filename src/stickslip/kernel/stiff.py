@@ -65,8 +65,10 @@ from stickslip.kernel.stiff_laws import (
     LAW_RATE_STATE_AGING,
     LAW_RATE_STATE_SLIP,
     N_LAW,
+    force_resolution,
     law_values,
     quasi_static_speed,
+    slip_speed_scale,
 )
 from stickslip.kernel.stiff_system import (
     KIND_DYNAMIC,
@@ -344,6 +346,8 @@ def _integrate_slip_form(kind: int, law: int, p: np.ndarray, amat: np.ndarray, b
         h = min(max(h, 1e-12 * span), span)
     err_old = 1.0
     h_old = h
+    f_resolution = force_resolution(law, p)
+    v_scale = np.inf
     first = True
     tc = t
     for _attempt in range(max_steps):
@@ -353,6 +357,8 @@ def _integrate_slip_form(kind: int, law: int, p: np.ndarray, amat: np.ndarray, b
             system_jacobian(kind, law, p, amat, bvec, iv, is_, kq, z[:n], speed, True, lv, jac)
             _aug_rhs(kind, law, p, amat, bvec, iv, is_, kq, z, n, with_phi, speed, lv, jw, f0)
             fresh = True
+            if slip:  # the slip speed as accurate as the friction force it sets
+                v_scale = slip_speed_scale(rtol, lv[L_F], lv[L_FV], f_resolution)
         for i in range(n):
             for j in range(n):
                 lu[i, j] = -jac[i, j]
@@ -387,8 +393,9 @@ def _integrate_slip_form(kind: int, law: int, p: np.ndarray, amat: np.ndarray, b
                 finite = False
         if finite:
             for i in range(n):
-                if slip and i == iv:  # the state form's scale, |q_c'|
-                    sc = atol[i] + rtol * max(abs(speed - z[i]), abs(speed - znew[i]))
+                if slip and i == iv:  # the state form's scale, |q_c'|, or the force's
+                    sc = min(atol[i] + rtol * max(abs(speed - z[i]), abs(speed - znew[i])),
+                             v_scale)
                 else:
                     sc = atol[i] + rtol * max(abs(z[i]), abs(znew[i]))
                 err += (k6[i] / sc) ** 2
@@ -522,7 +529,11 @@ def _integrate_slip_form(kind: int, law: int, p: np.ndarray, amat: np.ndarray, b
             stats[1] += 1.0
             fac = max(1.0 / FAC_MAX, min(1.0 / FAC_MIN, (err ** 0.25) / SAFETY)) if err < 1e9 else 10.0
             h = h / fac
-        if h < 1e-14 * max(abs(t), span):
+        # round-off of the clock: a step below 1e-14 t no longer advances it. At t = 0 there
+        # is none: the initial layer of a start at slip speed 0 (rate-and-state's friction
+        # rises from 0 to mu N within a few regularisation speeds, 1e-40 m/s and less) is
+        # resolved with steps as small as it needs, growing as it decays (max_steps bounds it)
+        if h < 1e-14 * abs(t) or h < 1e-300:
             return STATUS_STEP_UNDERFLOW, t, h
     return STATUS_MAX_STEPS, t, h
 

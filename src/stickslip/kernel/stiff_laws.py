@@ -27,6 +27,29 @@ N_LAW = 12
 _LOG_SWITCH = 30.0
 
 
+@njit(cache=True)
+def force_resolution(law: int, p: np.ndarray) -> float:
+    """The friction force (N) the law resolves at any slip speed: ``N a`` (rate-and-state's
+    direct effect), ``N mu_c`` (LuGre's Coulomb level); see :func:`slip_speed_scale`."""
+    return abs(p[0] * (p[4] if law == LAW_LUGRE else p[1]))
+
+
+@njit(cache=True)
+def slip_speed_scale(rtol: float, force: float, force_slope: float, resolution: float) -> float:
+    """Error scale (m/s) of the slip speed that keeps the friction force accurate to ``rtol``.
+
+    An error ``dv`` in the slip speed is an error ``F_v dv`` in the friction force ``F``; the
+    force is wanted to ``rtol max(|F|, resolution)``, so ``dv`` to that over ``|F_v|``. Near
+    ``v = 0`` rate-and-state's ``F_v = N a / sqrt(v^2 + v_reg^2)`` is enormous (``v_reg = 2
+    v_ref exp(-psi/a)``): the scale is then ``rtol sqrt(v^2 + v_reg^2)``, relative control of
+    the slip speed, where an absolute tolerance of ``rtol V`` let creep at 1e-14 m/s flip sign
+    and the friction with it. ``inf`` when the force does not depend on ``v``.
+    """
+    if force_slope == 0.0:
+        return np.inf
+    return rtol * max(abs(force), resolution) / abs(force_slope)
+
+
 @njit(cache=True, error_model="numpy")
 def law_values(law: int, p: np.ndarray, v: float, s: float, out: np.ndarray) -> None:
     """Friction force ``F`` (N), state rate ``G`` and their first and second partials in ``(v, s)``.

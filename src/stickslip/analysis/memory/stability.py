@@ -378,13 +378,18 @@ class MemoryStability:
         rr = p["rice_ruina"]
         if rr is not None:
             speed = rr["critical_speed_m_per_s"]
+            undamped = ("" if not np.any(self.system.damping) else
+                        " (the closed form of an undamped slider; with the damping the Hopf "
+                        "boundary is the critical k above)")
             lines.append(f"Rice-Ruina  k_c = {rr['critical_stiffness_N_per_m']:.10g} N/m; critical "
-                         "speed " + (f"{speed:.10g} m/s" if speed is not None else "none"))
+                         "speed " + (f"{speed:.10g} m/s" if speed is not None else "none")
+                         + undamped)
         lo, hi, _ = p["speed_grid_m_per_s"]
         speeds = ", ".join(f"{v:.8g}" for v in self.critical_speeds) or "none"
         ranges = ", ".join(f"{a:.4g} to {b:.4g}" for a, b in self.unstable_speeds) or "none"
-        lines.append(f"critical V  {speeds} m/s (scan {lo:.3g} to {hi:.3g} m/s)")
-        lines.append(f"unstable V  {ranges} m/s")
+        lines.append(f"critical V  {speeds}{' m/s' if self.critical_speeds else ''} "
+                     f"(scan {lo:.3g} to {hi:.3g} m/s)")
+        lines.append(f"unstable V  {ranges}{' m/s' if self.unstable_speeds else ''}")
         return "\n".join(lines)
 
 
