@@ -61,6 +61,25 @@ def test_brake_pad_stick_slip_with_separation_json(tmp_path: Path,
     assert "separation" in history["mode"] and "stick" in history["mode"]
 
 
+@pytest.mark.parametrize(("load", "speed", "start"), [
+    ("1 kN", "2 cm/s", "stuck to the belt"),
+    # c V = 40 N s/m x 5 m/s = 200 N > mu_s W = 0.5 x 316 N = 158 N: no stick can hold it
+    ("316 N", "5 m/s", "in slip forward at once"),
+])
+def test_the_start_is_said(tmp_path: Path, capsys: pytest.CaptureFixture[str], load: str,
+                           speed: str, start: str) -> None:
+    text = BRAKE_PAD.replace('load = "1 kN"', f'load = "{load}"').replace(
+        'speed = "2 cm/s"', f'speed = "{speed}"')
+    code, out, err = run_cli(["simulate", "--config", write(tmp_path, text), "--t-max", "1 ms"],
+                             capsys)
+    assert code == 0, err
+    line = next(x for x in out.splitlines() if x.startswith("start"))
+    assert start in line, line
+    code, out, err = run_cli(["simulate", "--config", write(tmp_path, text), "--t-max", "1 ms",
+                              "--json"], capsys)
+    assert json.loads(out)["initial_mode"] == ("stick" if "stuck" in start else "slip forward")
+
+
 def test_paper_slider_with_a_stiff_damped_jenkins_element(tmp_path: Path,
                                                           capsys: pytest.CaptureFixture[str]) -> None:
     # m = 1 kg, k = 1 N/m, undamped, lambda = (mu_s - mu_k) W / (V sqrt(m k)) = 0.5: a stiff

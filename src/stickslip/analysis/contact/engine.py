@@ -205,6 +205,8 @@ class ContactRun:
                 "period_s": self.period_s, "amplitude_m": self.amplitude_m,
                 "separated": self.separated, "t_end_s": self.t_end,
                 "n_events": len(self.events), "event_counts": kinds,
+                "initial_mode": MODE_LABELS[int(self.segment_modes[0])] if len(self.segment_modes)
+                else None,
                 "events": [e.to_dict() for e in self.events[-20:]],
                 "engine": "exact piecewise-affine (matrix exponential) with the contact"}
 
