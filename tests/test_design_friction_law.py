@@ -138,3 +138,46 @@ def test_stribeck_design_command_states_both_laws(tmp_path: Path, capsys: pytest
     assert "the paper's procedure, for its Coulomb law" in text
     assert "the machine's friction law (stribeck" in text
     assert "V_c=  0.2718 m/s" in text
+
+
+def test_hopf_boundaries_are_the_closed_forms_on_the_rigid_base() -> None:
+    # Derivation: mu(v) = mu_k + (mu_0 - mu_k) exp(-v/v_s) + sigma_v v (docs/friction.md), so
+    # steady sliding on the rigid base is stable while c + W mu'(V) > 0 (the net damping, the
+    # Routh-Hurwitz condition of one DOF), mu'(V) = -(mu_0 - mu_k) exp(-V/v_s)/v_s + sigma_v:
+    # along the speed V_H = v_s ln(W (mu_0 - mu_k) / (v_s (c + W sigma_v))), unstable below;
+    # along the load W_H = c / ((mu_0 - mu_k) exp(-V/v_s)/v_s - sigma_v), unstable above
+    from stickslip.analysis.stability_boundaries import stability_boundaries
+
+    c, w, v, dmu, v_s, sigma_v = 5.746, 10.0, 0.19, 0.4, 0.1, 0.02
+    bounds = stability_boundaries(STRIBECK, rigid_base(STRIBECK.zeta))
+    v_h = v_s * math.log(w * dmu / (v_s * (c + w * sigma_v)))
+    w_h = c / (dmu * math.exp(-v / v_s) / v_s - sigma_v)
+    assert bounds.speeds == (pytest.approx(v_h, rel=1e-9),)
+    assert bounds.unstable_speeds == ((pytest.approx(v / 1e3), pytest.approx(v_h, rel=1e-9)),)
+    assert bounds.load == pytest.approx(w_h, rel=1e-12)
+    assert "unstable at belt speeds below 0.1" in bounds.sentence()
+
+
+def test_hopf_boundary_with_a_foundation_is_where_the_growth_rate_changes_sign() -> None:
+    # the boundary of the 2-DOF machine against the eigenvalues of its linearisation (the
+    # growth rate of steady sliding) just on either side of it, rebuilt at each speed and load
+    from stickslip.analysis.stability import steady_sliding_stability
+    from stickslip.analysis.stability_boundaries import stability_boundaries
+
+    found = optimal_foundation_fit(STRIBECK.zeta)
+    system = dataclasses.replace(STRIBECK, speed=0.05)
+    structure = elastic_foundation(system.zeta, found)
+    bounds = stability_boundaries(system, structure)
+    assert bounds.speeds, bounds
+
+    def growth(at: PhysicalSystem) -> float:
+        return steady_sliding_stability(structure, at.slider()).growth_rate
+
+    for v_h in bounds.speeds:
+        below = growth(dataclasses.replace(system, speed=v_h * (1.0 - 1e-6)))
+        above = growth(dataclasses.replace(system, speed=v_h * (1.0 + 1e-6)))
+        assert below * above < 0.0, (v_h, below, above)
+    assert bounds.load is not None  # the law weakens at 0.05 m/s: a load makes it unstable
+    lighter = growth(dataclasses.replace(system, load=bounds.load * (1.0 - 1e-6)))
+    heavier = growth(dataclasses.replace(system, load=bounds.load * (1.0 + 1e-6)))
+    assert lighter < 0.0 < heavier

@@ -474,7 +474,9 @@ def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -
     round-off (:attr:`~stickslip.analysis.stability.SteadySlidingStability.neutral`), marginally
     stable, e.g. an undamped slider on a rigid base. ``safe_disturbance``: the largest knock
     about steady sliding certified never to start stick-slip
-    (:func:`stickslip.analysis.disturbance.safe_disturbance`), in J, m/s and m.
+    (:func:`stickslip.analysis.disturbance.safe_disturbance`), in J, m/s and m. ``boundaries``:
+    where steady sliding changes stability along the belt speed and the load (the Hopf
+    boundary, :func:`stickslip.analysis.stability_boundaries.stability_boundaries`).
 
     Parameters
     ----------
@@ -490,6 +492,7 @@ def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -
     """
     from stickslip.analysis.disturbance import safe_disturbance
     from stickslip.analysis.stability import critical_weakening, steady_sliding_stability
+    from stickslip.analysis.stability_boundaries import stability_boundaries
 
     slider = system.slider()
     per_slope = 2.0 * math.sqrt(system.mass * system.stiffness) / system.load
@@ -497,6 +500,7 @@ def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -
     for name, structure in structures.items():
         stab = steady_sliding_stability(structure, slider)
         delta_crit = critical_weakening(structure)
+        bounds = stability_boundaries(system, structure)
         out[name] = {
             "stable": bool(stab.stable),
             "neutral": bool(stab.neutral),
@@ -508,6 +512,7 @@ def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -
             "sigma_crit": delta_crit * per_slope,
             "safe_disturbance": {**safe_disturbance(structure, slider).physical(system),
                                  "sentence": safe_disturbance(structure, slider).sentence(system)},
+            "boundaries": {**bounds.to_dict(), "sentence": bounds.sentence()},
         }
     return out
 

@@ -368,6 +368,10 @@ def format_report(p: dict[str, Any]) -> str:
                 f"margin {g(s['margin'])})"
             )
             lines.append(f"  {'':22}{'':>9}  {s['safe_disturbance']['sentence']}")
+            lines.append(f"  {'':22}{'':>9}  {s['boundaries']['sentence']}")
+        lines.append("  (linear stability is local: the simulation rows' V_c and W_c are where a "
+                     "start from rest stops sticking; between the two, steady sliding is stable "
+                     "yet a start from rest ends in stick-slip)")
     lines += [f"warning: {w}" for w in p.get("warnings", [])]
     return "\n".join(lines)
 
