@@ -24,6 +24,7 @@ and the foundation's ratios only, not on ``V`` or ``W``. Hence:
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, replace
 from typing import Any
@@ -129,7 +130,7 @@ def stability_boundaries(system: PhysicalSystem, structure: Structure) -> Stabil
                 brentq(margin, grid[i], grid[i + 1], rtol=SPEED_RTOL)))
     edges = [lo, *speeds, hi]
     unstable = []
-    for a, b in zip(edges[:-1], edges[1:], strict=True):
+    for a, b in itertools.pairwise(edges):
         if margin(math.sqrt(a * b)) < 0.0:
             unstable.append((a, b))
     local = steady_sliding_stability(structure, system.slider()).delta_local
