@@ -545,6 +545,10 @@ def test_linear_law_shows_the_stability_table_of_the_design_report() -> None:
     margins = [m.value for m in at.markdown if m.value.startswith("Disturbances, ")]
     assert margins == [f"Disturbances, {row}: {expected[key]['safe_disturbance']['sentence']}."
                        for row, key in (("rigid base", "rigid"), ("with foundation", "foundation"))]
+    # and the linear stability boundary along the speed and the load, as design gives it
+    hopf = [m.value for m in at.markdown if "linear stability boundary (Hopf)" in m.value]
+    assert hopf == [f"{row}: {expected[key]['boundaries']['sentence']}."
+                    for row, key in (("Rigid base", "rigid"), ("With foundation", "foundation"))]
 
 
 def test_linear_law_shows_the_design_commands_warning_and_stability_optimal_foundation(

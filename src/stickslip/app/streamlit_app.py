@@ -216,6 +216,9 @@ def _show_stability(report: Mapping[str, Any]) -> None:
         margin = stab[key].get("safe_disturbance")
         if margin:
             st.markdown(f"Disturbances, {rows[key]}: {margin['sentence']}.")
+        bounds = stab[key].get("boundaries")
+        if bounds:  # where steady sliding changes stability along V and W (Hopf boundary)
+            st.markdown(f"{rows[key].capitalize()}: {bounds['sentence']}.")
 
 
 def _show_foundation(report: Mapping[str, Any], system: PhysicalSystem) -> None:
