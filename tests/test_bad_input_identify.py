@@ -227,3 +227,31 @@ def test_a_refused_record_is_named(tmp_path: Path, capsys: pytest.CaptureFixture
                comments="")
     line = _error([str(path), *KNOWN], capsys, tmp_path)
     assert "record smooth_sine.csv: " in line and "stick phase" in line
+
+
+@pytest.mark.parametrize(("change", "needle"), [
+    (lambda row: row + ",7", "data row 40: 4 values, the header names 3"),  # before: StopIteration
+    (lambda row: row.rsplit(",", 1)[0], "data row 40: 2 values, the header names 3"),
+])
+def test_a_row_with_too_many_or_too_few_values_is_named(change, needle: str,  # type: ignore[no-untyped-def]
+                                                        tmp_path: Path,
+                                                        capsys: pytest.CaptureFixture[str]) -> None:
+    lines = EXAMPLE.read_text(encoding="utf-8").splitlines()
+    data = [i for i, line in enumerate(lines) if line and not line.startswith("#")]
+    lines[data[39]] = change(lines[data[39]])  # data[0] is the header: the 39th data row, "data row 40"
+    bad = tmp_path / "ragged.csv"
+    bad.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    assert needle in _error([str(bad), *KNOWN], capsys, tmp_path)
+
+
+def test_a_force_only_record_of_the_wrong_sign_is_said(tmp_path: Path,
+                                                       capsys: pytest.CaptureFixture[str]) -> None:
+    # the force channel alone, negated: its breakaway force is negative (before: scipy's "Each
+    # lower bound must be strictly less than each upper bound")
+    record = read_record(EXAMPLE)
+    assert record.F is not None
+    flipped = tmp_path / "flipped.csv"
+    np.savetxt(flipped, np.column_stack([record.t, -record.F]), delimiter=",", header="t,F",
+               comments="")
+    line = _error([str(flipped), *KNOWN], capsys, tmp_path)
+    assert "the force at breakaway is -" in line and "check the sign of F" in line

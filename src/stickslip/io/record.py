@@ -217,11 +217,16 @@ def record_from_text(text: str, name: str, columns: list[ColumnSpec] | None = No
         if not any(c.role == "t" for c in columns):
             raise RecordError(f"record {name!r}: no time column (header {', '.join(header_raw)}); "
                               "name one t or give --columns")
-    try:
-        data = np.array([[float(v) for v in row] for row in rows[1:]], dtype=np.float64)
-    except ValueError:
-        bad = next(i for i, row in enumerate(rows[1:], start=2) if not _numeric(row))
-        raise RecordError(f"record {name!r}, data row {bad}: not all numbers") from None
+    values: list[list[float]] = []
+    for i, row in enumerate(rows[1:], start=2):  # row i of the file's data (the header is 1)
+        if len(row) != len(header):
+            raise RecordError(f"record {name!r}, data row {i}: {len(row)} values, the header "
+                              f"names {len(header)}")
+        try:
+            values.append([float(v) for v in row])
+        except ValueError:
+            raise RecordError(f"record {name!r}, data row {i}: not all numbers") from None
+    data = np.array(values, dtype=np.float64)
     if data.ndim != 2 or data.shape[1] != len(header):
         raise RecordError(f"record {name!r}: rows do not all have {len(header)} values")
     arrays: dict[str, Any] = {}
@@ -240,14 +245,6 @@ def record_from_text(text: str, name: str, columns: list[ColumnSpec] | None = No
     if "t" not in arrays:
         raise RecordError("the column specification has no time column t")
     return MeasuredRecord(arrays.pop("t"), source=Path(name).name, **arrays)
-
-
-def _numeric(row: list[str]) -> bool:
-    try:
-        [float(v) for v in row]
-    except ValueError:
-        return False
-    return True
 
 
 def write_record(path: str | Path, record: MeasuredRecord, *, comment: str = "") -> Path:

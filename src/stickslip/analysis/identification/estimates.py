@@ -328,6 +328,11 @@ def estimate(record: MeasuredRecord, *, mass: float, load: float, speed: float) 
         force_peak, force_onset = k0 * peak, k0 * onset
     mu_s0 = force_peak / load
     mu_k0 = 0.5 * (force_peak + force_onset) / load
+    if record.F is not None and not force_peak > 0.0:
+        raise RecordError(
+            f"the force at breakaway is {force_peak:.4g} N, not positive: the belt drags the "
+            "slider, so the friction force it holds is positive; check the sign of F "
+            "(--columns F=-NAME flips a column)")
     if not (0.0 < mu_k0 < mu_s0):
         mu_k0 = 0.5 * mu_s0
     omega0 = math.sqrt(k0 / mass)

@@ -186,7 +186,8 @@ class RateStateFit:
     def summary(self) -> str:
         """A few lines for the terminal."""
         lines = [f"identify    rate-and-state ({self.evolution} law) from {self.n} samples, "
-                 f"{len(self.schedule.speeds)} load-point step(s), k {self.stiffness:.6g} N/m, "
+                 f"{len(self.schedule.speeds)} load-point speed(s) ({len(self.schedule.speeds) - 1} "
+                 f"step(s)), k {self.stiffness:.6g} N/m, "
                  f"N {self.load:.6g} N"]
         units = {"d_c": " m"}
         for name in NAMES:
