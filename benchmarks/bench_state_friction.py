@@ -5,17 +5,17 @@ Usage::
     .venv/bin/python benchmarks/bench_state_friction.py
 
 Measured on the 2-core development machine, shared with other jobs (times vary by tens of
-per cent run to run; last run 2026-11-26 09:40, load average 1.9)::
+per cent run to run; last run 2026-11-27 09:27, load average 1.7)::
 
-    rate-and-state stability map 100x100: engine 0.57 s (goal 60 s), baseline (Python right-hand
-      side, finite-difference Jacobian) 1.00 s, ratio 1.75x; same sign of the growth rate in
+    rate-and-state stability map 100x100: engine 0.25 s (goal 60 s), baseline (Python right-hand
+      side, finite-difference Jacobian) 0.58 s, ratio 2.29x; same sign of the growth rate in
       10000/10000 cells
-    velocity step (quasi-static rate-and-state): engine rtol 1e-8, error 3.37e-07, 0.31 ms
-      scipy LSODA rtol 1e-09: error 9.89e-08, 8.7 ms, ratio 28.2x
-      scipy Radau rtol 1e-08: error 1.43e-07, 48.7 ms, ratio 157.8x
-    LuGre stick-slip (Canudas de Wit et al. 1995): engine rtol 1e-8, error 1.99e-06, 4.29 ms
-      scipy LSODA rtol 1e-10: error 1.62e-06, 103.8 ms, ratio 24.2x
-      scipy Radau rtol 1e-08: error 6.26e-07, 1297.2 ms, ratio 302.3x
+    velocity step (quasi-static rate-and-state): engine rtol 1e-8, error 3.37e-07, 0.36 ms
+      scipy LSODA rtol 1e-09: error 9.89e-08, 3.3 ms, ratio 9.1x
+      scipy Radau rtol 1e-08: error 1.43e-07, 20.5 ms, ratio 57.3x
+    LuGre stick-slip (Canudas de Wit et al. 1995): engine rtol 1e-8, error 8.92e-07, 9.01 ms
+      scipy LSODA rtol 1e-11: error 1.52e-07, 109.2 ms, ratio 12.1x
+      scipy Radau rtol 1e-08: error 2.88e-07, 690.0 ms, ratio 76.6x
 
 First a 100 x 100 stability map of a 1-DOF rate-and-state slider (m = 1 kg, k = 8000 N/m,
 a = 0.01, b = 0.015, d_c = 10 um; speeds 1e-5 to 0.1 m/s, loads 1 to 100 N): the tool's map
