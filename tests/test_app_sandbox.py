@@ -23,6 +23,7 @@ import contextlib
 import io
 import os
 import re
+import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -37,6 +38,7 @@ from stickslip.app.messages import WORD_JOINER, literal_markdown, sanitised
 from stickslip.io.machine_file import (
     UPLOAD_MAX_DOF,
     UPLOAD_MAX_MB,
+    UPLOAD_MAX_TOML_MB,
     machine_from_file,
     read_machine_file,
     uploaded_file,
@@ -220,6 +222,39 @@ def test_the_largest_upload_is_a_stated_limit() -> None:
     files["padding.csv"] = b"0" * (UPLOAD_MAX_MB * 1024**2 + 1 - sum(map(len, files.values())))
     message = _refusal(files)
     assert f"beyond the {UPLOAD_MAX_MB} MB accepted" in message
+
+
+@pytest.mark.parametrize(("case", "needle"), [
+    # hostile uploads of the audit of 2026-11-27, each refused before its bulk is parsed
+    # (a 50 MB one-value-per-line CSV took 44 s and 2.8 GB, a 13 M-row friction table 45 s)
+    ("rows", "'K.csv' cannot be read: it has 2000000 line breaks and 1 values in its first row"),
+    ("columns", "'K.csv' cannot be read: it has 1 rows and 2000001 values in its first row"),
+    ("table", "friction table 'mu.csv' has 2000001 lines, far more than the 1999 points"),
+    ("toml", f"the machine file holds 2.9 MB, beyond the {UPLOAD_MAX_TOML_MB} MB accepted"),
+    ("name", "[structure] name is 201 characters long; at most 200"),
+    ("nested", "its arrays or tables nest too deeply"),
+])
+def test_a_hostile_upload_is_refused_before_its_bulk_is_read(case: str, needle: str) -> None:
+    if case == "rows":
+        files = _csv_machine(b"1\n" * 2_000_000)
+    elif case == "columns":
+        files = _csv_machine(b"1" + b",1" * 2_000_000 + b"\n")
+    elif case == "table":
+        files = _with(_slideway(), "attach_dof = 2\n",
+                      'attach_dof = 2\n\n[friction]\nlaw = "table"\ntable = "mu.csv"\n')
+        files["mu.csv"] = b"v,mu\n" + b"0.1,0.2\n" * 2_000_000
+    elif case == "toml":
+        files = _csv_machine(b"3e4,-1e4\n-1e4,2e4\n")
+        files["m.toml"] += b"# " + b"x" * int(2.9 * 1024**2 - len(files["m.toml"]) - 3) + b"\n"
+    elif case == "name":
+        files = _with(_slideway(), 'name = "slideway"', f'name = "{"n" * 201}"')
+    else:
+        files = _csv_machine(b"3e4,-1e4\n-1e4,2e4\n")
+        files["m.toml"] += b"deep = " + b"[" * 50_000 + b"]" * 50_000 + b"\n"
+    start = time.perf_counter()
+    message = _refusal(files)
+    assert needle in message, message
+    assert time.perf_counter() - start < 60.0  # a bound on the work, not a benchmark
 
 
 def test_uploaded_file_takes_only_plain_names() -> None:

@@ -255,3 +255,13 @@ def test_a_force_only_record_of_the_wrong_sign_is_said(tmp_path: Path,
                comments="")
     line = _error([str(flipped), *KNOWN], capsys, tmp_path)
     assert "the force at breakaway is -" in line and "check the sign of F" in line
+
+
+def test_a_chain_of_powers_in_a_header_unit_is_refused(tmp_path: Path,
+                                                       capsys: pytest.CaptureFixture[str]) -> None:
+    # pint computed kN**9**9**9 (an integer of 10**369 digits) for hours before refusing it
+    text = EXAMPLE.read_text(encoding="utf-8").replace("F [N]", "F [kN**9**9**9]")
+    bad = tmp_path / "powers.csv"
+    bad.write_text(text, encoding="utf-8")
+    line = _error([str(bad), *KNOWN], capsys, tmp_path)
+    assert "unit 'kN**9**9**9': a unit's power must be one number" in line

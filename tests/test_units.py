@@ -18,6 +18,7 @@ from stickslip.model.units import to_si
     ("m", "2 kg", 2.0), ("m", "2.5kg", 2.5), ("m", "3 g", 3e-3), ("m", "1e-3 kg", 1e-3),
     ("k", "50 kN/m", 5e4), ("c", "0.1 N*s/m", 0.1), ("speed", "0.5 m/s", 0.5),
     ("speed", "36 km/h", 10.0), ("mu_s", "0.5", 0.5), ("m", "7", 7.0), ("m", 7, 7.0),
+    ("load", "2 kg*m/s**2", 2.0), ("load", "2 kg*m*s^-2", 2.0), ("k", "3 kg/s^2", 3.0),
 ])
 def test_quantities_convert_to_si(name: str, text: str | float, expected: float) -> None:
     assert to_si(name, text) == pytest.approx(expected, rel=1e-12)
@@ -35,6 +36,14 @@ def test_quantities_convert_to_si(name: str, text: str | float, expected: float)
     ("1e308 t", "must be finite"),
     ("nan kg", "must be finite"),
     ("-inf kg", "must be finite"),
+    # a chain of powers: pint computed 9**9**9 (10**369 digits) for hours, the web app's
+    # server with it (audit of 2026-11-27); one huge power, and a number after a product
+    ("2 kg**9**9**9", "power must be one number"),
+    ("2 kg^9^9^9", "power must be one number"),
+    ("2 kg*9**9**9", "power must be one number"),
+    ("2 kg**2**64", "power must be one number"),
+    ("2 kg**99", "power must be one number"),
+    ("2 kg*3", "one number followed by a unit"),
 ])
 def test_misreadable_text_is_refused_with_one_line(text: str, reason: str) -> None:
     with pytest.raises(ValueError, match=reason) as info:

@@ -63,6 +63,10 @@ ABSORBER_KEYS = frozenset({"mass", "attach_dof", "attach"})
 #: minute at this size on a 2-core machine). The command line has no such limit.
 UPLOAD_MAX_MB = 50
 UPLOAD_MAX_DOF = 1000
+#: The uploaded machine file itself (MB): inline rows are for small matrices.
+UPLOAD_MAX_TOML_MB = 2
+#: Longest ``[structure] name`` (characters): it titles printouts and figures.
+MAX_NAME_LENGTH = 200
 
 
 @dataclass(frozen=True)
@@ -306,6 +310,10 @@ def read_machine_file(path: Path, *, label: str | None = None,
                              f"the {UPLOAD_MAX_MB} MB accepted")
         max_dof = UPLOAD_MAX_DOF if max_dof is None else max_dof
         content = uploaded_file(path.name, files, f"{label}: the file")
+        if len(content) > UPLOAD_MAX_TOML_MB * 1024**2:  # parsing 46 MB of TOML took a minute
+            raise ValueError(f"{label}: the machine file holds {len(content) / 1024**2:.1f} MB, "
+                             f"beyond the {UPLOAD_MAX_TOML_MB} MB accepted; give large matrices "
+                             "as .mtx, .npy or .csv files")
     data = read_toml_file(path, label, content)
     tables = {name: data.get(name) for name in ("friction", "structure", "absorber", "contact")}
     for name, table in tables.items():
@@ -429,6 +437,9 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
         raise ValueError(f"{source}: unknown keys {', '.join(unknown)} (allowed: "
                          f"{', '.join(sorted(STRUCTURE_KEYS))})")
     name = str(table.get("name", "machine"))
+    if len(name) > MAX_NAME_LENGTH:  # it titles figures: a 1 MB name took minutes to draw
+        raise ValueError(f"{source}: [structure] name is {len(name)} characters long; at most "
+                         f"{MAX_NAME_LENGTH}")
     if "modes" in table:
         m, c, k = _modal_table(table, source)
         return m, c, k, 0, name, None

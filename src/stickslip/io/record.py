@@ -37,6 +37,7 @@ import numpy as np
 
 from stickslip.analysis.identification.estimates import MeasuredRecord, RecordError
 from stickslip.io.toml_file import read_toml_file
+from stickslip.model.units import POWER_RULE, unit_powers_bounded
 
 ROLES: dict[str, tuple[str, str]] = {
     "t": ("[time]", "s"),
@@ -66,6 +67,8 @@ def unit_factor(role: str, unit: str | None, where: str) -> float:
     import pint
 
     dim, si = ROLES[role]
+    if not unit_powers_bounded(unit):
+        raise RecordError(f"{where}: unit {unit!r}: {POWER_RULE}")
     ureg = pint.get_application_registry()
     try:
         quantity = ureg.Quantity(1.0, ureg.parse_units(unit.strip()))

@@ -187,6 +187,19 @@ def _read_npy(handle: Any, uploaded: bool) -> Any:
 def _read_csv(text: str) -> Any:
     """Rows of numbers, comma or semicolon separated; a bad entry is named by row and column."""
     delimiter = ";" if ";" in text and "," not in text else ","
+    # a structure matrix is square: so many rows as values in the first, counted before any
+    # number is read (50 MB of one value per line took 44 s and 2.8 GB to refuse)
+    start = len(text) - len(text.lstrip())
+    end = text.find("\n", start)
+    n_columns = text[start:end if end >= 0 else len(text)].count(delimiter) + 1
+    line_breaks = text.count("\n")  # no list of lines yet: a bound first
+    if line_breaks > 4 * n_columns + 16:
+        raise _Unreadable(f"it has {line_breaks} line breaks and {n_columns} values in its first "
+                          "row: not a square matrix")
+    n_rows = sum(1 for line in text.splitlines() if line.strip())
+    if n_rows != n_columns:
+        raise _Unreadable(f"it has {n_rows} rows and {n_columns} values in its first row: not a "
+                          "square matrix")
     rows_out = []
     for row, line in enumerate(text.splitlines(), start=1):
         if not line.strip():

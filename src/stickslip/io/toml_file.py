@@ -36,3 +36,6 @@ def read_toml_file(path: str | Path, label: str, content: bytes | None = None) -
         raise ValueError(f"{label} is not a UTF-8 text file") from None
     except tomllib.TOMLDecodeError as exc:
         raise ValueError(f"{label} is not valid TOML: {exc}") from None
+    except RecursionError:  # arrays or inline tables nested thousands deep
+        raise ValueError(f"{label} is not valid TOML here: its arrays or tables nest too "
+                         "deeply") from None

@@ -11,6 +11,7 @@ import csv
 from pathlib import Path
 
 from stickslip.model.friction import (
+    MAX_BANDS,
     CoulombFriction,
     FrictionLaw,
     LinearFriction,
@@ -76,10 +77,16 @@ def friction_csv_columns(text: str, p: str = "(text)") -> tuple[list[float], lis
 
 def _friction_csv(text: str, p: str) -> tuple[str, list[float], list[float]]:
     """``(name of the second column, "mu" or "f"; v; its values)`` of a friction CSV text."""
+    if text.count("\n") > 8 * MAX_BANDS:  # a bound before any list of lines is made
+        raise ValueError(f"friction table {p} has {text.count(chr(10))} lines, far more than "
+                         f"the {MAX_BANDS - 1} points a table law takes")
     lines = [line for line in text.lstrip("\ufeff").splitlines()
              if line.strip() and not line.startswith("#")]
     # a spreadsheet in a locale with decimal commas separates its columns with ';'
     delimiter = ";" if lines and ";" in lines[0] and "," not in lines[0] else ","
+    if len(lines) > MAX_BANDS:  # the header and MAX_BANDS - 1 points, counted before reading
+        raise ValueError(f"friction table {p} has {len(lines) - 1} rows, more than the "
+                         f"{MAX_BANDS - 1} points a table law takes")
     rows = list(csv.reader(lines, delimiter=delimiter))
     if len(rows) < 2:
         raise ValueError(f"friction table {p} needs a header row and at least one data row")

@@ -78,7 +78,28 @@ def _registry() -> Any:
 
 #: One number (decimal point, optional exponent), then an optional unit: ``"2"``, ``"2.5 kg"``,
 #: ``"50 kN/m"``, ``"1e-3 N*s/m"``.
+#: Largest magnitude of a unit's power (``m^2``, ``kg**-0.5``); the quantities here need 4.
+MAX_UNIT_POWER = 12
+_POWER = re.compile(r"(?:\*\*|\^)\s*([+-]?\d+(?:\.\d+)?)")
 _NUMBER_THEN_UNIT = re.compile(r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*(.*?)\s*$")
+
+
+#: What :func:`unit_powers_bounded` asks, for messages.
+POWER_RULE = f"a unit's power must be one number of magnitude at most {MAX_UNIT_POWER} (m^2, kg**-0.5)"
+
+
+def unit_powers_bounded(unit: str) -> bool:
+    """True when every power in the unit text is one number of magnitude <= ``MAX_UNIT_POWER``.
+
+    A power is a number after ``**`` or ``^`` (``kg**-0.5``, ``m^2``), and is not raised again:
+    a chain of powers (``kg**9**9**9``) made pint compute an integer of 10**369 digits, for
+    hours, holding the interpreter (the web app's every page with it).
+    """
+    for power in _POWER.finditer(unit):
+        rest = unit[power.end():].lstrip()
+        if abs(float(power.group(1))) > MAX_UNIT_POWER or rest.startswith(("**", "^")):
+            return False
+    return True
 
 
 def _parse(flag: str, text: str, what: str) -> tuple[float, str]:
@@ -98,9 +119,14 @@ def _parse(flag: str, text: str, what: str) -> tuple[float, str]:
         raise ValueError(f"{flag} {text!r} is not a quantity: expected one number and an optional "
                          "unit, e.g. '2.5 kg'")
     number, unit = match.group(1), match.group(2)
-    if re.search(r"(?<![\^*])\b\d", unit) or unit.startswith(("*", "/", "^", "+", "-")):
-        raise ValueError(f"{flag} {text!r} must be one number followed by a unit, "
-                         "not two numbers or arithmetic")
+    arithmetic = ValueError(f"{flag} {text!r} must be one number followed by a unit, "
+                            "not two numbers or arithmetic")
+    if unit.startswith(("*", "/", "^", "+", "-")):
+        raise arithmetic
+    if not unit_powers_bounded(unit):
+        raise ValueError(f"{flag} {text!r}: {POWER_RULE}")
+    if re.search(r"\d", _POWER.sub("", unit)):
+        raise arithmetic
     return float(number), unit
 
 
@@ -182,7 +208,10 @@ def to_si(name: str, value: str | float | int, *, source: str | None = None) -> 
                     f"(dimension {dim}), got {quantity.units:~}"
                 )
             else:
-                number = float(quantity.to(si_unit.replace(" ", "*")).magnitude)
+                try:
+                    number = float(quantity.to(si_unit.replace(" ", "*")).magnitude)
+                except OverflowError:  # a unit's factor beyond a float (1e308 of a huge unit)
+                    number = math.inf
     if not math.isfinite(number):
         raise ValueError(f"{flag} {value!r} must be finite")
     return number
