@@ -139,8 +139,15 @@ def test_coulomb_critical_speed_of_reduced_and_full_agree_within_two_percent() -
     assert math.isfinite(v_c) and v_c > 0.0
     full = Machine(mass.toarray(), damping.toarray(), stiffness.toarray(), contact, MU_S, MU_K,
                    LOAD, 0.01)
-    verdicts = []
+    runs = []
     for factor in (0.98, 1.02):
         point = full.with_operating_point(speed=factor * v_c, load=LOAD)
-        verdicts.append(simulate(point.structure(), point.slider(), record=True).verdict.value)
-    assert verdicts == ["stick-slip", "steady-sliding"]
+        runs.append(simulate(point.structure(), point.slider(), record=True))
+    below, above = runs
+    # below: stick-slip. Its cycle's proof at 301 DOF would sample 603 x 603 propagators beyond
+    # the memory a proof may take (_cycle_tube.MAX_PHASE_BYTES; it took 23 GB before the bound),
+    # so the run ends on its stick-slip candidate, declined, not on steady sliding
+    assert (below.verdict.value == "stick-slip"
+            or "candidate, not proven" in below.certificate), below.certificate
+    assert below.n_stick > 1
+    assert above.verdict.value == "steady-sliding"

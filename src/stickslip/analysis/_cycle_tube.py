@@ -33,6 +33,11 @@ MAX_SAMPLES = 20_000
 SAMPLE_STEP = 0.02
 #: Halvings of the first and last sample interval (down to ``h 2^-REFINE``).
 REFINE = 40
+#: Bytes one phase's sampled propagators may take (the doubling holds about three copies of
+#: ``(samples, 2n + 1, 2n + 1)`` doubles): beyond it the tube is not built and the candidate
+#: stays unproven. A 301-DOF frame took 2.8 GB per array and 23 GB in all, then the machine's
+#: memory; 1 GiB holds about 3000 samples of a 60-DOF structure.
+MAX_PHASE_BYTES = 1024**3
 
 
 @dataclass
@@ -183,6 +188,8 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int) -> tuple[list[Phase], FloatAr
         start_zero = [abs(float(nv @ z0) - g0) <= 1e-9 * scale for nv, g0 in functions]
         duration = t1 - t0
         norm_a = float(np.linalg.norm(a))
+        if 3 * 8 * (sample_times(duration, norm_a)[0].size * (n2 + 1) ** 2) > MAX_PHASE_BYTES:
+            return None  # beyond the memory a proof may take (MAX_PHASE_BYTES): not proven
         times, propagators = sampled_flow(a, c, duration, norm_a)
         hs = np.diff(times)
         zs = propagators[:, :n2, :n2] @ z0 + propagators[:, :n2, n2]
