@@ -94,6 +94,16 @@ def unit_powers_bounded(unit: str) -> bool:
     A power is a number after ``**`` or ``^`` (``kg**-0.5``, ``m^2``), and is not raised again:
     a chain of powers (``kg**9**9**9``) made pint compute an integer of 10**369 digits, for
     hours, holding the interpreter (the web app's every page with it).
+
+    Parameters
+    ----------
+    unit : str
+        The unit text (``"kN/m"``, ``"kg*m/s**2"``).
+
+    Returns
+    -------
+    bool
+        Whether pint may be given it.
     """
     for power in _POWER.finditer(unit):
         rest = unit[power.end():].lstrip()
