@@ -787,3 +787,21 @@ def test_app_command_refuses_a_port_in_use(monkeypatch: pytest.MonkeyPatch,
 def test_app_command_rejects_a_bad_port(capsys: pytest.CaptureFixture[str]) -> None:
     code, _, err = _run(["app", "--port", "0"], capsys)
     assert code == 2 and err.count("\n") == 1
+
+
+def test_an_unexpected_error_shows_no_traceback_or_server_path(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Security (the app serves people over a network): a bug's traceback names the server's
+    files. The script itself hides the details, so ``streamlit run`` on it directly does too
+    (``stickslip app`` also passes ``--client.showErrorDetails none``)."""
+    from stickslip.app import computations
+
+    secret = "/srv/secret/stickslip-internal.py"
+
+    def broken(*args: Any, **kwargs: Any) -> Any:
+        raise RuntimeError(f"an internal failure in {secret}")
+
+    monkeypatch.setattr(computations, "design_report", broken)
+    at = _started()
+    assert len(at.exception) == 1
+    shown = f"{at.exception[0].message} {' '.join(at.exception[0].stack_trace)}"
+    assert secret not in shown and "Traceback" not in shown and "computations" not in shown

@@ -309,10 +309,11 @@ def _show_stability(result: Any, locus: Any, name: str, digest: str) -> dict[str
 
 
 def _show_run(run: ContactHistory, digest: str) -> dict[str, Any]:
-    """The run's verdict, certificate, period, amplitude, separation, events and figure (its
+    """The run's verdict, certificate, start, period, amplitude, separation, events and figure (its
     image drawn once per machine, keyed by ``digest``)."""
     import streamlit as st
 
+    from stickslip.analysis.contact.engine import start_description
     from stickslip.app.figures import cached_png
     from stickslip.plot.contact.history import contact_history_plot
 
@@ -324,6 +325,7 @@ def _show_run(run: ContactHistory, digest: str) -> dict[str, Any]:
     cols[3].metric("Separated", "yes" if p["separated"] else "no")
     counts = ", ".join(f"{k} {v}" for k, v in p["event_counts"].items()) or "none"
     st.text(f"certificate {p['certificate']}\n"
+            f"start       {start_description(p.get('initial_mode'))}\n"
             f"events      {p['n_events']} ({counts}) up to t = {p['t_end_s']:.6g} s\n"
             "amplitude   half the peak-to-peak displacement of the contact DOF over the last "
             "period")

@@ -388,7 +388,13 @@ def _show_bifurcation(report: Mapping[str, Any], system: PhysicalSystem,
 
 
 def main() -> None:
-    """Lay out the page; the script body that Streamlit runs on every interaction."""
+    """Lay out the page; the script body that Streamlit runs on every interaction.
+
+    An unexpected error shows Streamlit's generic message, never its traceback (which names
+    server paths): ``stickslip app`` passes ``--client.showErrorDetails none``, and the script
+    sets it too for a server started with ``streamlit run`` on this file.
+    """
+    st.set_option("client.showErrorDetails", "none")
     st.set_page_config(page_title="stickslip: stick-slip design", layout="wide")
     page = st.sidebar.radio("Machine", PAGES, key="page")
     if page == PAGES[1]:

@@ -211,6 +211,32 @@ class ContactRun:
                 "engine": "exact piecewise-affine (matrix exponential) with the contact"}
 
 
+def start_description(mode: str | None) -> str:
+    """How a run starts from the start-up state, in words.
+
+    The start-up state has every spring at its natural length and the contact at the belt
+    speed; it is stuck unless holding it there would take more than ``mu_s N`` (the dampers'
+    force at the belt speed), in which case it slips at once.
+
+    Parameters
+    ----------
+    mode : str or None
+        The run's first mode (``initial_mode`` of :meth:`ContactRun.to_dict`); None for stuck.
+
+    Returns
+    -------
+    str
+        One line for the ``start`` row of a run's summary (CLI and app).
+    """
+    where = "the start-up state (springs at their natural length, the contact at the belt speed)"
+    if mode is None or mode == "stick":
+        return f"{where}, stuck to the belt"
+    if mode == "separation":
+        return f"{where}, off the belt"
+    return (f"{where}, in {mode} at once: sticking would take more than mu_s N "
+            "(the dampers' force at the belt speed)")
+
+
 def contact_system(machine: Machine, contact: Contact | None, *,
                    normal_dof: int | None = None) -> ContactSystem:
     """The :class:`ContactSystem` of a machine and its contact (Coulomb friction only).

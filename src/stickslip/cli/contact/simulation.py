@@ -108,19 +108,9 @@ def _contact_summary(system: Any) -> dict[str, Any]:
             "contact_mass_kg": system.contact_mass}
 
 
-def _start_text(mode: str | None) -> str:
-    """How the run starts from the start-up state (springs at their natural length, the contact
-    at the belt speed): stuck, unless holding it would take more than ``mu_s N``."""
-    where = "the start-up state (springs at their natural length, the contact at the belt speed)"
-    if mode is None or mode == "stick":
-        return f"{where}, stuck to the belt"
-    if mode == "separation":
-        return f"{where}, off the belt"
-    return (f"{where}, in {mode} at once: sticking would take more than mu_s N "
-            "(the dampers' force at the belt speed)")
-
-
 def _summary(p: dict[str, Any]) -> str:
+    from stickslip.analysis.contact.engine import start_description
+
     def fmt(x: object) -> str:
         return "-" if x is None else (f"{x:.6g}" if isinstance(x, float) else str(x))
 
@@ -132,7 +122,7 @@ def _summary(p: dict[str, Any]) -> str:
         f"certificate {p['certificate']}",
         f"period      {fmt(p['period_s'])} s   amplitude {fmt(p['amplitude_m'])} m "
         "(half peak-to-peak of the contact DOF)",
-        f"start       {_start_text(p.get('initial_mode'))}",
+        f"start       {start_description(p.get('initial_mode'))}",
         f"separated   {'yes: the contact lifted off' if p['separated'] else 'no'}",
         f"events      {p['n_events']} ({counts}) up to t = {fmt(p['t_end_s'])} s",
     ]
