@@ -142,13 +142,33 @@ def test_residuals_above_twice_the_noise_and_a_mass_off_by_10_give_warnings() ->
     est = estimate(record, mass=1.0, load=100.0, speed=0.05)
     assert est.implied_mass == pytest.approx(0.865, rel=1e-3)
     dof = 4000
-    assert _judge(record, est, 1.1 * dof, dof, mass=1.0) == ()
-    (warning,) = _judge(record, est, 1.01 * MISMATCH_CHI2 * dof, dof, mass=1.0)
+    assert _judge(record, est, 1.1 * dof, dof, mass=1.0, speed=0.05) == ()
+    (warning,) = _judge(record, est, 1.01 * MISMATCH_CHI2 * dof, dof, mass=1.0, speed=0.05)
     assert warning.startswith("the model does not describe the record: its residuals are 2.01 times")
-    (warning,) = _judge(record, est, dof, dof, mass=1.01 * MASS_FACTOR * est.implied_mass)
+    (warning,) = _judge(record, est, dof, dof, mass=1.01 * MASS_FACTOR * est.implied_mass,
+                        speed=0.05)
     assert "times the 0.865 kg that the record's slip phases imply" in warning
     with pytest.raises(RecordError, match="beyond 10 times"):
-        _judge(record, est, 1.01 * REFUSE_CHI2 * dof, dof, mass=1.0)
+        _judge(record, est, 1.01 * REFUSE_CHI2 * dof, dof, mass=1.0, speed=0.05)
+
+
+@pytest.mark.parametrize(("speed", "ratio"), [(0.0525, "0.9516"), (0.049, "1.02")])
+def test_a_drive_speed_the_stick_phases_contradict_is_flagged(speed: float, ratio: str) -> None:
+    # the example record's truth is V = 5 cm/s (its header, tests/make_identify_example.py);
+    # its stick phases move at 0.04996 m/s (x's slope over each stick phase, spread 0.1 %).
+    # Before: 5 % off gave k 2.2 % off at 33 standard errors, reduced chi-square 1.42, no word
+    from stickslip.analysis.identification.estimates import estimate
+    from stickslip.analysis.identification.record_fit import _judge
+
+    record = read_record(EXAMPLE)
+    assert _judge(record, estimate(record, mass=1.0, load=100.0, speed=0.05), 4000.0, 4000,
+                  mass=1.0, speed=0.05) == ()
+    est = estimate(record, mass=1.0, load=100.0, speed=speed)
+    assert est.stick_speed == pytest.approx(0.05, rel=2e-3)
+    (warning,) = _judge(record, est, 4000.0, 4000, mass=1.0, speed=speed)
+    assert warning.startswith(f"the record's stick phases move at 0.04996 m/s, {ratio} times the "
+                              f"stated drive speed V = {speed:.4g} m/s")
+    assert warning.endswith("check --speed")
 
 
 def test_a_record_name_with_a_newline_is_quoted_in_the_written_config(

@@ -189,6 +189,31 @@ def test_end_drift_bounds_the_nominal_continuation() -> None:
             assert bound < 0.6 * old
 
 
+@pytest.mark.parametrize("streamed", [False, True])
+def test_sampled_flow_is_the_exact_affine_flow(streamed: bool, monkeypatch: pytest.MonkeyPatch
+                                               ) -> None:
+    # _cycle_tube.sampled_flow: states z(s) and ||expm(A s)||_F at the sample times, by
+    # doubling or (beyond MAX_PHASE_BYTES, as a 301-DOF frame needs) in bounded blocks;
+    # reference: scipy's expm of the augmented matrix at each time, independently
+    import scipy.linalg
+
+    from stickslip.analysis import _cycle_tube
+
+    rng = np.random.default_rng(11)
+    a = rng.normal(size=(6, 6)) * 0.4
+    c, z0 = rng.normal(size=6), rng.normal(size=6)
+    if streamed:  # blocks of 5 powers of the step: many blocks, and a last one partly used
+        monkeypatch.setattr(_cycle_tube, "MAX_PHASE_BYTES", 3 * 8 * 7**2 * 5)
+    times, zs, m_norm = _cycle_tube.sampled_flow(a, c, z0, 12.0, float(np.linalg.norm(a)))
+    assert times.size > 100
+    aug = np.zeros((7, 7))
+    aug[:6, :6], aug[:6, 6] = a, c
+    for j in range(0, times.size, 7):
+        exact = scipy.linalg.expm(aug * times[j])
+        assert zs[j] == pytest.approx(exact[:6, :6] @ z0 + exact[:6, 6], rel=1e-11, abs=1e-11)
+        assert m_norm[j] == pytest.approx(np.linalg.norm(exact[:6, :6]), rel=1e-11)
+
+
 def test_profile_cycle_ball_prints_the_ladder() -> None:
     # benchmarks/profile_cycle_ball.py (bench_basin's foundation case): the proven radius holds
     # with theta < 1 (the proof's own acceptance), the larger radii name the failing phase

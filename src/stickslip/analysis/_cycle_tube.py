@@ -33,10 +33,11 @@ MAX_SAMPLES = 20_000
 SAMPLE_STEP = 0.02
 #: Halvings of the first and last sample interval (down to ``h 2^-REFINE``).
 REFINE = 40
-#: Bytes one phase's sampled propagators may take (the doubling holds about three copies of
-#: ``(samples, 2n + 1, 2n + 1)`` doubles): beyond it the tube is not built and the candidate
-#: stays unproven. A 301-DOF frame took 2.8 GB per array and 23 GB in all, then the machine's
-#: memory; 1 GiB holds about 3000 samples of a 60-DOF structure.
+#: Bytes one phase's sampled propagators may take at once (the doubling holds about three
+#: copies of ``(samples, 2n + 1, 2n + 1)`` doubles). Beyond it the propagators are streamed
+#: in blocks of this size (:func:`sampled_flow`): a 301-DOF frame's doubling took 2.8 GB per
+#: array and 23 GB in all, the machine's memory; 1 GiB holds about 3000 samples of a 60-DOF
+#: structure.
 MAX_PHASE_BYTES = 1024**3
 
 
@@ -118,23 +119,30 @@ def sample_times(duration: float, norm_a: float) -> tuple[FloatArray, float]:
     return np.unique(grid), h
 
 
-def sampled_flow(a: FloatArray, c: FloatArray, duration: float, norm_a: float
-                 ) -> tuple[FloatArray, FloatArray]:
-    """The affine flow ``z' = A z + c`` of a phase at its :func:`sample_times`.
+def sampled_flow(a: FloatArray, c: FloatArray, z0: FloatArray, duration: float, norm_a: float
+                 ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The affine flow ``z' = A z + c`` of a phase from ``z0`` at its :func:`sample_times`.
+
+    The augmented propagators ``E(s) = expm([[A, c], [0, 0]] s)`` of the uniform grid are the
+    powers of one step ``E(h)``, and the refined times' each their own exponential. When the
+    powers fit in ``MAX_PHASE_BYTES`` they are formed by doubling (a few batched products);
+    otherwise in blocks of ``K`` that fit, ``E((b K + j) h) = E(h)^(b K) E(j h)``, so the memory
+    stays bounded whatever the structure's size (the arithmetic differs by rounding only).
 
     Parameters
     ----------
     a, c : ndarray
         The mode's matrix and constant (per unit ``tau``).
+    z0 : ndarray
+        The phase's start.
     duration, norm_a : float
         The phase's duration and ``||A||_F``.
 
     Returns
     -------
-    (ndarray, ndarray)
-        The times and the augmented propagators ``expm([[A, c], [0, 0]] s)`` there (shape
-        ``(times, 2n + 1, 2n + 1)``): the uniform grid's as powers of one step (by doubling,
-        a few batched products), the refined ones each from its own exponential.
+    (ndarray, ndarray, ndarray)
+        The times, the states ``z(s)`` there (shape ``(times, 2n)``) and the Frobenius norms
+        ``||expm(A s)||_F`` (an upper bound of the 2-norm).
     """
     times, h = sample_times(duration, norm_a)
     n2 = a.shape[0]
@@ -142,16 +150,38 @@ def sampled_flow(a: FloatArray, c: FloatArray, duration: float, norm_a: float
     aug[:n2, :n2], aug[:n2, n2] = a, c
     index = np.rint(times / h)
     on_grid = np.abs(times - index * h) <= 1e-12 * max(h, 1e-300) * np.maximum(index, 1.0)
-    count = int(np.max(index[on_grid])) + 1
-    powers = np.eye(n2 + 1)[None]
+    grid_index = index[on_grid].astype(np.int64)
+    count = int(np.max(grid_index)) + 1
     step = expm(aug * h)
-    while powers.shape[0] < count:  # doubling: E^(j + m) = E^m E^j
-        powers = np.concatenate([powers, np.linalg.matrix_power(step, powers.shape[0]) @ powers])
-    out = np.empty((times.size, n2 + 1, n2 + 1))
-    out[on_grid] = powers[index[on_grid].astype(np.int64)]
+    zs = np.empty((times.size, n2))
+    m_norm = np.empty(times.size)
+
+    def take(rows: NDArray[np.int64], props: FloatArray) -> None:
+        zs[rows] = props[:, :n2, :n2] @ z0 + props[:, :n2, n2]
+        m_norm[rows] = np.sqrt(np.sum(props[:, :n2, :n2] ** 2, axis=(1, 2)))
+
+    rows_on = np.flatnonzero(on_grid)
+    block = max(1, MAX_PHASE_BYTES // (3 * 8 * (n2 + 1) ** 2))
+    if count <= block:
+        powers = np.eye(n2 + 1)[None]
+        while powers.shape[0] < count:  # doubling: E^(j + m) = E^m E^j
+            powers = np.concatenate([powers, np.linalg.matrix_power(step, powers.shape[0]) @ powers])
+        take(rows_on, powers[grid_index])
+    else:
+        base = np.empty((block, n2 + 1, n2 + 1))
+        base[0] = np.eye(n2 + 1)
+        for j in range(1, block):
+            base[j] = step @ base[j - 1]
+        leap = step @ base[-1]  # E^K
+        lead = np.eye(n2 + 1)  # E^(b K)
+        for b in range(-(-count // block)):
+            picked = (grid_index >= b * block) & (grid_index < (b + 1) * block)
+            if np.any(picked):
+                take(rows_on[picked], lead @ base[grid_index[picked] - b * block])
+            lead = leap @ lead
     for j in np.flatnonzero(~on_grid):
-        out[j] = expm(aug * times[j])
-    return times, out
+        take(np.array([j]), expm(aug * times[j])[None])
+    return times, zs, m_norm
 
 
 def phases(pmap: ReturnMap, b: FloatArray, q: int) -> tuple[list[Phase], FloatArray] | None:
@@ -188,12 +218,8 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int) -> tuple[list[Phase], FloatAr
         start_zero = [abs(float(nv @ z0) - g0) <= 1e-9 * scale for nv, g0 in functions]
         duration = t1 - t0
         norm_a = float(np.linalg.norm(a))
-        if 3 * 8 * (sample_times(duration, norm_a)[0].size * (n2 + 1) ** 2) > MAX_PHASE_BYTES:
-            return None  # beyond the memory a proof may take (MAX_PHASE_BYTES): not proven
-        times, propagators = sampled_flow(a, c, duration, norm_a)
+        times, zs, m_norm = sampled_flow(a, c, z0, duration, norm_a)
         hs = np.diff(times)
-        zs = propagators[:, :n2, :n2] @ z0 + propagators[:, :n2, n2]
-        m_norm = np.sqrt(np.sum(propagators[:, :n2, :n2] ** 2, axis=(1, 2)))
         fields = zs @ a.T + c
         normals = np.array([nv for nv, _ in functions])
         levels = np.array([g0 for _, g0 in functions])

@@ -46,6 +46,7 @@ from numpy.typing import NDArray
 
 from stickslip.analysis.blas_threads import blas_limited
 from stickslip.analysis.identification.estimates import (
+    STICK_SPEED_NOTE,
     MeasuredRecord,
     RecordError,
     RecordEstimates,
@@ -539,7 +540,8 @@ def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tup
         params["mu_k"] = FitParameter("mu_k", knot.value, knot.stderr, "", free=knot.free,
                                       estimate=values[lowest], interval=knot.interval)
     criteria = {name: _criteria_report(p, r) for name, (p, r) in fits.items()}
-    warnings = _judge(record, est, chi2, res.fun.size - _n_params(problem), mass=mass)
+    warnings = _judge(record, est, chi2, res.fun.size - _n_params(problem), mass=mass,
+                      speed=speed)
     rms = {n: float(np.sqrt(np.mean((model[n] - getattr(record, n)) ** 2))) for n in record.channels}
     stick_cycles = sum(1 for seg in problem.segments if seg.in_stick and seg.stop - seg.start > 1)
     return IdentificationResult(
@@ -560,8 +562,9 @@ def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tup
 
 
 def _judge(record: MeasuredRecord, est: RecordEstimates, chi2: float, dof: int, *,
-           mass: float) -> tuple[str, ...]:
-    """Warnings on a fit (or a refusal): residuals against the record's noise, the mass."""
+           mass: float, speed: float) -> tuple[str, ...]:
+    """Warnings on a fit (or a refusal): residuals against the record's noise, the mass, the
+    drive speed against the stick phases' (when x is recorded)."""
     reduced = chi2 / max(dof, 1)
     ratio = mass / est.implied_mass if math.isfinite(est.implied_mass) and est.implied_mass > 0 else 1.0
     mass_note = ""
@@ -580,4 +583,10 @@ def _judge(record: MeasuredRecord, est: RecordEstimates, chi2: float, dof: int, 
                    "closest model, not of the record")
     if mass_note:
         out.append(mass_note + ": check --mass")
+    ratio_v = est.stick_speed / speed  # NaN without x: no note
+    if (abs(ratio_v - 1.0) > STICK_SPEED_NOTE
+            and abs(est.stick_speed - speed) > 5.0 * est.stick_speed_error):
+        out.append(f"the record's stick phases move at {est.stick_speed:.4g} m/s, {ratio_v:.4g} "
+                   f"times the stated drive speed V = {speed:.4g} m/s (a sticking slider moves "
+                   "with the belt); the fit takes V as stated: check --speed")
     return tuple(out)
