@@ -179,8 +179,8 @@ def sampled_flow(a: FloatArray, c: FloatArray, z0: FloatArray, duration: float, 
             if np.any(picked):
                 take(rows_on[picked], lead @ base[grid_index[picked] - b * block])
             lead = leap @ lead
-    for j in np.flatnonzero(~on_grid):
-        take(np.array([j]), expm(aug * times[j])[None])
+    for off in np.flatnonzero(~on_grid):
+        take(np.array([off]), expm(aug * times[off])[None])
     return times, zs, m_norm
 
 
