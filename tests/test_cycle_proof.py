@@ -74,6 +74,22 @@ def test_slideway_period_is_the_minimal_cycle() -> None:
     assert "proven" in run.certificate and run.to_dict()["cycle_proof"]["stick_phases"] == 1
 
 
+def test_a_proof_beyond_its_work_bound_is_declined_not_guessed(monkeypatch: pytest.MonkeyPatch
+                                                                  ) -> None:
+    # the slideway's cycle (proven above) with _cycle_tube.MAX_PHASE_WORK below its phases'
+    # work, as a 301-DOF frame's 4.4e12 multiply-adds per slip phase are: the run must not
+    # claim the cycle, it says undetermined with the candidate it could not prove
+    from stickslip.analysis import _cycle_tube
+
+    machine, _ = machine_from_file(read_machine_file(SLIDEWAY),
+                                   {"mu_s": 0.15, "mu_k": 0.10, "load": 2600.0, "speed": 0.5e-3})
+    structure, slider = machine.to_dimensionless()
+    monkeypatch.setattr(_cycle_tube, "MAX_PHASE_WORK", 1e3)
+    run = simulate(structure, slider)
+    assert run.verdict is Verdict.UNDETERMINED
+    assert run.cycle_proof is None and "candidate, not proven" in run.certificate
+
+
 def _check_ball(structure: Structure, slider: Slider, run, rng: np.random.Generator) -> None:
     """Direct runs from the proven ball's boundary stay in it and contract by ``theta``."""
     proof = run.cycle_proof
