@@ -207,6 +207,11 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int) -> tuple[list[Phase], FloatAr
         first = 1  # the start's own breakaway, registered within rounding of tau = 0
     phases: list[Phase] = []
     n2 = 2 * pmap.n
+    ends = np.append(seg_t[first + 1:last + 1], t_hit)
+    for mode, t0, t1 in zip(seg_mode[first:last + 1], seg_t[first:last + 1], ends, strict=True):
+        norm_a = float(np.linalg.norm(pmap.flow_matrix[int(mode)]))
+        if sample_times(float(t1 - t0), norm_a)[0].size * float(n2 + 1) ** 3 > MAX_PHASE_WORK:
+            return None  # beyond the work a proof may take (MAX_PHASE_WORK): not proven
     for i in range(first, last + 1):
         mode = int(seg_mode[i])
         t0 = float(seg_t[i])
@@ -223,8 +228,6 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int) -> tuple[list[Phase], FloatAr
         start_zero = [abs(float(nv @ z0) - g0) <= 1e-9 * scale for nv, g0 in functions]
         duration = t1 - t0
         norm_a = float(np.linalg.norm(a))
-        if sample_times(duration, norm_a)[0].size * float(n2 + 1) ** 3 > MAX_PHASE_WORK:
-            return None  # beyond the work a proof may take (MAX_PHASE_WORK): not proven
         times, zs, m_norm = sampled_flow(a, c, z0, duration, norm_a)
         hs = np.diff(times)
         fields = zs @ a.T + c
