@@ -118,6 +118,24 @@ def _check_mtx_size(rows: int, entries: int, fmt: str, symmetry: str, size: int)
                           f"{size} bytes hold at most {most}: the header does not match the data")
 
 
+def _check_one_triangle(coo: Any, symmetry: str) -> None:
+    """Refuse a symmetric coordinate file that gives a term in both triangles (or twice).
+
+    Such a file holds one triangle (the lower, by the format; the upper alone is read the same
+    way); the reader mirrors every off-diagonal entry and adds up repeated ones, so a file with
+    both triangles would count each off-diagonal term twice: silently wrong frequencies.
+    """
+    keys = coo.row.astype(np.int64) * coo.shape[1] + coo.col
+    unique, counts = np.unique(keys, return_counts=True)
+    if np.any(counts > 1):
+        key = int(unique[np.argmax(counts > 1)])
+        i, j = sorted((key // coo.shape[1] + 1, key % coo.shape[1] + 1), reverse=True)
+        raise _Unreadable(
+            f"it is marked {symmetry} but gives the term ({i}, {j}) twice (in both triangles, "
+            "or repeated): such a file holds one triangle, and the term would be counted "
+            "twice; mark it general or keep the lower triangle only")
+
+
 def _read_mtx(handle: Any, uploaded: bool) -> Any:
     import scipy.io
     import scipy.sparse
@@ -132,7 +150,10 @@ def _read_mtx(handle: Any, uploaded: bool) -> Any:
         raise _Unreadable("it has no %%MatrixMarket header")
     if " complex" in header.lower():
         raise _Unreadable("it holds complex numbers; the matrices must be real")
-    rows, cols, entries, fmt, _field, symmetry = scipy.io.mminfo(handle)
+    rows, cols, entries, fmt, field, symmetry = scipy.io.mminfo(handle)
+    if field == "pattern":
+        raise _Unreadable("it is a pattern matrix (positions without values); a mass, damping "
+                          "or stiffness matrix needs its values (field real)")
     if uploaded:
         size = handle.seek(0, io.SEEK_END)
         handle.seek(0)
@@ -151,6 +172,8 @@ def _read_mtx(handle: Any, uploaded: bool) -> Any:
     except (RuntimeError, OverflowError, MemoryError) as exc:
         raise _Unreadable(f"its entries do not match its header ({exc})") from None
     if scipy.sparse.issparse(data):
+        if symmetry != "general":
+            _check_one_triangle(scipy.sparse.coo_matrix(data), symmetry)
         return scipy.sparse.csr_matrix(data, dtype=np.float64)
     return np.asarray(data, dtype=np.float64)
 
