@@ -94,6 +94,38 @@ def test_modal_damping_gives_each_mode_its_ratio(tmp_path: Path) -> None:
     assert np.abs(modal - np.diag(np.diag(modal))).max() < 1e-10 * np.abs(modal).max()
 
 
+def _chain81(tmp_path: Path, ratios: str) -> Path:
+    """An 81-DOF grounded chain (reduced before a run: above 60 DOF) with a modal_damping list."""
+    n = 81
+    np.save(tmp_path / "M.npy", np.diag(np.full(n, 2.0)))
+    stiffness = 2e4 * np.eye(n) - 1e4 * (np.eye(n, k=1) + np.eye(n, k=-1))
+    np.save(tmp_path / "K.npy", stiffness)
+    return _write(tmp_path, f'mass = "M.npy"\nstiffness = "K.npy"\ncutoff = "30 Hz"\n'
+                            f"modal_damping = {ratios}\ncontact_dof = 40\n")
+
+
+def test_a_reduced_model_takes_the_first_ratios_of_a_modal_damping_list(tmp_path: Path) -> None:
+    # an independent audit: an 81-DOF file needed as many ratios as the reduced model had DOF
+    # (a count that moves with the cut-off); the ratios are per mode of the user's model, and
+    # the reduced model's modes take the first ones (reference: Phi' C Phi = diag(2 zeta_i w_i)
+    # over the reduced model's mass-normalised modes, the definition)
+    from scipy.linalg import eigh
+
+    ratios = [0.01 + 0.001 * i for i in range(81)]
+    machine, reduction = machine_from_file(read_machine_file(_chain81(tmp_path, str(ratios))),
+                                           OPERATING)
+    n = machine.n_dof
+    assert reduction is not None and 1 < n < 81
+    w2, phi = eigh(machine.stiffness, machine.mass)
+    modal = phi.T @ machine.damping @ phi
+    np.testing.assert_allclose(np.diag(modal), 2 * np.array(ratios[:n]) * np.sqrt(w2), rtol=1e-8)
+    short = _chain81(tmp_path, str(ratios[: n - 1]))
+    with pytest.raises(ValueError, match=rf"has {n - 1} ratios; the 81-DOF model is reduced to {n} DOF"):
+        machine_from_file(read_machine_file(short), OPERATING)
+    with pytest.raises(ValueError, match="has 82 ratios for the 81 modes of the 81-DOF model"):
+        machine_from_file(read_machine_file(_chain81(tmp_path, str([0.02] * 82))), OPERATING)
+
+
 BAD_FILES = [
     ("m = 2\n", f"mass = {M3}\nstiffness = {K3}\ncontact_dof = 0\n", "", "m and \\[structure\\] both"),
     ("", f"mass = {M3}\nstiffness = {K3}\ncontact_dof = 3\n", "", "contact_dof = 3 is beyond the 3 DOF"),
@@ -184,3 +216,17 @@ def test_a_reader_of_the_paper_slider_refuses_a_structure_with_one_line() -> Non
     with pytest.raises(BadInput, match=r"has a \[structure\]") as info:
         config_system(SLIDEWAY / "machine.toml")
     assert len(str(info.value).splitlines()) == 1
+
+
+def test_simulate_names_both_sizes_of_a_reduced_model(tmp_path: Path,
+                                                       capsys: pytest.CaptureFixture[str]) -> None:
+    # the machine line gave the reduced size and numbering alone ("57 DOF, contact on DOF 0"
+    # for an 81-DOF file with contact_dof 80: an independent audit)
+    config = _chain81(tmp_path, "0.02")
+    code, out, err = run_cli(["simulate", "--config", str(config), "--t-max", "0.05 s"], capsys)
+    assert code == 0, err
+    line = next(x for x in out.splitlines() if x.startswith("machine "))
+    assert "81 DOF reduced to " in line and ", contact on DOF 40 (reduced DOF 0)" in line
+    code, out, err = run_cli(["simulate", "--config", str(config), "--t-max", "0.05 s", "--json"],
+                             capsys)
+    assert json.loads(out)["reduced_from"] == {"n_dof": 81, "contact_dof": 40}

@@ -362,6 +362,8 @@ def machine_answers(payload: dict[str, Any], run: ConfiguredMachine, config: Pat
         "scales": scales,
         "machine": run.machine.to_dict(),
         "reduction": None if run.reduction is None else run.reduction.summary(),
+        "reduced_from": None if run.reduction is None else {
+            "n_dof": run.reduction.n_full, "contact_dof": run.reduction.kept_dofs[0]},
     }
 
 
@@ -390,9 +392,13 @@ def _print_summary(p: dict[str, Any]) -> None:
         f = p["foundation"]
         lines.insert(1, f"foundation  M={fmt(f['M'])}, K={fmt(f['K'])}, zeta_a={fmt(f['zeta_a'])}")
     if p.get("config"):
-        lines.insert(1, f"machine     {p['config']}: {p['machine']['n_dof']} DOF, contact on DOF "
-                        f"{p['machine']['contact_dof']}; period {fmt(p['period_s'])} s, amplitude "
-                        f"{fmt(p['amplitude_m'])} m")
+        size = f"{p['machine']['n_dof']} DOF, contact on DOF {p['machine']['contact_dof']}"
+        if p.get("reduced_from"):
+            full = p["reduced_from"]
+            size = (f"{full['n_dof']} DOF reduced to {p['machine']['n_dof']}, contact on DOF "
+                    f"{full['contact_dof']} (reduced DOF {p['machine']['contact_dof']})")
+        lines.insert(1, f"machine     {p['config']}: {size}; period {fmt(p['period_s'])} s, "
+                        f"amplitude {fmt(p['amplitude_m'])} m")
     if p.get("plot"):
         lines.append(f"figure      {p['plot']}")
     typer.echo("\n".join(lines))

@@ -385,9 +385,15 @@ def _modal_table(table: dict[str, Any], source: str) -> tuple[Any, Any, Any]:
 
 
 def _table_damping(table: dict[str, Any], m: Any, k: Any, c: Any, names: tuple[str, str, str],
-                   source: str) -> Any:
+                   source: str, full_dof: int) -> Any:
     """The damping matrix a ``[structure]`` table asks for: ``rayleigh``, ``modal_damping``, the
-    matrix read (``c``) or none (zeros)."""
+    matrix read (``c``) or none (zeros).
+
+    ``modal_damping`` as a list gives one ratio per mode of the user's model (``full_dof``
+    of them at most), in ascending frequency. A reduced model (``m`` smaller than
+    ``full_dof``) takes the first ``m.shape[0]`` ratios for its modes, which approximate the
+    model's lowest ones; the rest belong to modes above the cut-off, which it does not have.
+    """
     from stickslip.model.machine import modal_damping, rayleigh_damping
     from stickslip.model.structure import checked_matrices
 
@@ -403,14 +409,33 @@ def _table_damping(table: dict[str, Any], m: Any, k: Any, c: Any, names: tuple[s
     elif "modal_damping" in table:
         try:
             checked_matrices(m, np.zeros_like(m), k, names=names, limit=None)
-            c = modal_damping(m, k, _numbers(table["modal_damping"], f"{source} modal_damping")
-                              if isinstance(table["modal_damping"], list)
-                              else _numbers(table["modal_damping"], f"{source} modal_damping")[0])
+            ratios = _numbers(table["modal_damping"], f"{source} modal_damping")
+            if isinstance(table["modal_damping"], list):
+                ratios = _modal_ratios(ratios, m.shape[0], full_dof)
+                c = modal_damping(m, k, ratios)
+            else:
+                c = modal_damping(m, k, ratios[0])
         except ValueError as exc:
             raise ValueError(f"{source} modal_damping: {exc}") from None
     elif c is None:
         c = np.zeros_like(m)
     return c
+
+
+def _modal_ratios(ratios: list[float], modes: int, full_dof: int) -> list[float]:
+    """The ratios of a ``modal_damping`` list for a model of ``modes`` DOF reduced from
+    ``full_dof`` (equal when not reduced): the first ``modes`` of at most ``full_dof``."""
+    if modes == full_dof:
+        return ratios  # modal_damping names the count it needs
+    if len(ratios) > full_dof:
+        raise ValueError(f"has {len(ratios)} ratios for the {full_dof} modes of the "
+                         f"{full_dof}-DOF model (give one, or one per mode)")
+    if len(ratios) < modes:
+        raise ValueError(f"has {len(ratios)} ratios; the {full_dof}-DOF model is reduced to "
+                         f"{modes} DOF, whose modes take the first {modes} of one ratio per mode "
+                         f"of the model (ascending frequency, up to {full_dof}), or give one "
+                         "ratio for every mode")
+    return ratios[:modes]
 
 
 def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str,
@@ -508,7 +533,7 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
         dense = {key: mat.toarray() if scipy.sparse.issparse(mat) else mat for key, mat in mats.items()}
         m, k = dense["mass"], dense["stiffness"]
         c = dense.get("damping")
-    c = _table_damping(table, m, k, c, names, source)
+    c = _table_damping(table, m, k, c, names, source, n)
     try:
         m, c, k = checked_matrices(m, c, k, names=names, limit=None)
     except ValueError as exc:
