@@ -165,3 +165,30 @@ def test_a_search_below_the_operating_mu_says_so(capsys: pytest.CaptureFixture[s
     line = next(x for x in out.splitlines() if x.startswith("critical mu"))
     assert "none up to mu = 0.1" in line
     assert "the operating mu = 0.4 lies above the searched range: raise --mu-max" in line
+
+
+def test_the_unstable_ranges_end_at_the_closed_form_boundaries(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # one DOF (m = 1 kg, k = 1e4 N/m, c = 20 N s/m) with the exponential Stribeck law
+    # mu = mu_k + (mu_s - mu_k) exp(-v / v_s): steady sliding loses stability where the net
+    # damping c + W mu'(V) vanishes, mu'(V) = -(mu_s - mu_k) / v_s exp(-V / v_s). Closed forms:
+    # V_H = v_s ln(W (mu_s - mu_k) / (v_s c)) at W = 100 N, W_H = c v_s exp(V / v_s) /
+    # (mu_s - mu_k) at V = 0.1 m/s. Before, the ranges ended at grid points (0.1496 for
+    # 0.1498 m/s, 37.6 for 36.9 N; an independent audit found a 2-DOF pad 10 % off in load).
+    import math
+
+    mu_s, mu_k, v_s, c, w, v = 0.5, 0.3, 0.05, 20.0, 100.0, 0.1
+    config = tmp_path / "slider.toml"
+    config.write_text(f'mu_s = {mu_s}\nmu_k = {mu_k}\nload = "{w} N"\nspeed = "{v} m/s"\n'
+                      f"[structure]\nmass = [[1.0]]\nstiffness = [[1e4]]\ndamping = [[{c}]]\n"
+                      f'contact_dof = 0\n[friction]\nlaw = "stribeck"\n'
+                      f'stribeck_velocity = "{v_s} m/s"\nexponent = 1\n')
+    code, out, err = run_cli(["stability", "--config", str(config), "--json"], capsys)
+    assert code == 0, err
+    ranges = json.loads(out)["operating_ranges"]
+    v_h = v_s * math.log(w * (mu_s - mu_k) / (v_s * c))
+    w_h = c * v_s * math.exp(v / v_s) / (mu_s - mu_k)
+    (speeds,) = ranges["unstable_speeds_m_per_s"]
+    assert speeds[0] == pytest.approx(0.01) and speeds[1] == pytest.approx(v_h, rel=1e-8)
+    (loads,) = ranges["unstable_loads_N"]
+    assert loads[0] == pytest.approx(w_h, rel=1e-8) and loads[1] == pytest.approx(1000.0)

@@ -172,7 +172,7 @@ def _print(p: dict[str, Any]) -> None:
         what, runs, grid = key.split("_")[1], ranges[key], ranges[grid_key]
         text = (", ".join(f"{a:.4g} to {b:.4g} {unit}" for a, b in runs) if runs else "none")
         lines.append(f"{what:<11} unstable: {text} (mu = mu(V), grid {grid[0]:.4g} to "
-                     f"{grid[1]:.4g} {unit}, {grid[2]} points)")
+                     f"{grid[1]:.4g} {unit}, {grid[2]} points; ends inside it are the boundaries)")
     if p["friction_slope_s_per_m"] == 0.0:
         lines.append("note        with a friction law flat at V (Coulomb) neither speed nor load "
                      "changes the eigenvalues")

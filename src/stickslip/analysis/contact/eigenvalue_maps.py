@@ -9,7 +9,8 @@ the same at every speed. A structural parameter changes the matrices themselves:
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -156,37 +157,83 @@ class OperatingRanges:
         The grids, m/s and N.
     speed_verdicts, load_verdicts : ndarray of int
         +1 proven unstable, -1 proven stable, 0 neutral within round-off, at each grid value.
+    speed_ranges, load_ranges : list of [float, float]
+        Each run of unstable grid values, its ends moved to the boundary (m/s, N) where the
+        neighbour beyond is proven stable (Brent's method on the growth rate, to
+        ``BOUNDARY_RTOL``); an end at the grid's end or beside a neutral value stays there.
     """
 
     speeds: FloatArray
     speed_verdicts: NDArray[np.int64]
     loads: FloatArray
     load_verdicts: NDArray[np.int64]
-
-    @staticmethod
-    def _ranges(grid: FloatArray, verdicts: NDArray[np.int64]) -> list[list[float]]:
-        out: list[list[float]] = []
-        for i, v in enumerate(verdicts):
-            if v == 1 and i and verdicts[i - 1] == 1:
-                out[-1][1] = float(grid[i])
-            elif v == 1:
-                out.append([float(grid[i]), float(grid[i])])
-        return out
+    speed_ranges: list[list[float]]
+    load_ranges: list[list[float]]
 
     def unstable_speeds(self) -> list[list[float]]:
-        """``[first, last]`` grid speeds (m/s) of each run of unstable grid points."""
-        return self._ranges(self.speeds, self.speed_verdicts)
+        """``[first, last]`` speeds (m/s) of each unstable range (see ``speed_ranges``)."""
+        return [list(r) for r in self.speed_ranges]
 
     def unstable_loads(self) -> list[list[float]]:
-        """``[first, last]`` grid loads (N) of each run of unstable grid points."""
-        return self._ranges(self.loads, self.load_verdicts)
+        """``[first, last]`` loads (N) of each unstable range (see ``load_ranges``)."""
+        return [list(r) for r in self.load_ranges]
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready: the grids' ends and sizes and the unstable runs."""
+        """JSON-ready: the grids' ends and sizes and the unstable ranges."""
         return {"speed_grid_m_per_s": [float(self.speeds[0]), float(self.speeds[-1]), len(self.speeds)],
                 "unstable_speeds_m_per_s": self.unstable_speeds(),
                 "load_grid_N": [float(self.loads[0]), float(self.loads[-1]), len(self.loads)],
                 "unstable_loads_N": self.unstable_loads()}
+
+
+#: Relative accuracy of a stability boundary between two grid values (Brent's method).
+BOUNDARY_RTOL = 1e-9
+
+
+def unstable_ranges(grid: FloatArray, verdicts: NDArray[np.int64],
+                    growth: Callable[[float], float]) -> list[list[float]]:
+    """The runs of unstable grid values, their ends refined to the stability boundary.
+
+    Parameters
+    ----------
+    grid : ndarray
+        Increasing positive values (a speed in m/s or a load in N).
+    verdicts : ndarray of int
+        +1 proven unstable, -1 proven stable, 0 neutral, at each grid value.
+    growth : callable
+        The largest real part of the eigenvalues (1/s) at a value: positive where unstable.
+
+    Returns
+    -------
+    list of [float, float]
+        One ``[start, end]`` per run; an end between an unstable and a proven stable grid
+        value is the zero of ``growth`` between them (in ``log`` of the value, to
+        ``BOUNDARY_RTOL``), otherwise the grid value.
+    """
+    from scipy.optimize import brentq
+
+    def edge(stable: float, unstable: float) -> float:
+        a, b = math.log(stable), math.log(unstable)
+        return math.exp(brentq(lambda x: growth(math.exp(x)), min(a, b), max(a, b),
+                               xtol=BOUNDARY_RTOL, rtol=BOUNDARY_RTOL))
+
+    out: list[list[float]] = []
+    n = len(grid)
+    i = 0
+    while i < n:
+        if verdicts[i] != 1:
+            i += 1
+            continue
+        j = i
+        while j + 1 < n and verdicts[j + 1] == 1:
+            j += 1
+        lo = (edge(float(grid[i - 1]), float(grid[i])) if i > 0 and verdicts[i - 1] == -1
+              else float(grid[i]))
+        hi = (edge(float(grid[j + 1]), float(grid[j])) if j + 1 < n and verdicts[j + 1] == -1
+              else float(grid[j]))
+        out.append([lo, hi])
+        i = j + 1
+    return out
 
 
 @one_blas_thread
@@ -210,13 +257,23 @@ def operating_ranges(machine: Machine, contact: Contact | None, *, normal_dof: i
     Returns
     -------
     OperatingRanges
-        The verdicts; a run of unstable grid points is resolved to the grid's spacing.
+        The verdicts on the grids, and the unstable ranges with their ends at the stability
+        boundaries (:func:`unstable_ranges`).
     """
     factors = np.logspace(-decades, decades, points)
     speeds, loads = machine.speed * factors, machine.load * factors
-    sv = [_verdict_at(machine, contact, normal_dof, speed=float(v)) for v in speeds]
-    lv = [_verdict_at(machine, contact, normal_dof, load=float(w)) for w in loads]
-    return OperatingRanges(speeds, np.array(sv, dtype=np.int64), loads, np.array(lv, dtype=np.int64))
+    sv = np.array([_verdict_at(machine, contact, normal_dof, speed=float(v)) for v in speeds],
+                  dtype=np.int64)
+    lv = np.array([_verdict_at(machine, contact, normal_dof, load=float(w)) for w in loads],
+                  dtype=np.int64)
+
+    def growth(**point: float) -> float:
+        system, mu = coupled_system(machine, contact, normal_dof=normal_dof, **point)
+        return float(np.max(system.eigenvalues(mu)[0].real))
+
+    return OperatingRanges(speeds, sv, loads, lv,
+                           unstable_ranges(speeds, sv, lambda v: growth(speed=v)),
+                           unstable_ranges(loads, lv, lambda w: growth(load=w)))
 
 
 def _verdict_at(machine: Machine, contact: Contact | None, normal_dof: int | None,
