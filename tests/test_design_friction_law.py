@@ -181,3 +181,37 @@ def test_hopf_boundary_with_a_foundation_is_where_the_growth_rate_changes_sign()
     lighter = growth(dataclasses.replace(system, load=bounds.load * (1.0 - 1e-6)))
     heavier = growth(dataclasses.replace(system, load=bounds.load * (1.0 + 1e-6)))
     assert lighter < 0.0 < heavier
+
+
+def test_design_of_a_structure_with_a_stribeck_law_gives_its_stability_and_boundaries(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # design --config of a [structure] machine said nothing of steady sliding's stability
+    # (an independent audit: a 4-DOF machine unstable at +3.49 1/s, Hopf at 0.0308 m/s and
+    # 15.7 N). Reference: one DOF (m = 1 kg, k = 1e4 N/m, c = 20 N s/m, W = 100 N, V = 0.1 m/s)
+    # with mu = mu_k + (mu_s - mu_k) exp(-v / v_s): the linearisation is m s^2 + (c + W mu'(V))
+    # s + k, mu'(V) = -(mu_s - mu_k) / v_s exp(-V / v_s), so the growth rate is
+    # -(c + W mu'(V)) / (2 m) (underdamped), stable down to mu' = -c / W, and the Hopf
+    # boundaries are V_H = v_s ln(W (mu_s - mu_k) / (v_s c)) and W_H = -c / mu'(V)
+    mu_s, mu_k, v_s, c, w, v = 0.5, 0.3, 0.05, 20.0, 100.0, 0.1
+    config = tmp_path / "slider.toml"
+    config.write_text(f'mu_s = {mu_s}\nmu_k = {mu_k}\nload = "{w} N"\nspeed = "{v} m/s"\n'
+                      f"[structure]\nmass = [[1.0]]\nstiffness = [[1e4]]\ndamping = [[{c}]]\n"
+                      f'contact_dof = 0\n[friction]\nlaw = "stribeck"\n'
+                      f'stribeck_velocity = "{v_s} m/s"\nexponent = 1\n')
+    code, out, err = run_cli(["design", "--config", str(config), "--json", "--no-stick-slip-optimum"],
+                             capsys)
+    assert code == 0, err
+    s = json.loads(out)["stability"]
+    slope = -(mu_s - mu_k) / v_s * math.exp(-v / v_s)
+    assert s["stable"] is False
+    assert s["growth_rate"] == pytest.approx(-(c + w * slope) / 2.0, rel=1e-9)
+    assert s["sigma_local"] == pytest.approx(-slope, rel=1e-12)
+    assert s["sigma_crit"] == pytest.approx(c / w, rel=1e-9)
+    b = s["boundaries"]
+    assert b["critical_speeds_m_s"] == [pytest.approx(v_s * math.log(w * (mu_s - mu_k) / (v_s * c)),
+                                                      rel=1e-9)]
+    assert b["critical_load_N"] == pytest.approx(-c / slope, rel=1e-9)
+    code, out, err = run_cli(["design", "--config", str(config), "--no-stick-slip-optimum"], capsys)
+    assert code == 0, err
+    assert "steady sliding with the friction law (stribeck): UNSTABLE, growth rate 17.07 1/s" in out
+    assert "unstable at belt speeds below 0.1498 m/s (W = 100 N)" in out

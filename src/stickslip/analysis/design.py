@@ -491,29 +491,18 @@ def stability_margin(system: PhysicalSystem, structures: dict[str, Structure]) -
         Per structure the keys above, plus ``units``.
     """
     from stickslip.analysis.disturbance import safe_disturbance
-    from stickslip.analysis.stability import critical_weakening, steady_sliding_stability
-    from stickslip.analysis.stability_boundaries import stability_boundaries
+    from stickslip.analysis.stability_boundaries import stability_boundaries, steady_sliding_report
 
     slider = system.slider()
     per_slope = 2.0 * math.sqrt(system.mass * system.stiffness) / system.load
     out: dict[str, Any] = {"units": {"growth_rate": "1/s", "sigma": "s/m"}}
     for name, structure in structures.items():
-        stab = steady_sliding_stability(structure, slider)
-        delta_crit = critical_weakening(structure)
-        bounds = stability_boundaries(system, structure)
-        out[name] = {
-            "stable": bool(stab.stable),
-            "neutral": bool(stab.neutral),
-            "growth_rate": stab.growth_rate * system.natural_frequency,
-            "delta_local": stab.delta_local,
-            "delta_crit": delta_crit,
-            "margin": delta_crit - stab.delta_local,
-            "sigma_local": stab.delta_local * per_slope,
-            "sigma_crit": delta_crit * per_slope,
-            "safe_disturbance": {**safe_disturbance(structure, slider).physical(system),
-                                 "sentence": safe_disturbance(structure, slider).sentence(system)},
-            "boundaries": {**bounds.to_dict(), "sentence": bounds.sentence()},
-        }
+        report = steady_sliding_report(structure, slider, stability_boundaries(system, structure),
+                                       natural_frequency=system.natural_frequency,
+                                       per_slope=per_slope)
+        safe = safe_disturbance(structure, slider)
+        report["safe_disturbance"] = {**safe.physical(system), "sentence": safe.sentence(system)}
+        out[name] = report
     return out
 
 

@@ -226,6 +226,11 @@ class MachineDesign:
         How the run at the operating point ended (why an undetermined verdict is one).
     t_max : float
         Its dimensionless horizon.
+    stability : dict or None
+        Linear stability of steady sliding with a friction law that is not Coulomb's (growth
+        rate in 1/s, tolerated slope, Hopf boundaries along speed and load:
+        :func:`~stickslip.analysis.stability_boundaries.steady_sliding_report`); None for
+        the Coulomb law, whose slope is zero at every speed.
     """
 
     machine: Machine
@@ -238,6 +243,7 @@ class MachineDesign:
     absorbers: tuple[AbsorberDesign, ...] = field(default=())
     status: RunStatus | None = None
     t_max: float = EngineOptions().t_max
+    stability: dict[str, Any] | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready report (SI units in the key names, dimensionless numbers beside them)."""
@@ -255,7 +261,8 @@ class MachineDesign:
                 "status": None if self.status is None else self.status.label, "t_max": self.t_max,
                 "absorbers": [{**a.to_dict(), **({"assumption": self.tuning_note}
                                                  if a.objective == "stick-slip" else {})}
-                              for a in self.absorbers]}
+                              for a in self.absorbers],
+                **({} if self.stability is None else {"stability": self.stability})}
 
     def _critical_text(self) -> str:
         """The critical point, or what its search found at a bound of its range."""
@@ -286,6 +293,14 @@ class MachineDesign:
                          f"peak {a.peak_receptance:.4g} m/N")
             if a.objective == "stick-slip" and self.tuning_note is not None:
                 lines.append(f"  (this absorber {self.tuning_note})")
+        if self.stability is not None:
+            s = self.stability
+            word = "stable" if s["stable"] else "neutral" if s["neutral"] else "UNSTABLE"
+            lines += [f"steady sliding with the friction law ({self.machine.friction.law}): {word}, "
+                      f"growth rate {s['growth_rate']:.4g} 1/s; the slope d mu/d v_r at V is "
+                      f"{-s['sigma_local']:.4g} s/m, down to {-s['sigma_crit']:.4g} s/m is "
+                      "stable (the structure's damping)",
+                      f"  {s['boundaries']['sentence']}"]
         return "\n".join(lines)
 
     @property
@@ -445,4 +460,22 @@ def design_machine(machine: Machine, absorber_mass: float | None = None,
         absorbers = tune_machine_absorber(machine, absorber_mass, attach_dof, stick_slip=stick_slip)
     return MachineDesign(machine, run.verdict.value, period, amplitude, run.certificate,
                          _peak_si(machine), critical, absorbers, run.status,
-                         (options or EngineOptions()).t_max)
+                         (options or EngineOptions()).t_max, _steady_sliding(machine))
+
+
+def _steady_sliding(machine: Machine) -> dict[str, Any] | None:
+    """:func:`~stickslip.analysis.stability_boundaries.steady_sliding_report` of a machine whose
+    law is not Coulomb's (None for the Coulomb law: zero slope at every speed)."""
+    from stickslip.analysis.stability_boundaries import (
+        machine_stability_boundaries,
+        steady_sliding_report,
+    )
+
+    if machine.friction.law == "coulomb":
+        return None
+    structure, slider = machine.to_dimensionless()
+    ref = machine.reference_system()
+    return steady_sliding_report(
+        structure.contact_first()[0], slider, machine_stability_boundaries(machine),
+        natural_frequency=ref.natural_frequency,
+        per_slope=2.0 * math.sqrt(machine.reference_mass * machine.reference_stiffness) / machine.load)

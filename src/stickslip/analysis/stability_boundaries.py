@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -33,6 +34,8 @@ import numpy as np
 from scipy.optimize import brentq
 
 from stickslip.analysis.stability import critical_weakening, steady_sliding_stability
+from stickslip.model.machine import Machine
+from stickslip.model.parameters import Slider
 from stickslip.model.physical import PhysicalSystem
 from stickslip.model.structure import Structure
 
@@ -113,13 +116,57 @@ def stability_boundaries(system: PhysicalSystem, structure: Structure) -> Stabil
     StabilityBoundaries
         See the module notes for the derivation.
     """
+    return boundaries_along(structure, lambda v: replace(system, speed=v).slider(),
+                            speed=system.speed, load=system.load)
+
+
+def machine_stability_boundaries(machine: Machine) -> StabilityBoundaries:
+    """:func:`stability_boundaries` of a structure from its matrices (any number of DOF).
+
+    The dimensionless structure (contact first, scales ``m_ref = M[c, c]``, ``k_ref = K[c, c]``)
+    does not depend on the operating point, and the law's weakening acts at the contact DOF
+    alone, so the derivation of the module notes holds unchanged.
+
+    Parameters
+    ----------
+    machine : Machine
+        Structure (SI), friction law and operating point.
+
+    Returns
+    -------
+    StabilityBoundaries
+        The speeds (at the machine's load) and the load (at its speed).
+    """
+    structure = machine.to_dimensionless()[0].contact_first()[0]
+    return boundaries_along(
+        structure, lambda v: machine.with_operating_point(speed=v, load=machine.load).slider(),
+        speed=machine.speed, load=machine.load)
+
+
+def boundaries_along(structure: Structure, slider_at: Callable[[float], Slider], *, speed: float,
+                     load: float) -> StabilityBoundaries:
+    """The Hopf boundaries of ``structure`` along the belt speed, and along the load.
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless, contact on DOF 0.
+    slider_at : callable
+        The dimensionless slider at a belt speed (m/s), the load held.
+    speed, load : float
+        The operating point, m/s and N.
+
+    Returns
+    -------
+    StabilityBoundaries
+        See the module notes for the derivation.
+    """
     delta_crit = critical_weakening(structure)
 
-    def margin(speed: float) -> float:
-        at = replace(system, speed=float(speed))
-        return delta_crit - steady_sliding_stability(structure, at.slider()).delta_local
+    def margin(v: float) -> float:
+        return delta_crit - steady_sliding_stability(structure, slider_at(float(v))).delta_local
 
-    lo, hi = system.speed / SPEED_SPAN, system.speed * SPEED_SPAN
+    lo, hi = speed / SPEED_SPAN, speed * SPEED_SPAN
     grid = np.geomspace(lo, hi, SPEED_POINTS)
     values = np.array([margin(v) for v in grid])
     speeds: list[float] = []
@@ -133,7 +180,42 @@ def stability_boundaries(system: PhysicalSystem, structure: Structure) -> Stabil
     for a, b in itertools.pairwise(edges):
         if margin(math.sqrt(a * b)) < 0.0:
             unstable.append((a, b))
-    local = steady_sliding_stability(structure, system.slider()).delta_local
-    load = system.load * max(delta_crit, 0.0) / local if local > 0.0 else None
-    return StabilityBoundaries(tuple(speeds), tuple(unstable), (lo, hi), load,
-                               (system.load, system.speed))
+    local = steady_sliding_stability(structure, slider_at(speed)).delta_local
+    critical_load = load * max(delta_crit, 0.0) / local if local > 0.0 else None
+    return StabilityBoundaries(tuple(speeds), tuple(unstable), (lo, hi), critical_load,
+                               (load, speed))
+
+
+def steady_sliding_report(structure: Structure, slider: Slider, boundaries: StabilityBoundaries, *,
+                          natural_frequency: float, per_slope: float) -> dict[str, Any]:
+    """Linear stability of steady sliding at the operating point, in SI, with its boundaries.
+
+    Parameters
+    ----------
+    structure : Structure
+        Dimensionless, contact on DOF 0.
+    slider : Slider
+        The dimensionless slider at the operating point.
+    boundaries : StabilityBoundaries
+        Its Hopf boundaries (:func:`stability_boundaries`, :func:`machine_stability_boundaries`).
+    natural_frequency : float
+        ``omega_n`` of the contact's scales, rad/s (turns growth rates per unit ``tau`` into 1/s).
+    per_slope : float
+        ``2 sqrt(m k) / W`` in s/m: a weakening ``delta`` is the friction slope ``delta per_slope``.
+
+    Returns
+    -------
+    dict
+        ``stable``, ``neutral``, ``growth_rate`` (1/s), ``delta_local``, ``delta_crit``,
+        ``margin`` (``delta_crit - delta_local``, positive: stable), ``sigma_local`` and
+        ``sigma_crit`` (s/m: the slope ``d mu / d v_r`` may fall by at most ``sigma_crit``) and
+        ``boundaries`` (with its ``sentence``).
+    """
+    stab = steady_sliding_stability(structure, slider)
+    delta_crit = critical_weakening(structure)
+    return {"stable": bool(stab.stable), "neutral": bool(stab.neutral),
+            "growth_rate": stab.growth_rate * natural_frequency,
+            "delta_local": stab.delta_local, "delta_crit": delta_crit,
+            "margin": delta_crit - stab.delta_local,
+            "sigma_local": stab.delta_local * per_slope, "sigma_crit": delta_crit * per_slope,
+            "boundaries": {**boundaries.to_dict(), "sentence": boundaries.sentence()}}
