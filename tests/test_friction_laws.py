@@ -67,6 +67,21 @@ def test_table_refuses_bad_points(kwargs: dict, message: str) -> None:
         TableFriction(**kwargs)
 
 
+@pytest.mark.parametrize(
+    ("v", "mu", "message"),
+    [
+        ((0.1, 0.05), (0.5, 0.45), r"increase strictly, got 0.1 m/s then 0.05 m/s"),
+        ((-0.1, 0.5), (0.5, 0.45), r"speed v = -0.1 m/s must not be negative"),
+        ((0.0, 0.1), (0.7, 0.5), r"mu\(0\+\) = 0.7 exceeds mu_s = 0.6"),
+    ],
+)
+def test_a_measured_table_is_refused_in_its_own_units(v: tuple, mu: tuple, message: str) -> None:
+    # the user's curve is in m/s and mu: a message in the engine's u = v / V (0.1 m/s at
+    # V = 2 cm/s read "5.0") names numbers that are not in their file (an independent audit)
+    with pytest.raises(ValueError, match=message):
+        TableFriction.from_physical(v, mu, 0.6, 0.4, 0.02)
+
+
 def test_table_refuses_negative_friction() -> None:
     with pytest.raises(ValueError, match="mu < 0"):
         TableFriction((0.0, 1.0), (0.0, -2.5)).bands(1.0, 2.0)
