@@ -98,6 +98,13 @@ class OperatingMap:
     fingerprint : str
         :func:`operating_fingerprint` of what determined the map (stored in the file: a later
         ``map --config`` of the same configuration reuses the file instead of running again).
+    status, n_stick, cycle_k : ndarray of int, shape (n_speed, n_load), optional
+        How each run ended (:class:`~stickslip.analysis.verdict.RunStatus` code: the
+        certificate, or why there is none), its stick phases, and the stick phases of its
+        certified cycle (0 without one).
+    configuration : dict, optional
+        :func:`operating_configuration`: everything that determined the answers (the SI law's
+        fields, grid, engine options, start, version), stored with the file's provenance.
     """
 
     speed: FloatArray
@@ -112,6 +119,10 @@ class OperatingMap:
     gamma: float
     friction: str
     fingerprint: str = ""
+    status: NDArray[np.int64] | None = None
+    n_stick: NDArray[np.int64] | None = None
+    cycle_k: NDArray[np.int64] | None = None
+    configuration: dict[str, Any] | None = None
 
     def fractions(self) -> dict[str, float]:
         """Fraction of cells with each verdict."""
@@ -119,41 +130,83 @@ class OperatingMap:
         return {v: float(np.count_nonzero(self.verdict == v)) / n for v in VERDICTS}
 
     def to_xarray(self) -> xr.Dataset:
-        """Dataset with coordinates ``speed`` [m/s] and ``load`` [N] and one variable per answer."""
+        """Dataset with coordinates ``speed`` [m/s] and ``load`` [N] and one variable per answer.
+
+        Self-describing as the dimensionless map's: the verdict and the certificate as integer
+        codes with CF ``flag_values`` and ``flag_meanings``, the stick phases, and the
+        provenance (version, date, the full configuration as JSON, the start, ``t_max``).
+        """
         import xarray as xr
 
+        from stickslip.analysis.verdict import Verdict, status_flag_attributes, verdict_flag_attributes
+        from stickslip.io.provenance import provenance_attributes
+
         dims = ("speed", "load")
+        codes = np.vectorize(lambda v: Verdict(v).code, otypes=[np.int8])(self.verdict)
+        data_vars: dict[str, Any] = {
+            "verdict": (dims, codes.astype(np.int8), {
+                "long_name": "certified stick-slip verdict from the startup state",
+                **verdict_flag_attributes(),
+                "comment": "undetermined: no certificate before t_max or max_events (see certificate)"}),
+            "lambda": (dims, self.lam, {"long_name": "(mu_s - mu_k) W / (V sqrt(m_ref k_ref))"}),
+            "period": (dims, self.period_s, {"units": "s"}),
+            "amplitude": (dims, self.amplitude_m, {"units": "m",
+                                                  "long_name": "half peak-to-peak contact displacement"}),
+            "stick_ratio": (dims, self.stick_ratio, {"units": "1"})}
+        if self.status is not None:
+            data_vars["certificate"] = (dims, self.status.astype(np.int8), {
+                "long_name": "how the run ended: the certificate of the verdict, or why there is none",
+                **status_flag_attributes()})
+        for name, values, long_name in (
+                ("n_stick", self.n_stick, "number of stick phases in the run, the initial one included"),
+                ("cycle_k", self.cycle_k, "stick phases per certified cycle; 0 without a cycle")):
+            if values is not None:
+                data_vars[name] = (dims, values.astype(np.int32), {"long_name": long_name, "units": "1"})
+        configuration = self.configuration or {}
+        attrs = provenance_attributes(f"stick-slip over belt speed and normal load, "
+                                      f"{self.machine.get('name')}", configuration)
+        attrs.update({"machine": str(self.machine.get("name")), "n_dof": int(self.machine["n_dof"]),
+                      "contact_dof": int(self.machine["contact_dof"]), "zeta": self.zeta,
+                      "gamma": self.gamma, "friction": self.friction,
+                      "machine_json": json.dumps(self.machine, sort_keys=True),
+                      FINGERPRINT_ATTR: self.fingerprint})
+        if configuration:
+            attrs.update({"initial_condition": configuration["initial_condition"],
+                          "t_max": float(configuration["engine"]["t_max"]),
+                          "friction_json": json.dumps(configuration["friction"], sort_keys=True)})
         return xr.Dataset(
-            {"verdict": (dims, self.verdict.astype(str)),
-             "lambda": (dims, self.lam, {"long_name": "(mu_s - mu_k) W / (V sqrt(m_ref k_ref))"}),
-             "period": (dims, self.period_s, {"units": "s"}),
-             "amplitude": (dims, self.amplitude_m, {"units": "m",
-                                                   "long_name": "half peak-to-peak contact displacement"}),
-             "stick_ratio": (dims, self.stick_ratio, {"units": "1"})},
+            data_vars,
             coords={"speed": ("speed", self.speed, {"units": "m/s", "long_name": "belt speed V"}),
                     "load": ("load", self.load, {"units": "N", "long_name": "normal load W"})},
-            attrs={"machine": str(self.machine.get("name")), "n_dof": int(self.machine["n_dof"]),
-                   "contact_dof": int(self.machine["contact_dof"]), "zeta": self.zeta,
-                   "gamma": self.gamma, "friction": self.friction,
-                   "machine_json": json.dumps(self.machine, sort_keys=True),
-                   FINGERPRINT_ATTR: self.fingerprint},
-        )
+            attrs=attrs)
 
     @classmethod
     def from_xarray(cls, dataset: xr.Dataset) -> OperatingMap:
         """The map back from :meth:`to_xarray` (every array bit for bit: netCDF keeps float64)."""
         try:
             attrs = dataset.attrs
+            verdict = np.asarray(dataset["verdict"].values)
+            if np.issubdtype(verdict.dtype, np.integer):  # codes with their flag meanings
+                meanings = str(dataset["verdict"].attrs["flag_meanings"]).split()
+                values = [int(x) for x in np.atleast_1d(dataset["verdict"].attrs["flag_values"])]
+                verdict = np.vectorize(dict(zip(values, meanings, strict=True)).__getitem__,
+                                       otypes=[object])(verdict)
+            optional = {name: (np.asarray(dataset[name].values, dtype=np.int64)
+                               if name in dataset else None)
+                        for name in ("certificate", "n_stick", "cycle_k")}
+            configuration = (json.loads(str(attrs["configuration"]))
+                             if attrs.get("configuration") else None)
             return cls(np.asarray(dataset["speed"].values, dtype=np.float64),
                        np.asarray(dataset["load"].values, dtype=np.float64),
                        np.asarray(dataset["lambda"].values, dtype=np.float64),
-                       np.asarray(dataset["verdict"].values).astype(str),
+                       np.asarray(verdict).astype(str),
                        np.asarray(dataset["period"].values, dtype=np.float64),
                        np.asarray(dataset["amplitude"].values, dtype=np.float64),
                        np.asarray(dataset["stick_ratio"].values, dtype=np.float64),
                        json.loads(str(attrs["machine_json"])), float(attrs["zeta"]),
                        float(attrs["gamma"]), str(attrs["friction"]),
-                       str(attrs.get(FINGERPRINT_ATTR, "")))
+                       str(attrs.get(FINGERPRINT_ATTR, "")), optional["certificate"],
+                       optional["n_stick"], optional["cycle_k"], configuration)
         except (KeyError, ValueError) as exc:
             raise ValueError(f"not an operating map written by this version of stickslip ({exc})") from None
 
@@ -173,7 +226,9 @@ class OperatingMap:
 
         target = Path(path)
         with atomic_output(target) as tmp:
-            self.to_xarray().to_dataframe().reset_index().to_csv(tmp, index=False)
+            table = self.to_xarray().to_dataframe().reset_index()
+            table["verdict"] = self.verdict.reshape(-1)  # the words, as in the text output
+            table.to_csv(tmp, index=False)
         return target
 
     def to_dict(self) -> dict[str, Any]:
@@ -393,4 +448,7 @@ def operating_map(machine: Machine, speeds: Axis, loads: Axis, *,
                         (fsum[:, engine.F_PERIOD] * cells.time_scale).reshape(shape),
                         (fsum[:, engine.F_AMPLITUDE] * cells.length_scale).reshape(shape),
                         fsum[:, engine.F_STICK_RATIO].reshape(shape), machine.to_dict(),
-                        cells.zeta, cells.gamma, machine.friction.law, fingerprint)
+                        cells.zeta, cells.gamma, machine.friction.law, fingerprint,
+                        isum[:, engine.I_STATUS].reshape(shape), isum[:, engine.I_N_STICK].reshape(shape),
+                        isum[:, engine.I_CYCLE_K].reshape(shape),
+                        json.loads(json.dumps(operating_configuration(machine, v, w, opts))))
