@@ -192,3 +192,22 @@ def test_the_unstable_ranges_end_at_the_closed_form_boundaries(
     assert speeds[0] == pytest.approx(0.01) and speeds[1] == pytest.approx(v_h, rel=1e-8)
     (loads,) = ranges["unstable_loads_N"]
     assert loads[0] == pytest.approx(w_h, rel=1e-8) and loads[1] == pytest.approx(1000.0)
+
+
+def test_a_law_unstable_by_its_slope_alone_has_no_critical_mu(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # an independent audit: "critical mu 0 (unstable at mu = 0)" for a Stribeck pad whose
+    # structure alone is stable; the slope mu'(V) N is negative damping at the contact, which
+    # no friction coefficient of mode coupling describes. Reference: one DOF, net damping
+    # c + W mu'(V) = 20 - 100 * 4 exp(-2) < 0 (the closed form of the test above)
+    config = tmp_path / "slider.toml"
+    config.write_text('mu_s = 0.5\nmu_k = 0.3\nload = "100 N"\nspeed = "0.1 m/s"\n'
+                      "[structure]\nmass = [[1.0]]\nstiffness = [[1e4]]\ndamping = [[20.0]]\n"
+                      'contact_dof = 0\n[friction]\nlaw = "stribeck"\n'
+                      'stribeck_velocity = "0.05 m/s"\nexponent = 1\n')
+    code, out, err = run_cli(["stability", "--config", str(config)], capsys)
+    assert code == 0, err
+    line = next(x for x in out.splitlines() if x.startswith("critical mu"))
+    assert line.startswith("critical mu - (unstable at mu = 0")
+    assert "the friction law's slope (-0.541341 s/m at V" in line  # -4 exp(-2)
+    assert "the structure alone is stable" in line

@@ -205,17 +205,6 @@ def modes_table(stability: Mapping[str, Any]) -> Any:
     }, index=[f"mode {i}" for i in range(1, len(modes) + 1)])
 
 
-def critical_line(critical: Mapping[str, Any]) -> str:
-    """One critical friction coefficient as ``stickslip stability`` prints it."""
-    if critical["mu"] is None:
-        return f"none up to mu = {critical['mu_max']:g} ({critical['method']})"
-    modes = " and ".join(str(m) for m in critical["modes"]) or "-"
-    where = (f" at {critical['frequency_hz']:.6g} Hz"
-             if critical["frequency_hz"] is not None else "")
-    plural = "s" if len(critical["modes"]) > 1 else ""
-    return f"{critical['mu']:.8g} ({critical['kind']}{where}; mode{plural} {modes})"
-
-
 def plain_title(text: str) -> str:
     """``text`` for a Matplotlib title: every ``$`` escaped, so no mathtext is read from it."""
     return text.replace("$", r"\$")
@@ -284,6 +273,7 @@ def _show_stability(result: Any, locus: Any, name: str, digest: str) -> dict[str
     """
     import streamlit as st
 
+    from stickslip.analysis.contact.critical_coefficient import critical_text
     from stickslip.app.figures import cached_png
     from stickslip.plot.stability import root_locus_plot
 
@@ -293,15 +283,16 @@ def _show_stability(result: Any, locus: Any, name: str, digest: str) -> dict[str
     for col, key, label in ((col2, "critical", "Critical mu (damped)"),
                             (col3, "critical_undamped", "Critical mu (undamped)")):
         mu = data[key]["mu"]
-        col.metric(label, "none" if mu is None else f"{mu:.8g}")
+        col.metric(label, "none" if mu is None else "-" if data[key]["kind"] == "unstable at mu = 0"
+                   else f"{mu:.8g}")
     st.text("\n".join([
         f"steady      mu(V) = {data['mu']:.6g}, d mu/d v_r = "
         f"{data['friction_slope_s_per_m']:.6g} s/m, N = {data['normal_force_N']:.6g} N",
         f"verdict     {verdict_text(data['verdict'])}",
         f"natural     {', '.join(f'{f:.6g}' for f in data['natural_frequencies_hz'])} Hz "
         "(modes 1, 2, ...: the structure pressed on the belt, mu = 0)",
-        f"critical mu {critical_line(data['critical'])}",
-        f"undamped    {critical_line(data['critical_undamped'])}"]))
+        f"critical mu {critical_text(data['critical'], detail=False)}",
+        f"undamped    {critical_text(data['critical_undamped'], detail=False)}"]))
     st.dataframe(modes_table(data), key="contact_modes_table")
     st.image(cached_png(("root-locus", digest),
                         lambda: root_locus_plot(locus, title=plain_title(name)).figure))

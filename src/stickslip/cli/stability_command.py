@@ -133,18 +133,9 @@ def _speed_map(result: Any, machine: Any, contact: Any, index: int | None) -> An
     return data.plot(log_y=True, title=f"{machine.name}: growth rate of steady sliding")
 
 
-def _critical_line(c: dict[str, Any], mu: float) -> str:
-    if c["mu"] is None:
-        below = (f"; the operating mu = {mu:.6g} lies above the searched range: raise --mu-max"
-                 if mu > c["mu_max"] else "")
-        return f"none up to mu = {c['mu_max']:g} ({c['method']}){below}"
-    modes = " and ".join(str(m) for m in c["modes"])
-    where = f" at {c['frequency_hz']:.6g} Hz" if c["frequency_hz"] is not None else ""
-    return (f"{c['mu']:.8g} ({c['kind']}{where}; mode{'s' if len(c['modes']) > 1 else ''} "
-            f"{modes or '-'}; bracket [{c['bracket'][0]:.10g}, {c['bracket'][1]:.10g}]; {c['method']})")
-
-
 def _print(p: dict[str, Any]) -> None:
+    from stickslip.analysis.contact.critical_coefficient import critical_text
+
     normal = ("none (a constant normal load)" if p["normal_dof"] is None else p["normal_dof"])
     lines = [f"stability   {p['machine']}: contact_dof {p['contact_dof']}, normal_dof {normal}",
              f"steady      mu(V) = {p['mu']:.6g}, d mu/d v_r = {p['friction_slope_s_per_m']:.6g} s/m, "
@@ -164,8 +155,8 @@ def _print(p: dict[str, Any]) -> None:
                                    if len(values) <= 12 else f"{len(values)} (listed by --json)"))
     lines.append(f"natural     {', '.join(f'{f:.6g}' for f in p['natural_frequencies_hz'])} Hz "
                  "(modes 1, 2, ...: the structure pressed on the belt, mu = 0)")
-    lines.append(f"critical mu {_critical_line(p['critical'], p['mu'])}")
-    lines.append(f"undamped    {_critical_line(p['critical_undamped'], p['mu'])}")
+    lines.append(f"critical mu {critical_text(p['critical'], p['mu'])}")
+    lines.append(f"undamped    {critical_text(p['critical_undamped'], p['mu'])}")
     ranges = p["operating_ranges"]
     for key, unit, grid_key in (("unstable_speeds_m_per_s", "m/s", "speed_grid_m_per_s"),
                                 ("unstable_loads_N", "N", "load_grid_N")):

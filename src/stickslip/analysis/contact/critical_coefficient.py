@@ -46,7 +46,8 @@ makes the value exact inside the scan's bracket.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -165,10 +166,14 @@ def critical_friction(system: FrictionCoupledSystem, *, mu_max: float = MU_MAX,
     start = system.eigenvalues(0.0)[0]
     if verdict_of(*system.eigenvalues(0.0)) == 1:
         big = start[np.argmax(start.real)]
+        without_slope = replace(system, slope=0.0)
+        cause = ("the structure itself (unstable without friction)"
+                 if system.slope == 0.0 or verdict_of(*without_slope.eigenvalues(0.0)) == 1 else
+                 f"the friction law's slope ({system.slope:.6g} s/m at V: negative damping at the "
+                 "contact; the structure alone is stable), before any mode coupling")
         return CriticalFriction(0.0, (0.0, 0.0), "unstable at mu = 0",
                                 abs(big.imag) / (2 * math.pi), (), mu_max,
-                                "unstable without friction coupling (the structure or the "
-                                "friction law's slope)")
+                                f"unstable without friction coupling: {cause}")
     exact = _exact_search(system, mu_max, undamped)
     if exact is not None and exact[0] is None:
         return CriticalFriction(None, None, "none", None, (), mu_max, exact[1])
@@ -319,3 +324,38 @@ def _coalescence(system: FrictionCoupledSystem, mu_lo: float, crossing: complex)
     star = brentq(dg, a, b, xtol=1e-15 * b, rtol=4 * np.finfo(float).eps, maxiter=200)
     value = g(star)
     return None if value >= 0.0 else -1.0 / (kn * value)
+
+
+def critical_text(critical: Mapping[str, Any], operating_mu: float | None = None, *,
+                  detail: bool = True) -> str:
+    """One critical friction coefficient in words (``stickslip stability`` and the app).
+
+    Parameters
+    ----------
+    critical : mapping
+        :meth:`CriticalFriction.to_dict`.
+    operating_mu : float, optional
+        The operating ``mu``: named when it lies above the searched range.
+    detail : bool
+        Add the bracket and the method (the command line's line).
+
+    Returns
+    -------
+    str
+        The value (``-`` when steady sliding is unstable without mode coupling, whose
+        critical coefficient is then not defined) and how it was found.
+    """
+    if critical["mu"] is None:
+        above = (f"; the operating mu = {operating_mu:.6g} lies above the searched range: raise "
+                 "--mu-max" if operating_mu is not None and operating_mu > critical["mu_max"] else "")
+        return f"none up to mu = {critical['mu_max']:g} ({critical['method']}){above}"
+    where = f" at {critical['frequency_hz']:.6g} Hz" if critical["frequency_hz"] is not None else ""
+    if critical["kind"] == "unstable at mu = 0":
+        return f"- (unstable at mu = 0{where}; {critical['method']})"
+    modes = " and ".join(str(m) for m in critical["modes"]) or "-"
+    text = (f"{critical['mu']:.8g} ({critical['kind']}{where}; "
+            f"mode{'s' if len(critical['modes']) > 1 else ''} {modes}")
+    if not detail:
+        return text + ")"
+    return (f"{text}; bracket [{critical['bracket'][0]:.10g}, {critical['bracket'][1]:.10g}]; "
+            f"{critical['method']})")
