@@ -252,3 +252,34 @@ def test_tune_config_slideway_hinf(capsys: pytest.CaptureFixture[str]) -> None:
     assert crit["critical_speed_m_per_s"] == pytest.approx(
         0.05 * 2600.0 / (crit["lambda_c"] * root), rel=1e-9)
     assert crit["critical_load_N"] == pytest.approx(crit["lambda_c"] * 0.5e-3 * root / 0.05, rel=1e-9)
+
+
+def test_basin_config_default_box_and_si_states_in_the_dataset(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # an independent audit: basin --config without --box sampled x in [-2, 2] m and v in
+    # [-2, 1.5] m/s (for the slideway at 0.5 mm/s: xi up to 7e6), and its basin.nc held the
+    # starts only dimensionless. Now the default box is the dimensionless one about steady
+    # sliding, and the dataset carries the starts in SI: fed back as --initial-states (SI, the
+    # inverse conversion of Eqs. 15-16) they must give the same verdicts
+    import xarray as xr
+
+    out = tmp_path / "basin"
+    p = cli_json(["basin", "--config", str(SLIDEWAY / "machine.toml"), "--samples", "12",
+                  "--seed", "3", "--out", str(out)], capsys)
+    with xr.open_dataset(out / "basin.nc") as ds:
+        assert np.all(np.abs(ds["xi"].values) <= 2.0) and np.all(ds["v"].values >= -2.0)
+        assert np.all(ds["v"].values <= 1.5) and ds["x_si"].attrs["units"] == "m"
+        assert np.allclose(ds["v_si"].values, ds["v"].values * ds.attrs["speed_m_per_s"], rtol=1e-15)
+        names = [f"{n}_si" for n in ("x", "x_a", "x_a2", "x_a3", "x_a4", "x_a5",
+                                     "v", "v_a", "v_a2", "v_a3", "v_a4", "v_a5")]
+        rows = np.stack([ds[n].values for n in names], axis=1)
+        verdicts = ds["verdict"].values.copy()
+    starts = tmp_path / "starts.csv"
+    header = ",".join(n[:-3] for n in names)
+    starts.write_text(header + "\n" + "\n".join(",".join(repr(float(x)) for x in r) for r in rows))
+    again = tmp_path / "again"
+    cli_json(["basin", "--config", str(SLIDEWAY / "machine.toml"), "--initial-states", str(starts),
+              "--out", str(again)], capsys)
+    with xr.open_dataset(again / "basin.nc") as ds:
+        assert np.array_equal(ds["verdict"].values, verdicts)
+    assert p["n"] == 12

@@ -33,7 +33,9 @@ from stickslip.cli.options import (
 
 BOX_HELP = ("sampling box, e.g. 'xi=-4:4,v=-3:1.5' (dimensionless, shifted: xi, v, xi_a, v_a) or, "
             "with --config, 'x=-0.001:0.001,v=-0.02:0.02' (SI: m, m/s; x from where the spring is "
-            "relaxed, ground frame); unnamed columns keep their steady-sliding value")
+            "relaxed, ground frame); unnamed columns keep their steady-sliding value. Default: "
+            "xi=-2:2,v=-2:1.5, dimensionless about steady sliding, with --config too (in the "
+            "machine's scales V/omega_n and V)")
 
 
 def parse_box(text: str) -> dict[str, tuple[float, float]]:
@@ -214,14 +216,19 @@ def basin(
         except ValueError as exc:
             raise BadInput(f"--initial-states {str(initial_states)!r}: {exc}") from None
     else:
-        intervals = parse_box(box) if box is not None else {names[0]: (-2.0, 2.0), names[n_dof]: (-2.0, 1.5)}
-        unknown = sorted(set(intervals) - set(names))
-        if unknown:
-            raise BadInput(f"--box columns {', '.join(unknown)} are not among {', '.join(names)}")
-        if run is not None:
-            states = _sample_physical(structure, slider, run.reference, samples, intervals, seed)
+        if box is None:  # dimensionless about steady sliding, a machine's file or not
+            default = state_names(n_dof)
+            states = sample_box(structure, slider, samples,
+                                {default[0]: (-2.0, 2.0), default[n_dof]: (-2.0, 1.5)}, seed)
         else:
-            states = sample_box(structure, slider, samples, intervals, seed)
+            intervals = parse_box(box)
+            unknown = sorted(set(intervals) - set(names))
+            if unknown:
+                raise BadInput(f"--box columns {', '.join(unknown)} are not among {', '.join(names)}")
+            if run is not None:
+                states = _sample_physical(structure, slider, run.reference, samples, intervals, seed)
+            else:
+                states = sample_box(structure, slider, samples, intervals, seed)
     from contextlib import nullcontext
 
     from stickslip.cli.cleanup import UndoOnRefusal
@@ -251,7 +258,10 @@ def basin(
             write_labels(result, labels, rows, columns)
             from stickslip.io.netcdf import write_dataset
 
-            write_dataset(result.to_xarray(), dataset, overwrite=True)
+            data = result.to_xarray()
+            if run is not None:
+                data = _with_physical_states(data, structure, slider, run.reference)
+            write_dataset(data, dataset, overwrite=True)
             discard_store(store)
             payload.update({"labels": str(labels), "dataset": str(dataset)})
     if plot is not None:
@@ -421,6 +431,33 @@ def _physical_to_states(structure: Any, slider: Any, reference: Any, physical: A
     out = np.empty_like(physical)
     out[:, :n] = physical[:, :n] / reference.length_scale - shift
     out[:, n:] = physical[:, n:] / reference.speed
+    return out
+
+
+def _with_physical_states(data: Any, structure: Any, slider: Any, reference: Any) -> Any:
+    """A ``basin --config`` dataset with the starts also in SI: ``x_si`` [m] from where the springs
+    are relaxed and ``v_si`` [m/s] in the ground frame (the inverse of :func:`_physical_to_states`),
+    and the scales that relate the two (``length_scale_m``, ``time_scale_s``, ``speed_m_per_s``)."""
+    import numpy as np
+
+    from stickslip.sweep.basin import physical_names, state_names
+
+    n = structure.n_dof
+    shift = slider.gamma * slider.lam * structure.kinetic_equilibrium_offset()
+    shifted = np.stack([data[name].values for name in state_names(n)], axis=1)
+    physical = np.empty_like(shifted)
+    physical[:, :n] = (shifted[:, :n] + shift) * reference.length_scale
+    physical[:, n:] = shifted[:, n:] * reference.speed
+    out = data.copy()
+    for i, name in enumerate(physical_names(n)):
+        position = i < n
+        out[f"{name}_si"] = (("sample",), physical[:, i], {
+            "long_name": f"initial {name}: " + ("displacement from where the springs are relaxed"
+                                                if position else "velocity in the ground frame"),
+            "units": "m" if position else "m/s"})
+    out.attrs.update({"length_scale_m": reference.length_scale, "time_scale_s": reference.time_scale,
+                      "speed_m_per_s": reference.speed,
+                      "dof_order": "contact DOF first, then the others in the file's order"})
     return out
 
 
