@@ -163,3 +163,26 @@ def test_two_dof_unstable_slip_oscillation_separates_the_basins() -> None:
         z = z_eq + factor * (osc.state - z_eq)
         assert simulate(structure, slider, initial=InitialState(z[:n], z[n:]),
                         record=False).verdict is verdict
+
+
+def test_a_slip_oscillations_amplitude_is_its_own_cycles_after_a_larger_transient() -> None:
+    # fitted foundation (zeta = 0.1), lambda = 0.5, linear law delta = 0.4: a certified slip
+    # oscillation of period 6.721768577. Its amplitude was 0.854312: the step's interior
+    # extrema were located only when they could beat the range since the last breakaway,
+    # which (no breakaway in a slip oscillation) held the start's larger transient. References:
+    # an independent solve_ivp (DOP853, rtol 1e-12, extrema where xi' = 0: xi from -2.07167 to
+    # -0.35912, amplitude 0.856271; an audit, rounded to 6 digits), and the run's own record
+    # sampled at 200,001 points over its last period
+    from stickslip import simulate
+    from stickslip.analysis.theory import optimal_foundation_fit
+    from stickslip.model.friction import LinearFriction
+    from stickslip.model.structure import elastic_foundation
+
+    run = simulate(elastic_foundation(0.1, optimal_foundation_fit(0.1)),
+                   Slider(0.5, friction=LinearFriction(0.4)))
+    assert run.verdict.value == "slip-oscillation"
+    assert run.period == pytest.approx(6.721768577, abs=1e-9)
+    t = np.linspace(run.t_end - run.period, run.t_end, 200_001)
+    xi = run.state_at(t)[0][:, 0]
+    assert run.amplitude == pytest.approx((xi.max() - xi.min()) / 2.0, rel=1e-9)
+    assert run.amplitude == pytest.approx(0.856271, abs=1e-6)

@@ -468,13 +468,19 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             else:
                 f_xi, f_vel = f_start[mode, F_XI], f_start[mode, F_VEL]
                 lo, hi, settled = end_range(sig0, sig1, f_xi)
+                # the extremes are located when they could extend either range: the one since
+                # the last breakaway (cur) or the one since the last section crossing (os, a
+                # slip oscillation's); pruning by cur alone lost the cycle's own extremes
+                # after a larger transient (an amplitude 0.23 % low, independent audit)
                 if not settled:
                     lo, hi = interior_range(sig_m, f_xi, sig0, sig1, w, s_end, ahat_m, u, have_u,
-                                             row, coef, bp, cur_xmin, cur_xmax, lo, hi)
+                                             row, coef, bp, max(cur_xmin, os_xmin),
+                                             min(cur_xmax, os_xmax), lo, hi)
                 vlo, vhi, settled = end_range(sig0, sig1, f_vel)
                 if not settled:
                     vhi = interior_range(sig_m, f_vel, sig0, sig1, w, s_end, ahat_m, u, have_u,
-                                          row, coef, bp, -np.inf, cur_vmax, vlo, vhi)[1]
+                                          row, coef, bp, -np.inf, min(cur_vmax, os_vmax), vlo,
+                                          vhi)[1]
             cur_xmin = min(cur_xmin, lo)
             cur_xmax = max(cur_xmax, hi)
             cur_vmax = max(cur_vmax, vhi)
