@@ -618,3 +618,28 @@ def test_both_hopf_methods_agree_where_the_polynomial_is_used(n: int) -> None:
     from_zeros = sorted(_hopf_weakenings_from_zeros(structure.mass, structure.damping,
                                                     structure.stiffness))
     np.testing.assert_allclose(from_zeros, hopf_weakenings(structure), rtol=1e-9)
+
+
+@pytest.mark.parametrize(("tolerance", "warned"), [
+    (1e-4, True), pytest.param(1e-6, False, marks=pytest.mark.slow)])  # 35 s and 75 s
+def test_folds_of_the_interpolant_near_the_hopf_point_are_said(tolerance: float, warned: bool) -> None:
+    # the published bistable case next to its Hopf point (lam_H = 0.66965): the smooth law's
+    # Hopf is subcritical, one branch of unstable slip oscillations without folds (an
+    # independent solve_ivp of the smooth law at rtol 1e-12, an audit: amplitude 0.11374 at
+    # lam = 0.66). The interpolant at 1e-4 folds it four times with eight "stable" points;
+    # the result must say so, and at 1e-6 it must have no fold and no stable point
+    system = ContinuationSystem(0.66, 0.05, 1.0, None,
+                                StribeckFriction(0.3333, tolerance=tolerance))
+    result = continue_cycles(system, "lam", (0.66, 0.675))
+    slip = [b for b in result.branches if b.kind == "slip-oscillation"]
+    assert slip
+    assert bool(result.warnings()) is warned
+    if warned:
+        assert "check them with a finer tolerance" in result.summary()
+        assert result.to_dict()["warnings"] == result.warnings()
+    else:
+        assert not any(p.stable for b in slip for p in b.points)
+        assert not [e for e in result.events if e.type == "fold"]
+        first = min((p for b in slip for p in b.points), key=lambda p: p.param)
+        assert first.param == pytest.approx(0.66, abs=1e-9)
+        assert first.amplitude == pytest.approx(0.11374, abs=1e-5)

@@ -86,6 +86,32 @@ class ContinuationResult:
     def steady_stable(self) -> NDArray[np.bool_]:
         return np.asarray(self.steady_growth < 0.0)
 
+    def warnings(self) -> list[str]:
+        """What the diagram's numbers may owe to the law's interpolant, in sentences.
+
+        A smooth law (Stribeck) runs as its piecewise-linear interpolant; a slip oscillation
+        next to a Hopf point crosses only its few bands nearest the belt speed, where the
+        interpolant's kinks can fold the branch and turn its stability. On the published
+        bistable case at the default tolerance (1e-4) the small oscillations showed four folds
+        and eight "stable" points; at 1e-6 the branch has no fold and every point is unstable,
+        as an independent smooth-law integration gives. Said whenever a slip-oscillation
+        branch of an interpolated law has a fold or a stable point.
+        """
+        friction = getattr(self.system, "friction", None)
+        if friction is None or getattr(friction, "exact", True):
+            return []
+        slip = [i for i, b in enumerate(self.branches) if b.kind == "slip-oscillation"]
+        folds = [e for e in self.events if e.type == "fold" and e.branch in slip]
+        stable = sum(p.stable for i in slip for p in self.branches[i].points)
+        if not folds and not stable:
+            return []
+        tol = getattr(friction, "tolerance", None)
+        return [f"the slip oscillations show {len(folds)} fold(s) and {stable} stable point(s) "
+                f"with the law's piecewise-linear interpolant (tolerance {tol:g}); small "
+                "oscillations cross only a few of its bands, whose kinks can fold a branch and "
+                "turn its stability: check them with a finer tolerance (e.g. tol=1e-6 in "
+                "--friction, or tolerance in [friction])"]
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready, the keys of ``stickslip continue --json``."""
         name = self.param
@@ -106,6 +132,7 @@ class ContinuationResult:
             "steady": [{name: float(p), "growth_rate": float(g), "stable": bool(g < 0.0)}
                        for p, g in zip(self.steady_param, self.steady_growth, strict=True)],
             "events": [e.to_dict(name) for e in self.events],
+            "warnings": self.warnings(),
         }
 
     def si_scales(self, value: float) -> tuple[float, float]:
@@ -125,6 +152,7 @@ class ContinuationResult:
         for e in self.events:
             lines.append(f"  {e.type} at {self.param} = {e.param:.10g} "
                          f"(amplitude {e.amplitude:.6g}) {e.detail}")
+        lines += [f"warning: {w}" for w in self.warnings()]
         return "\n".join(lines)
 
     def to_xarray(self) -> Any:
