@@ -66,8 +66,8 @@ def main() -> None:
     print(run.verdict.value + ": " + proof.describe())
     pmap = ReturnMap(structure, slider, EngineOptions())
     cand = cycle_proof._candidate(pmap, pmap.reduce(proof.fixed_point), proof.stick_phases)
-    if cand is None:
-        raise SystemExit("Newton's method did not converge from the proven fixed point")
+    if isinstance(cand, str):
+        raise SystemExit(f"no candidate at the proven fixed point: {cand}")
     n2 = 2 * pmap.n
     norms = tube.ProductNorms.of(cand.phases, pmap.lift, np.delete(np.eye(n2), [0, pmap.n], axis=0))
     scale = max(1.0, float(np.max(np.abs(pmap.state(cand.b_hat)))))

@@ -88,6 +88,25 @@ def test_a_proof_beyond_its_work_bound_is_declined_not_guessed(monkeypatch: pyte
     run = simulate(structure, slider)
     assert run.verdict is Verdict.UNDETERMINED
     assert run.cycle_proof is None and "candidate, not proven" in run.certificate
+    assert "period 1: its phases are beyond the work a proof may take" in run.certificate
+
+
+def test_an_unproven_candidate_says_why() -> None:
+    # a soft foundation (M = 1.17013, K = 0.109102, zeta_a = 0.69939) under the linear law
+    # delta = 0.8, lambda = 3, zeta = 0.1: a stick-slip cycle of period 427.8636273 with
+    # multipliers of modulus 1.3e-6 and 8e-9 (an independent Newton shooting on solve_ivp, an
+    # audit). Its slip phase grows deviations by about e^57, so the proof's bound on the
+    # Jacobian's variation, rounding included, never falls below 1: the run must not claim
+    # the cycle, and must say which step failed
+    from stickslip.model.friction import LinearFriction
+    from stickslip.model.parameters import Foundation
+    from stickslip.model.structure import elastic_foundation
+
+    run = simulate(elastic_foundation(0.1, Foundation(1.17013, 0.109102, 0.69939)),
+                   Slider(3.0, friction=LinearFriction(0.8)), options=EngineOptions(t_max=20000))
+    assert run.verdict is Verdict.UNDETERMINED and run.status is RunStatus.UNPROVEN_CYCLE
+    assert run.period == pytest.approx(427.8636273, rel=1e-9)
+    assert "period-1 candidate, not proven; period 1: the contraction bound stays at" in run.certificate
 
 
 def _check_ball(structure: Structure, slider: Slider, run, rng: np.random.Generator) -> None:

@@ -206,17 +206,19 @@ class _Candidate:
     value: FloatArray  # P^q(b_hat)
 
 
-def _candidate(pmap: ReturnMap, b0: FloatArray, q: int) -> _Candidate | None:
+def _candidate(pmap: ReturnMap, b0: FloatArray, q: int) -> _Candidate | str:
+    """The candidate of period ``q`` near ``b0``, or why there is none (a phrase)."""
     solution = newton_fixed_point(pmap, b0, q)
     if solution is None:
-        return None
+        return "Newton's method on the return map did not converge"
     b_hat, jac = solution
     value = pmap(b_hat, q)
     if value is None:
-        return None
+        return "the return map is not defined at Newton's fixed point"
     sampled = sample_phases(pmap, b_hat, q)
     if sampled is None:
-        return None
+        return ("its phases are beyond the work a proof may take, or one ends on no surface "
+                "the proof knows")
     phases, z_hit = sampled
     states = pmap.next_breakaways(pmap.state(b_hat), q)
     return _Candidate(q, b_hat, jac, float(np.linalg.norm(value - b_hat)), phases, z_hit, states,
@@ -252,11 +254,14 @@ def _shorter_period_excluded(pmap: ReturnMap, cand: _Candidate, radius: float,
     return True
 
 
-def _contraction_ball(pmap: ReturnMap, cand: _Candidate) -> tuple[float, float, FloatArray] | None:
-    """``(radius, theta, C)`` of a proven contraction ball about ``b_hat`` (step 3)."""
+def _contraction_ball(pmap: ReturnMap, cand: _Candidate) -> tuple[float, float, FloatArray] | str:
+    """``(radius, theta, C)`` of a proven contraction ball about ``b_hat`` (step 3), or why
+    there is none (a phrase)."""
     adapted = _adapted_norm(cand.jac)
     if adapted is None:
-        return None
+        largest = float(np.max(np.abs(np.linalg.eigvals(cand.jac)))) if cand.jac.size else 0.0
+        return (f"its largest multiplier modulus is {largest:.3g}" if largest >= 1.0 else
+                "no norm makes its return map a contraction")
     chol, norm_w, kappa = adapted
     c_inv_norm = float(np.linalg.norm(np.linalg.inv(chol), 2)) if chol.size else 1.0
     residual_w = float(np.linalg.norm(chol @ (cand.value - cand.b_hat)))
@@ -271,14 +276,27 @@ def _contraction_ball(pmap: ReturnMap, cand: _Candidate) -> tuple[float, float, 
 
     found = _ball(pmap, cand, accept)
     if found is None:
-        return None
+        if not thetas:
+            return ("the deviation bound of its phases (the tube) fails at every radius tried, "
+                    f"down to {min_radius(pmap, cand):.2g}: nearby motions are not shown to "
+                    "follow it")
+        best = min(thetas.values())
+        return (f"the contraction bound stays at {best:.3g} or above (it must be below 1) at "
+                "every radius whose tube holds: the Jacobian's variation over the ball, or the "
+                "rounding it carries, is too large")
     radius = found[0]
     return radius / c_inv_norm, thetas[radius], chol
 
 
+def min_radius(pmap: ReturnMap, cand: _Candidate) -> float:
+    """The smallest radius of the proof's ladder for ``cand`` (the foundation coordinates)."""
+    scale = max(1.0, float(np.max(np.abs(pmap.state(cand.b_hat)))))
+    return scale * RADIUS_START * RADIUS_FACTOR ** (-(RADIUS_TRIES - 1))
+
+
 def prove_cycle(structure: Structure, slider: Slider, breakaway_state: FloatArray,
                 candidate_phases: int, options: EngineOptions, *,
-                extra_breakaways: int = 512) -> CycleProof | None:
+                extra_breakaways: int = 512, why: list[str] | None = None) -> CycleProof | None:
     """Prove the stable cycle a run converges to, with its minimal period (see module notes).
 
     Parameters
@@ -294,6 +312,8 @@ def prove_cycle(structure: Structure, slider: Slider, breakaway_state: FloatArra
     extra_breakaways : int
         When the run's state is not yet inside the proven ball, the run goes on for at
         most this many more breakaways (the map ``P`` iterated exactly) to enter it.
+    why : list of str, optional
+        Filled with one phrase per period tried that gave no proof (``"period q: ..."``).
 
     Returns
     -------
@@ -304,12 +324,15 @@ def prove_cycle(structure: Structure, slider: Slider, breakaway_state: FloatArra
     direction = pmap0.direction_of(np.asarray(breakaway_state, dtype=np.float64))
     pmap = pmap0 if direction == SLIP_I else ReturnMap(structure, slider, options, direction)
     b0 = pmap.reduce(np.asarray(breakaway_state, dtype=np.float64))
+    reasons = [] if why is None else why
     for q in divisors(int(candidate_phases)):
         cand = _candidate(pmap, b0, q)
-        if cand is None:
+        if isinstance(cand, str):
+            reasons.append(f"period {q}: {cand}")
             continue
         ball = _contraction_ball(pmap, cand)
-        if ball is None:
+        if isinstance(ball, str):
+            reasons.append(f"period {q}: {ball}")
             continue
         rho, theta, chol = ball
         later: list[FloatArray] = []
@@ -334,6 +357,8 @@ def prove_cycle(structure: Structure, slider: Slider, breakaway_state: FloatArra
                     break
             state = later.pop(0)
             extra += 1
+        reasons.append(f"period {q}: a ball of radius {radius:.2g} is proven, but the run did "
+                       f"not enter it within {extra} more breakaways")
     return None
 
 
@@ -366,7 +391,7 @@ def prove_existence(structure: Structure, slider: Slider, b_hat: FloatArray, q: 
     """
     pmap = ReturnMap(structure, slider, options, direction)
     cand = _candidate(pmap, np.asarray(b_hat, dtype=np.float64), int(q))
-    if cand is None:
+    if isinstance(cand, str):
         return None
     if cand.jac.size == 0:
         return 0.0

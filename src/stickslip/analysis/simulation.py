@@ -128,10 +128,12 @@ def prove_run(result: SimulationResult, opts: EngineOptions) -> SimulationResult
     else:  # run on past the certificate: the breakaway state at the certificate
         state = run_engine(structure, slider, result.initial, opts, False, False).final_state
     k = result.cycle_length
-    proof = prove_cycle(structure, slider, state, k, opts)
+    why: list[str] = []
+    proof = prove_cycle(structure, slider, state, k, opts, why=why)
     if proof is None:
         return replace(result, verdict=Verdict.UNDETERMINED, status=RunStatus.UNPROVEN_CYCLE,
-                       certificate=f"undetermined (period-{k} candidate, not proven): "
+                       certificate=f"undetermined (period-{k} candidate, not proven; "
+                                   f"{'; '.join(why) or 'no period gave a proof'}): "
                                    f"{result.certificate}")
     certificate = f"{result.certificate}; {proof.describe()}"
     if proof.stick_phases == k:
