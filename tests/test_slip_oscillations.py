@@ -186,3 +186,10 @@ def test_a_slip_oscillations_amplitude_is_its_own_cycles_after_a_larger_transien
     xi = run.state_at(t)[0][:, 0]
     assert run.amplitude == pytest.approx((xi.max() - xi.min()) / 2.0, rel=1e-9)
     assert run.amplitude == pytest.approx(0.856271, abs=1e-6)
+    # the search finds it too: the linear law's floor at zero friction (its second band) is
+    # the nonlinearity that bounds it (before, a linear law was never searched)
+    structure = elastic_foundation(0.1, optimal_foundation_fit(0.1))
+    (found,) = find_slip_oscillations(structure, Slider(0.5, friction=LinearFriction(0.4)))
+    assert found.stable and found.period == pytest.approx(run.period, rel=1e-9)
+    assert found.amplitude == pytest.approx(0.856271, abs=1e-6)
+    assert find_slip_oscillations(structure, Slider(0.5, friction=LinearFriction(-0.2))) == ()

@@ -1,8 +1,8 @@
 """Slip oscillations at one parameter point, stable and unstable, with or without a Hopf point.
 
 A slip oscillation is a periodic motion that never sticks (velocity-dependent friction only:
-with the Coulomb law, or the linear law away from ``delta = zeta``, slip-I is a linear damped
-system and has none). It is a fixed point of the map ``P`` between two velocity maxima of the
+with the Coulomb law, or a linear law that does not reach its floor at zero friction, slip-I
+is a linear system and has none). It is a fixed point of the map ``P`` between two velocity maxima of the
 slider on the section ``xi'' = 0``, ``xi''' < 0``
 (:class:`~stickslip.analysis._periodic_sections.SlipSection`:
 unknowns the peak velocity ``xi'`` and the other DOFs' coordinates, the map evaluated by the
@@ -132,7 +132,7 @@ class _Parts:
 
 
 def may_oscillate(slider: Slider) -> bool:
-    """Whether the law can have isolated slip oscillations (not Coulomb, not the linear law).
+    """Whether the law can have isolated slip oscillations.
 
     Parameters
     ----------
@@ -142,10 +142,17 @@ def may_oscillate(slider: Slider) -> bool:
     Returns
     -------
     bool
-        False for Coulomb's and the linear law (their slip motions are linear, no isolated
-        oscillation), True otherwise.
+        False for Coulomb's law and a linear law that stays linear (one band: its slip
+        motions are linear, no isolated oscillation); True otherwise, a weakening linear law
+        included, whose floor at zero friction (a second band) bounds a growing oscillation
+        (the fitted foundation at ``lambda = 0.5``, ``delta = 0.4``: period 6.72177).
     """
-    return not isinstance(slider.friction, (CoulombFriction, LinearFriction))
+    if isinstance(slider.friction, CoulombFriction):
+        return False
+    if isinstance(slider.friction, LinearFriction):
+        edges = slider.friction.bands(float(slider.lam), float(slider.gamma))[0]
+        return bool(edges.size > 2)
+    return True
 
 
 def slip_section(structure: Structure, slider: Slider, options: EngineOptions | None = None
@@ -332,8 +339,8 @@ def find_slip_oscillations(
     Parameters
     ----------
     structure, slider : Structure, Slider
-        The system (dimensionless); a law without isolated slip oscillations (Coulomb, linear)
-        returns none without a search.
+        The system (dimensionless); a law without isolated slip oscillations (Coulomb, a
+        linear law without its floor, :func:`may_oscillate`) returns none without a search.
     seeds : int
         Random forward runs, and modal starts of Newton's method.
     seed : int
