@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from stickslip.io.machine_file import read_machine_file
-from tests.cli_helpers import run_cli
+from tests.cli_helpers import STRIBECK_SLIDER, run_cli, stribeck_slider_file
 
 ROOT = Path(__file__).resolve().parents[1]
 BRAKE_PAD = ROOT / "examples" / "brake_pad"
@@ -177,12 +177,8 @@ def test_the_unstable_ranges_end_at_the_closed_form_boundaries(
     # 0.1498 m/s, 37.6 for 36.9 N; an independent audit found a 2-DOF pad 10 % off in load).
     import math
 
-    mu_s, mu_k, v_s, c, w, v = 0.5, 0.3, 0.05, 20.0, 100.0, 0.1
-    config = tmp_path / "slider.toml"
-    config.write_text(f'mu_s = {mu_s}\nmu_k = {mu_k}\nload = "{w} N"\nspeed = "{v} m/s"\n'
-                      f"[structure]\nmass = [[1.0]]\nstiffness = [[1e4]]\ndamping = [[{c}]]\n"
-                      f'contact_dof = 0\n[friction]\nlaw = "stribeck"\n'
-                      f'stribeck_velocity = "{v_s} m/s"\nexponent = 1\n')
+    mu_s, mu_k, v_s, c, w, v = (STRIBECK_SLIDER[k] for k in ("mu_s", "mu_k", "v_s", "c", "w", "v"))
+    config = stribeck_slider_file(tmp_path / "slider.toml")
     code, out, err = run_cli(["stability", "--config", str(config), "--json"], capsys)
     assert code == 0, err
     ranges = json.loads(out)["operating_ranges"]
@@ -200,11 +196,7 @@ def test_a_law_unstable_by_its_slope_alone_has_no_critical_mu(
     # structure alone is stable; the slope mu'(V) N is negative damping at the contact, which
     # no friction coefficient of mode coupling describes. Reference: one DOF, net damping
     # c + W mu'(V) = 20 - 100 * 4 exp(-2) < 0 (the closed form of the test above)
-    config = tmp_path / "slider.toml"
-    config.write_text('mu_s = 0.5\nmu_k = 0.3\nload = "100 N"\nspeed = "0.1 m/s"\n'
-                      "[structure]\nmass = [[1.0]]\nstiffness = [[1e4]]\ndamping = [[20.0]]\n"
-                      'contact_dof = 0\n[friction]\nlaw = "stribeck"\n'
-                      'stribeck_velocity = "0.05 m/s"\nexponent = 1\n')
+    config = stribeck_slider_file(tmp_path / "slider.toml")
     code, out, err = run_cli(["stability", "--config", str(config)], capsys)
     assert code == 0, err
     line = next(x for x in out.splitlines() if x.startswith("critical mu"))

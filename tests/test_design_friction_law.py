@@ -25,7 +25,7 @@ from stickslip.analysis.verdict import Verdict
 from stickslip.cli.design_command import format_report
 from stickslip.model.physical import PhysicalFriction
 from stickslip.model.structure import elastic_foundation, rigid_base
-from tests.cli_helpers import run_cli
+from tests.cli_helpers import STRIBECK_SLIDER, run_cli, stribeck_slider_file
 
 # issue 32 item 1: the Stribeck machine whose design printed V_c = 0.0747 m/s (the Coulomb
 # value) on every rigid-base row; the issue gives its true limit as 0.2718 m/s
@@ -192,12 +192,8 @@ def test_design_of_a_structure_with_a_stribeck_law_gives_its_stability_and_bound
     # s + k, mu'(V) = -(mu_s - mu_k) / v_s exp(-V / v_s), so the growth rate is
     # -(c + W mu'(V)) / (2 m) (underdamped), stable down to mu' = -c / W, and the Hopf
     # boundaries are V_H = v_s ln(W (mu_s - mu_k) / (v_s c)) and W_H = -c / mu'(V)
-    mu_s, mu_k, v_s, c, w, v = 0.5, 0.3, 0.05, 20.0, 100.0, 0.1
-    config = tmp_path / "slider.toml"
-    config.write_text(f'mu_s = {mu_s}\nmu_k = {mu_k}\nload = "{w} N"\nspeed = "{v} m/s"\n'
-                      f"[structure]\nmass = [[1.0]]\nstiffness = [[1e4]]\ndamping = [[{c}]]\n"
-                      f'contact_dof = 0\n[friction]\nlaw = "stribeck"\n'
-                      f'stribeck_velocity = "{v_s} m/s"\nexponent = 1\n')
+    mu_s, mu_k, v_s, c, w, v = (STRIBECK_SLIDER[k] for k in ("mu_s", "mu_k", "v_s", "c", "w", "v"))
+    config = stribeck_slider_file(tmp_path / "slider.toml")
     code, out, err = run_cli(["design", "--config", str(config), "--json", "--no-stick-slip-optimum"],
                              capsys)
     assert code == 0, err
