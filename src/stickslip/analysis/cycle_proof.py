@@ -278,7 +278,7 @@ def _contraction_ball(pmap: ReturnMap, cand: _Candidate) -> tuple[float, float, 
     if found is None:
         if not thetas:
             return ("the deviation bound of its phases (the tube) fails at every radius tried, "
-                    f"down to {min_radius(pmap, cand):.2g}: nearby motions are not shown to "
+                    f"down to {_min_radius(pmap, cand):.2g}: nearby motions are not shown to "
                     "follow it")
         best = min(thetas.values())
         return (f"the contraction bound stays at {best:.3g} or above (it must be below 1) at "
@@ -288,7 +288,7 @@ def _contraction_ball(pmap: ReturnMap, cand: _Candidate) -> tuple[float, float, 
     return radius / c_inv_norm, thetas[radius], chol
 
 
-def min_radius(pmap: ReturnMap, cand: _Candidate) -> float:
+def _min_radius(pmap: ReturnMap, cand: _Candidate) -> float:
     """The smallest radius of the proof's ladder for ``cand`` (the foundation coordinates)."""
     scale = max(1.0, float(np.max(np.abs(pmap.state(cand.b_hat)))))
     return scale * RADIUS_START * RADIUS_FACTOR ** (-(RADIUS_TRIES - 1))
