@@ -224,12 +224,14 @@ def test_end_drift_bounds_the_nominal_continuation() -> None:
             assert bound < 0.6 * old
 
 
-@pytest.mark.parametrize("streamed", [False, True])
-def test_sampled_flow_is_the_exact_affine_flow(streamed: bool, monkeypatch: pytest.MonkeyPatch
+@pytest.mark.parametrize("factored", [False, True])
+def test_sampled_flow_is_the_exact_affine_flow(factored: bool, monkeypatch: pytest.MonkeyPatch
                                                ) -> None:
-    # _cycle_tube.sampled_flow: states z(s) and ||expm(A s)||_F at the sample times, by
-    # doubling or (beyond MAX_PHASE_BYTES, as a 301-DOF frame needs) in bounded blocks;
-    # reference: scipy's expm of the augmented matrix at each time, independently
+    # _cycle_tube.sampled_flow: states z(s) at the sample times, and M(s) >= ||expm(A s)||_2:
+    # the Frobenius norm of the formed propagators, or (beyond DENSE_WORK, as structures of
+    # 20 DOF and more take) the product of the 2-norm bounds of the factors E(K h)^k E(h)^j,
+    # the refined times by Taylor series from the nearer end; reference: scipy's expm of the
+    # augmented matrix at each time, independently
     import scipy.linalg
 
     from stickslip.analysis import _cycle_tube
@@ -237,16 +239,41 @@ def test_sampled_flow_is_the_exact_affine_flow(streamed: bool, monkeypatch: pyte
     rng = np.random.default_rng(11)
     a = rng.normal(size=(6, 6)) * 0.4
     c, z0 = rng.normal(size=6), rng.normal(size=6)
-    if streamed:  # blocks of 5 powers of the step: many blocks, and a last one partly used
-        monkeypatch.setattr(_cycle_tube, "MAX_PHASE_BYTES", 3 * 8 * 7**2 * 5)
+    if factored:
+        monkeypatch.setattr(_cycle_tube, "DENSE_WORK", 0.0)
     times, zs, m_norm = _cycle_tube.sampled_flow(a, c, z0, 12.0, float(np.linalg.norm(a)))
     assert times.size > 100
     aug = np.zeros((7, 7))
     aug[:6, :6], aug[:6, 6] = a, c
-    for j in range(0, times.size, 7):
+    rows = list(range(0, times.size, 7))
+    if factored:  # and every refined time next to the end (from the last grid state)
+        rows += list(range(times.size - 45, times.size))
+    ratios = []
+    for j in rows:
         exact = scipy.linalg.expm(aug * times[j])
         assert zs[j] == pytest.approx(exact[:6, :6] @ z0 + exact[:6, 6], rel=1e-11, abs=1e-11)
-        assert m_norm[j] == pytest.approx(np.linalg.norm(exact[:6, :6]), rel=1e-11)
+        two_norm = np.linalg.norm(exact[:6, :6], 2)
+        assert m_norm[j] >= two_norm * (1.0 - 1e-12)
+        if not factored:
+            assert m_norm[j] == pytest.approx(np.linalg.norm(exact[:6, :6]), rel=1e-11)
+        ratios.append(m_norm[j] / two_norm)
+    if factored:  # an upper bound, not a wild one: within the factors' non-normality
+        assert max(ratios) < 3.0 and min(ratios) < 1.01
+
+
+def test_two_norm_bounds_bound_the_singular_values() -> None:
+    # _cycle_tube.two_norm_bounds: the largest singular value (numpy's SVD) from above, within
+    # its rounding allowance (4 m eps ||X||_F^2 under the square root)
+    from stickslip.analysis import _cycle_tube
+
+    rng = np.random.default_rng(5)
+    x = rng.normal(size=(30, 40, 40)) * np.logspace(-3, 3, 30)[:, None, None]
+    x[3] = np.diag(np.arange(1.0, 41.0))  # exactly 40
+    bounds = _cycle_tube.two_norm_bounds(x)
+    exact = np.linalg.norm(x, 2, axis=(1, 2))
+    assert np.all(bounds >= exact)
+    assert np.all(bounds <= exact * (1.0 + 1e-10))
+    assert bounds[3] == pytest.approx(40.0, rel=1e-12)
 
 
 def test_profile_cycle_ball_prints_the_ladder() -> None:
