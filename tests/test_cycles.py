@@ -251,3 +251,53 @@ def test_stribeck_cycle_at_the_default_tolerance() -> None:
     startup = simulate(structure, slider, record=False)
     assert startup.verdict is Verdict.STICK_SLIP
     assert search.cycles[0].period == pytest.approx(startup.period, rel=1e-8)
+
+
+def test_an_unproven_fixed_point_is_a_candidate_not_a_cycle_nor_nothing(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    # the soft foundation of tests/test_cycle_proof.py (M = 1.17013, K = 0.109102, zeta_a =
+    # 0.69939, linear law delta = 0.8, lambda = 3, zeta = 0.1): a stick-slip cycle of period
+    # 427.8636273 (an independent Newton shooting on solve_ivp, an audit) that no proof closes
+    # (its slip phase grows deviations by about e^57). The search used to say "none found";
+    # it lists it as a candidate, not proven, and says why; an existence boundary is then
+    # undetermined there, not steady sliding
+    structure = elastic_foundation(0.1, Foundation(1.17013, 0.109102, 0.69939))
+    slider = Slider(3.0, friction=LinearFriction(0.8))
+    search = find_cycles(structure, slider, seeds=4)
+    assert search.cycles == ()
+    [candidate] = search.candidates
+    assert candidate.stick_phases == 1
+    assert candidate.period == pytest.approx(427.8636273, rel=1e-9)
+    assert "Newton-Kantorovich bound" in candidate.not_proven
+    payload = search.to_dict()
+    assert payload["n_cycles"] == 0 and payload["candidates"][0]["proof_radius"] is None
+    code, out, err = run_cli(["cycles", "--lam", "3", "--zeta", "0.1", "--dva",
+                              "1.17013,0.109102,0.69939", "--friction", "linear:0.8", "--seeds", "4"],
+                             capsys)
+    assert code == 0, err
+    assert "none proven" in out and "candidate 1 period 427.864" in out and "NOT PROVEN" in out
+
+
+def test_existence_boundary_is_undetermined_where_only_candidates_are_found(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    # sweep.boundary's existence criterion: a proven cycle is stick-slip, no fixed point at
+    # all is steady sliding, and a candidate alone (no proof either way) is undetermined
+    from stickslip.analysis import cycles as cycles_module
+    from stickslip.model.dva import DvaSpec
+    from stickslip.model.friction import CoulombFriction
+    from stickslip.sweep import boundary
+    from stickslip.sweep.executors import StructureSet
+
+    structures = StructureSet.resolve(DvaSpec.parse("none"), np.array([0.1]))
+    one = Cycle(np.zeros(2), 1, 5.0, 1.0, 0.5, np.zeros(0, dtype=np.complex128), True)
+    answers = {1.0: ((one,), ()), 2.0: ((), ()), 3.0: ((), (one,))}
+
+    def fake(structure, slider, **_):  # type: ignore[no-untyped-def]
+        found, candidates = answers[slider.lam]
+        return cycles_module.CycleSearch(structure, slider, found, 1, 1, candidates=candidates)
+
+    monkeypatch.setattr(cycles_module, "find_cycles", fake)
+    codes = boundary._cycle_codes(structures, np.zeros(3, dtype=np.int64), np.array([1.0, 2.0, 3.0]),
+                                  2.0, CoulombFriction(), EngineOptions(), 1)
+    assert codes.tolist() == [Verdict.STICK_SLIP.code, Verdict.STEADY_SLIDING.code,
+                              Verdict.UNDETERMINED.code]

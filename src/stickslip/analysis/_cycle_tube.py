@@ -237,8 +237,8 @@ def sampled_flow(a: FloatArray, c: FloatArray, z0: FloatArray, duration: float, 
         k_fine = math.ceil(math.sqrt(count))
         fine = np.empty((k_fine, n2 + 1, n2 + 1))  # E(j h), j < K
         fine[0] = np.eye(n2 + 1)
-        for j in range(1, k_fine):
-            fine[j] = step @ fine[j - 1]
+        for i in range(1, k_fine):
+            fine[i] = step @ fine[i - 1]
         fine_norm = two_norm_bounds(fine[:, :n2, :n2])
         leap = step @ fine[-1]  # E(K h)
         lead = np.eye(n2 + 1)  # E(k K h)

@@ -363,7 +363,8 @@ def prove_cycle(structure: Structure, slider: Slider, breakaway_state: FloatArra
 
 
 def prove_existence(structure: Structure, slider: Slider, b_hat: FloatArray, q: int,
-                    options: EngineOptions, direction: int = SLIP_I) -> float | None:
+                    options: EngineOptions, direction: int = SLIP_I, *,
+                    why: list[str] | None = None) -> float | None:
     """Radius of a ball about ``b_hat`` holding exactly one fixed point of ``P^q`` (stable or not).
 
     The Newton-Kantorovich form of the module notes; also checks that no proper divisor of
@@ -382,6 +383,8 @@ def prove_existence(structure: Structure, slider: Slider, b_hat: FloatArray, q: 
         Horizon of the map's runs.
     direction : int
         The section piece: ``SLIP_I`` or ``SLIP_II`` breakaways.
+    why : list of str, optional
+        When given and no radius passes, gets one phrase saying why.
 
     Returns
     -------
@@ -389,22 +392,34 @@ def prove_existence(structure: Structure, slider: Slider, b_hat: FloatArray, q: 
         The Euclidean radius in the foundation coordinates (0 for 1 DOF, where the breakaway
         state is unique); None when no radius of the ladder passes.
     """
+    reasons = [] if why is None else why
     pmap = ReturnMap(structure, slider, options, direction)
     cand = _candidate(pmap, np.asarray(b_hat, dtype=np.float64), int(q))
     if isinstance(cand, str):
+        reasons.append(cand)
         return None
     if cand.jac.size == 0:
         return 0.0
     try:
         a_inv = np.linalg.inv(cand.jac - np.eye(cand.jac.shape[0]))
     except np.linalg.LinAlgError:
+        reasons.append("1 is a multiplier of its return map (J - I is singular)")
         return None
     a_norm = float(np.linalg.norm(a_inv, 2))
+    bounds: list[float] = []
 
     def accept(radius: float, tube: Tube) -> bool:
         contraction = a_norm * tube.jacobian_bound
+        bounds.append(contraction)
         return (contraction < 1.0 and a_norm * cand.residual + contraction * radius <= radius
                 and _shorter_period_excluded(pmap, cand, radius, tube))
 
     found = _ball(pmap, cand, accept)
-    return None if found is None else found[0]
+    if found is None:
+        reasons.append(
+            f"the tube fails at every radius tried, down to {_min_radius(pmap, cand):.2g}"
+            if not bounds else
+            f"the Newton-Kantorovich bound ||(J - I)^-1|| E(r) stays at {min(bounds):.3g} or "
+            "above (it must be below 1) at every radius whose tube holds")
+        return None
+    return found[0]

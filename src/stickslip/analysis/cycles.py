@@ -81,9 +81,17 @@ class Cycle:
     fixed point of ``P^k`` and no shorter period (:func:`stickslip.analysis.cycle_proof.prove_existence`);
     every listed cycle has one."""
     orbit: tuple[FloatArray, ...] = field(default=(), repr=False)
+    not_proven: str = ""
+    """Empty for a cycle; for a candidate (:attr:`CycleSearch.candidates`), why no proof makes
+    it one."""
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready, with the keys of ``stickslip cycles --json``."""
+        if self.not_proven:
+            return {**self._fields(), "proof_radius": None, "not_proven": self.not_proven}
+        return {**self._fields(), "proof_radius": float(self.proof_radius)}
+
+    def _fields(self) -> dict[str, Any]:
         return {
             "breakaway_onto": self.breakaway_onto,
             "period": self.period,
@@ -94,7 +102,6 @@ class Cycle:
             "multipliers": [{"re": float(m.real), "im": float(m.imag), "abs": float(abs(m))}
                             for m in self.multipliers],
             "breakaway_state": [float(x) for x in self.breakaway_state],
-            "proof_radius": float(self.proof_radius),
         }
 
 
@@ -113,12 +120,19 @@ class CycleSearch:
     #: breakaways: a cycle slower than the horizon is not searched
     n_cut_short: int = 0
     t_max: float = math.nan
+    #: fixed points of ``P^k`` that Newton's method found (residual below its tolerance) and a
+    #: run from them repeats, but that no existence proof makes cycles. A strongly
+    #: stable cycle whose slip phase amplifies deviations enormously before its stick phase
+    #: removes them is one (its proof's bound on the Jacobian's variation does not close)
+    candidates: tuple[Cycle, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready: ``cycles`` and ``slip_oscillations`` (lists) and the search's size."""
+        """JSON-ready: ``cycles``, ``candidates`` and ``slip_oscillations`` (lists) and the
+        search's size."""
         return {
             "cycles": [c.to_dict() for c in self.cycles],
             "n_cycles": len(self.cycles),
+            "candidates": [c.to_dict() for c in self.candidates],
             "slip_oscillations": [c.to_dict() for c in self.slip_oscillations],
             "lambda": self.slider.lam,
             "zeta": self.structure.zeta,
@@ -210,6 +224,7 @@ def find_cycles(
         late += found[early:][-int(max_period):]
     breakaways += late
     cycles: list[Cycle] = []
+    candidates: list[Cycle] = []
     # the section's two pieces: breakaways onto slip-I first (the paper's), then onto slip-II
     for direction, name in ((SLIP_I, "slip-I"), (SLIP_II, "slip-II")):
         pm = pmaps[direction]
@@ -230,13 +245,19 @@ def find_cycles(
                 full = pm.state(b)
                 scale = max(1.0, float(np.max(np.abs(full))))
                 if any(np.max(np.abs(full - z)) <= 1e-7 * scale
-                       for c in cycles for z in (c.breakaway_state, *c.orbit)):
+                       for c in (*cycles, *candidates) for z in (c.breakaway_state, *c.orbit)):
                     continue  # a cycle found before, from this or another of its breakaways
-                radius = 0.0 if n == 1 else prove_existence(structure, slider, b, k, opts, direction)
-                if radius is None:
-                    continue  # no proof that a cycle of exactly k stick phases is there
+                why: list[str] = []
+                radius = (0.0 if n == 1 else
+                          prove_existence(structure, slider, b, k, opts, direction, why=why))
                 certified = run_engine(structure, slider, InitialState(full[:n], full[n:]), opts,
                                        False, False)
+                if radius is None:  # Newton's fixed point, not proven a cycle
+                    if certified.cycle_length == k and certified.verdict in (
+                            Verdict.STICK_SLIP, Verdict.UNDETERMINED):  # the run repeats it
+                        candidates.append(_candidate_cycle(pm, full, k, jac, certified, name,
+                                                           "; ".join(why)))
+                    continue
                 if certified.verdict is not Verdict.STICK_SLIP or certified.cycle_length != k:
                     continue
                 if any(c.stick_phases == k and c.breakaway_onto != name
@@ -253,9 +274,22 @@ def find_cycles(
             if n == 1:
                 break
     cycles.sort(key=lambda c: (c.stick_phases, c.amplitude))
+    candidates.sort(key=lambda c: (c.stick_phases, c.period))
     return CycleSearch(structure, slider, tuple(cycles), len(starts),
                        sum(m.evaluations for m in pmaps.values()),
-                       n_cut_short=sum(m.cut_short for m in pmaps.values()), t_max=opts.t_max)
+                       n_cut_short=sum(m.cut_short for m in pmaps.values()), t_max=opts.t_max,
+                       candidates=tuple(candidates))
+
+
+def _candidate_cycle(pm: ReturnMap, full: FloatArray, k: int, jac: FloatArray, run: Any,
+                     name: str, why: str) -> Cycle:
+    """A fixed point of ``P^k`` no proof makes a cycle, with what the run from it measured
+    (the run repeats it: its period, amplitude and stick ratio) and why it is not proven."""
+    multipliers = np.asarray(np.linalg.eigvals(jac), dtype=np.complex128)
+    return Cycle(full, k, float(run.period), float(run.amplitude), float(run.stick_ratio),
+                 multipliers, bool(np.all(np.abs(multipliers) < 1.0)), name,
+                 orbit=tuple(pm.next_breakaways(full, k)),
+                 not_proven=f"no ball is proven to hold exactly one fixed point: {why}")
 
 
 def cycle_exists(structure: Structure, slider: Slider, **kwargs: Any) -> bool:

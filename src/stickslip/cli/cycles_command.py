@@ -87,7 +87,7 @@ def cycles(
         # seconds and metres: tau = omega_n t (Eq. 17), displacements in V / omega_n (Eqs. 15-16)
         scales = run.scales()
         payload.update({"config": str(config), "scales": scales, "machine": run.machine.to_dict()})
-        for c in payload["cycles"] + payload["slip_oscillations"]:
+        for c in payload["cycles"] + payload["candidates"] + payload["slip_oscillations"]:
             c["period_s"] = None if c["period"] is None else c["period"] * scales["time_scale_s"]
             c["amplitude_m"] = (None if c["amplitude"] is None
                                 else c["amplitude"] * scales["length_scale_m"])
@@ -128,9 +128,12 @@ def _memory_cycles(machine_file: Any, config: Path, json: bool) -> None:
 def _print(p: dict[str, Any]) -> None:
     lines = [f"cycles      {p['structure']} (lambda={p['lambda']:.6g}, zeta={p['zeta']:.6g}, "
              f"gamma={p['gamma']:.6g}), friction {p['friction']}"]
-    if not p["cycles"]:
+    if not p["cycles"] and not p["candidates"]:
         lines.append(f"none found  from {p['n_seeds']} starts: no stick-slip cycle of the periods searched"
                      + (" within the horizon" if p["n_runs_cut_short"] else ""))
+    elif not p["cycles"]:
+        lines.append(f"none proven from {p['n_seeds']} starts: only the candidates below, which "
+                     "no proof makes cycles (undetermined)")
     for i, c in enumerate(p["cycles"], start=1):
         mults = ", ".join(f"{m['abs']:.4g}" for m in c["multipliers"])
         why = (f"|Floquet multipliers| {mults}" if mults else
@@ -139,6 +142,12 @@ def _print(p: dict[str, Any]) -> None:
         lines.append(f"cycle {i}     period {c['period']:.6g}  amplitude {c['amplitude']:.6g}{si}  "
                      f"stick ratio {c['stick_ratio']:.4g}  {c['stick_phases']} stick phase(s)  "
                      f"{'stable' if c['stable'] else 'UNSTABLE'} ({why})")
+    for i, c in enumerate(p["candidates"], start=1):
+        mults = ", ".join(f"{m['abs']:.4g}" for m in c["multipliers"])
+        si = (f" ({c['period_s']:.6g} s, {c['amplitude_m']:.6g} m)" if "period_s" in c else "")
+        lines.append(f"candidate {i} period {c['period']:.6g}  amplitude {c['amplitude']:.6g}{si}  "
+                     f"{c['stick_phases']} stick phase(s)  |Floquet multipliers| {mults}  "
+                     f"NOT PROVEN: {c['not_proven']}")
     for i, c in enumerate(p["slip_oscillations"], start=1):
         mults = ", ".join(f"{m['abs']:.4g}" for m in c["multipliers"])
         si = (f" ({c['period_s']:.6g} s, {c['amplitude_m']:.6g} m)" if "period_s" in c else "")

@@ -428,7 +428,11 @@ def stick_slip_boundary(
 
 def _cycle_codes(structures: StructureSet, index: NDArray[np.int64], lams: FloatArray, gamma: float,
                  law: FrictionLaw, options: EngineOptions, seeds: int) -> NDArray[np.int8]:
-    """Stick-slip code where a stick-slip cycle exists (whatever the start), steady code where none."""
+    """Stick-slip code where a stick-slip cycle exists (whatever the start), steady code where none.
+
+    A point where the search finds only candidates (fixed points of the return map no proof
+    makes cycles, :attr:`stickslip.analysis.cycles.CycleSearch.candidates`) is undetermined.
+    """
     from stickslip.analysis.cycles import find_cycles
     from stickslip.model.parameters import Slider
     from stickslip.model.structure import Structure
@@ -438,5 +442,6 @@ def _cycle_codes(structures: StructureSet, index: NDArray[np.int64], lams: Float
         structure = Structure(structures.masses[j], structures.dampings[j], structures.stiffnesses[j])
         found = find_cycles(structure, Slider(float(lam), gamma=gamma, friction=law), seeds=seeds,
                             options=options)
-        codes[c] = Verdict.STICK_SLIP.code if found.cycles else Verdict.STEADY_SLIDING.code
+        codes[c] = (Verdict.STICK_SLIP.code if found.cycles else Verdict.UNDETERMINED.code
+                    if found.candidates else Verdict.STEADY_SLIDING.code)
     return codes
