@@ -2,10 +2,10 @@
 
     .venv/bin/python benchmarks/bench_cycle_proof.py [--dof 60] [--repeats 3]
 
-The machine: a grounded chain of ``--dof - 1`` nodes (5 kg, 2e7 N/m to ground, 1e8 N/m
-between neighbours) with a 1 kg slider on a 1e6 N/m spring to its middle node (40 N s/m
-dashpot), stiffness-proportional damping 2e-5 K, mu_s = 0.5, mu_k = 0.3, 1000 N at 0.2 m/s
-(a stick-slip cycle of period 6.61 ms at 60 DOF). ``simulate`` runs it from the start-up
+The machine (``tests/machines.py``): a grounded chain of ``--dof - 1`` nodes (5 kg, 2e7 N/m
+to ground, 1e8 N/m between neighbours) with a 1 kg slider on a 1e6 N/m spring to its middle
+node (40 N s/m dashpot), stiffness-proportional damping 2e-5 K, mu_s = 0.5, mu_k = 0.3,
+1000 N at 0.2 m/s (a stick-slip cycle of period 6.61 ms at 60 DOF). ``simulate`` runs it from the start-up
 state and proves the cycle (:func:`stickslip.analysis.cycle_proof.prove_cycle`); most of the
 proof's time is sampling each phase's propagators (:func:`stickslip.analysis._cycle_tube.sampled_flow`).
 Two ways, interleaved in this run, best of ``--repeats``: every propagator formed by doubling
@@ -19,30 +19,16 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 import time
+from pathlib import Path
 
-import numpy as np
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the machine lives in tests/
+
+from tests.machines import grounded_chain_machine
 
 from stickslip.analysis import _cycle_tube
 from stickslip.analysis.simulation import simulate
-from stickslip.model.machine import Machine
-
-
-def chain_machine(n_dof: int) -> Machine:
-    """The benchmark's grounded chain with its slider (SI), at its operating point."""
-    nodes = n_dof - 1
-    mass = np.diag(np.append(np.full(nodes, 5.0), 1.0))
-    stiffness = np.zeros((n_dof, n_dof))
-    for i in range(nodes):
-        stiffness[i, i] += 2e7
-    for i in range(nodes - 1):
-        stiffness[i:i + 2, i:i + 2] += 1e8 * np.array([[1.0, -1.0], [-1.0, 1.0]])
-    slider, node = nodes, nodes // 2
-    pair = np.ix_([slider, node], [slider, node])
-    stiffness[pair] += 1e6 * np.array([[1.0, -1.0], [-1.0, 1.0]])
-    damping = 2e-5 * stiffness
-    damping[pair] += 40.0 * np.array([[1.0, -1.0], [-1.0, 1.0]])
-    return Machine(mass, damping, stiffness, slider, 0.5, 0.3, 1000.0, 0.2)
 
 
 def main() -> None:
@@ -54,7 +40,7 @@ def main() -> None:
         parser.error(f"--dof {args.dof} must be 2 to 60 (larger structures are reduced first)")
     if args.repeats < 1:
         parser.error(f"--repeats {args.repeats} must be at least 1")
-    machine = chain_machine(args.dof)
+    machine = grounded_chain_machine(args.dof)
     structure, slider = machine.structure(), machine.slider()
     default_dense = _cycle_tube.DENSE_WORK
     ways = {"formed": math.inf, "factored": default_dense}

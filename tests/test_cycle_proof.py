@@ -299,3 +299,26 @@ def test_profile_cycle_ball_prints_the_ladder() -> None:
              if line.startswith("ball radius")]
     assert len(stops) == 6 and stops[-1] >= 1.0
     assert all(a >= b for a, b in itertools.pairwise(stops))
+
+
+def test_a_sixty_dof_cycle_is_proven_with_factored_propagators(monkeypatch: pytest.MonkeyPatch
+                                                               ) -> None:
+    # tests/machines.grounded_chain_machine(60): its phases are beyond _cycle_tube.DENSE_WORK,
+    # so the proof bounds ||expm(A s)|| by products of factored 2-norms. The proof must hold
+    # (a contraction ball holding the run's state) and the ball must be what it claims: direct
+    # runs from its boundary contract by theta (_check_ball)
+    from stickslip.analysis import _cycle_tube
+
+    from .machines import grounded_chain_machine
+
+    machine = grounded_chain_machine(60)
+    structure, slider = machine.structure(), machine.slider()
+    factored = []
+    bounds = _cycle_tube.two_norm_bounds
+    monkeypatch.setattr(_cycle_tube, "two_norm_bounds", lambda x: factored.append(x.shape) or bounds(x))
+    run = simulate(structure, slider)
+    assert factored and all(shape[1:] == (120, 120) for shape in factored)  # the factored path
+    assert run.verdict is Verdict.STICK_SLIP and run.cycle_length == 1
+    proof = run.cycle_proof
+    assert proof is not None and proof.contraction < 1.0 and proof.distance <= proof.radius
+    _check_ball(structure, slider, run, np.random.default_rng(3))
