@@ -643,3 +643,28 @@ def test_folds_of_the_interpolant_near_the_hopf_point_are_said(tolerance: float,
         first = min((p for b in slip for p in b.points), key=lambda p: p.param)
         assert first.param == pytest.approx(0.66, abs=1e-9)
         assert first.amplitude == pytest.approx(0.11374, abs=1e-5)
+
+
+def test_a_branch_seeded_from_an_unproven_candidate_is_traced_and_said() -> None:
+    # the soft foundation (M = 1.17013, K = 0.109102, zeta_a = 0.69939, lambda = 3, zeta =
+    # 0.1) under the linear law: its stick-slip cycle at delta = 0.8 (period 427.8636273, an
+    # independent Newton shooting on solve_ivp, an audit) has no existence proof, so
+    # find_cycles lists it as a candidate; the diagram used to show nothing. Its branch is
+    # traced from the candidate, marked, and the warnings say so
+    from stickslip.model.friction import LinearFriction
+    from stickslip.model.parameters import Foundation
+
+    system = ContinuationSystem(3.0, 0.1, foundation=Foundation(1.17013, 0.109102, 0.69939),
+                                friction=LinearFriction(0.8))
+    result = continue_cycles(system, "delta", (0.75, 0.85), seeds=4)
+    [branch] = [b for b in result.branches if b.kind == "stick-slip"]
+    assert branch.from_candidate and len(branch.points) > 5
+    params = np.array([p.param for p in branch.points])
+    assert params.min() == pytest.approx(0.75) and params.max() == pytest.approx(0.85)
+    periods = np.array([p.period for p in branch.points])
+    order = np.argsort(params)
+    at_08 = float(np.interp(0.8, params[order], periods[order]))  # linear between points 0.005 apart
+    assert at_08 == pytest.approx(427.8636273, rel=1e-4)
+    assert any("no existence proof holds" in w for w in result.warnings())
+    assert result.to_dict()["branches"][0]["from_candidate"] is True
+    assert result.to_xarray().attrs["branches_from_candidates"] == "0"

@@ -8,7 +8,8 @@ joins them into a :class:`ContinuationResult` and adds steady sliding along the 
 
 * stick-slip branches start from the cycles :func:`stickslip.analysis.cycles.find_cycles`
   finds at :data:`SEARCH_POINTS` points of the range (its ends included), each continued
-  both ways;
+  both ways, and from its candidates (fixed points no existence proof holds for; such a
+  branch is marked and :meth:`ContinuationResult.warnings` says so);
 * slip oscillations (velocity-dependent laws other than the linear one, whose Hopf point is
   degenerate) start next to every Hopf point of steady sliding in the range, and from the
   ones :func:`stickslip.analysis.slip_oscillations.find_slip_oscillations` finds at the same
@@ -356,8 +357,8 @@ def _foundation_branches(system: AnySystem, name: str, lo: float, hi: float, max
     h_max = 0.05 * (hi - lo)
     for p0 in (float(p) for p in np.linspace(lo, hi, SEARCH_POINTS)):
         structure, slider = system.with_value(name, p0).build()
-        for cycle in find_cycles(structure, slider, seeds=seeds, max_period=max_period,
-                                 options=opts).cycles:
+        search = find_cycles(structure, slider, seeds=seeds, max_period=max_period, options=opts)
+        for cycle in (*search.cycles, *search.candidates):
             if _on_branch(branches, p0, cycle.amplitude, "stick-slip"):
                 continue
             k = cycle.stick_phases
@@ -379,6 +380,7 @@ def _foundation_branches(system: AnySystem, name: str, lo: float, hi: float, max
             runs = [trace_branch(tracer, back_start, lo, hi, 0.2 * h_max, h_max, max_steps),
                     trace_branch(tracer, start, lo, hi, 0.2 * h_max, h_max, max_steps)]
             branch, evs = _to_branch(tracer, runs, "stick-slip", k)
+            branch = replace(branch, from_candidate=bool(cycle.not_proven))
             if branch.points and not _duplicate(branches, branch):
                 index = len(branches)
                 branches.append(branch)

@@ -49,10 +49,13 @@ class Branch:
     stick_phases: int
     points: tuple[BranchPoint, ...]
     stop_reason: str
+    #: seeded from a cycle candidate (:attr:`stickslip.analysis.cycles.CycleSearch.candidates`:
+    #: a fixed point no existence proof holds for), not from a proven cycle
+    from_candidate: bool = False
 
     def to_dict(self, name: str) -> dict[str, Any]:
         return {"kind": self.kind, "stick_phases": self.stick_phases, "stop_reason": self.stop_reason,
-                "points": [p.to_dict(name) for p in self.points]}
+                "from_candidate": self.from_candidate, "points": [p.to_dict(name) for p in self.points]}
 
 
 @dataclass(frozen=True)
@@ -96,17 +99,25 @@ class ContinuationResult:
         and eight "stable" points; at 1e-6 the branch has no fold and every point is unstable,
         as an independent smooth-law integration gives. Said whenever a slip-oscillation
         branch of an interpolated law has a fold or a stable point.
+
+        A stick-slip branch seeded from a cycle candidate (a fixed point of the return map
+        that no existence proof holds for, :attr:`Branch.from_candidate`) is said too.
         """
+        seeded = [i for i, b in enumerate(self.branches) if b.from_candidate]
+        said = ([f"stick-slip branch(es) {', '.join(str(i) for i in seeded)} start from a fixed "
+                 "point of the return map that no existence proof holds for (a `stickslip "
+                 "cycles` candidate): their points are Newton's fixed points, as every "
+                 "branch's, but the cycle they start from is not proven"] if seeded else [])
         friction = getattr(self.system, "friction", None)
         if friction is None or getattr(friction, "exact", True):
-            return []
+            return said
         slip = [i for i, b in enumerate(self.branches) if b.kind == "slip-oscillation"]
         folds = [e for e in self.events if e.type == "fold" and e.branch in slip]
         stable = sum(p.stable for i in slip for p in self.branches[i].points)
         if not folds and not stable:
-            return []
+            return said
         tol = getattr(friction, "tolerance", None)
-        return [f"the slip oscillations show {len(folds)} fold(s) and {stable} stable point(s) "
+        return [*said, f"the slip oscillations show {len(folds)} fold(s) and {stable} stable point(s) "
                 f"with the law's piecewise-linear interpolant (tolerance {tol:g}); small "
                 "oscillations cross only a few of its bands, whose kinks can fold a branch and "
                 "turn its stability: check them with a finer tolerance (e.g. tol=1e-6 in "
@@ -179,6 +190,9 @@ class ContinuationResult:
             },
             attrs={"branch_kinds": " ".join(b.kind for b in self.branches),
                    "branch_stop_reasons": "; ".join(b.stop_reason for b in self.branches),
+                   "branches_from_candidates": " ".join(
+                       str(i) for i, b in enumerate(self.branches) if b.from_candidate),
+                   "warnings": " | ".join(self.warnings()),
                    "parameter": self.param},
         )
         if isinstance(self.system, MachineSystem):  # a machine: SI beside the dimensionless
