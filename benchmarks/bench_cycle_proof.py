@@ -7,12 +7,12 @@ to ground, 1e8 N/m between neighbours) with a 1 kg slider on a 1e6 N/m spring to
 node (40 N s/m dashpot), stiffness-proportional damping 2e-5 K, mu_s = 0.5, mu_k = 0.3,
 1000 N at 0.2 m/s (a stick-slip cycle of period 6.61 ms at 60 DOF). ``simulate`` runs it from the start-up
 state and proves the cycle (:func:`stickslip.analysis.cycle_proof.prove_cycle`); most of the
-proof's time is sampling each phase's propagators (:func:`stickslip.analysis._cycle_tube.sampled_flow`).
+proof's time is sampling each phase's propagators (:func:`stickslip.analysis._phase_flow.sampled_flow`).
 Three ways, interleaved in this run, best of ``--repeats``: every propagator formed by
 doubling with its Frobenius norm (``DENSE_WORK`` infinite: the path of every structure below
 about 20 DOF), factored (the default beyond ``DENSE_WORK``: ``2 sqrt(samples)`` products and
 2-norm bounds), and factored with every engine run preparing the structure afresh (no
-``stickslip.kernel.engine`` structure cache: the code before it). All must prove the same
+``stickslip.kernel.prepared`` structure cache: the code before it). All must prove the same
 period; the ratios of the times and the certificates are printed.
 """
 
@@ -28,9 +28,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the machine live
 
 from tests.machines import grounded_chain_machine
 
-from stickslip.analysis import _cycle_tube
+from stickslip.analysis import _phase_flow
 from stickslip.analysis.simulation import simulate
-from stickslip.kernel import engine
+from stickslip.kernel import prepared
 
 
 def main() -> None:
@@ -44,7 +44,7 @@ def main() -> None:
         parser.error(f"--repeats {args.repeats} must be at least 1")
     machine = grounded_chain_machine(args.dof)
     structure, slider = machine.structure(), machine.slider()
-    default_dense, cache = _cycle_tube.DENSE_WORK, engine._structure_cache
+    default_dense, cache = _phase_flow.DENSE_WORK, prepared._structure_cache
     ways = {"formed": (math.inf, cache), "factored": (default_dense, cache),
             "no cache": (default_dense, _NoStore())}
     best = dict.fromkeys(ways, math.inf)
@@ -52,11 +52,11 @@ def main() -> None:
     simulate(structure, slider)  # compile / load the cache
     for _ in range(args.repeats):
         for name, (dense, store) in ways.items():
-            _cycle_tube.DENSE_WORK, engine._structure_cache = dense, store
+            _phase_flow.DENSE_WORK, prepared._structure_cache = dense, store
             start = time.perf_counter()
             runs[name] = simulate(structure, slider)
             best[name] = min(best[name], time.perf_counter() - start)
-    _cycle_tube.DENSE_WORK, engine._structure_cache = default_dense, cache
+    _phase_flow.DENSE_WORK, prepared._structure_cache = default_dense, cache
     print(f"{args.dof}-DOF chain, simulate from start-up with the cycle's proof, best of {args.repeats}:")
     for name, run in runs.items():
         print(f"  {name:9s} {best[name]:7.2f} s  {run.verdict.value}, period {run.period:.10g}: "

@@ -76,15 +76,15 @@ def test_slideway_period_is_the_minimal_cycle() -> None:
 
 def test_a_proof_beyond_its_work_bound_is_declined_not_guessed(monkeypatch: pytest.MonkeyPatch
                                                                   ) -> None:
-    # the slideway's cycle (proven above) with _cycle_tube.MAX_PHASE_WORK below its phases'
-    # work, as a 301-DOF frame's 4.4e12 multiply-adds per slip phase are: the run must not
+    # the slideway's cycle (proven above) with _phase_flow.MAX_PHASE_WORK below its phases'
+    # work, as a 301-DOF frame's 3.8e11 multiply-adds per slip phase are: the run must not
     # claim the cycle, it says undetermined with the candidate it could not prove
-    from stickslip.analysis import _cycle_tube
+    from stickslip.analysis import _phase_flow
 
     machine, _ = machine_from_file(read_machine_file(SLIDEWAY),
                                    {"mu_s": 0.15, "mu_k": 0.10, "load": 2600.0, "speed": 0.5e-3})
     structure, slider = machine.to_dimensionless()
-    monkeypatch.setattr(_cycle_tube, "MAX_PHASE_WORK", 1e3)
+    monkeypatch.setattr(_phase_flow, "MAX_PHASE_WORK", 1e3)
     run = simulate(structure, slider)
     assert run.verdict is Verdict.UNDETERMINED
     assert run.cycle_proof is None and "candidate, not proven" in run.certificate
@@ -227,21 +227,21 @@ def test_end_drift_bounds_the_nominal_continuation() -> None:
 @pytest.mark.parametrize("factored", [False, True])
 def test_sampled_flow_is_the_exact_affine_flow(factored: bool, monkeypatch: pytest.MonkeyPatch
                                                ) -> None:
-    # _cycle_tube.sampled_flow: states z(s) at the sample times, and M(s) >= ||expm(A s)||_2:
+    # _phase_flow.sampled_flow: states z(s) at the sample times, and M(s) >= ||expm(A s)||_2:
     # the Frobenius norm of the formed propagators, or (beyond DENSE_WORK, as structures of
     # 20 DOF and more take) the product of the 2-norm bounds of the factors E(K h)^k E(h)^j,
     # the refined times by Taylor series from the nearer end; reference: scipy's expm of the
     # augmented matrix at each time, independently
     import scipy.linalg
 
-    from stickslip.analysis import _cycle_tube
+    from stickslip.analysis import _phase_flow
 
     rng = np.random.default_rng(11)
     a = rng.normal(size=(6, 6)) * 0.4
     c, z0 = rng.normal(size=6), rng.normal(size=6)
     if factored:
-        monkeypatch.setattr(_cycle_tube, "DENSE_WORK", 0.0)
-    times, zs, m_norm = _cycle_tube.sampled_flow(a, c, z0, 12.0, float(np.linalg.norm(a)))
+        monkeypatch.setattr(_phase_flow, "DENSE_WORK", 0.0)
+    times, zs, m_norm = _phase_flow.sampled_flow(a, c, z0, 12.0, float(np.linalg.norm(a)))
     assert times.size > 100
     aug = np.zeros((7, 7))
     aug[:6, :6], aug[:6, 6] = a, c
@@ -262,14 +262,14 @@ def test_sampled_flow_is_the_exact_affine_flow(factored: bool, monkeypatch: pyte
 
 
 def test_two_norm_bounds_bound_the_singular_values() -> None:
-    # _cycle_tube.two_norm_bounds: the largest singular value (numpy's SVD) from above, within
+    # _phase_flow.two_norm_bounds: the largest singular value (numpy's SVD) from above, within
     # its rounding allowance (4 m eps ||X||_F^2 under the square root)
-    from stickslip.analysis import _cycle_tube
+    from stickslip.analysis import _phase_flow
 
     rng = np.random.default_rng(5)
     x = rng.normal(size=(30, 40, 40)) * np.logspace(-3, 3, 30)[:, None, None]
     x[3] = np.diag(np.arange(1.0, 41.0))  # exactly 40
-    bounds = _cycle_tube.two_norm_bounds(x)
+    bounds = _phase_flow.two_norm_bounds(x)
     exact = np.linalg.norm(x, 2, axis=(1, 2))
     assert np.all(bounds >= exact)
     assert np.all(bounds <= exact * (1.0 + 1e-10))
@@ -303,19 +303,19 @@ def test_profile_cycle_ball_prints_the_ladder() -> None:
 
 def test_a_sixty_dof_cycle_is_proven_with_factored_propagators(monkeypatch: pytest.MonkeyPatch
                                                                ) -> None:
-    # tests/machines.grounded_chain_machine(60): its phases are beyond _cycle_tube.DENSE_WORK,
+    # tests/machines.grounded_chain_machine(60): its phases are beyond _phase_flow.DENSE_WORK,
     # so the proof bounds ||expm(A s)|| by products of factored 2-norms. The proof must hold
     # (a contraction ball holding the run's state) and the ball must be what it claims: direct
     # runs from its boundary contract by theta (_check_ball)
-    from stickslip.analysis import _cycle_tube
+    from stickslip.analysis import _phase_flow
 
     from .machines import grounded_chain_machine
 
     machine = grounded_chain_machine(60)
     structure, slider = machine.structure(), machine.slider()
     factored = []
-    bounds = _cycle_tube.two_norm_bounds
-    monkeypatch.setattr(_cycle_tube, "two_norm_bounds", lambda x: factored.append(x.shape) or bounds(x))
+    bounds = _phase_flow.two_norm_bounds
+    monkeypatch.setattr(_phase_flow, "two_norm_bounds", lambda x: factored.append(x.shape) or bounds(x))
     run = simulate(structure, slider)
     assert factored and all(shape[1:] == (120, 120) for shape in factored)  # the factored path
     assert run.verdict is Verdict.STICK_SLIP and run.cycle_length == 1

@@ -145,7 +145,7 @@ def test_coulomb_critical_speed_of_reduced_and_full_agree_within_two_percent() -
         runs.append(simulate(point.structure(), point.slider(), record=True))
     below, above = runs
     # below: stick-slip. Its cycle's proof at 301 DOF would sample 20,000 603 x 603 propagators
-    # per slip phase, beyond the work a proof may take even factored (_cycle_tube.flow_work:
+    # per slip phase, beyond the work a proof may take even factored (_phase_flow.flow_work:
     # 3.8e11 multiply-adds against MAX_PHASE_WORK, 2.5e11), so the run ends on its stick-slip
     # candidate, declined, not on steady sliding (with the bound lifted the proof holds)
     assert (below.verdict.value == "stick-slip"

@@ -198,31 +198,16 @@ def find_cycles(
         inner, perm = structure.contact_first()
         search = find_cycles(inner, slider, seeds=seeds, box=box, max_period=max_period, seed=seed,
                              options=options)
-        mapped = tuple(replace(c, breakaway_state=to_user_order(c.breakaway_state, perm))
-                       for c in search.cycles)
-        return replace(search, structure=structure, cycles=mapped)
+        return replace(search, structure=structure,
+                       cycles=tuple(replace(c, breakaway_state=to_user_order(c.breakaway_state, perm))
+                                    for c in search.cycles),
+                       candidates=tuple(replace(c, breakaway_state=to_user_order(c.breakaway_state, perm))
+                                        for c in search.candidates))
     opts = options or EngineOptions()
     n = structure.n_dof
     pmaps = {d: ReturnMap(structure, slider, opts, d) for d in (SLIP_I, SLIP_II)}
-    pmap = pmaps[SLIP_I]
-    rng = np.random.default_rng(random_seed(seed))
-    starts = [np.concatenate([structure.kinetic_equilibrium_offset() * -slider.gamma * slider.lam,
-                              np.eye(n)[0]])]
-    for _ in range(int(seeds)):
-        starts.append(np.concatenate([rng.uniform(-box, box, n), rng.uniform(-box, 1.5, n)]))
-    breakaways: list[FloatArray] = []
-    early = 2 * int(max_period) + 1
-    late: list[FloatArray] = []  # tried after every early state, so those keep their order
-    for start in starts:
-        # the states after a short transient (near unstable cycles the run passes) and, from
-        # the same run, after a long one: a cycle the runs approach slowly (multipliers near
-        # 1 in modulus) is reached only late (seen: |multipliers| 0.795 on a period-2 cycle)
-        found = pmap.next_breakaways(start, max(early, SEED_BREAKAWAYS))
-        if not found:
-            found = pmap.next_breakaways(start, early)  # fewer breakaways: steady sliding later
-        breakaways += found[early - int(max_period):early]
-        late += found[early:][-int(max_period):]
-    breakaways += late
+    starts, breakaways = _seed_breakaways(pmaps[SLIP_I], structure, slider, seeds, box, max_period,
+                                          seed)
     cycles: list[Cycle] = []
     candidates: list[Cycle] = []
     # the section's two pieces: breakaways onto slip-I first (the paper's), then onto slip-II
@@ -256,7 +241,7 @@ def find_cycles(
                     if certified.cycle_length == k and certified.verdict in (
                             Verdict.STICK_SLIP, Verdict.UNDETERMINED):  # the run repeats it
                         candidates.append(_candidate_cycle(pm, full, k, jac, certified, name,
-                                                           "; ".join(why)))
+                                                           "; ".join(why) or "no reason given"))
                     continue
                 if certified.verdict is not Verdict.STICK_SLIP or certified.cycle_length != k:
                     continue
@@ -265,12 +250,7 @@ def find_cycles(
                        and abs(c.amplitude - certified.amplitude) <= 1e-8 * max(1.0, c.amplitude)
                        for c in cycles):
                     continue  # a cycle with breakaways onto both modes, found on the other piece
-                multipliers = (np.asarray(np.linalg.eigvals(jac), dtype=np.complex128) if jac.size
-                               else np.zeros(0, dtype=np.complex128))
-                stable = bool(np.all(np.abs(multipliers) < 1.0))
-                orbit = tuple(pm.next_breakaways(full, k)) if n > 1 else ()
-                cycles.append(Cycle(full, k, certified.period, certified.amplitude,
-                                    certified.stick_ratio, multipliers, stable, name, radius, orbit))
+                cycles.append(_candidate_cycle(pm, full, k, jac, certified, name, "", radius))
             if n == 1:
                 break
     cycles.sort(key=lambda c: (c.stick_phases, c.amplitude))
@@ -281,15 +261,41 @@ def find_cycles(
                        candidates=tuple(candidates))
 
 
+def _seed_breakaways(pmap: ReturnMap, structure: Structure, slider: Slider, seeds: int, box: float,
+                     max_period: int, seed: int) -> tuple[list[FloatArray], list[FloatArray]]:
+    """The seeding runs' starts (start-up and random) and the breakaway states seeding Newton."""
+    n = structure.n_dof
+    rng = np.random.default_rng(random_seed(seed))
+    starts = [np.concatenate([structure.kinetic_equilibrium_offset() * -slider.gamma * slider.lam,
+                              np.eye(n)[0]])]
+    for _ in range(int(seeds)):
+        starts.append(np.concatenate([rng.uniform(-box, box, n), rng.uniform(-box, 1.5, n)]))
+    breakaways: list[FloatArray] = []
+    early = 2 * int(max_period) + 1
+    late: list[FloatArray] = []  # tried after every early state, so those keep their order
+    for start in starts:
+        # the states after a short transient (near unstable cycles the run passes) and, from
+        # the same run, after a long one: a cycle the runs approach slowly (multipliers near
+        # 1 in modulus) is reached only late (seen: |multipliers| 0.795 on a period-2 cycle)
+        found = pmap.next_breakaways(start, max(early, SEED_BREAKAWAYS))
+        if not found:
+            found = pmap.next_breakaways(start, early)  # fewer breakaways: steady sliding later
+        breakaways += found[early - int(max_period):early]
+        late += found[early:][-int(max_period):]
+    return starts, breakaways + late
+
+
 def _candidate_cycle(pm: ReturnMap, full: FloatArray, k: int, jac: FloatArray, run: Any,
-                     name: str, why: str) -> Cycle:
-    """A fixed point of ``P^k`` no proof makes a cycle, with what the run from it measured
-    (the run repeats it: its period, amplitude and stick ratio) and why it is not proven."""
-    multipliers = np.asarray(np.linalg.eigvals(jac), dtype=np.complex128)
+                     name: str, why: str, radius: float = math.nan) -> Cycle:
+    """A cycle (``why`` empty, its existence ball's ``radius``) or a fixed point of ``P^k``
+    no proof makes a cycle (``why`` says what failed), with what the run from it measured
+    (it repeats it: its period, amplitude and stick ratio)."""
+    multipliers = (np.asarray(np.linalg.eigvals(jac), dtype=np.complex128) if jac.size
+                   else np.zeros(0, dtype=np.complex128))
     return Cycle(full, k, float(run.period), float(run.amplitude), float(run.stick_ratio),
-                 multipliers, bool(np.all(np.abs(multipliers) < 1.0)), name,
-                 orbit=tuple(pm.next_breakaways(full, k)),
-                 not_proven=f"no ball is proven to hold exactly one fixed point: {why}")
+                 multipliers, bool(np.all(np.abs(multipliers) < 1.0)), name, radius,
+                 orbit=tuple(pm.next_breakaways(full, k)) if full.size > 2 else (),
+                 not_proven=f"no ball is proven to hold exactly one fixed point: {why}" if why else "")
 
 
 def cycle_exists(structure: Structure, slider: Slider, **kwargs: Any) -> bool:

@@ -9,9 +9,9 @@ import numpy as np
 from numba import njit
 
 from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel is stamped with the whole kernel folder)
-from stickslip.kernel.engine import prepared_tables
 from stickslip.kernel.linalg import copy_vector, matvec
 from stickslip.kernel.polynomial import TAYLOR_DEGREE, taylor_state, taylor_vectors
+from stickslip.kernel.prepared import prepared_tables
 
 
 def evaluate(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, seg_t, seg_mode,

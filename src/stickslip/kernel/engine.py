@@ -7,8 +7,6 @@ event location on a step.
 
 from __future__ import annotations
 
-import hashlib
-
 import numpy as np
 from numba import njit
 
@@ -31,6 +29,7 @@ from stickslip.kernel.polynomial import (
     taylor_state,
     taylor_vectors,
 )
+from stickslip.kernel.prepared import prepared_tables
 from stickslip.kernel.system import (
     F_VEL,
     F_XI,
@@ -45,8 +44,6 @@ from stickslip.kernel.system import (
     mode_band,
     mode_code,
     mode_kind,
-    prepare_point,
-    structure_data,
     trap_certifies,
 )
 
@@ -266,36 +263,6 @@ def run(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes, z0, t_m
     prepared = prepared_tables(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes)
     return run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle_tol,
                         max_period, record, run_to_t_max, False, False)
-
-
-#: Structures whose :func:`structure_data` :func:`prepared_tables` keeps (the latest ones).
-STRUCTURE_CACHE_SIZE = 4
-_structure_cache: dict[bytes, tuple] = {}
-
-
-def prepared_tables(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes):
-    """:func:`~stickslip.kernel.system.prepare_bands` through its two compiled steps (see :func:`run`).
-
-    The structure's part (:func:`structure_data`: its matrices, both shared modes'
-    exponentials and the Lyapunov solve) is kept for the last :data:`STRUCTURE_CACHE_SIZE`
-    structures, keyed by a digest of the three matrices' bytes: the return map of a proof or
-    a cycle search runs the engine dozens of times on one structure, and at 301 DOF this part
-    took 0.73 s a run (118 s of a proof). :func:`prepare_point` only reads it (it copies what
-    it keeps), so the tables are bit for bit those computed afresh.
-    """
-    digest = hashlib.blake2b(digest_size=20)
-    for matrix in (mass, damping, stiffness):
-        digest.update(np.ascontiguousarray(matrix, dtype=np.float64).tobytes())
-    digest.update(np.asarray(mass.shape, dtype=np.int64).tobytes())
-    key = digest.digest()
-    structure = _structure_cache.get(key)
-    if structure is None:
-        structure = structure_data(mass, damping, stiffness)
-        while len(_structure_cache) >= STRUCTURE_CACHE_SIZE:
-            _structure_cache.pop(next(iter(_structure_cache)), None)
-        _structure_cache[key] = structure
-    return prepare_point(structure, mass, damping, stiffness, lam, gamma, edges, intercepts,
-                         slopes)
 
 
 @njit(cache=True)
