@@ -131,3 +131,62 @@ def test_a_record_cannot_start_or_end_on_a_hold() -> None:
     t = np.linspace(0.0, 20.0, 401)
     with pytest.raises(ValueError, match="only between two of them"):
         load_point_steps(t, np.where(t < 10.0, 0.0, 1e-6 * (t - 10.0)))
+
+
+def test_a_step_between_two_samples_is_placed_at_its_time() -> None:
+    # an independent audit: steps at t = 10.05 s and 20.05 s on a 0.05 s grid shifted by half
+    # a sample show as one interval at the mean of both speeds, read as an extra step (a 0.4 %
+    # bias in a). The switch time is the one that gives that interval's displacement:
+    # t_i + dt (v_i - v_after) / (v_before - v_after), exactly the true one for constant speeds
+    t = np.linspace(0.0, 40.0, 801)
+    x = np.where(t < 10.025, 1e-6 * t, np.where(t < 20.025, 10.025e-6 + 1e-5 * (t - 10.025),
+                                                 110.025e-6 + 1e-6 * (t - 20.025)))
+    schedule = load_point_steps(t, x)
+    assert schedule.times == pytest.approx((0.0, 10.025, 20.025), abs=1e-9)
+    assert np.allclose(schedule.speeds, (1e-6, 1e-5, 1e-6), rtol=1e-9)
+
+
+def test_a_noisy_displacement_is_refused_not_read_as_hundreds_of_steps() -> None:
+    # 10 nm of sensor noise on the load point (an audit: 595 "steps" were read, the values
+    # 4-15 standard errors off, no warning)
+    noisy = X_LP + 1e-8 * np.random.default_rng(3).normal(size=T.size)
+    with pytest.raises(ValueError, match="too noisy to read its velocity steps"):
+        load_point_steps(T, noisy)
+
+
+def test_a_fit_against_the_laws_limit_is_undetermined_and_the_wrong_law_never_crashes() -> None:
+    # an audit: the wrong evolution law on a noise-free record raised OverflowError (exp of
+    # an unbounded log-parameter) and, on a noisy one, parked on mu_ref / a = 500 (the law's
+    # own limit) reporting a = 0.0014 +- 1.7e-10 as determined
+    law = RateStateFriction(a=0.005, b=0.02, d_c=5e-6, mu_ref=0.7, v_ref=1e-6, evolution="slip")
+    schedule = SpeedSchedule((0.0, 10.0, 20.0), (1e-6, 1e-5, 1e-6))
+    mu = model_mu(T, schedule, K, LOAD, law)
+    for record in (mu, mu + 2e-3 * np.random.default_rng(1).normal(size=T.size)):
+        try:
+            fit = fit_rate_state(T, X_LP, record, stiffness=K, load=LOAD, evolution="aging")
+        except ValueError as exc:  # refused with a sentence, not a traceback
+            assert "--evolution" in str(exc)
+            continue
+        limit = rate_state_fit.LIMIT_FRACTION * rate_state_fit.MAX_PSI_OVER_A
+        if fit.values["mu_ref"] / fit.values["a"] > limit:
+            assert set(fit.undetermined) == set(TRUTH)
+
+
+def test_units_in_the_header_are_read(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # an audit: "x_lp [um]" was read as metres (d_c = 14.85 m), silently; the same record in
+    # micrometres and milliseconds must give the SI fit
+    mu = _record(0)
+    rows = "".join(f"{1e3 * t!r},{1e6 * x!r},{m!r}\n"
+                   for t, x, m in zip(T.tolist(), X_LP.tolist(), mu.tolist(), strict=True))
+    path = tmp_path / "steps_um.csv"
+    path.write_text("t [ms],x_lp [um],mu\n" + rows, encoding="utf-8")
+    code, out, err = _run(["identify", str(path), "--law", "rate-state", "--stiffness", "1e7 N/m",
+                           "--load", "1 kN", "--json"], capsys)
+    assert code == 0, err
+    payload = json.loads(out)
+    assert payload["parameters"]["d_c"] == pytest.approx(1e-5, rel=0.01)
+    assert payload["parameters"]["a"] == pytest.approx(0.01, rel=0.01)
+    path.write_text("t [s],x_lp [m],mu [%]\n0,0,0.6\n", encoding="utf-8")
+    code, out, err = _run(["identify", str(path), "--law", "rate-state", "--stiffness", "1e7 N/m",
+                           "--load", "1 kN"], capsys)
+    assert code == 2 and "takes no unit" in err and len(err.strip().splitlines()) == 1

@@ -224,7 +224,7 @@ def _identify_rate_state(record: Path, *, load: str, stiffness: str | None, evol
             raise BadInput(f"{flag} {value!r} must be positive")
     if evolution not in ("aging", "slip"):
         raise BadInput(f"--evolution {evolution!r} must be aging or slip")
-    data = _three_columns(record, "t [s], load-point displacement [m], mu")
+    data = _three_columns(record, "t [s], load-point displacement [m], mu", ("t", "x", "mu"))
     try:
         fit = fit_rate_state(data[:, 0], data[:, 1], data[:, 2], stiffness=k, load=normal,
                              evolution=evolution)
@@ -238,9 +238,15 @@ def _identify_rate_state(record: Path, *, load: str, stiffness: str | None, evol
     typer.echo(fit.summary())
 
 
-def _three_columns(record: Path, what: str) -> Any:
-    """The record's three numeric columns (a header line skipped), ``(n, 3)``; one line each
-    for an unreadable file or a bad row."""
+def _three_columns(record: Path, what: str, roles: tuple[str, str, str]) -> Any:
+    """The record's three numeric columns in SI, ``(n, 3)``; one line each for an unreadable
+    file, a bad row or a bad unit.
+
+    A first line that is not numbers is the header; a unit in brackets or parentheses after a
+    column's name (``x [um]``, ``t (ms)``) converts that column to SI (``roles``: the
+    :data:`stickslip.io.record.ROLES` of the columns, ``mu`` for a friction coefficient,
+    which takes no unit). Without one the column is read in SI.
+    """
     import numpy as np
 
     try:
@@ -248,6 +254,7 @@ def _three_columns(record: Path, what: str) -> Any:
     except (OSError, UnicodeDecodeError) as exc:
         raise BadInput(f"record {str(record)!r}: cannot be read ({exc.__class__.__name__})") from None
     rows: list[list[float]] = []
+    factors = np.ones(3)
     for number, line in enumerate(text.splitlines(), start=1):
         if not line.strip() or line.lstrip().startswith("#"):
             continue
@@ -256,13 +263,37 @@ def _three_columns(record: Path, what: str) -> Any:
             values = [float(p) for p in parts]
         except ValueError:
             if not rows and number == 1:
+                factors = _header_factors(record, parts, roles)
                 continue  # the header
             raise BadInput(f"record {str(record)!r}, line {number}: not three numbers ({what})") from None
         if len(values) != 3:
             raise BadInput(f"record {str(record)!r}, line {number}: {len(values)} columns, "
                            f"expected 3 ({what})")
         rows.append(values)
-    return np.array(rows, dtype=np.float64).reshape(-1, 3)
+    return np.array(rows, dtype=np.float64).reshape(-1, 3) * factors[None, :]
+
+
+def _header_factors(record: Path, names: list[str], roles: tuple[str, str, str]) -> Any:
+    """SI factors of the header's units (1 where a column has none); one line for a bad unit."""
+    import numpy as np
+
+    from stickslip.io.record import RecordError, header_unit, unit_factor
+
+    factors = np.ones(3)
+    for i, (name, role) in enumerate(zip(names[:3], roles, strict=False)):
+        unit = header_unit(name)
+        if unit is None:
+            continue
+        if role == "mu":
+            if unit.strip() not in ("", "1", "-"):
+                raise BadInput(f"record {str(record)!r}, column {name!r}: the friction "
+                               "coefficient takes no unit (a plain number, not percent)")
+            continue
+        try:
+            factors[i] = unit_factor(role, unit, f"record {str(record)!r}, column {name!r}")
+        except RecordError as exc:
+            raise BadInput(str(exc)) from None
+    return factors
 
 
 def _identify_lugre(record: Path, *, load: str, given: dict[str, Any], bootstrap: int,
@@ -281,7 +312,7 @@ def _identify_lugre(record: Path, *, load: str, given: dict[str, Any], bootstrap
     normal = to_si("load", load, source="--load")
     if not normal > 0.0:
         raise BadInput(f"--load {normal!r} must be positive")
-    data = _three_columns(record, "t [s], sliding velocity [m/s], friction force [N]")
+    data = _three_columns(record, "t [s], sliding velocity [m/s], friction force [N]", ("t", "v", "F"))
     try:
         fit = fit_lugre(data[:, 0], data[:, 1], data[:, 2], load=normal)
     except ValueError as exc:

@@ -60,6 +60,23 @@ class ColumnSpec:
     sign: float = 1.0
 
 
+def header_unit(column: str) -> str | None:
+    """The unit in brackets or parentheses after a header's column name (``x [um]``), or None.
+
+    Parameters
+    ----------
+    column : str
+        One header cell.
+
+    Returns
+    -------
+    str or None
+        The unit's text, None when the cell names no unit.
+    """
+    m = _HEADER_UNIT.match(column)
+    return None if m is None else (m.group(2) if m.group(2) is not None else m.group(3))
+
+
 def unit_factor(role: str, unit: str | None, where: str) -> float:
     """Factor taking values in ``unit`` to the role's SI unit (pint); 1 for no unit."""
     if unit is None or not unit.strip():

@@ -149,6 +149,12 @@ def fit_lugre(t: FloatArray, v: FloatArray, force: FloatArray, *, load: float | 
     if load is not None and not (load > 0.0 and math.isfinite(load)):
         raise ValueError(f"load {load!r} N must be positive")
     fast = np.abs(v) > 0.5 * v_max
+    against = float(np.mean(force[fast] * v[fast] < 0.0))
+    if against > 0.5:  # sliding fast, friction acts with the motion's sign (F ~ g(v) sgn v)
+        raise ValueError(f"the force has the opposite sign of the sliding velocity in "
+                         f"{against:.0%} of the fast sliding samples: the friction force is "
+                         "positive when the body slides forward (v > 0); is the force column's "
+                         "sign reversed?")
     f_c0 = max(float(np.median(np.abs(force[fast]))), 1e-12)
     f_s0 = max(float(np.max(np.abs(force))), 1.05 * f_c0)
     f0 = float(force[0])
@@ -184,7 +190,8 @@ def fit_lugre(t: FloatArray, v: FloatArray, force: FloatArray, *, load: float | 
     jac[:, 5] = jac_log[:, 5] / values["v_s"]
     errors = linearised_errors(jac, float(best.cost), NAMES)
     undetermined = [name for name in NAMES if not errors[name] <= abs(values[name])]
-    if not np.any(np.sign(v[:-1]) * np.sign(v[1:]) < 0.0):
+    moving = np.sign(v[v != 0.0])  # a reversal sampled at v = 0 exactly is one too
+    if not np.any(moving[:-1] * moving[1:] < 0.0):
         # no reversal, no pre-sliding: the bristles act only through the lag of sliding, and
         # other sigma0, sigma1 fit such a record to its noise (seen: sigma1 97 instead of 316
         # N s/m with a local standard error of 1): undetermined, whatever the local errors say

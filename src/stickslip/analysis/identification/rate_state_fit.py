@@ -10,7 +10,11 @@ and the friction the regularised rate-and-state law of
 The steps are read off the displacement: the speed of each sample interval,
 ``(x_lp[i+1] - x_lp[i]) / (t[i+1] - t[i])``, starts a new step where it changes by more than
 :data:`STEP_CHANGE` of the larger of the two; each step's speed is its mean (its displacement over
-its duration). A step between two others slower than :data:`HOLD_FRACTION` of the fastest is a
+its duration). A step between two samples shows as one interval whose speed lies between its
+neighbours': the switch time is the one that gives its displacement,
+``t_i + dt (v_i - v_after) / (v_before - v_after)``. A record whose speed changes at more than
+:data:`MAX_STEPS` intervals (and :data:`MAX_STEP_SHARE` of them) is refused: a noisy
+displacement, not steps. A step between two others slower than :data:`HOLD_FRACTION` of the fastest is a
 hold (the load point stopped: the slide-hold-slide test, in which the contact heals); a
 hold's noisy samples, which change sign, make one hold. ``v_ref`` is the first step's speed,
 so ``mu_ref`` is the friction of steady sliding there.
@@ -39,12 +43,21 @@ from numpy.typing import NDArray
 
 from stickslip.analysis.identification.fit_statistics import checked_record, linearised_errors
 from stickslip.analysis.memory.friction import integrate_run
-from stickslip.model.state_friction import MemorySystem, RateStateFriction, SpeedSchedule
+from stickslip.model.state_friction import (
+    MAX_PSI_OVER_A,
+    MemorySystem,
+    RateStateFriction,
+    SpeedSchedule,
+)
 
 FloatArray = NDArray[np.float64]
 
 #: Relative change of the sample speed that starts a new load-point step.
 STEP_CHANGE = 0.05
+#: Speed changes a record may show, at most this many or this share of its intervals
+#: (beyond, its load-point displacement is too noisy to read steps from: refused).
+MAX_STEPS = 50
+MAX_STEP_SHARE = 0.02
 #: A step slower than this fraction of the fastest is a hold (speed 0, slide-hold-slide).
 HOLD_FRACTION = 1e-3
 #: Relative tolerance of the model's runs (their error must stay below the finite-difference
@@ -52,6 +65,10 @@ HOLD_FRACTION = 1e-3
 FIT_RTOL = 1e-10
 #: First guesses ``(a, b/a, d_c in units of the record's slip per step)``.
 STARTS = ((0.01, 1.2, 0.05), (0.005, 0.8, 0.2), (0.02, 1.5, 0.01))
+#: A fit with ``mu_ref / a`` above this fraction of the law's limit
+#: (:data:`stickslip.model.state_friction.MAX_PSI_OVER_A`) stopped against that limit: every
+#: parameter is undetermined.
+LIMIT_FRACTION = 0.99
 #: Most function evaluations of one start.
 MAX_EVALUATIONS = 400
 NAMES = ("a", "b", "d_c", "mu_ref")
@@ -78,23 +95,40 @@ def load_point_steps(t: FloatArray, x_lp: FloatArray) -> SpeedSchedule:
     for i in range(1, speed.size):
         if abs(speed[i] - speed[i - 1]) > STEP_CHANGE * max(abs(speed[i]), abs(speed[i - 1])):
             starts.append(i)
+    if len(starts) > max(MAX_STEPS, MAX_STEP_SHARE * speed.size):
+        raise ValueError(f"the load-point speed changes by more than {STEP_CHANGE:.0%} at "
+                         f"{len(starts) - 1} of its {speed.size} sample intervals: too noisy to "
+                         "read its velocity steps (give the commanded load-point displacement, "
+                         "or a smoothed one)")
     ends = [*starts[1:], speed.size]
-    steps = [(s, e, float((x_lp[e] - x_lp[s]) / (t[e] - t[s]))) for s, e in zip(starts, ends, strict=True)]
-    fastest = max(abs(v) for _, _, v in steps)
+    segments = [(s, e, float((x_lp[e] - x_lp[s]) / (t[e] - t[s]))) for s, e in zip(starts, ends, strict=True)]
+    steps: list[tuple[int, int, float, float]] = []  # (first, last sample, speed, start time)
+    switch: float | None = None  # a step found inside the interval just skipped
+    for k, (s, e, v) in enumerate(segments):
+        if switch is None and e - s == 1 and 0 < k < len(segments) - 1:
+            before, after = segments[k - 1][2], segments[k + 1][2]
+            if min(before, after) < v < max(before, after):
+                # a step between two samples: the interval's mean speed mixes both, and the
+                # load point switched at the time that gives its displacement
+                switch = float(t[s] + (t[e] - t[s]) * (v - after) / (before - after))
+                continue
+        steps.append((s, e, v, float(t[s]) if switch is None else switch))
+        switch = None
+    fastest = max(abs(v) for _, _, v, _ in steps)
     times: list[float] = []
     speeds: list[float] = []
-    for k, (s, e, v) in enumerate(steps):
+    for k, (s, e, v, start) in enumerate(steps):
         hold = abs(v) <= HOLD_FRACTION * fastest
         if hold and 0 < k < len(steps) - 1:
             if speeds[-1] != 0.0:  # a hold's noisy samples are one hold
-                times.append(float(t[s] - t[0]))
+                times.append(start - float(t[0]))
                 speeds.append(0.0)
             continue
         if not v > 0.0 or hold:
             raise ValueError(f"the load point does not move forward from {t[s]:g} s to {t[e]:g} s "
                              f"(speed {v:.3g} m/s): velocity steps need positive speeds (a hold, "
                              "below 1e-3 of the fastest step, only between two of them)")
-        times.append(float(t[s] - t[0]))
+        times.append(start - float(t[0]))
         speeds.append(v)
     return SpeedSchedule(tuple(times), tuple(speeds))
 
@@ -238,9 +272,9 @@ def fit_rate_state(t: FloatArray, x_lp: FloatArray, mu: FloatArray, *, stiffness
                                  mu_ref=float(p[3]), v_ref=schedule.first, evolution=evolution)
 
     def residuals(p: FloatArray) -> FloatArray:
-        try:
+        try:  # a law the fit wanders into may not exist (exp overflows, mu_ref / a too large)
             predicted = model_mu(t, schedule, stiffness, load, law_of(p))
-        except ValueError:
+        except (ValueError, OverflowError):
             return np.full(t.size, 1e3)
         r = predicted - mu
         return np.where(np.isfinite(r), r, 1e3)
@@ -251,13 +285,19 @@ def fit_rate_state(t: FloatArray, x_lp: FloatArray, mu: FloatArray, *, stiffness
         try:
             sol = least_squares(residuals, p0, method="trf", x_scale=np.array([1.0, 1.0, 1.0, 0.01]),
                                 diff_step=1e-6, max_nfev=MAX_EVALUATIONS)
-        except ValueError:
+        except (ValueError, OverflowError):
             continue
         if best is None or sol.cost < best.cost:
             best = sol
     if best is None:
         raise ValueError("no start of the fit ran: check the record and the stiffness and load")
     p = best.x
+    try:
+        fitted_law = law_of(p)
+    except (ValueError, OverflowError):
+        raise ValueError("the fit found no rate-and-state law that runs through this record "
+                         f"with the {evolution} law: check --evolution, the stiffness and the "
+                         "load") from None
     # d r / d a = (d r / d ln a) / a: the Jacobian in the parameters themselves
     jac = best.jac / np.array([math.exp(p[0]), math.exp(p[1]), math.exp(p[2]), 1.0])[None, :]
     values = dict(zip(NAMES, (math.exp(p[0]), math.exp(p[1]), math.exp(p[2]), float(p[3])),
@@ -267,7 +307,11 @@ def fit_rate_state(t: FloatArray, x_lp: FloatArray, mu: FloatArray, *, stiffness
     for name in NAMES:
         if not errors[name] <= abs(values[name]):
             undetermined.append(name)
-    fitted = model_mu(t, schedule, stiffness, load, law_of(p))
+    if values["mu_ref"] / values["a"] > LIMIT_FRACTION * MAX_PSI_OVER_A:
+        # stopped against the law's own limit (mu_ref / a): its curvature there is the wall's,
+        # not the record's, so the linearised errors mean nothing
+        undetermined = list(NAMES)
+    fitted = model_mu(t, schedule, stiffness, load, fitted_law)
     rms = float(np.sqrt(np.mean((fitted - mu) ** 2)))
     return RateStateFit(values, errors, undetermined, rms, schedule, evolution, stiffness, load,
                         int(t.size), t, mu, fitted)
