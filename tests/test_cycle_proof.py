@@ -18,7 +18,7 @@ import pytest
 from stickslip import simulate
 from stickslip.analysis.cycle_proof import divisors
 from stickslip.analysis.cycles import find_cycles
-from stickslip.analysis.engine_run import EngineOptions
+from stickslip.analysis.engine_run import EngineOptions, run_engine
 from stickslip.analysis.return_map import ReturnMap
 from stickslip.analysis.verdict import RunStatus, Verdict
 from stickslip.io.machine_file import machine_from_file, read_machine_file
@@ -174,15 +174,17 @@ def test_one_dof_needs_no_proof() -> None:
 
 
 def test_operating_map_cells_report_the_proven_cycle() -> None:
-    """``map --config``'s cells: the period of simulate's proven cycle (19.25 ms at 0.7333 mm/s
-    and 2000 N, where the run's repeat test saw three stick phases, 57.8 ms)."""
+    """``map --config``'s cells: the period of simulate's proven cycle (at 0.4 mm/s and 2000 N
+    the run's repeat test sees two stick phases, the proof one). At 0.7333 mm/s, this test's
+    point before, the only ball that contracts has radius 1.0e-11 and (1 - theta) rho =
+    4.6e-13, below the engine's rounding allowance for one map evaluation (1.6e-12): no proof."""
     from stickslip.sweep.grid import Axis
     from stickslip.sweep.operating_map import operating_map
 
     machine_file = read_machine_file(SLIDEWAY)
     machine, _ = machine_from_file(machine_file, {"mu_s": 0.15, "mu_k": 0.10, "load": 2000.0,
                                                    "speed": 0.7333e-3})
-    speeds, loads = [0.2e-3, 0.7333e-3], [2000.0]
+    speeds, loads = [0.2e-3, 0.4e-3], [2000.0]
     result = operating_map(machine, Axis("speed", np.array(speeds), "list"),
                            Axis("load", np.array(loads), "list"))
     for i, speed in enumerate(speeds):
@@ -192,7 +194,27 @@ def test_operating_map_cells_report_the_proven_cycle() -> None:
         assert run.verdict is Verdict.STICK_SLIP and run.cycle_length == 1
         seconds = run.period * point.reference_system().time_scale
         assert result.period_s[i, 0] == seconds
-    assert result.period_s[1, 0] == pytest.approx(19.25e-3, abs=0.01e-3)
+    point = machine.with_operating_point(speed=0.4e-3, load=2000.0)
+    structure, slider = point.to_dimensionless()
+    observed = run_engine(structure.contact_first()[0], slider, None, EngineOptions(), False, False)
+    assert observed.cycle_length == 2  # the repeat the proof corrects
+
+
+def test_a_ball_must_hold_the_maps_rounding(monkeypatch: pytest.MonkeyPatch) -> None:
+    # an independent audit (extended-precision integration of a 44-DOF machine): one map
+    # evaluation was off by 5.2e-12, and a ball of radius 1.4e-11 was claimed whose residual
+    # condition the exact map violates. The proof adds _cycle_tube.rounding_allowance to the
+    # computed residual; with 100 times the allowance no ball of the slideway holds it
+    from stickslip.analysis import _cycle_tube
+
+    machine, _ = machine_from_file(read_machine_file(SLIDEWAY),
+                                   {"mu_s": 0.15, "mu_k": 0.10, "load": 2600.0, "speed": 0.5e-3})
+    structure, slider = machine.to_dimensionless()
+    assert simulate(structure, slider).verdict is Verdict.STICK_SLIP
+    monkeypatch.setattr(_cycle_tube, "STEP_ROUNDING", 200.0)  # 100x: the tube still contracts
+    run = simulate(structure, slider)
+    assert run.verdict is Verdict.UNDETERMINED
+    assert "too small to prove anything in double precision" in run.certificate
 
 
 def test_end_drift_bounds_the_nominal_continuation() -> None:

@@ -8,8 +8,8 @@ radius ``r``, the deviation of every trajectory started in the ball ``B(b_hat, r
 :mod:`stickslip.analysis.cycle_proof` turns the bound into proofs.
 
 Rounding: the nominal quantities are computed in double precision; every bound adds
-``ROUNDING`` (relative to the state's scale) to the deviations it carries, so a proof does
-not rest on the last bits.
+:func:`rounding_allowance` (the engine's rounding along the run) to the deviations it
+carries, and a proof to its residual, so a proof does not rest on the last bits.
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ from stickslip.kernel.system import SLIP_I, STICK, mode_kind_band
 
 FloatArray = NDArray[np.float64]
 
-#: Relative round-off allowance added to every state deviation the tube carries.
+#: Relative round-off allowance, the floor of :func:`rounding_allowance`.
 ROUNDING = 1e-13
 
 
@@ -304,6 +304,41 @@ def end_drift(nv: FloatArray, a: FloatArray, f_star: FloatArray, f_norm: float, 
             + float(np.linalg.norm(nv @ a)) * f_norm * t_dev ** 2 * math.exp(norm_a * t_dev) / 2.0)
 
 
+#: Allowance for the engine's rounding per step, in units of the machine epsilon (see
+#: :func:`rounding_allowance`).
+STEP_ROUNDING = 2.0
+
+
+def rounding_allowance(phases: list[Phase], scale: float) -> float:
+    """The engine's rounding along the nominal run of ``P^q``: an absolute allowance.
+
+    The engine steps with ``h ||A|| <= 1/2``, so a phase of duration ``t`` takes at most
+    ``2 t ||A||_F + 1`` steps; the allowance is :data:`STEP_ROUNDING` machine epsilons of the
+    state's scale per step, over the whole run (at least :data:`ROUNDING` of the scale). It
+    is calibrated, not a worst-case bound (which would multiply by the propagator's size):
+    an independent extended-precision integration of a 44-DOF machine measured the error of
+    one map evaluation at 5.2e-12, 1.1 epsilon per step of its 2,222; the allowance, about
+    twice that per step, is 9.4e-12 there (the 1e-13 of the scale allowed before let a ball
+    of radius 1.4e-11 be claimed that the exact map leaves). The tube adds it to the
+    deviations it carries, and a proof to the computed residual ``P^q(b_hat) - b_hat``: a
+    ball must be wide enough to hold it.
+
+    Parameters
+    ----------
+    phases : list of Phase
+        The nominal run's phases (:func:`phases`).
+    scale : float
+        The state's scale (``max(1, max |z|)``).
+
+    Returns
+    -------
+    float
+        The allowance, in the state's units.
+    """
+    steps = sum(2.0 * ph.duration * ph.norm_a + 1.0 for ph in phases)
+    return max(ROUNDING, STEP_ROUNDING * float(np.finfo(np.float64).eps) * steps) * scale
+
+
 def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArray,
           lam: float, gamma: float, radius: float, scale: float) -> Tube:
     """Bounds over every trajectory started in the ball ``||b - b_hat||_2 <= radius``.
@@ -357,7 +392,8 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
     (||Q_j*|| + D_j) Delta_j ||G(i+1, j)||``, so ``E(r) = sum_i (||Q_i*|| + D_i) Delta_i
     ||G(0, i) L||`` bounds ``||D P^q - J||``.
     """
-    z_dev = norms.prefix[0] * radius + ROUNDING * scale
+    rounding = rounding_allowance(phases, scale)
+    z_dev = norms.prefix[0] * radius + rounding
     z_devs: list[float] = []
     stick_norm = float(np.linalg.norm(stick_normal))
     deltas: list[float] = []
@@ -371,7 +407,7 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
             return Tube(False, failed_phase=i, failed_deviation=z_dev)
         ext = math.exp(ph.norm_a * t_dev)
         z_event = float(ph.m_norm[-1]) * ext * z_dev + float(ph.flow_norm[-1]) * ext * t_dev
-        z_event += ROUNDING * scale
+        z_event += rounding
         if ph.belt_decision:
             force = float(stick_normal @ ph.z_end)
             if min(abs(force - lam), abs(force - low_level)) <= stick_norm * z_event:
@@ -398,7 +434,7 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
         deltas.append((ph.salt_norm + d_salt) * d_exp + d_salt * ph.e_norm)
         carried.append(deltas[-1] * z_devs[-1])
         tight = norms.prefix[i + 1] * radius + float(norms.between[1:i + 2, i + 1] @ np.array(carried))
-        z_dev = min(z_event, tight + ROUNDING * scale)
+        z_dev = min(z_event, tight + rounding)
         if ph.breakaway:
             breakaway_dev.append(z_dev)
     n_ph = len(phases)

@@ -59,7 +59,7 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import NDArray
 
-from stickslip.analysis._cycle_tube import Phase, ProductNorms, Tube, tube_bound
+from stickslip.analysis._cycle_tube import Phase, ProductNorms, Tube, rounding_allowance, tube_bound
 from stickslip.analysis._cycle_tube import phases as sample_phases
 from stickslip.analysis.engine_run import EngineOptions
 from stickslip.analysis.return_map import ReturnMap, newton_fixed_point
@@ -264,7 +264,11 @@ def _contraction_ball(pmap: ReturnMap, cand: _Candidate) -> tuple[float, float, 
                 "no norm makes its return map a contraction")
     chol, norm_w, kappa = adapted
     c_inv_norm = float(np.linalg.norm(np.linalg.inv(chol), 2)) if chol.size else 1.0
-    residual_w = float(np.linalg.norm(chol @ (cand.value - cand.b_hat)))
+    # the computed residual, plus the engine's rounding in evaluating the map
+    scale = max(1.0, float(np.max(np.abs(pmap.state(cand.b_hat)))))
+    rounding = rounding_allowance(cand.phases, scale)
+    residual_w = (float(np.linalg.norm(chol @ (cand.value - cand.b_hat)))
+                  + float(np.linalg.norm(chol, 2)) * rounding)
     thetas: dict[float, float] = {}
 
     def accept(radius: float, tube: Tube) -> bool:
@@ -281,6 +285,11 @@ def _contraction_ball(pmap: ReturnMap, cand: _Candidate) -> tuple[float, float, 
                     f"down to {_min_radius(pmap, cand):.2g}: nearby motions are not shown to "
                     "follow it")
         best = min(thetas.values())
+        if best < 1.0:
+            return (f"the contraction bound falls to {best:.3g}, but at no radius does the ball "
+                    "hold the map's residual with its rounding allowance (the engine's error in "
+                    f"one evaluation, up to {rounding:.2g}): the balls that contract are too "
+                    "small to prove anything in double precision")
         return (f"the contraction bound stays at {best:.3g} or above (it must be below 1) at "
                 "every radius whose tube holds: the Jacobian's variation over the ball, or the "
                 "rounding it carries, is too large")
@@ -407,11 +416,14 @@ def prove_existence(structure: Structure, slider: Slider, b_hat: FloatArray, q: 
         return None
     a_norm = float(np.linalg.norm(a_inv, 2))
     bounds: list[float] = []
+    # the computed residual, plus the engine's rounding in evaluating the map
+    residual = cand.residual + rounding_allowance(
+        cand.phases, max(1.0, float(np.max(np.abs(pmap.state(cand.b_hat))))))
 
     def accept(radius: float, tube: Tube) -> bool:
         contraction = a_norm * tube.jacobian_bound
         bounds.append(contraction)
-        return (contraction < 1.0 and a_norm * cand.residual + contraction * radius <= radius
+        return (contraction < 1.0 and a_norm * residual + contraction * radius <= radius
                 and _shorter_period_excluded(pmap, cand, radius, tube))
 
     found = _ball(pmap, cand, accept)
