@@ -190,3 +190,23 @@ def test_units_in_the_header_are_read(tmp_path: Path, capsys: pytest.CaptureFixt
     code, out, err = _run(["identify", str(path), "--law", "rate-state", "--stiffness", "1e7 N/m",
                            "--load", "1 kN"], capsys)
     assert code == 2 and "takes no unit" in err and len(err.strip().splitlines()) == 1
+
+
+def test_the_shipped_example_records_give_their_truth(capsys: pytest.CaptureFixture[str]) -> None:
+    # the records of examples/friction_memory (made by make_records.py there, whose docstring
+    # gives the truth) are what `identify --help` and docs/friction_memory.md run: each
+    # parameter within 4 standard errors of the value the record was made with
+    root = Path(__file__).resolve().parent.parent / "examples" / "friction_memory"
+    code, out, err = _run(["identify", str(root / "velocity_steps.csv"), "--law", "rate-state",
+                           "--stiffness", "1e7 N/m", "--load", "1 kN", "--json"], capsys)
+    assert code == 0, err
+    payload = json.loads(out)
+    for name, truth in TRUTH.items():
+        assert abs(payload["parameters"][name] - truth) <= 4.0 * payload["standard_errors"][name], name
+    code, out, err = _run(["identify", str(root / "lugre_sine.csv"), "--law", "lugre", "--load", "1 N",
+                           "--json"], capsys)
+    assert code == 0, err
+    payload = json.loads(out)
+    lugre = {"sigma0": 1e5, "sigma1": 316.0, "sigma2": 0.4, "F_c": 1.0, "F_s": 1.5, "v_s": 1e-3}
+    for name, truth in lugre.items():
+        assert abs(payload["parameters"][name] - truth) <= 4.0 * payload["standard_errors"][name], name

@@ -104,11 +104,12 @@ def identify(
 
     A velocity-step record (rate-and-state: a, b, d_c, mu_ref of the quasi-static slider):
 
-    Example: stickslip identify steps.csv --law rate-state --stiffness "1e7 N/m" --load "1 kN" --json
+    Example: stickslip identify examples/friction_memory/velocity_steps.csv --law rate-state
+    --stiffness "1e7 N/m" --load "1 kN" --json
 
     LuGre from imposed motion (t, sliding velocity, force):
 
-    Example: stickslip identify rig.csv --law lugre --load "1 N" --json
+    Example: stickslip identify examples/friction_memory/lugre_sine.csv --law lugre --load "1 N" --json
     """
     from stickslip.analysis.identification.record_fit import LAWS, check_known
     from stickslip.analysis.identification.record_fit import identify as run_identify
