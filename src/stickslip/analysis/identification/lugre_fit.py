@@ -164,19 +164,21 @@ def fit_lugre(t: FloatArray, v: FloatArray, force: FloatArray, *, load: float | 
     sigma0_est = float(np.median(rates)) if rates.size else f_c0 / SIGMA0_STARTS[1]
 
     def residuals(p: FloatArray) -> FloatArray:
-        r = model_force(t, v, f0, _unpack(p)) - force
+        # p[6]: the force at t[0], fitted (it fixes the bristle state; taking the first noisy
+        # sample for it put sigma1, F_s and v_s 5-8 standard errors off on a 2 % record)
+        r = model_force(t, v, float(p[6]), _unpack(p[:6])) - force
         return np.where(np.isfinite(r), r, 1e6 * f_c0)
 
     best = None
     starts = [sigma0_est * f for f in (1.0, 0.3, 3.0)] + [f_c0 / d for d in SIGMA0_STARTS]
     for sigma0 in starts:
-        p0 = np.log([sigma0, math.sqrt(sigma0), 1e-3 * f_c0 / v_max, f_c0, f_s0 - f_c0,
-                     0.1 * v_max])
+        p0 = np.append(np.log([sigma0, math.sqrt(sigma0), 1e-3 * f_c0 / v_max, f_c0, f_s0 - f_c0,
+                               0.1 * v_max]), f0)
         sol = least_squares(residuals, p0, method="trf", max_nfev=MAX_EVALUATIONS)
         if best is None or sol.cost < best.cost:
             best = sol
     assert best is not None
-    values = dict(zip(NAMES, _unpack(best.x), strict=True))
+    values = dict(zip(NAMES, _unpack(best.x[:6]), strict=True))
     # the Jacobian in the parameters themselves: d/dx = (d/d ln x) / x; F_s = F_c + excess
     jac_log = best.jac
     excess = values["F_s"] - values["F_c"]
@@ -188,7 +190,9 @@ def fit_lugre(t: FloatArray, v: FloatArray, force: FloatArray, *, load: float | 
     jac[:, 3] = jac_log[:, 3] / values["F_c"] - d_excess
     jac[:, 4] = d_excess
     jac[:, 5] = jac_log[:, 5] / values["v_s"]
-    errors = linearised_errors(jac, float(best.cost), NAMES)
+    jac[:, 6] = jac_log[:, 6]  # the initial force, in N already: a nuisance parameter
+    errors = linearised_errors(jac, float(best.cost), (*NAMES, "F_0"))
+    errors.pop("F_0")
     undetermined = [name for name in NAMES if not errors[name] <= abs(values[name])]
     moving = np.sign(v[v != 0.0])  # a reversal sampled at v = 0 exactly is one too
     if not np.any(moving[:-1] * moving[1:] < 0.0):
@@ -196,7 +200,7 @@ def fit_lugre(t: FloatArray, v: FloatArray, force: FloatArray, *, load: float | 
         # other sigma0, sigma1 fit such a record to its noise (seen: sigma1 97 instead of 316
         # N s/m with a local standard error of 1): undetermined, whatever the local errors say
         undetermined += [name for name in ("sigma0", "sigma1") if name not in undetermined]
-    fitted = model_force(t, v, f0, _unpack(best.x))
+    fitted = model_force(t, v, float(best.x[6]), _unpack(best.x[:6]))
     rms = float(np.sqrt(np.mean((fitted - force) ** 2)))
     return LuGreFit(values, errors, undetermined, rms, int(t.size), load, t, force, fitted)
 
