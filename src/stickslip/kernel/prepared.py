@@ -9,6 +9,7 @@ A plain Python function over compiled ones (see :func:`stickslip.kernel.engine.r
 from __future__ import annotations
 
 import hashlib
+import threading
 
 import numpy as np
 
@@ -18,6 +19,8 @@ from stickslip.kernel.system import prepare_point, structure_data
 #: Structures whose :func:`structure_data` :func:`prepared_tables` keeps (the latest ones).
 STRUCTURE_CACHE_SIZE = 4
 _structure_cache: dict[bytes, tuple] = {}
+#: Guards the cache: runs may come from several threads (the web app's sessions).
+_cache_lock = threading.Lock()
 
 
 def prepared_tables(mass, damping, stiffness, lam, gamma, edges, intercepts, slopes):
@@ -35,11 +38,13 @@ def prepared_tables(mass, damping, stiffness, lam, gamma, edges, intercepts, slo
         digest.update(np.ascontiguousarray(matrix, dtype=np.float64).tobytes())
     digest.update(np.asarray(mass.shape, dtype=np.int64).tobytes())
     key = digest.digest()
-    structure = _structure_cache.get(key)
+    with _cache_lock:
+        structure = _structure_cache.get(key)
     if structure is None:
         structure = structure_data(mass, damping, stiffness)
-        while len(_structure_cache) >= STRUCTURE_CACHE_SIZE:
-            _structure_cache.pop(next(iter(_structure_cache)), None)
-        _structure_cache[key] = structure
+        with _cache_lock:
+            while len(_structure_cache) >= STRUCTURE_CACHE_SIZE:
+                _structure_cache.pop(next(iter(_structure_cache)), None)
+            _structure_cache[key] = structure
     return prepare_point(structure, mass, damping, stiffness, lam, gamma, edges, intercepts,
                          slopes)
