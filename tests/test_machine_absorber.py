@@ -154,4 +154,8 @@ def test_tuned_slideway_critical_speed_is_where_steady_sliding_stops_being_prove
     assert below.verdict is Verdict.STICK_SLIP and below.cycle_proof.stick_phases == 1
     feed = run(5e-4)  # the example's feed: below V_c, as it says
     assert feed.verdict is Verdict.STICK_SLIP and feed.cycle_proof.stick_phases == 1
+    # the island the example names, narrower than the onset scan's 25 % step: stick-slip from
+    # start-up at 0.755 mm/s, steady sliding on either side (direct runs)
+    assert [run(v).verdict for v in (0.70e-3, 0.755e-3, 0.80e-3)] == [
+        Verdict.STEADY_SLIDING, Verdict.STICK_SLIP, Verdict.STEADY_SLIDING]
     assert critical.speed > 5e-4
