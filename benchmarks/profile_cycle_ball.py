@@ -13,7 +13,9 @@ of the Jacobian's variation over the ball and the contraction bound ``theta = ||
 E(r)`` (a proof needs ``theta < 1``), or the phase where the tube fails: its mode, band, the
 band's width in sliding speed, its duration and the deviation the tube carried into it.
 
-Then what a larger ball would buy (``--states``, 300 by default; 0 skips it): the first
+Then the return map itself, sampled about its fixed point out to radius 0.3: its curvature
+and its local contraction factor in the proof's norm (observations: what a tighter tube could
+at best prove). Then what a larger ball would buy (``--states``, 300 by default; 0 skips it): the first
 ``--states`` states of bench_basin.py's box (same seed) run with ``simulate``, and for each
 stick-slip one the breakaway states' Euclidean distances to the proven fixed point in the
 foundation coordinates ``b`` (the norm of the proven radius). For each radius it prints the
@@ -91,11 +93,42 @@ def main() -> None:
                  and np.isfinite(edges[band + 1]) else "")
         print(f"r = {radius:9.3e}: tube fails in phase {t.failed_phase} ({KINDS[kind]}, band {band}"
               f"{width}, duration {ph.duration:.3g}), carried deviation {t.failed_deviation:.2e}")
+    true_map(pmap, cand, cycle_proof._adapted_norm(cand.jac)[0])
     if args.states > 0:
         center = pmap.reduce(proof.fixed_point)
         states = sample_box(structure, slider, args.states, box, seed=1)
         larger_balls(structure, slider, states, center, [proof.radius, 1e-4, 1e-3, 1e-2, 1e-1, 1.0])
         steady_entry(structure, slider, states, (0.3, 0.2, 0.1))
+
+
+def true_map(pmap, cand, chol) -> None:  # type: ignore[no-untyped-def]
+    """How far the return map itself stays nearly linear and contracting (no bound: sampled).
+
+    For radii ``r``, 12 random directions ``d`` of length ``r`` each: the largest
+    ``||P(b_hat + d) - P(b_hat) - J d|| / r^2`` (the map's curvature; a tube's ``E(r)`` bounds
+    the Jacobian's variation, about twice that times ``r`` for a smooth map) and the largest
+    local contraction factor in the proof's norm ``||C x||`` (a difference quotient at
+    ``b_hat + d`` over a step of 1e-6). Observations, not bounds: what a tighter tube could
+    at best prove.
+    """
+    rng = np.random.default_rng(0)
+    for radius in (1e-4, 1e-3, 1e-2, 1e-1, 3e-1):
+        curvature, contraction = 0.0, 0.0
+        for _ in range(12):
+            d = rng.normal(size=cand.b_hat.size)
+            d *= radius / np.linalg.norm(d)
+            step = rng.normal(size=cand.b_hat.size)
+            step *= 1e-6 / np.linalg.norm(step)
+            image, nearby = pmap(cand.b_hat + d, cand.q), pmap(cand.b_hat + d + step, cand.q)
+            if image is None or nearby is None:
+                print(f"true map, r = {radius:g}: a state of the ball does not reach the section")
+                break
+            curvature = max(curvature, float(np.linalg.norm(image - cand.value - cand.jac @ d)) / radius**2)
+            contraction = max(contraction, float(np.linalg.norm(chol @ (nearby - image))
+                                                 / np.linalg.norm(chol @ step)))
+        else:
+            print(f"true map, r = {radius:g}: curvature {curvature:.3g}, local contraction in the "
+                  f"proof's norm up to {contraction:.3f}")
 
 
 def steady_entry(structure, slider, states, levels) -> None:  # type: ignore[no-untyped-def]
