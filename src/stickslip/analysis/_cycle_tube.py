@@ -107,6 +107,7 @@ class Phase:
     belt_decision: bool  # ends at the belt speed: the next mode is chosen by the stick force
     e_nominal: FloatArray  # expm(A t)
     breakaway: bool  # ends with a breakaway (counted for the minimal-period check)
+    engine_norm_a: float  # ||A||_F in the engine's coordinates (its step size: the rounding)
     salt: FloatArray = field(init=False)  # the nominal saltation matrix at the end
     salt_norm: float = field(init=False)
     e_norm: float = field(init=False)
@@ -215,7 +216,7 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int, coords: Coordinates | None = 
                             tangential, g, rate, curv,
                              np.linalg.norm(fields, axis=1), m_norm, hs, z_end,
                              a @ z_end + c, f_plus, a_plus, belt, expm(a * duration),
-                             bk))
+                             bk, float(np.linalg.norm(pmap.flow_matrix[mode]))))
     return phases, z_hit
 
 
@@ -373,16 +374,17 @@ STEP_ROUNDING = 2.0
 def rounding_allowance(phases: list[Phase], scale: float) -> float:
     """The engine's rounding along the nominal run of ``P^q``: an absolute allowance.
 
-    The engine steps with ``h ||A|| <= 1/2``, so a phase of duration ``t`` takes at most
-    ``2 t ||A||_F + 1`` steps; the allowance is :data:`STEP_ROUNDING` machine epsilons of the
-    state's scale per step, over the whole run (at least :data:`ROUNDING` of the scale). It
-    is calibrated, not a worst-case bound (which would multiply by the propagator's size):
-    an independent extended-precision integration of a 44-DOF machine measured the error of
-    one map evaluation at 5.2e-12, 1.1 epsilon per step of its 2,222; the allowance, about
-    twice that per step, is 9.4e-12 there (the 1e-13 of the scale allowed before let a ball
-    of radius 1.4e-11 be claimed that the exact map leaves). The tube adds it to the
-    deviations it carries, and a proof to the computed residual ``P^q(b_hat) - b_hat``: a
-    ball must be wide enough to hold it.
+    The engine steps with ``h ||A|| <= 1/2`` (its own matrix, in its coordinates ``z``, not
+    the tube's), so a phase of duration ``t`` takes at most ``2 t ||A||_F + 1`` steps; the
+    allowance is :data:`STEP_ROUNDING` machine epsilons of the state's scale per step, over the
+    whole run (at least :data:`ROUNDING` of the scale). It is calibrated, not a worst-case
+    bound (which would multiply by the propagator's size): an independent extended-precision
+    integration of a 44-DOF machine measured the error of one map evaluation at 5.2e-12, 1.1
+    epsilon per step of its 2,222; the allowance, about twice that per step, is 9.4e-12 there
+    (the 1e-13 of the scale allowed before let a ball of radius 1.4e-11 be claimed that the
+    exact map leaves). The tube adds it to the deviations it carries (in its coordinates,
+    times ``||T^-1||``), and a proof to the computed residual ``P^q(b_hat) - b_hat``: a ball
+    must be wide enough to hold it.
 
     Parameters
     ----------
@@ -396,7 +398,7 @@ def rounding_allowance(phases: list[Phase], scale: float) -> float:
     float
         The allowance, in the state's units.
     """
-    steps = sum(2.0 * ph.duration * ph.norm_a + 1.0 for ph in phases)
+    steps = sum(2.0 * ph.duration * ph.engine_norm_a + 1.0 for ph in phases)
     return max(ROUNDING, STEP_ROUNDING * float(np.finfo(np.float64).eps) * steps) * scale
 
 
