@@ -243,6 +243,19 @@ def tubes(pmap: ReturnMap, cand: _Candidate) -> tuple[Callable[[float], Tube], f
 
     The nominal products' norms are formed once, in the candidate's coordinates (lift and
     reduction included); each call is :func:`~stickslip.analysis._cycle_tube.tube_bound`.
+
+    Parameters
+    ----------
+    pmap : ReturnMap
+        The return map of the candidate's system.
+    cand : _Candidate
+        The candidate (its sampled phases and coordinates).
+
+    Returns
+    -------
+    (callable, float)
+        ``radius -> Tube`` for Euclidean balls about ``b_hat`` in the foundation coordinates,
+        and the state's scale ``max(1, max |z|)``.
     """
     n2 = 2 * pmap.n
     reduce_rows = np.delete(np.eye(n2), [0, pmap.n], axis=0)  # R: the foundation coordinates
