@@ -163,6 +163,38 @@ def test_two_hundred_random_machines() -> None:
         _random_machines(seed, 10)
 
 
+@pytest.mark.parametrize("seed", range(2))
+def test_random_machines_with_weakening_laws_prove_balls_that_hold(seed: int) -> None:
+    _random_weakening_machines(seed, 4)
+
+
+@pytest.mark.slow
+def test_forty_random_machines_with_weakening_laws() -> None:
+    for seed in range(200, 210):
+        _random_weakening_machines(seed, 4)
+
+
+def _random_weakening_machines(seed: int, count: int) -> None:
+    """The chains of :func:`random_machine` under a Stribeck law (v_s/V 0.1-0.5) or a linear
+    law (delta 0.2-0.8), alternately: every proven cycle's ball holds under direct runs from
+    its boundary (_check_ball: the package's own exact map, six iterations, by ``theta``), and
+    the run's state lies in it (an undetermined run claims nothing to check)."""
+    from stickslip.model.friction import LinearFriction, StribeckFriction
+
+    rng = np.random.default_rng(seed)
+    for k in range(count):
+        structure, slider = random_machine(rng)
+        law = (StribeckFriction(float(rng.uniform(0.1, 0.5))) if k % 2
+               else LinearFriction(float(rng.uniform(0.2, 0.8))))
+        slider = Slider(slider.lam, gamma=slider.gamma, friction=law)
+        run = simulate(structure, slider, record=False)
+        if run.verdict is Verdict.STICK_SLIP:
+            proof = run.cycle_proof
+            assert proof is not None and proof.contraction < 1.0
+            assert proof.distance <= proof.radius
+            _check_ball(structure, slider, run, rng)
+
+
 def _random_machines(seed: int, count: int) -> None:
     rng = np.random.default_rng(seed)
     for _ in range(count):
