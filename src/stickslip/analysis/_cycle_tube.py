@@ -175,10 +175,12 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int, coords: Coordinates | None = 
         z0 = np.asarray(seg_z[i], dtype=np.float64)
         z_end = z_hit if i == last else np.asarray(seg_z[i + 1], dtype=np.float64)
         belt = mode != STICK and abs(float(z_end[pmap.n]) - 1.0) <= 1e-12
+        # the tolerances on the surfaces' values (invariant: n T . T^-1 z = n . z) scale with
+        # the engine's state, which the events were located in
+        scale = max(1.0, float(np.max(np.abs(z_end))))
         z0, z_end = to_y @ z0, to_y @ z_end
         a, c = to_y @ pmap.flow_matrix[mode] @ to_z, to_y @ pmap.flow_constant[mode]
         functions = [(nv @ to_z, g0) for nv, g0 in _functions(pmap, mode)]
-        scale = max(1.0, float(np.max(np.abs(z_end))))
         values_end = [abs(float(nv @ z_end) - g0) for nv, g0 in functions]
         ending = int(np.argmin(values_end))
         if values_end[ending] > 1e-7 * scale:
