@@ -217,8 +217,26 @@ def test_bad_input_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str
     assert not (tmp_path / "m.nc").exists()
 
 
+def test_a_machine_without_contact_gets_eq_36(tmp_path: Path,
+                                              capsys: pytest.CaptureFixture[str]) -> None:
+    # the paper's slider as a machine file (no [contact]): the exact engine's start-up verdicts
+    # change once, at lambda_c of Eq. (36) (theory.critical_lambda_exact, zeta = 0.1 here:
+    # c = 0.2, m = k = 1), lambda = (mu_s - mu_k) W / (V sqrt(m k)) = 0.1 / V
+    from stickslip.analysis.theory import critical_lambda_exact
+
+    rigid = write(tmp_path, SLIDER.format(speed="0.2 m/s", load="1 N"), "rigid.toml")
+    code, out, err = run_cli(["boundary", "--config", rigid, "--json"], capsys)
+    assert code == 0, err
+    found = json.loads(out)
+    assert found["engine"] == "exact-engine"
+    (crossing,) = found["crossings"]
+    assert (crossing["below"], crossing["above"]) == ("stick-slip", "steady-sliding")
+    v_c = 0.1 / critical_lambda_exact(0.1)
+    assert crossing["bracket"][0] <= v_c <= crossing["bracket"][1]
+    assert crossing["value_SI"] == pytest.approx(v_c, rel=1e-3)
+
+
 @pytest.mark.parametrize(("args", "why"), [
-    (["boundary", "--config", "RIGID"], "stickslip design --config"),
     (["boundary", "--param", "speed"], "--param and --range search a machine file"),
     (["boundary"], "Missing option '--zeta'"),
 ])

@@ -275,6 +275,10 @@ class Onset:
         return math.isinf(self.lam)
 
 
+#: Ratio of consecutive ``lambda`` of the onset scan (:func:`find_onset`): 25 % steps.
+ONSET_GROWTH = 1.25
+
+
 def find_onset(
     structure: Structure,
     *,
@@ -282,7 +286,7 @@ def find_onset(
     slider_at: SliderAt | None = None,
     lam_min: float = 0.05,
     lam_max: float = 200.0,
-    growth: float = 1.25,
+    growth: float = ONSET_GROWTH,
     rtol: float = 1e-6,
     options: EngineOptions | None = None,
     on_run: RunHook | None = None,
@@ -468,7 +472,7 @@ def lowest_onset(
     gamma: float = 2.0,
     lam_min: float = 0.05,
     lam_max: float = 200.0,
-    growth: float = 1.25,
+    growth: float = ONSET_GROWTH,
     rtol: float = 1e-6,
     options: EngineOptions | None = None,
 ) -> float:

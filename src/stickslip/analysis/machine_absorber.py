@@ -42,7 +42,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.critical import lowest_onset, speed_and_load_onsets
+from stickslip.analysis.critical import ONSET_GROWTH, lowest_onset, speed_and_load_onsets
 from stickslip.analysis.frequency_response import response_peak
 from stickslip.analysis.simulation import EngineOptions, SimulationResult, simulate
 from stickslip.analysis.verdict import RunStatus, Verdict
@@ -52,6 +52,15 @@ FloatArray = NDArray[np.float64]
 
 #: Scan limits of the onset search, dimensionless lambda.
 LAM_MIN, LAM_MAX = 0.01, 200.0
+
+#: What ``V_c`` and ``W_c`` of a machine are, and what they are not. On the gallery's
+#: slideway the start-up verdict changes five times between 0.5 and 2 mm/s (steady sliding at
+#: 0.61-0.66 mm/s, stick-slip again at 0.93-1.02 mm/s, both confirmed by an independent
+#: solve_ivp integration): one onset cannot say that.
+ONSET_NOTE = (f"V_c and W_c are where a scan from steady sliding (lambda in "
+              f"{(ONSET_GROWTH - 1.0) * 100:.0f} % steps, then bisected) first meets stick-slip; "
+              "beyond them a machine of several DOF can change verdict again (`stickslip boundary "
+              "--config FILE --range A:B` lists every change along the speed or the load)")
 
 
 def mounted_on_foundation(machine: Machine, mass: float, stiffness: float, damping: float) -> Machine:
@@ -181,7 +190,7 @@ class CriticalPoint:
 
         return {"lambda_c": num(self.lam), "critical_speed_m_per_s": num(self.speed),
                 "critical_load_N": num(self.load), "undetermined_runs": self.undetermined,
-                "undetermined_past_onset": self.undetermined_above}
+                "undetermined_past_onset": self.undetermined_above, "onset_search": ONSET_NOTE}
 
 
 @dataclass(frozen=True)
@@ -293,6 +302,8 @@ class MachineDesign:
                          f"peak {a.peak_receptance:.4g} m/N")
             if a.objective == "stick-slip" and self.tuning_note is not None:
                 lines.append(f"  (this absorber {self.tuning_note})")
+        if self.machine.n_dof > 1:
+            lines.append(f"note: {ONSET_NOTE}")
         if self.stability is not None:
             s = self.stability
             word = "stable" if s["stable"] else "neutral" if s["neutral"] else "UNSTABLE"

@@ -224,7 +224,11 @@ def _tune_machine(ctx: typer.Context, config: Path, objective: str, json: bool) 
     ``stick-slip``: that and the absorber that maximises the critical speed. Each is reported
     with the critical speed and load it gives, next to those of the bare machine.
     """
-    from stickslip.analysis.machine_absorber import CriticalPoint, tune_machine_absorber
+    from stickslip.analysis.machine_absorber import (
+        ONSET_NOTE,
+        CriticalPoint,
+        tune_machine_absorber,
+    )
     from stickslip.cli.machine_config import config_machine, load_machine_file, refuse_mix
 
     refuse_mix(ctx, config, ("zeta", "mass_ratio", "gamma", "lam_max"))
@@ -258,6 +262,8 @@ def _tune_machine(ctx: typer.Context, config: Path, objective: str, json: bool) 
         lines.append(f"absorber ({d.objective}): m_a={d.mass:.4g} kg, k_a={d.stiffness:.4g} N/m, "
                      f"c_a={d.damping:.4g} N s/m -> {d.critical.describe()}, "
                      f"peak receptance {d.peak_receptance:.4g} m/N")
+    if machine.n_dof > 1:
+        lines.append(f"note: {ONSET_NOTE}")
     typer.echo("\n".join(lines))
 
 

@@ -371,8 +371,8 @@ def boundary_command(
                           "existence (a stick-slip cycle exists, whatever the start)")
     ] = "startup",
     machine_file: Annotated[Path | None, typer.Option(
-        "--config", help="machine.toml with a [contact] (normal_dof, Jenkins element): the "
-        "critical belt speed or load of its start-up runs instead; with a friction law with "
+        "--config", help="machine.toml (a [structure], a [contact] or the paper's slider): every "
+        "belt speed or load where its start-up verdict changes, instead; with a friction law with "
         "memory, where steady sliding changes stability (eigenvalues); not with --zeta, --dva, "
         "--gamma, --friction, --criterion, --lam-min, --lam-max")] = None,
     param: Annotated[str | None, typer.Option(
@@ -386,10 +386,11 @@ def boundary_command(
 
     Example: stickslip boundary --zeta 0.01:0.4:8 --dva none --friction linear:0.02 --json
 
-    A machine with a [contact]: the belt speed (or load) where its start-up verdict changes, by
-    a log-spaced scan and bisection of each change, runs in --workers processes (default 2;
+    A machine file: every belt speed (or load) where its start-up verdict changes, by a
+    log-spaced scan and bisection of each change, runs in --workers processes (default 2;
     about 30 runs, 0.05 s each for the paper's slider on a Jenkins element, 5 to 20 s each for
-    the brake pad):
+    the brake pad, 0.15 s for the 6-DOF slideway). Unlike design's onset, it sees a verdict
+    change again beyond the first (islands of stick-slip or of steady sliding):
 
     Example: stickslip boundary --config machine.toml --param speed --range "1 cm/s:1 m/s" --json
 

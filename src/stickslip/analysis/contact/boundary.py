@@ -1,10 +1,15 @@
 """The critical belt speed or load of a machine with its contact, from start-up runs.
 
 A machine with a contact (a normal DOF, separation, a Jenkins element) has no closed-form
-boundary: the start-up verdict of the contact engine
-(:func:`stickslip.analysis.contact.engine.simulate_contact`) is computed along one operating
+boundary, and neither has a structure of many DOF: the start-up verdict of the contact engine
+(:func:`stickslip.analysis.contact.engine.simulate_contact`), or of the exact engine for a
+:class:`~stickslip.model.machine.Machine` of a structure alone
+(:func:`~stickslip.analysis.contact.pool.run_machine_point`), is computed along one operating
 parameter, the belt speed ``V`` (m/s) or the preload ``W`` (N), the other held at the
-machine's own value. The search:
+machine's own value. Unlike the onset search of ``design``
+(:func:`stickslip.analysis.critical.find_onset`, the first stick-slip of a scan from steady
+sliding), it reports every change it brackets: an island of stick-slip above the onset (the
+gallery's slideway has one) is two crossings. The search:
 
 1. a scan of ``n_scan`` log-spaced values over ``[lo, hi]``, one run each;
 2. every neighbouring pair of scan values with two different *determined* verdicts
@@ -36,6 +41,7 @@ import numpy as np
 from stickslip.analysis.contact._modes import ContactSystem
 from stickslip.analysis.contact.pool import DEFAULT_WORKERS, ContactPoint, ContactPool
 from stickslip.analysis.verdict import Verdict
+from stickslip.model.machine import Machine
 
 #: The operating parameters and their SI units.
 PARAMS = {"speed": "m/s", "load": "N"}
@@ -121,6 +127,9 @@ class ContactBoundary:
     crossings: tuple[ContactCrossing, ...]
     n_runs: int
     elapsed_s: float
+    #: what each run's verdict is (the contact engine's, or the exact engine's)
+    criterion: str = ("start-up verdict of the contact engine (observed periodic motion or the "
+                      "steady-sliding bound)")
 
     @property
     def boundaries(self) -> tuple[ContactCrossing, ...]:
@@ -138,8 +147,7 @@ class ContactBoundary:
                 "crossings": [c.to_dict() for c in self.crossings],
                 "n_runs": self.n_runs, "elapsed_s": self.elapsed_s,
                 "seconds_per_run": self.elapsed_s / self.n_runs if self.n_runs else None,
-                "criterion": "start-up verdict of the contact engine (observed periodic "
-                             "motion or the steady-sliding bound)"}
+                "criterion": self.criterion}
 
 
 def _check(param: str, lo: float, hi: float, n_scan: int, rtol: float) -> None:
@@ -154,7 +162,12 @@ def _check(param: str, lo: float, hi: float, n_scan: int, rtol: float) -> None:
         raise ValueError(f"rtol = {rtol!r} must be between 0 and 1")
 
 
-def contact_boundary(system: ContactSystem, param: str, lo: float, hi: float, *,
+#: :attr:`ContactBoundary.criterion` of a machine of a structure alone
+EXACT_CRITERION = ("start-up verdict of the exact engine (a proven cycle or the steady-sliding "
+                   "bound)")
+
+
+def contact_boundary(system: ContactSystem | Machine, param: str, lo: float, hi: float, *,
                      n_scan: int = 12, rtol: float = 1e-3, workers: int = DEFAULT_WORKERS,
                      t_max: float | None = None, max_events: int = 100_000,
                      progress: Callable[[int, int], None] | None = None) -> ContactBoundary:
@@ -162,8 +175,9 @@ def contact_boundary(system: ContactSystem, param: str, lo: float, hi: float, *,
 
     Parameters
     ----------
-    system : ContactSystem
-        The machine (SI); the parameter not searched keeps its value.
+    system : ContactSystem or Machine
+        The machine (SI): with its contact, or a structure alone (the exact engine); the
+        parameter not searched keeps its value.
     param : str
         ``speed`` (belt speed, m/s) or ``load`` (preload, N).
     lo, hi : float
@@ -248,8 +262,9 @@ def contact_boundary(system: ContactSystem, param: str, lo: float, hi: float, *,
                 else:  # a third determined verdict between: two changes, both bisected on
                     open_ += [(a, m, va, vm, k + 1), (m, b, vm, vb, k + 1)]
     done.sort(key=lambda c: c.bracket[0])
+    criterion = {"criterion": EXACT_CRITERION} if isinstance(system, Machine) else {}
     return ContactBoundary(param, float(fixed), (float(lo), float(hi)), float(rtol), scan,
-                           tuple(done), len(runs), time.perf_counter() - began)
+                           tuple(done), len(runs), time.perf_counter() - began, **criterion)
 
 
 __all__ = ["MAX_HALVINGS", "MAX_RUNS", "MAX_SCAN", "PARAMS", "ContactBoundary",

@@ -26,6 +26,7 @@ from typing import Any
 
 from stickslip.analysis.contact._modes import ContactSystem
 from stickslip.analysis.verdict import Verdict
+from stickslip.model.machine import Machine
 
 #: Most runs of one call (each is a full contact-engine run).
 MAX_POINTS = 100_000
@@ -98,6 +99,47 @@ def run_point(system: ContactSystem, speed: float, load: float, t_max: float | N
                         math.nan if run.period_s is None else float(run.period_s),
                         math.nan if run.amplitude_m is None else float(run.amplitude_m),
                         bool(run.separated), run.certificate, len(run.events))
+
+
+def run_machine_point(machine: Machine, speed: float, load: float, t_max: float | None = None,
+                      max_events: int = 100_000) -> ContactPoint:
+    """One exact-engine run of a machine without a contact model (no normal DOF, rigid contact).
+
+    The run of :func:`~stickslip.analysis.simulation.simulate` on
+    ``machine.with_operating_point(speed, load).to_dimensionless()`` from the start-up state:
+    the same verdict (a proven cycle or the steady-sliding bound) as ``simulate --config`` at
+    that point, so a machine of ``[structure]`` alone is searched like a contact machine.
+
+    Parameters
+    ----------
+    machine : Machine
+        The structure in SI.
+    speed, load : float
+        Belt speed (m/s) and normal load (N), positive.
+    t_max : float, optional
+        Horizon in natural times ``1 / omega_n`` of the contact DOF (default the engine's, 5000).
+    max_events : int
+        Bound on events of the run.
+
+    Returns
+    -------
+    ContactPoint
+        The verdict, period (s) and amplitude (m); ``separated`` is False (the contact is
+        rigid) and ``n_events`` counts the stick phases and breakaways (the engine's band
+        changes of a friction table are not counted).
+    """
+    from stickslip.analysis.engine_run import EngineOptions
+    from stickslip.analysis.simulation import simulate
+
+    moved = machine.with_operating_point(speed=speed, load=load)
+    structure, slider = moved.to_dimensionless()
+    options = EngineOptions(max_events=int(max_events)).with_t_max(t_max)
+    run = simulate(structure, slider, options=options, record=False)
+    ref = moved.reference_system()
+    # NaN without a repeating motion, as the contact engine's
+    return ContactPoint(float(speed), float(load), run.verdict, float(run.period) * ref.time_scale,
+                        float(run.amplitude) * ref.length_scale, False, run.certificate,
+                        int(run.n_stick + run.n_breakaway))
 
 
 def _init_worker() -> None:
@@ -217,8 +259,9 @@ class ContactPool:
 
     Parameters
     ----------
-    system : ContactSystem
-        The machine (SI).
+    system : ContactSystem or Machine
+        The machine (SI): with its contact (the contact engine, :func:`run_point`), or a
+        structure alone (the exact engine, :func:`run_machine_point`).
     workers : int
         Worker processes (1: every run in this process).
     t_max : float, optional
@@ -227,9 +270,13 @@ class ContactPool:
         Bound on mode switches of each run.
     """
 
-    def __init__(self, system: ContactSystem, *, workers: int = DEFAULT_WORKERS,
+    def __init__(self, system: ContactSystem | Machine, *, workers: int = DEFAULT_WORKERS,
                  t_max: float | None = None, max_events: int = 100_000) -> None:
-        self.system = system.at()  # without the caller's mode cache: small to send
+        # without the caller's mode cache: small to send
+        self.system: ContactSystem | Machine = (system if isinstance(system, Machine)
+                                                else system.at())
+        self._run_one: Callable[..., ContactPoint] = (run_machine_point if isinstance(
+            system, Machine) else run_point)
         self.t_max = t_max
         self.max_events = max_events
         self._workers = WorkerPool(workers)
@@ -268,7 +315,7 @@ class ContactPool:
         jobs = [(self.system, v, w, self.t_max, self.max_events) for v, w in _check_points(points)]
         if progress is not None:
             progress(0, len(jobs))
-        return self._workers.map(run_point, jobs, progress)
+        return self._workers.map(self._run_one, jobs, progress)
 
 
 def run_points(system: ContactSystem, points: Sequence[tuple[float, float]], *,

@@ -75,6 +75,16 @@ def _machine_description(machine: Any, system: Any) -> dict[str, Any]:
             "contact": _contact_summary(system)}
 
 
+def _rigid_description(machine: Any, has_absorber: bool) -> dict[str, Any]:
+    """:func:`_machine_description` of a machine without a contact model (rigid contact)."""
+    contact = "rigid (no [contact] table): the exact engine's start-up verdicts"
+    if has_absorber:
+        contact += "; the bare machine (the [absorber] table is design's, not mounted)"
+    return {"name": machine.name, "n_dof": machine.n_dof, "contact_dof": machine.contact_dof,
+            "normal_dof": None, "mu_s": machine.mu_s, "mu_k": machine.mu_k,
+            "load_N": machine.load, "speed_m_per_s": machine.speed, "contact": contact}
+
+
 def contact_map_command(ctx: typer.Context, config: Path, machine_file: MachineFile,
                         speed: str | None, load: str | None, *, out: Path, t_max: float | None,
                         csv: Path | None, plot: Path | None, overwrite: bool, json: bool,
@@ -148,14 +158,11 @@ def contact_boundary_command(ctx: typer.Context, config: Path, *, param: str | N
     from stickslip.cli.machine_config import load_machine_file
 
     machine_file = load_machine_file(config, normal_coupling=True)
-    if not machine_file.has_contact:
-        raise BadInput(f"{machine_file.label}: boundary --config searches a machine with a "
-                       "[contact] (normal_dof, Jenkins element); for this machine `stickslip "
-                       f"design --config {config}` gives the critical speed and load")
     typed = typed_options(ctx, ("out", "plot"))
     if typed:
-        raise BadInput(f"{', '.join(typed)} cannot be given with a [contact] machine: boundary "
-                       "--config prints its crossings (--json for the numbers)")
+        what = "a [contact] machine" if machine_file.has_contact else "--config"
+        raise BadInput(f"{', '.join(typed)} cannot be given with {what}: boundary --config "
+                       "prints its crossings (--json for the numbers)")
     param = "speed" if param is None else param
     if param not in PARAMS:
         raise BadInput(f"--param {param!r} must be speed or load")
@@ -168,7 +175,14 @@ def contact_boundary_command(ctx: typer.Context, config: Path, *, param: str | N
     if not (math.isfinite(rtol) and 0.0 < rtol < 1.0):
         raise BadInput(f"--rtol {rtol!r} must be between 0 and 1")
     n_workers, horizon = _workers(workers), _t_max(t_max)
-    system, machine = contact_system_of(config, machine_file)
+    if machine_file.has_contact:
+        system, machine = contact_system_of(config, machine_file)
+        description = _machine_description(machine, system)
+    else:  # a structure alone (or the paper's slider): the exact engine at each point
+        from stickslip.cli.machine_config import config_machine
+
+        system = machine = config_machine(config)[0]
+        description = _rigid_description(machine, machine_file.absorber() is not None)
     lo, hi = decade_range(range_text, param, system.speed if param == "speed" else system.load)
     from stickslip.cli.progress import ProgressBar
 
@@ -177,8 +191,8 @@ def contact_boundary_command(ctx: typer.Context, config: Path, *, param: str | N
         result = contact_boundary(system, param, lo, hi, n_scan=scan, rtol=rtol,
                                   workers=n_workers, t_max=horizon, progress=bar)
     payload = result.to_dict()
-    payload.update({"config": str(config), "machine": _machine_description(machine, system),
-                    "workers": n_workers})
+    payload.update({"config": str(config), "machine": description, "workers": n_workers,
+                    "engine": "contact-engine" if machine_file.has_contact else "exact-engine"})
     if json:
         print_json(payload)
         return
@@ -203,6 +217,6 @@ def _boundary_table(p: dict[str, Any]) -> str:
         verdicts = sorted({s["verdict"] for s in p["scan"]})
         lines.append(f"none        the start-up verdict is {' / '.join(verdicts)} at every scan "
                      "point (a change narrower than a scan step is not seen)")
-    lines.append(f"runs        {p['n_runs']} contact-engine runs in {p['elapsed_s']:.2f} s "
+    lines.append(f"runs        {p['n_runs']} {p['engine']} runs in {p['elapsed_s']:.2f} s "
                  f"({p['n_runs'] / max(p['elapsed_s'], 1e-9):.3g} runs/s {_where(p['workers'])})")
     return "\n".join(lines)
