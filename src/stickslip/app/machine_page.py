@@ -194,6 +194,7 @@ def show_machine_page() -> None:
     """Lay out the "your machine" page (Streamlit)."""
     import streamlit as st
 
+    from stickslip.analysis.machine_absorber import ONSET_NOTE
     from stickslip.app.figures import cached_png
     from stickslip.app.machine_bifurcation import show_machine_bifurcation
     from stickslip.app.machine_contact import show_contact_machine
@@ -260,7 +261,7 @@ def show_machine_page() -> None:
                       else f"DOF {absorber.attach_dof} of the file")
                    + ". H-infinity: the smallest peak of the receptance at the contact; "
                    "stick-slip: the largest range of belt speeds and loads without stick-slip "
-                   "(simulated onset, the machine's friction law).")
+                   "(simulated onset, the machine's friction law). " + ONSET_NOTE + ".")
     payload = report.to_dict()
     st.image(cached_png(("modes", digest),
                         lambda: machine_modes_plot(machine, reduction=reduction).figure))
