@@ -104,7 +104,7 @@ def show_memory_report(p: dict[str, Any], image: bytes) -> None:
                 "drive ends in a cycle.")
     rows = {}
     for key, label in (("startup", "start-up (stuck to the drive)"),
-                       ("nudged", "nudged (steady sliding, slider at 0.99 V)")):
+                       ("nudged", "nudged (steady sliding, slip speed 1.01 V)")):
         r = p[key]
         if r is None:
             continue

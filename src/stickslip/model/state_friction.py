@@ -233,8 +233,12 @@ class LuGreFriction:
         return float(np.sign(speed) * self.g(speed, load) / self.sigma0)
 
     def steady_mu(self, speed: float, load: float = 1.0) -> float:
-        """``mu = (g(V) + sigma2 V) / load`` of steady sliding at ``speed`` (m/s)."""
-        return float(self.g(speed, load) / load + self.sigma2 * speed / load)
+        """``mu = (g(V) sign(V) + sigma2 V) / load`` of steady sliding at ``speed`` (m/s).
+
+        At steady sliding ``z' = 0``, so ``z = g(V) sign(V) / sigma0`` (:meth:`steady_state`)
+        and ``F = sigma0 z + sigma2 V``: friction opposes the slip in either direction.
+        """
+        return float((np.sign(speed) * self.g(speed, load) + self.sigma2 * speed) / load)
 
     def state_name(self) -> str:
         """What :meth:`state_output` returns: ``z`` in metres."""

@@ -43,7 +43,8 @@ from stickslip.model.state_friction import MemorySystem
 #: friction starts there too: the engine carries the slip speed itself, so the creep of a stuck
 #: slider far below the round-off of ``V`` is resolved (:mod:`stickslip.kernel.stiff_system`).
 STARTUP_KICK = -1.0
-#: The kick of the run from near steady sliding: the contact starts at ``(1 - NUDGE) V``.
+#: The kick of the run from near steady sliding: the contact starts moving at ``-NUDGE V``,
+#: against the drive (slip speed ``(1 + NUDGE) V``; :func:`initial_state`).
 NUDGE = 0.01
 
 #: The sentence the report gives instead of a tuned foundation.
