@@ -103,3 +103,27 @@ def test_lugre_subcritical_hopf_gives_the_unstable_orbit_that_bounds_steady_slid
     outside = simulate_memory(at, initial=y_ss + 1.1 * (point.orbit.y0 - y_ss))
     assert inside.verdict.value == "steady-sliding"
     assert outside.verdict.value == "stick-slip"
+
+
+def test_orbits_beside_the_hopf_point_are_not_called_unstable(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    # An independent audit: the Hopf point of examples/friction_memory/rate_state.toml is
+    # supercritical (first Lyapunov coefficient -915, by sympy), so the orbits born there are
+    # stable (its shooting in deviation variables: |mu| = 0.99997 at 7.7460178e-4 m/s); the
+    # monodromy at the default tolerance gave |mu| = 1.0000044-1.0000055 for the three orbits
+    # nearest it. Such points are unresolved, never unstable.
+    from stickslip.analysis.memory.continuation import MULTIPLIER_RESOLUTION
+
+    config = ROOT / "examples" / "friction_memory" / "rate_state.toml"
+    code, out, err = run_cli(["continue", "--config", str(config), "--param", "speed", "--range",
+                              "0.7 mm/s:1 mm/s", "--json"], capsys)
+    assert code == 0, err
+    points = [p for b in json.loads(out)["branches"] for p in b["points"]]
+    assert len(points) > 10
+    for p in points:
+        top = max(p["multiplier_moduli"])
+        assert p["stability_resolved"] is (abs(top - 1.0) > MULTIPLIER_RESOLUTION)
+        assert p["stable"] or not p["stability_resolved"], p  # no resolved unstable orbit
+    nearest = min(points, key=lambda p: p["amplitude_m"])
+    assert not nearest["stability_resolved"]
+    assert sum(p["stable"] and p["stability_resolved"] for p in points) > 10
