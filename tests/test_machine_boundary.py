@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import itertools
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -77,14 +78,25 @@ def test_every_bracket_end_has_the_verdict_it_claims(crossings: dict) -> None:
             assert run.verdict.value == verdict, (speed, verdict, run.certificate)
 
 
-def test_design_and_tune_say_what_their_onset_is(tmp_path: Path,
-                                                 capsys: pytest.CaptureFixture[str]) -> None:
+def test_design_says_what_its_onset_is_and_lists_every_change(
+        crossings: dict, capsys: pytest.CaptureFixture[str]) -> None:
     assert "25 % steps" in ONSET_NOTE and "stickslip boundary --config" in ONSET_NOTE
     code, out, err = run_cli(["design", "--config", str(SLIDEWAY / "machine.toml"),
                               "--no-stick-slip-optimum"], capsys)
     assert code == 0, err
-    assert f"note: {ONSET_NOTE}" in out.splitlines()
+    lines = out.splitlines()
+    assert f"note: {ONSET_NOTE}" in lines
     assert CriticalPoint(0.5, 1e-3, 2e3).to_dict()["onset_search"] == ONSET_NOTE
+    # design's own scan (a decade either side of 0.5 mm/s, 41 runs) finds every boundary of
+    # the finer search of the fixture (0.55 to 1.2 mm/s, 25 runs): the same crossings, each
+    # bisected to 1e-3 from different scan points
+    head = [i for i, line in enumerate(lines) if line.startswith("start-up verdict along the speed")]
+    assert len(head) == 1
+    listed = [float(m.group(1)) for line in lines[head[0] + 1:]
+              if (m := re.search(r"above, at ([0-9.e+-]+) m/s$", line))]
+    for c in crossings["crossings"]:
+        if c["kind"] == "boundary":
+            assert any(abs(v / c["value_SI"] - 1.0) < 2e-3 for v in listed), (c, listed)
 
 
 @pytest.mark.slow

@@ -77,6 +77,45 @@ def design_machine_file(flags: dict[str, Any], config: Path, *, stick_slip: bool
     return report, reduction
 
 
+#: Scan runs of ``design``'s list of verdict changes along the speed (a decade either side:
+#: steps of 12 %, half those of the onset search).
+SPEED_SCAN = 41
+
+
+def speed_changes(machine: Any, options: EngineOptions, show_progress: bool) -> dict[str, Any]:
+    """Every belt speed in ``[V / 10, 10 V]`` where the bare machine's start-up verdict changes.
+
+    The search of ``boundary --config`` (:func:`~stickslip.analysis.contact.boundary.contact_boundary`
+    on the exact engine): :data:`SPEED_SCAN` log-spaced runs, each change bisected to 0.1 %, on
+    the default worker processes. Returns its JSON form.
+    """
+    from stickslip.analysis.contact.boundary import contact_boundary
+    from stickslip.cli.progress import ProgressBar
+
+    with ProgressBar(show_progress, "verdict along the speed", "runs") as bar:
+        found = contact_boundary(machine, "speed", machine.speed / 10.0, machine.speed * 10.0,
+                                 n_scan=SPEED_SCAN, rtol=1e-3, t_max=options.t_max,
+                                 max_events=options.max_events, progress=bar)
+    return found.to_dict()
+
+
+def speed_changes_text(p: dict[str, Any]) -> str:
+    """The lines of :func:`speed_changes` in the design report."""
+    lo, hi = p["range_SI"]
+    head = (f"start-up verdict along the speed, bare machine, {lo:.4g} to {hi:.4g} m/s "
+            f"({p['n_scan']} scan runs, each change bisected to {p['rtol'] * 100:g} %):")
+    if not p["crossings"]:
+        verdicts = " / ".join(sorted({s["verdict"] for s in p["scan"]}))
+        return f"{head} {verdicts} at every scan run (no change wider than a scan step)"
+    lines = [head]
+    for c in p["crossings"]:
+        a, b = c["bracket"]
+        where = (f"at {c['value_SI']:.4g} m/s" if c["kind"] == "boundary"
+                 else f"between {a:.4g} and {b:.4g} m/s (undetermined: not a boundary)")
+        lines.append(f"  {c['below']} below, {c['above']} above, {where}")
+    return "\n".join(lines)
+
+
 def design(
     m: Annotated[str | None, _opt("m")] = None,
     k: Annotated[str | None, _opt("k")] = None,
@@ -110,6 +149,13 @@ def design(
         typer.Option("--t-max", help="dimensionless time horizon omega_n t of each simulation "
                                      "(default 5000): raise it when a verdict is undetermined"),
     ] = None,
+    speed_scan: Annotated[
+        bool,
+        typer.Option("--speed-scan/--no-speed-scan",
+                     help="a [structure] machine: also list every belt speed where the bare "
+                          f"machine's start-up verdict changes, a decade either side of its speed "
+                          f"({SPEED_SCAN} scan runs, each change bisected to 0.1 %)"),
+    ] = True,
     json: Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")] = False,
 ) -> None:
     """Will it stick-slip, at which speed or load, and which foundation stops it (Fig. 16).
@@ -150,12 +196,17 @@ def design(
                                                             options=options, progress=bar)
         machine_payload = machine_report.to_dict()
         machine_payload["reduction"] = None if reduction is None else reduction.summary()
+        if speed_scan:
+            machine_payload["speed_scan"] = speed_changes(machine_report.machine, options,
+                                                          not json and sys.stderr.isatty())
         if json:
             print_json(machine_payload)
             return
         if reduction is not None:
             typer.echo(reduction.summary())
         typer.echo(machine_report.summary())
+        if speed_scan:
+            typer.echo(speed_changes_text(machine_payload["speed_scan"]))
         return
     v = collect_inputs(flags, config)
     foundation = None
