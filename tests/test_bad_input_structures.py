@@ -301,12 +301,22 @@ def test_modes_of_1e300_are_refused_without_overflow_warnings(
     assert "beyond the range of floating-point numbers" in line
 
 
-def test_a_mass_of_1e300_beside_1_kg_is_refused_without_overflow_warnings(
+def test_a_mass_of_1e40_beside_1_kg_is_refused_without_overflow_warnings(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    # before: "warning: overflow encountered in dot" and a step-budget error
-    line = _refused(tmp_path, f"mass = [[1e300, 0, 0], [0, 1, 0], [0, 0, 1]]\nstiffness = {K3}\n"
+    # before (at 1e300): "warning: overflow encountered in dot" and a step-budget error
+    line = _refused(tmp_path, f"mass = [[1e40, 0, 0], [0, 1, 0], [0, 0, 1]]\nstiffness = {K3}\n"
                               "contact_dof = 0\n", capsys)
     assert "mass matrix is numerically singular" in line
+
+
+@pytest.mark.parametrize("entry", ["1e300", "1e308", "-1e60"])
+def test_a_matrix_entry_beyond_1e50_si_is_refused_by_name(
+        tmp_path: Path, entry: str, capsys: pytest.CaptureFixture[str]) -> None:
+    # before: at 1e308 "overflow encountered in add" and "Eigenvalues did not converge"; the
+    # supported magnitude of an SI input is 1e50 (stickslip.model.physical.MAX_SI)
+    line = _refused(tmp_path, f"mass = [[{entry}, 0, 0], [0, 1, 0], [0, 0, 1]]\nstiffness = {K3}\n"
+                              "contact_dof = 0\n", capsys)
+    assert "mass (inline) has an entry of magnitude" in line and "beyond the 1e+50" in line
 
 
 @pytest.mark.parametrize("units", [("75.398 rad/s", "251.327 rad/s"), ("720 rpm", "2400 rpm"),

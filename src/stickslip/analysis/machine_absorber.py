@@ -46,6 +46,7 @@ from stickslip.analysis.critical import ONSET_GROWTH, lowest_onset, speed_and_lo
 from stickslip.analysis.frequency_response import response_peak
 from stickslip.analysis.simulation import EngineOptions, SimulationResult, simulate
 from stickslip.analysis.verdict import RunStatus, Verdict
+from stickslip.model._validate import MAX_PARAMETER, MIN_RATIO
 from stickslip.model.machine import Machine
 
 FloatArray = NDArray[np.float64]
@@ -382,6 +383,10 @@ def tune_machine_absorber(machine: Machine, mass: float, attach_dof: int | None,
     from stickslip.analysis.peak_minimiser import minimise_peak
 
     m_ref, k_ref = machine.reference_mass, machine.reference_stiffness
+    if not MIN_RATIO <= mass / m_ref <= MAX_PARAMETER:  # the paper's mass ratio M, bounded
+        raise ValueError(f"[absorber] mass = {mass:g} kg is {mass / m_ref:.3g} times the contact "
+                         f"DOF's mass ({m_ref:g} kg), outside the supported ratio range "
+                         f"[{MIN_RATIO:g}, {MAX_PARAMETER:g}]")
     c_scale = math.sqrt(m_ref * k_ref)
 
     def build_si(x: FloatArray) -> Machine:

@@ -30,6 +30,7 @@ from stickslip.cli.options import (
     SCHEDULER,
     SCHEDULER_TIMEOUT,
 )
+from stickslip.model.user_file import read_user_text
 
 BOX_HELP = ("sampling box, e.g. 'xi=-4:4,v=-3:1.5' (dimensionless, shifted: xi, v, xi_a, v_a) or, "
             "with --config, 'x=-0.001:0.001,v=-0.02:0.02' (SI: m, m/s; x from where the spring is "
@@ -63,11 +64,15 @@ STATE_NAME = re.compile(r"(xi|x|v)(_a\d*)?")
 def read_states(path: Path, names: list[str]) -> tuple[list[dict[str, str]], list[str], list[list[float]]]:
     """Rows of ``--initial-states``: every row as read, the columns, and the state columns as numbers."""
     try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise BadInput(f"--initial-states {str(path)!r}: {exc.strerror}") from None
+        text = read_user_text(path, f"--initial-states {str(path)!r}", hint="name the CSV file itself")
+    except ValueError as exc:
+        raise BadInput(str(exc)) from None
     reader = csv.DictReader(line for line in text.splitlines() if line.strip() and not line.startswith("#"))
     columns = list(reader.fieldnames or [])
+    repeated = sorted({c for c in columns if columns.count(c) > 1})
+    if repeated:
+        raise BadInput(f"--initial-states {str(path)!r} names the column(s) {', '.join(repeated)} "
+                       "more than once; keep one of each")
     missing = [c for c in names if c not in columns]
     if missing:
         raise BadInput(f"--initial-states {str(path)!r} lacks the columns {', '.join(missing)} "

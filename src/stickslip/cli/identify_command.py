@@ -10,6 +10,7 @@ from typing import Annotated, Any
 import typer
 
 from stickslip.cli.console import BadInput, check_figure_path, check_output_path, print_json
+from stickslip.model.user_file import read_user_text
 
 #: Quantities the user may hold fixed, with the unit family ``to_si`` checks.
 _FIXABLE = ("k", "c", "mu_s", "mu_k", "slope", "stribeck_velocity", "exponent", "viscous")
@@ -250,10 +251,13 @@ def _three_columns(record: Path, what: str, roles: tuple[str, str, str]) -> Any:
     """
     import numpy as np
 
+    from stickslip.io.record import MAX_RECORD_BYTES
+
     try:
-        text = record.read_text(encoding="utf-8-sig")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise BadInput(f"record {str(record)!r}: cannot be read ({exc.__class__.__name__})") from None
+        text = read_user_text(record, f"record {str(record)!r}", max_bytes=MAX_RECORD_BYTES,
+                              hint="give the CSV file itself")
+    except ValueError as exc:
+        raise BadInput(str(exc)) from None
     rows: list[list[float]] = []
     factors = np.ones(3)
     for number, line in enumerate(text.splitlines(), start=1):

@@ -52,6 +52,7 @@ def parse_range(text: str, quantity: str | None, *, positive: bool = False) -> t
     import math
 
     from stickslip.cli.console import BadInput
+    from stickslip.model.physical import MAX_SI, MIN_SI
     from stickslip.model.units import to_si
 
     lo_text, sep, hi_text = text.partition(":")
@@ -67,6 +68,9 @@ def parse_range(text: str, quantity: str | None, *, positive: bool = False) -> t
         raise BadInput(f"--range {text!r} must be A:B with A < B")
     if positive and not (math.isfinite(lo) and math.isfinite(hi) and lo > 0.0):
         raise BadInput(f"--range {text!r} must be positive and finite with A < B")
+    if positive and quantity is not None and not (MIN_SI <= lo and hi <= MAX_SI):
+        raise BadInput(f"--range {text!r} reaches beyond the supported {quantity} range "
+                       f"[{MIN_SI:g}, {MAX_SI:g}] in SI units")
     return lo, hi
 
 

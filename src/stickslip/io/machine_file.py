@@ -18,7 +18,8 @@ Layout::
     # or modes from a modal test, the structure seen from the contact:
     # modes = {frequencies = [12.0, 40.0], damping_ratios = [0.02, 0.03], shapes = [0.5, 0.2]}
     # (Hz, -, mass-normalised values at the contact in 1/sqrt(kg))
-    # cutoff = "500 Hz"   # reduction of models above 60 DOF (default: analysis.reduction)
+    # cutoff = "500 Hz"   # reduction of models above 60 DOF (default: analysis.reduction);
+    #                       smaller models are run whole, the value still checked
 
     [absorber]            # the absorber to tune on this machine
     mass = "3 kg"
@@ -48,6 +49,7 @@ import numpy as np
 
 from stickslip.io.toml_file import read_toml_file
 from stickslip.model.inputs import law_name
+from stickslip.model.physical import si_input
 from stickslip.model.units import QUANTITIES, to_si
 
 #: The paper's slider and foundation keys, replaced by ``[structure]``.
@@ -160,8 +162,14 @@ class MachineFile:
             except UnicodeDecodeError:
                 raise ValueError(f"{source} table = {spec!r} is not UTF-8 text") from None
             columns = friction_csv_columns(text, repr(spec))
-        return physical_friction_from_config(self.friction_table, base_dir=self.path.parent,
-                                             source=source, table_columns=columns)
+        try:
+            return physical_friction_from_config(self.friction_table, base_dir=self.path.parent,
+                                                 source=source, table_columns=columns)
+        except ValueError as exc:  # every message names the file and the table once
+            message = str(exc)
+            if message.startswith(self.label):
+                raise
+            raise ValueError(f"{source}: {message}") from None
 
     @property
     def has_memory_law(self) -> bool:
@@ -201,9 +209,8 @@ class MachineFile:
                              f"{', '.join(sorted(ABSORBER_KEYS))})")
         if "mass" not in table:
             raise ValueError(f"{src}: mass is missing (the absorber mass, e.g. mass = \"3 kg\")")
-        mass = to_si("absorber_mass", table["mass"], source=f"{src} mass =")
-        if not mass > 0.0:
-            raise ValueError(f"{src} mass = {table['mass']!r} must be positive")
+        mass = si_input(f"{src} mass", to_si("absorber_mass", table["mass"], source=f"{src} mass ="),
+                        "kg")
         if ("attach_dof" in table) == ("attach" in table):
             raise ValueError(f"{src}: give either attach_dof (the DOF it hangs on) or "
                              "attach = \"foundation\" (the machine mounted on it)")
@@ -407,9 +414,9 @@ def _table_damping(table: dict[str, Any], m: Any, k: Any, c: Any, names: tuple[s
         except ValueError as exc:
             raise ValueError(f"{source} rayleigh: {exc}") from None
     elif "modal_damping" in table:
+        ratios = _numbers(table["modal_damping"], f"{source} modal_damping")
         try:
             checked_matrices(m, np.zeros_like(m), k, names=names, limit=None)
-            ratios = _numbers(table["modal_damping"], f"{source} modal_damping")
             if isinstance(table["modal_damping"], list):
                 ratios = _modal_ratios(ratios, m.shape[0], full_dof)
                 c = modal_damping(m, k, ratios)
@@ -508,17 +515,22 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
     label = {key: f"{source} {key} = {table[key]!r}" if key in table else f"{source} {key}"
              for key in ("mass", "damping", "stiffness")}
     names = (label["mass"], label["damping"], label["stiffness"])
+    given_cutoff = None
+    if "cutoff" in table:  # checked at any size; a model of <= MAX_DIRECT_DOF DOF is run whole
+        from stickslip.analysis.reduction import check_cutoff
+
+        given_cutoff = check_cutoff(to_si("frequency", table["cutoff"], source=f"{source} cutoff ="),
+                                    source=f"{source} cutoff = {table['cutoff']!r}")
     if n > MAX_DIRECT_DOF:
-        from stickslip.analysis.reduction import check_cutoff, default_cutoff_hz, reduce_structure
+        from stickslip.analysis.reduction import default_cutoff_hz, reduce_structure
         from stickslip.model.structure import check_large_matrices
 
         check_large_matrices(mats["mass"], mats.get("damping"), mats["stiffness"], names=names)
         kept = [contact] + ([absorber.attach_dof] if absorber is not None
                             and absorber.attach_dof is not None else [])
         kept += [normal] if normal is not None and normal not in kept else []
-        if "cutoff" in table:
-            cutoff = check_cutoff(to_si("frequency", table["cutoff"], source=f"{source} cutoff ="),
-                                  source=f"{source} cutoff = {table['cutoff']!r}")
+        if given_cutoff is not None:
+            cutoff = given_cutoff
         elif operating_point is None:
             raise ValueError(f"{source}: a {n}-DOF model needs cutoff (or the operating point)")
         else:
@@ -562,9 +574,10 @@ def machine_from_file(machine_file: MachineFile, values: dict[str, float], *,
     op = (values["speed"], values["load"], values["mu_s"], values["mu_k"])
     m, c, k, contact, name, reduction = machine_file.structure_matrices(
         speed=op[0], load=op[1], mu_s=op[2], mu_k=op[3])
+    friction = machine_file.friction()  # its messages name the file and [friction] already
     try:
         machine = Machine(m, c, k, contact, values["mu_s"], values["mu_k"], values["load"],
-                          values["speed"], machine_file.friction(), name=name)
+                          values["speed"], friction, name=name)
     except ValueError as exc:
         raise ValueError(f"{machine_file.label}: {exc}") from None
     return machine, reduction

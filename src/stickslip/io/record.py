@@ -38,6 +38,7 @@ import numpy as np
 from stickslip.analysis.identification.estimates import MeasuredRecord, RecordError
 from stickslip.io.toml_file import read_toml_file
 from stickslip.model.units import POWER_RULE, unit_powers_bounded
+from stickslip.model.user_file import read_user_text
 
 ROLES: dict[str, tuple[str, str]] = {
     "t": ("[time]", "s"),
@@ -168,27 +169,11 @@ MAX_RECORD_BYTES = 1024**3
 
 def _record_text(p: Path) -> str:
     """The text of the record file ``p`` (UTF-8, a byte-order mark dropped), checked first."""
-    import stat
-
     try:
-        mode = p.stat().st_mode
-        if not stat.S_ISREG(mode):
-            raise RecordError(f"record {str(p)!r} is not a regular file (a folder, FIFO or device); "
-                              "give the CSV file itself")
-        with p.open("rb") as handle:
-            raw = handle.read(MAX_RECORD_BYTES + 1)
-    except FileNotFoundError:
-        raise RecordError(f"record {str(p)!r} does not exist") from None
-    except OSError as exc:
-        raise RecordError(f"cannot read record {str(p)!r}: {exc.strerror or exc}") from None
-    if len(raw) > MAX_RECORD_BYTES:
-        raise RecordError(f"record {str(p)!r} is larger than {MAX_RECORD_BYTES} bytes (1 GiB), the "
-                          "most read")
-    try:
-        return raw.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise RecordError(f"cannot read record {str(p)!r}: it is not UTF-8 text ({exc.reason} at "
-                          f"byte {exc.start})") from None
+        return read_user_text(p, f"record {str(p)!r}", max_bytes=MAX_RECORD_BYTES,
+                              hint="give the CSV file itself")
+    except ValueError as exc:
+        raise RecordError(str(exc)) from None
 
 
 def read_record(path: str | Path, columns: list[ColumnSpec] | None = None) -> MeasuredRecord:

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from stickslip.model.physical import MAX_SI
 from stickslip.model.units import to_si
 
 FloatArray = NDArray[np.float64]
@@ -191,9 +192,13 @@ def _read_npy(handle: Any, uploaded: bool) -> Any:
                         "not a NumPy .npy file (it does not start as numpy.save writes one)")
             raise _Unreadable(f"it is {kind}")
         file.seek(0)
-        version = np.lib.format.read_magic(file)
-        shape, _order, dtype = (np.lib.format.read_array_header_1_0(file) if version == (1, 0)
-                                else np.lib.format.read_array_header_2_0(file))
+        try:
+            version = np.lib.format.read_magic(file)
+            shape, _order, dtype = (np.lib.format.read_array_header_1_0(file) if version == (1, 0)
+                                    else np.lib.format.read_array_header_2_0(file))
+        except (ValueError, SyntaxError, TypeError) as exc:  # numpy's text may quote parser objects
+            raise _Unreadable("its .npy header is not valid (numpy.save writes a dictionary of "
+                              "descr, fortran_order and shape)") from exc
         if dtype.hasobject:
             raise _Unreadable("it holds Python objects (pickled data), which are never loaded")
         entries = int(np.prod(shape, dtype=np.float64))
@@ -291,6 +296,10 @@ def read_matrix(spec: object, *, quantity: str, unit: object = None,
     values = data.data if scipy.sparse.issparse(data) else data
     if not np.all(np.isfinite(values)):
         raise ValueError(f"{where} has NaN or infinite entries")
+    largest = float(np.max(np.abs(values))) * factor if values.size else 0.0
+    if not largest <= MAX_SI:  # sums and eigenvalues of such entries overflow a double
+        raise ValueError(f"{where} has an entry of magnitude {largest:.3g} in SI units, beyond the "
+                         f"{MAX_SI:.0e} supported (check the unit)")
     return data * factor if factor != 1.0 else data
 
 

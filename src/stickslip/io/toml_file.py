@@ -6,6 +6,8 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
+from stickslip.model.user_file import read_user_text
+
 
 def read_toml_file(path: str | Path, label: str, content: bytes | None = None) -> dict[str, Any]:
     """The tables of the TOML file ``path``, or one ``ValueError`` line naming ``label`` and why.
@@ -27,11 +29,8 @@ def read_toml_file(path: str | Path, label: str, content: bytes | None = None) -
     try:
         if content is not None:
             return tomllib.loads(content.decode("utf-8-sig"))
-        return tomllib.loads(Path(path).read_text(encoding="utf-8-sig"))
-    except FileNotFoundError:
-        raise ValueError(f"{label} does not exist") from None
-    except IsADirectoryError:
-        raise ValueError(f"{label} is a directory, not a TOML file") from None
+        text = read_user_text(Path(path), label, hint="name the TOML file itself")
+        return tomllib.loads(text)
     except UnicodeDecodeError:
         raise ValueError(f"{label} is not a UTF-8 text file") from None
     except tomllib.TOMLDecodeError as exc:

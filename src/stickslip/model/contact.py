@@ -48,6 +48,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from stickslip.model.physical import MAX_SI, MIN_SI
 from stickslip.model.units import to_si
 
 #: Keys of the ``[contact]`` table and their quantity (:data:`stickslip.model.units.STRUCTURE_QUANTITIES`).
@@ -157,6 +158,49 @@ class Contact:
                              "the belt, the contact DOF along it; they must differ")
 
 
+#: Largest contact stiffness (``k_n``, ``k_t``) accepted, relative to the structure's stiffest
+#: diagonal entry: a time scale ``1e-6`` of the structure's (at ``1e30`` N/m on a 1 N/m slider
+#: the states of the 1e-15 s element repeated to rounding and were called a period, and the
+#: eigenvalues of steady sliding lose every digit of the structure's own).
+MAX_CONTACT_STIFFNESS = 1e12
+
+
+def check_contact_stiffness(normal_stiffness: float | None, tangential_stiffness: float | None,
+                            stiffness: Any) -> None:
+    """Refuse a contact spring beyond :data:`MAX_CONTACT_STIFFNESS` times the structure's.
+
+    One rule for every engine that takes a contact (simulation, cycles, eigenvalues).
+
+    Parameters
+    ----------
+    normal_stiffness, tangential_stiffness : float or None
+        The contact springs, N/m (None: absent).
+    stiffness : array_like
+        The structure's stiffness matrix, N/m.
+
+    Returns
+    -------
+    None
+        Nothing: the springs are within the bound.
+
+    Raises
+    ------
+    ValueError
+        One line naming the spring, the structure's stiffest spring and why.
+    """
+    import numpy as np
+
+    structure = float(np.max(np.abs(np.diag(np.atleast_2d(stiffness)))))
+    for name, value in (("normal_stiffness", normal_stiffness),
+                        ("tangential_stiffness", tangential_stiffness)):
+        if value is not None and structure > 0.0 and value > MAX_CONTACT_STIFFNESS * structure:
+            raise ValueError(
+                f"{name} = {value:.4g} N/m is beyond {MAX_CONTACT_STIFFNESS:g} times the "
+                f"structure's stiffest spring ({structure:.4g} N/m): its time scale is below "
+                "what double precision resolves beside the structure's; for a rigid contact "
+                "leave the element out")
+
+
 def _check(name: str, value: float | None, *, positive: bool) -> None:
     if value is None:
         return
@@ -166,6 +210,10 @@ def _check(name: str, value: float | None, *, positive: bool) -> None:
         raise ValueError(f"[contact] {name} = {value!r} must be positive")
     if not positive and value < 0.0:
         raise ValueError(f"[contact] {name} = {value!r} must not be negative")
+    if value != 0.0 and not MIN_SI <= value <= MAX_SI:
+        raise ValueError(f"[contact] {name} = {value!r} is outside the supported range "
+                         f"[{MIN_SI:g}, {MAX_SI:g}] in SI units (beyond it the contact's terms "
+                         "overflow double precision)")
 
 
 def contact_from_table(table: Mapping[str, Any] | None, normal_dof: object, *,

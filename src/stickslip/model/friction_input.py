@@ -19,17 +19,12 @@ from stickslip.model.friction import (
     TableFriction,
     check_stribeck_parameter,
 )
+from stickslip.model.user_file import read_user_text
 
 
 def _read_csv_text(path: str | Path) -> str:
     """The text of a friction table file (UTF-8, with or without a byte-order mark)."""
-    p = Path(path)
-    try:
-        return p.read_text(encoding="utf-8-sig")
-    except OSError as exc:
-        raise ValueError(f"cannot read friction table {p}: {exc.strerror}") from None
-    except UnicodeDecodeError:
-        raise ValueError(f"cannot read friction table {p}: not UTF-8 text (save it as CSV UTF-8)") from None
+    return read_user_text(path, f"friction table {str(Path(path))!r}", hint="name the CSV file itself")
 
 
 def read_friction_csv_columns(path: str | Path) -> tuple[list[float], list[float]]:

@@ -47,6 +47,11 @@ LAW_KEYS: dict[str, frozenset[str]] = {
     "table": frozenset({"table"}),
 }
 
+#: Keys a law cannot do without (the others have a documented default), with an example each.
+LAW_REQUIRED: dict[str, frozenset[str]] = {"linear": frozenset({"slope"}),
+                                           "stribeck": frozenset({"stribeck_velocity"})}
+LAW_EXAMPLES = {"slope": '"0.02 s/m"', "stribeck_velocity": '"5 mm/s"'}
+
 #: Friction laws with memory (the smooth stiff engine): their ``[friction]`` keys are read by
 #: :mod:`stickslip.model.state_friction_input`.
 MEMORY_LAWS = ("rate-state", "lugre")
@@ -234,6 +239,11 @@ def friction_fields(table: Mapping[str, Any], *, source: Source | None = None,
             raise InputProblems([(foreign[0], f"{where}: {', '.join(foreign)} = {table[foreign[0]]!r} "
                                               f"does not belong to the {values['law']} law (its "
                                               f"keys: {', '.join(sorted(allowed)) or 'none'})")])
+    missing = sorted(LAW_REQUIRED.get(values["law"], frozenset()) - set(table))
+    if missing:  # a silent default (slope 0, v_s = 1 m/s) would answer for another machine
+        raise InputProblems([(missing[0], f"{where}: law = {values['law']!r} needs "
+                                          f"{', '.join(missing)}, e.g. {missing[0]} = "
+                                          f"{LAW_EXAMPLES[missing[0]]}")])
     values.update(quantities_to_si({key: table[key] for key in FRICTION_QUANTITIES if key in table},
                                    source=source))
     if table_columns is not None:

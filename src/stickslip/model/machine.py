@@ -35,9 +35,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from stickslip.model._validate import non_negative, positive
+from stickslip.model._validate import MAX_PARAMETER, non_negative, positive, within
 from stickslip.model.parameters import Slider
-from stickslip.model.physical import PhysicalFriction, PhysicalSystem
+from stickslip.model.physical import MAX_SI, PhysicalFriction, PhysicalSystem
 from stickslip.model.structure import Structure, checked_matrices
 
 FloatArray = NDArray[np.float64]
@@ -63,7 +63,13 @@ def rayleigh_damping(mass: ArrayLike, stiffness: ArrayLike, alpha: float, beta: 
         The damping matrix, N s/m.
     """
     a, b = non_negative("rayleigh alpha", alpha), non_negative("rayleigh beta", beta)
-    return np.asarray(a * np.asarray(mass, dtype=np.float64) + b * np.asarray(stiffness, dtype=np.float64))
+    with np.errstate(over="ignore", invalid="ignore"):
+        c = np.asarray(a * np.asarray(mass, dtype=np.float64) + b * np.asarray(stiffness, dtype=np.float64))
+    largest = float(np.max(np.abs(c))) if c.size else 0.0
+    if not largest <= MAX_SI:  # inf and nan too
+        raise ValueError(f"[alpha, beta] = [{a:g}, {b:g}] gives damping entries of magnitude "
+                         f"{largest:.3g} N s/m, beyond the {MAX_SI:g} supported")
+    return c
 
 
 def modal_damping(mass: ArrayLike, stiffness: ArrayLike, ratios: float | Sequence[float]) -> FloatArray:
@@ -95,7 +101,8 @@ def modal_damping(mass: ArrayLike, stiffness: ArrayLike, ratios: float | Sequenc
     if z.shape != w2.shape:
         raise ValueError(f"modal_damping has {z.size} ratios for {w2.size} modes (give one, or one per mode)")
     for value in z.tolist():
-        non_negative("modal damping ratio", value)
+        within("modal damping ratio", non_negative("modal damping ratio", value), 0.0,
+               MAX_PARAMETER, "a ratio beyond it is no damping a structure has")
     mphi = m @ phi
     return np.asarray(mphi @ np.diag(2.0 * z * np.sqrt(np.maximum(w2, 0.0))) @ mphi.T)
 
@@ -134,7 +141,8 @@ def modal_structure(frequencies_hz: Sequence[float], damping_ratios: Sequence[fl
     for value in f.tolist():
         positive("modal frequency (Hz)", value)
     for value in z.tolist():
-        non_negative("modal damping ratio", value)
+        within("modal damping ratio", non_negative("modal damping ratio", value), 0.0,
+               MAX_PARAMETER, "a ratio beyond it is no damping a structure has")
     for value in phi.tolist():
         if not math.isfinite(value) or value == 0.0:
             raise ValueError(f"mode shape value {value!r} at the contact must be finite and non-zero "

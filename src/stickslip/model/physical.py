@@ -131,6 +131,8 @@ class PhysicalFriction:
             raise ValueError(f"friction law {self.law!r} is not one of coulomb, linear, table, stribeck")
         if self.law == "table" and not self.table_v:
             raise ValueError("the table friction law needs a curve (table = \"curve.csv\")")
+        if self.law == "stribeck":  # checked here, where a file's [friction] is read
+            si_input("stribeck_velocity", self.stribeck_velocity, "m/s")
 
     def dimensionless(self, m: float, k: float, mu_s: float, mu_k: float, load: float,
                       speed: float) -> FrictionLaw:

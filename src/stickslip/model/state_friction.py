@@ -57,7 +57,22 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.model._validate import finite, non_negative, positive
+from stickslip.model._validate import finite, non_negative, positive, within
+
+#: Supported magnitude of a memory law's parameters (in SI, or in the slider's units on the
+#: dimensionless command line): ``[1e-50, 1e50]``, zero allowed where the law allows it. Beyond
+#: it ``(v / v_s)^2`` or ``load * mu`` overflow a double (a Stribeck velocity of 1e-300 m/s
+#: ended in "Array must not contain infs or NaNs").
+PARAMETER_RANGE = (1e-50, 1e50)
+
+
+def _parameter(name: str, value: float, *, zero: bool = False) -> float:
+    """``value`` positive (or zero, with ``zero``) and within :data:`PARAMETER_RANGE`."""
+    x = non_negative(name, value) if zero else positive(name, value)
+    if zero and x == 0.0:
+        return x
+    return within(name, x, *PARAMETER_RANGE, "beyond it the friction law's terms overflow "
+                  "double precision")
 
 FloatArray = NDArray[np.float64]
 
@@ -110,11 +125,11 @@ class RateStateFriction:
     law: ClassVar[str] = "rate-state"
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "a", positive("a", self.a))
-        object.__setattr__(self, "b", non_negative("b", self.b))
-        object.__setattr__(self, "d_c", positive("d_c", self.d_c))
-        object.__setattr__(self, "mu_ref", positive("mu_ref", self.mu_ref))
-        object.__setattr__(self, "v_ref", positive("v_ref", self.v_ref))
+        object.__setattr__(self, "a", _parameter("a", self.a))
+        object.__setattr__(self, "b", _parameter("b", self.b, zero=True))
+        object.__setattr__(self, "d_c", _parameter("d_c", self.d_c))
+        object.__setattr__(self, "mu_ref", _parameter("mu_ref", self.mu_ref))
+        object.__setattr__(self, "v_ref", _parameter("v_ref", self.v_ref))
         if self.evolution not in EVOLUTIONS:
             raise ValueError(f"evolution={self.evolution!r} must be 'aging' or 'slip'")
         if self.mu_ref / self.a > MAX_PSI_OVER_A:
@@ -205,13 +220,13 @@ class LuGreFriction:
     law: ClassVar[str] = "lugre"
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "sigma0", positive("sigma0", self.sigma0))
-        object.__setattr__(self, "sigma1", non_negative("sigma1", self.sigma1))
-        object.__setattr__(self, "sigma2", non_negative("sigma2", self.sigma2))
-        object.__setattr__(self, "mu_c", positive("mu_c", self.mu_c))
-        object.__setattr__(self, "mu_s", finite("mu_s", self.mu_s))
+        object.__setattr__(self, "sigma0", _parameter("sigma0", self.sigma0))
+        object.__setattr__(self, "sigma1", _parameter("sigma1", self.sigma1, zero=True))
+        object.__setattr__(self, "sigma2", _parameter("sigma2", self.sigma2, zero=True))
+        object.__setattr__(self, "mu_c", _parameter("mu_c", self.mu_c))
+        object.__setattr__(self, "mu_s", _parameter("mu_s", self.mu_s))
         object.__setattr__(self, "stribeck_velocity",
-                           positive("stribeck_velocity", self.stribeck_velocity))
+                           _parameter("stribeck_velocity", self.stribeck_velocity))
         if self.mu_s < self.mu_c:
             raise ValueError(f"mu_s={self.mu_s!r} must be at least mu_c={self.mu_c!r} "
                              "(static friction below Coulomb friction)")

@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from stickslip.analysis.contact._events import AffineFlow
+from stickslip.model.contact import check_contact_stiffness
 
 FloatArray = NDArray[np.float64]
 
@@ -27,10 +28,6 @@ MODE_LABELS = {STICK: "stick", SLIP_FORWARD: "slip forward", SLIP_BACKWARD: "sli
                SEPARATED: "separation"}
 #: Relative velocity (in units of ``V``) below which a re-contact is taken at the belt speed.
 VELOCITY_TOLERANCE = 1e-12
-#: Largest contact stiffness (``k_n``, ``k_t``) accepted, relative to the structure's stiffest
-#: diagonal entry: a time scale ``1e-6`` of the structure's (at ``1e30`` N/m on a 1 N/m slider
-#: the states of the 1e-15 s element repeated to rounding and were called a period).
-MAX_CONTACT_STIFFNESS = 1e12
 #: Relative normal force under which a re-contact by the damper is not retried.
 FORCE_TOLERANCE = 1e-12
 
@@ -137,15 +134,7 @@ class ContactSystem:
             raise ValueError("load and speed must be positive")
         if not self.mu_s > self.mu_k >= 0.0:
             raise ValueError(f"need mu_s > mu_k >= 0 (got mu_s = {self.mu_s}, mu_k = {self.mu_k})")
-        structure = float(np.max(np.abs(np.diag(self.stiffness))))
-        for name, value in (("normal_stiffness", self.normal_stiffness),
-                            ("tangential_stiffness", self.tangential_stiffness)):
-            if value is not None and structure > 0.0 and value > MAX_CONTACT_STIFFNESS * structure:
-                raise ValueError(
-                    f"{name} = {value:.4g} N/m is beyond {MAX_CONTACT_STIFFNESS:g} times the "
-                    f"structure's stiffest spring ({structure:.4g} N/m): its time scale is below "
-                    "what double precision resolves beside the structure's; for a rigid contact "
-                    "leave the element out")
+        check_contact_stiffness(self.normal_stiffness, self.tangential_stiffness, self.stiffness)
         if self.tangential_stiffness is not None and self.contact_mass is None \
                 and self.tangential_damping == 0.0 and self.normal_dof is not None \
                 and self.normal_damping > 0.0:

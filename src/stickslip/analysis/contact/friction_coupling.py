@@ -109,6 +109,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from stickslip.analysis.blas_threads import one_blas_thread
+from stickslip.model.contact import check_contact_stiffness
 
 if TYPE_CHECKING:
     from stickslip.model.contact import Contact
@@ -548,6 +549,9 @@ def coupled_system(machine: Machine, contact: Contact | None, *, normal_dof: int
             contact.check_dofs(at.n_dof, at.contact_dof)
         index = contact.normal_dof if normal_dof is None else normal_dof
         kn, cn = float(contact.normal_stiffness or 0.0), contact.normal_damping
+    if contact is not None:
+        check_contact_stiffness(contact.normal_stiffness, contact.tangential_stiffness,
+                                at.stiffness)
     system = FrictionCoupledSystem(at.mass, at.damping, at.stiffness, at.contact_dof, index,
                                    normal_stiffness=kn, normal_damping=cn, load=at.load,
                                    slope=slope)

@@ -1,0 +1,58 @@
+"""Reading a file a user names, bounded: one home for the checks every reader needs.
+
+A path given on the command line or in a machine file may name a FIFO (reading it blocks until
+someone writes), a device (``/dev/zero`` never ends) or a folder. Every text file the tool reads
+for a user (machine files, friction tables, initial states, records) goes through
+:func:`read_user_text`, which refuses anything that is not a regular file before opening it,
+reads at most ``max_bytes + 1`` bytes, and decodes UTF-8 (a byte-order mark dropped), each
+failure one ``ValueError`` line naming the file and why.
+"""
+
+from __future__ import annotations
+
+import stat
+from pathlib import Path
+
+#: Largest text file read for a user by default, bytes: 64 MiB. Machine files, friction tables
+#: and initial-state lists are far smaller; records (:mod:`stickslip.io.record`) pass their own.
+MAX_TEXT_BYTES = 64 * 1024**2
+
+
+def read_user_text(path: str | Path, label: str, *, max_bytes: int = MAX_TEXT_BYTES,
+                   hint: str = "name the file itself") -> str:
+    """The text of the regular file ``path``, or one ``ValueError`` line naming ``label``.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file a user named.
+    label : str
+        How messages name it, e.g. ``--config 'machine.toml'``.
+    max_bytes : int, optional
+        The most bytes read; a larger file is refused (default :data:`MAX_TEXT_BYTES`).
+    hint : str, optional
+        What to do instead, appended when the path is not a regular file.
+
+    Returns
+    -------
+    str
+        The decoded text (UTF-8, a leading byte-order mark dropped).
+    """
+    p = Path(path)
+    try:
+        mode = p.stat().st_mode
+        if not stat.S_ISREG(mode):
+            raise ValueError(f"{label} is not a regular file (a folder, FIFO or device); {hint}")
+        with p.open("rb") as handle:
+            raw = handle.read(max_bytes + 1)
+    except FileNotFoundError:
+        raise ValueError(f"{label} does not exist") from None
+    except OSError as exc:
+        raise ValueError(f"{label} cannot be read: {exc.strerror or exc}") from None
+    if len(raw) > max_bytes:
+        raise ValueError(f"{label} is larger than {max_bytes} bytes, the most read")
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{label} is not UTF-8 text ({exc.reason} at byte {exc.start}); "
+                         "save it as UTF-8") from None

@@ -1,0 +1,231 @@
+"""The CLI hardening audit: every user file read bounded, every extreme value refused by name.
+
+The contract of ``tests/test_bad_input.py``: a bad value exits with code 2 and exactly one
+``stickslip: error:`` line naming the value and why (no traceback, no warning), nothing written.
+The bounds come from the code's stated limits: SI inputs in ``[1e-50, 1e50]``
+(``stickslip.model.physical.MAX_SI``), dimensionless ratios in ``[1e-6, 1e6]``
+(``stickslip.model._validate``), contact springs at most ``1e12`` times the structure's
+stiffest (``stickslip.model.contact.MAX_CONTACT_STIFFNESS``). A FIFO nobody writes to blocks
+a reader for ever, and ``/dev/zero`` never ends: both must be refused before they are opened.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+from tests.cli_helpers import run_cli
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+SLIDER = ('mu_s = 0.3\nmu_k = 0.2\nload = "1 kN"\nspeed = "1 cm/s"\nm = "1 kg"\nk = "1 kN/m"\n'
+          'c = "1 N*s/m"\n')
+CHAIN = ('mu_s = 0.5\nmu_k = 0.3\nload = "100 N"\nspeed = "1 cm/s"\n[structure]\n'
+         'mass = [[2.0, 0.0], [0.0, 1.0]]\nstiffness = [[3e4, -1e4], [-1e4, 2e4]]\ncontact_dof = 0\n')
+
+
+def _one_error(args: list[str], capsys: pytest.CaptureFixture[str]) -> str:
+    code, out, err = run_cli(args, capsys)
+    lines = err.strip().splitlines()
+    assert code == 2 and len(lines) == 1, (code, out, err)
+    assert lines[0].startswith("stickslip: error:"), err
+    assert "Traceback" not in err and "warning" not in err.lower()
+    return lines[0]
+
+
+def _special(kind: str, folder: Path, name: str) -> Path:
+    """A FIFO nobody writes to, or ``/dev/zero``."""
+    if kind == "fifo":
+        path = folder / name
+        os.mkfifo(path)
+        return path
+    return Path("/dev/zero")
+
+
+# --- files that are not regular files ------------------------------------------------------
+
+@pytest.mark.parametrize("kind", ["fifo", "device"])
+def test_config_that_is_a_fifo_or_device_is_refused_unread(
+        kind: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # before: a FIFO hung `simulate --config`; /dev/zero was read until memory ran out
+    path = _special(kind, tmp_path, "machine.toml")
+    line = _one_error(["simulate", "--config", str(path)], capsys)
+    assert f"--config {str(path)!r} is not a regular file" in line
+
+
+@pytest.mark.parametrize("kind", ["fifo", "device"])
+def test_friction_tables_that_are_not_regular_files_are_refused(
+        kind: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    table = _special(kind, tmp_path, "curve.csv")
+    line = _one_error(["simulate", "--lam", "2", "--zeta", "0.1", "--friction", f"table:{table}"],
+                      capsys)
+    assert "friction table" in line and "is not a regular file" in line
+    machine = tmp_path / "m.toml"
+    machine.write_text(SLIDER + f'[friction]\nlaw = "table"\ntable = "{table}"\n')
+    line = _one_error(["simulate", "--config", str(machine)], capsys)
+    assert "[friction]: friction table" in line and "is not a regular file" in line
+    assert line.count("--config") == 1
+
+
+@pytest.mark.parametrize("kind", ["fifo", "device"])
+def test_initial_states_that_are_not_regular_files_are_refused(
+        kind: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    states = _special(kind, tmp_path, "states.csv")
+    line = _one_error(["basin", "--lam", "2", "--zeta", "0.1", "--initial-states", str(states)],
+                      capsys)
+    assert f"--initial-states {str(states)!r} is not a regular file" in line
+
+
+@pytest.mark.parametrize("law", ["rate-state", "lugre"])
+def test_memory_law_records_that_are_not_regular_files_are_refused(
+        law: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    record = _special("fifo", tmp_path, "record.csv")
+    stiffness = ["--stiffness", "1e7 N/m"] if law == "rate-state" else []
+    line = _one_error(["identify", str(record), "--law", law, *stiffness, "--load", "1 kN"], capsys)
+    assert f"record {str(record)!r} is not a regular file" in line
+
+
+def test_initial_states_not_utf8_name_the_option_and_file(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    states = tmp_path / "states.csv"
+    states.write_bytes(b"xi,v\n\xff\xfe,1\n")
+    line = _one_error(["basin", "--lam", "2", "--zeta", "0.1", "--initial-states", str(states)],
+                      capsys)
+    assert f"--initial-states {str(states)!r} is not UTF-8 text" in line
+
+
+def test_initial_states_with_a_column_twice_are_refused(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # csv.DictReader keeps the last of two equal names: the first column was silently dropped
+    states = tmp_path / "states.csv"
+    states.write_text("xi,v,v\n0,1,2\n")
+    line = _one_error(["basin", "--lam", "2", "--zeta", "0.1", "--initial-states", str(states)],
+                      capsys)
+    assert "names the column(s) v more than once" in line
+
+
+# --- values beyond the supported ranges -----------------------------------------------------
+
+def test_absorber_mass_beyond_the_si_range_or_the_ratio_range_is_refused(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    machine = tmp_path / "m.toml"
+    machine.write_text(CHAIN + '[absorber]\nmass = "1e300 kg"\nattach_dof = 1\n')
+    line = _one_error(["design", "--config", str(machine)], capsys)
+    assert "[absorber] mass=1e+300 is outside the supported range [1e-50, 1e+50]" in line
+    # 1e40 kg is an SI value, but 5e39 times the contact DOF's 2 kg: the paper's M <= 1e6
+    machine.write_text(CHAIN + '[absorber]\nmass = "1e40 kg"\nattach_dof = 1\n')
+    line = _one_error(["design", "--config", str(machine)], capsys)
+    assert "[absorber] mass = 1e+40 kg is 5e+39 times the contact DOF's mass (2 kg)" in line
+
+
+@pytest.mark.parametrize(("key", "value"), [("stribeck_velocity", "1e-300 m/s"),
+                                            ("stribeck_velocity", "1e300 m/s"),
+                                            ("sigma0", "1e-60 N/m")])
+def test_lugre_parameters_beyond_the_range_are_refused_by_name(
+        key: str, value: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # before: v_s = 1e-300 m/s ended in "Array must not contain infs or NaNs"
+    text = (EXAMPLES / "friction_memory" / "lugre.toml").read_text()
+    lines = [f'{key} = "{value}"' if line.startswith(f"{key} =") else line
+             for line in text.splitlines()]
+    machine = tmp_path / "lugre.toml"
+    machine.write_text("\n".join(lines) + "\n")
+    line = _one_error(["simulate", "--config", str(machine)], capsys)
+    assert f"[friction]: {key}=" in line and "outside the supported range [1e-50, 1e+50]" in line
+
+
+@pytest.mark.parametrize(("extra", "named"), [
+    ('tangential_stiffness = "1e8 N/m"\ntangential_damping = "1e300 N*s/m"\n', "tangential_damping"),
+    ('tangential_stiffness = "1e-300 N/m"\n', "tangential_stiffness"),
+])
+@pytest.mark.parametrize("command", ["simulate", "stability"])
+def test_contact_values_beyond_the_si_range_are_refused(
+        extra: str, named: str, command: str, tmp_path: Path,
+        capsys: pytest.CaptureFixture[str]) -> None:
+    # before: tangential_damping 1e300 ran with exit 0; 1e-300 N/m warned of a cast
+    machine = tmp_path / "pad.toml"
+    machine.write_text(CHAIN + "[contact]\n" + extra)
+    line = _one_error([command, "--config", str(machine)], capsys)
+    assert f"[contact] {named} = " in line and "outside the supported range" in line
+
+
+def test_stability_refuses_the_contact_spring_simulate_refuses(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # one rule for every engine: k_n beyond 1e12 times the stiffest structural spring (3e4 N/m)
+    text = (EXAMPLES / "brake_pad" / "machine.toml").read_text()
+    machine = tmp_path / "machine.toml"
+    machine.write_text(text.replace('normal_stiffness = "5e7 N/m"', 'normal_stiffness = "1e40 N/m"'))
+    for name in ("M.csv", "K.csv", "C.csv"):
+        (tmp_path / name).write_bytes((EXAMPLES / "brake_pad" / name).read_bytes())
+    for command in ("simulate", "stability"):
+        line = _one_error([command, "--config", str(machine)], capsys)
+        assert "normal_stiffness = 1e+40 N/m is beyond 1e+12 times the structure's stiffest" in line
+
+
+def test_boundary_range_beyond_the_si_range_is_refused(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    machine = tmp_path / "m.toml"
+    machine.write_text(CHAIN)
+    line = _one_error(["boundary", "--config", str(machine), "--range", "1 cm/s:1e300 m/s"], capsys)
+    assert "--range '1 cm/s:1e300 m/s' reaches beyond the supported speed range" in line
+
+
+@pytest.mark.parametrize(("cutoff", "why"), [("abc", "is not a quantity"),
+                                             ("-5 Hz", "must be a positive frequency"),
+                                             ("0 Hz", "must be a positive frequency")])
+def test_cutoff_is_checked_on_a_model_run_whole(
+        cutoff: str, why: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # before: at <= 60 DOF any cutoff, even "abc", was silently ignored
+    machine = tmp_path / "m.toml"
+    machine.write_text(CHAIN + f'cutoff = "{cutoff}"\n')
+    line = _one_error(["simulate", "--config", str(machine)], capsys)
+    assert f"[structure] cutoff = {cutoff!r}" in line and why in line
+
+
+@pytest.mark.parametrize(("law", "needs"), [("linear", "slope"), ("stribeck", "stribeck_velocity")])
+def test_a_friction_law_without_its_defining_value_is_refused(
+        law: str, needs: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # before: linear ran with slope 0 (Coulomb) and stribeck with v_s = 1 m/s, unsaid
+    machine = tmp_path / "m.toml"
+    machine.write_text(SLIDER + f'[friction]\nlaw = "{law}"\n')
+    line = _one_error(["simulate", "--config", str(machine)], capsys)
+    assert f"[friction]: law = {law!r} needs {needs}" in line
+
+
+@pytest.mark.parametrize(("damping", "message"), [
+    ("rayleigh = [1e300, 1e300]", "[structure] rayleigh: [alpha, beta] = [1e+300, 1e+300] gives "
+                                  "damping entries of magnitude 3e+304"),
+    ("modal_damping = 1e300", "modal damping ratio=1e+300 is outside the supported range [0, 1e+06]"),
+    ('modal_damping = "abc"', "[structure] modal_damping = 'abc' must be a number"),
+])
+def test_damping_descriptions_out_of_range_are_named(
+        damping: str, message: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    machine = tmp_path / "m.toml"
+    machine.write_text(CHAIN + damping + "\n")
+    line = _one_error(["simulate", "--config", str(machine)], capsys)
+    assert message in line and line.count("--config") == 1
+
+
+def test_a_malformed_npy_header_is_described_not_dumped(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # before: "malformed node or string on line 1: <ast.Name object at 0x...>"
+    header = b"{'descr': foo, 'fortran_order': False, 'shape': (2, 2), }"
+    header += b" " * (117 - len(header)) + b"\n"
+    (tmp_path / "M.npy").write_bytes(b"\x93NUMPY\x01\x00" + len(header).to_bytes(2, "little")
+                                     + header + b"\0" * 32)
+    machine = tmp_path / "m.toml"
+    machine.write_text(CHAIN.replace("mass = [[2.0, 0.0], [0.0, 1.0]]", 'mass = "M.npy"'))
+    line = _one_error(["simulate", "--config", str(machine)], capsys)
+    assert "its .npy header is not valid" in line and "object at 0x" not in line
+
+
+@pytest.mark.parametrize("friction", ['law = "stribeck"\nstribeck_velocity = "abc"',
+                                      'law = "linear"\nslope = "1 kg"', "foo = 1",
+                                      'law = "stribeck"\nstribeck_velocity = "-1 m/s"'])
+def test_friction_errors_of_a_structure_file_name_the_file_once(
+        friction: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # before: "--config 'X': --config 'X': [friction]: ..."
+    machine = tmp_path / "m.toml"
+    machine.write_text(CHAIN + "[friction]\n" + friction + "\n")
+    line = _one_error(["simulate", "--config", str(machine)], capsys)
+    assert line.count("--config") == 1 and "[friction]: " in line
