@@ -57,6 +57,9 @@ def parse_box(text: str) -> dict[str, tuple[float, float]]:
     return box
 
 
+#: Largest ``--initial-states`` file read, bytes: 1 GiB (some 2e7 states of four coordinates).
+MAX_STATES_BYTES = 1024**3
+
 #: a state coordinate's column name: xi/x and v, and the other DOFs' xi_a, v_a, x_a2, v_a3, ...
 STATE_NAME = re.compile(r"(xi|x|v)(_a\d*)?")
 
@@ -64,7 +67,8 @@ STATE_NAME = re.compile(r"(xi|x|v)(_a\d*)?")
 def read_states(path: Path, names: list[str]) -> tuple[list[dict[str, str]], list[str], list[list[float]]]:
     """Rows of ``--initial-states``: every row as read, the columns, and the state columns as numbers."""
     try:
-        text = read_user_text(path, f"--initial-states {str(path)!r}", hint="name the CSV file itself")
+        text = read_user_text(path, f"--initial-states {str(path)!r}", max_bytes=MAX_STATES_BYTES,
+                              hint="name the CSV file itself")
     except ValueError as exc:
         raise BadInput(str(exc)) from None
     reader = csv.DictReader(line for line in text.splitlines() if line.strip() and not line.startswith("#"))
