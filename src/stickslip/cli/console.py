@@ -13,6 +13,8 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NoReturn
 
+from stickslip.model.user_file import is_input
+
 if TYPE_CHECKING:
     from stickslip.model.dva import DvaSpec
     from stickslip.model.friction import FrictionLaw
@@ -226,6 +228,9 @@ def check_output_path(path: Path, *, overwrite: bool = True, option: str = "outp
     path = Path(path)
     if path.exists() and path.is_dir():
         raise BadInput(f"{option} path {str(path)!r} is a directory")
+    if is_input(path):
+        raise BadInput(f"{option} {str(path)!r} is an input file of this command; name another "
+                       "output file")
     if path.exists() and not overwrite:
         raise BadInput(f"{option} file {str(path)!r} exists; pass --overwrite to replace it")
     parent = path.parent

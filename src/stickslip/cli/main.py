@@ -15,6 +15,8 @@ from importlib import import_module
 from types import FrameType
 from typing import Annotated, Any, NoReturn
 
+from stickslip.model.user_file import forget_inputs
+
 #: Exit code after Ctrl-C: 128 + SIGINT, as a shell reports a process that SIGINT ended.
 EXIT_INTERRUPTED = 130
 
@@ -446,6 +448,7 @@ def run(argv: list[str] | None = None) -> None:
     solver or a worker pool) prints one line on stderr and exits with code 130.
     """
     note: SigintNote | None = None
+    forget_inputs()  # a new command (tests run many in one process)
     try:
         with noting_sigint() as note:
             args = sys.argv[1:] if argv is None else list(argv)
@@ -475,7 +478,8 @@ def _run(argv: list[str] | None, app: typer.Typer, note: SigintNote | None = Non
             if interrupted(exc, note):
                 _aborted()
             raise
-    except click_exceptions.NoArgsIsHelpError:
+    except click_exceptions.NoArgsIsHelpError as exc:  # bare `stickslip`: its help, as --help
+        typer.echo(exc.ctx.get_help() if exc.ctx is not None else exc.format_message())
         raise SystemExit(0) from None
     except click_exceptions.UsageError as exc:
         fail(exc.format_message())

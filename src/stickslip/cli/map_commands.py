@@ -289,6 +289,10 @@ def map_command(
     _print_map_summary(payload)
 
 
+#: Longest ``--scheduler-timeout``, seconds: one day.
+MAX_SCHEDULER_TIMEOUT = 86_400.0
+
+
 def _scheduler_context(scheduler: str | None, timeout: float) -> Any:
     """Check ``--scheduler-timeout``; reach ``--scheduler`` within it (one line if not).
 
@@ -299,6 +303,9 @@ def _scheduler_context(scheduler: str | None, timeout: float) -> Any:
 
     if not (timeout > 0.0 and math.isfinite(timeout)):
         raise BadInput(f"--scheduler-timeout {timeout!r} must be a positive number of seconds")
+    if timeout > MAX_SCHEDULER_TIMEOUT:  # a socket's timeout overflows the platform's time_t
+        raise BadInput(f"--scheduler-timeout {timeout!r} is beyond {MAX_SCHEDULER_TIMEOUT:g} s "
+                       "(one day), the longest wait for a scheduler")
     if scheduler is None:
         return contextlib.nullcontext()
     import dask

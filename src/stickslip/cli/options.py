@@ -81,6 +81,7 @@ def operating_axes(speed: str | None, load: str | None, example: str) -> list[An
     import math
 
     from stickslip.cli.console import BadInput, flag_error
+    from stickslip.model.physical import MAX_SI
     from stickslip.sweep.grid import Axis
 
     if speed is None or load is None:
@@ -88,7 +89,7 @@ def operating_axes(speed: str | None, load: str | None, example: str) -> list[An
     axes = []
     for flag, text, unit in (("--speed", speed, "m/s"), ("--load", load, "N")):
         try:
-            axis = Axis.parse(text, flag.lstrip("-"))
+            axis = Axis.parse(text, flag.lstrip("-"), limit=MAX_SI)
         except ValueError as exc:
             raise flag_error(flag, text, exc) from None
         values = axis.values

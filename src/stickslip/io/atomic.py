@@ -16,6 +16,8 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import IO, Any
 
+from stickslip.model.user_file import is_input
+
 #: Marker in the names of temporary files (so that a resume store can clean them up).
 TMP_MARK = ".tmp-"
 
@@ -37,6 +39,9 @@ def atomic_output(target: str | os.PathLike[str]) -> Iterator[Path]:
     the write that names no file, or the temporary one, is raised again naming ``target``.
     """
     target = Path(target)
+    if is_input(target):  # one of the command's own inputs: never replaced by its output
+        raise ValueError(f"output {str(target)!r} is an input file of this command; name "
+                         "another output file")
     # missing folders are made here, when writing starts: a command rejected during its
     # checks leaves none behind
     target.parent.mkdir(parents=True, exist_ok=True)

@@ -18,6 +18,7 @@ from numpy.typing import NDArray
 
 from stickslip.model.physical import MAX_SI
 from stickslip.model.units import to_si
+from stickslip.model.user_file import note_input
 
 FloatArray = NDArray[np.float64]
 
@@ -67,6 +68,7 @@ def _read_file(path: Path, source: str, content: bytes | None = None) -> Any:
     shown = repr(path.name) if uploaded else repr(str(path))
     if not uploaded:
         _check_regular_file(path, source)
+        note_input(path)
     suffix = path.suffix.lower()
     if suffix not in _KINDS:
         raise ValueError(f"{source}: {shown} has suffix {suffix!r}; use .mtx, .npy or .csv")

@@ -10,12 +10,54 @@ failure one ``ValueError`` line naming the file and why.
 
 from __future__ import annotations
 
+import os
 import stat
 from pathlib import Path
 
 #: Largest text file read for a user by default, bytes: 64 MiB. Machine files, friction tables
 #: and initial-state lists are far smaller; records (:mod:`stickslip.io.record`) pass their own.
 MAX_TEXT_BYTES = 64 * 1024**2
+
+#: Every file read for the user since :func:`forget_inputs` (real paths): no output may
+#: replace one (``--csv machine.toml --overwrite`` turned the machine file into a table).
+_INPUTS: set[str] = set()
+
+
+def note_input(path: str | Path) -> None:
+    """Remember ``path`` as an input of the current command (see :func:`is_input`).
+
+    Parameters
+    ----------
+    path : str or Path
+        A file read for the user.
+
+    Returns
+    -------
+    None
+        Nothing.
+    """
+    _INPUTS.add(os.path.realpath(path))
+
+
+def is_input(path: str | Path) -> bool:
+    """True when ``path`` (followed through links) was read as an input of the current command.
+
+    Parameters
+    ----------
+    path : str or Path
+        A path about to be written.
+
+    Returns
+    -------
+    bool
+        Whether an output there would replace an input.
+    """
+    return os.path.realpath(path) in _INPUTS
+
+
+def forget_inputs() -> None:
+    """Start a new command: no file has been read for it yet."""
+    _INPUTS.clear()
 
 
 def read_user_text(path: str | Path, label: str, *, max_bytes: int = MAX_TEXT_BYTES,
@@ -45,6 +87,7 @@ def read_user_text(path: str | Path, label: str, *, max_bytes: int = MAX_TEXT_BY
             raise ValueError(f"{label} is not a regular file (a folder, FIFO or device); {hint}")
         with p.open("rb") as handle:
             raw = handle.read(max_bytes + 1)
+        note_input(p)
     except FileNotFoundError:
         raise ValueError(f"{label} does not exist") from None
     except OSError as exc:

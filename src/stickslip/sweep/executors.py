@@ -310,6 +310,9 @@ def check_backend(backend: str, workers: int | None, scheduler: str | None) -> B
         raise ValueError(f"backend {backend!r} is not one of {', '.join(BACKENDS)}")
     if workers is not None:
         whole_number("workers", workers)
+    if scheduler is not None and not scheduler.strip():
+        raise ValueError("--scheduler '' is empty: give the scheduler's address, e.g. "
+                         "tcp://10.0.0.5:8786")
     if scheduler is not None and backend != "dask":
         raise ValueError(f"a scheduler address needs the dask backend, not {backend!r}")
     if scheduler is not None and workers is not None:

@@ -49,12 +49,17 @@ class Axis:
         ``linear`` and ``log`` for ``start:stop:n`` ranges, ``list`` for explicit values.
     spec : str
         The text the axis was parsed from (recorded in datasets), or ``""``.
+    limit : float
+        Largest magnitude accepted: :data:`~stickslip.model._validate.MAX_PARAMETER` for a
+        dimensionless parameter; a quantity in SI units (a machine's speed or load) passes
+        :data:`~stickslip.model.physical.MAX_SI`.
     """
 
     name: str
     values: NDArray[np.float64]
     spacing: Spacing = "list"
     spec: str = ""
+    limit: float = MAX_PARAMETER
 
     def __post_init__(self) -> None:
         values = np.array(self.values, dtype=np.float64).reshape(-1)
@@ -62,11 +67,11 @@ class Axis:
             raise ValueError(f"{self.name} grid is empty")
         if not np.all(np.isfinite(values)):
             raise ValueError(f"{self.name} grid has NaN or infinite values")
-        if np.abs(values).max() > MAX_PARAMETER:
+        if np.abs(values).max() > self.limit:
             big = float(values[np.argmax(np.abs(values))])
             raise ValueError(
                 f"{self.name} grid value {big!r} is beyond the supported range "
-                f"|{self.name}| <= {MAX_PARAMETER:g} (larger values overflow the equations)"
+                f"|{self.name}| <= {self.limit:g} (larger values overflow the equations)"
             )
         values = np.sort(values)
         if np.any(np.diff(values) == 0.0):
@@ -81,7 +86,8 @@ class Axis:
         return int(self.values.size)
 
     @classmethod
-    def parse(cls, text: str, name: str, spacing: str | None = None) -> Axis:
+    def parse(cls, text: str, name: str, spacing: str | None = None, *,
+              limit: float = MAX_PARAMETER) -> Axis:
         """Parse ``start:stop:n``, ``log:start:stop:n`` or ``v1,v2,...``.
 
         Parameters
@@ -93,6 +99,13 @@ class Axis:
         spacing : {"lin", "linear", "log"}, optional
             Spacing of a ``start:stop:n`` range when the text has no prefix. Ignored for
             lists (an explicit list keeps its values whatever the spacing).
+        limit : float, optional
+            Largest magnitude accepted (see the class).
+
+        Returns
+        -------
+        Axis
+            The parsed axis.
 
         Raises
         ------
@@ -106,7 +119,7 @@ class Axis:
             raise ValueError(f"{name} grid is empty")
         requested = _spacing_word(spacing, name) if spacing is not None else None
         if ":" not in raw:
-            return cls(name, np.array(_numbers(raw.split(","), label)), "list", raw)
+            return cls(name, np.array(_numbers(raw.split(","), label)), "list", raw, limit)
         parts = raw.split(":")
         prefix: Spacing | None = None
         if parts[0].strip().lower() in _SPACING_WORDS:
@@ -119,7 +132,7 @@ class Axis:
         kind: Spacing = prefix or requested or "linear"
         start, stop = _numbers(parts[:2], label)
         n = _count(parts[2], label)
-        return cls(name, range_values(start, stop, n, kind, label), kind, raw)
+        return cls(name, range_values(start, stop, n, kind, label), kind, raw, limit)
 
     def describe(self) -> str:
         """``n`` values from ``first`` to ``last`` and the spacing, for summaries."""
