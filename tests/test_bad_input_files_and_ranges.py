@@ -229,3 +229,168 @@ def test_friction_errors_of_a_structure_file_name_the_file_once(
     machine.write_text(CHAIN + "[friction]\n" + friction + "\n")
     line = _one_error(["simulate", "--config", str(machine)], capsys)
     assert line.count("--config") == 1 and "[friction]: " in line
+
+
+# --- round 2: outputs over inputs, refusals by the user's names ------------------------------
+
+def test_an_output_never_replaces_an_input_of_the_same_command(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # before: `--csv machine.toml --overwrite` turned the machine file into a CSV table, and
+    # `continue --out C.csv --overwrite` replaced the damping matrix the machine file names
+    machine = tmp_path / "machine.toml"
+    for name in ("machine.toml", "M.csv", "K.csv", "C.csv"):
+        (tmp_path / name).write_bytes((EXAMPLES / "brake_pad" / name).read_bytes())
+    before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+    line = _one_error(["continue", "--config", str(machine), "--param", "speed", "--range",
+                       "4 m/s:5 m/s", "--points", "2", "--out", str(tmp_path / "C.csv"),
+                       "--overwrite"], capsys)
+    assert "is an input file of this command" in line
+    jenkins = tmp_path / "jenkins.toml"
+    jenkins.write_bytes((EXAMPLES / "jenkins_slider" / "machine.toml").read_bytes())
+    before[jenkins.name] = jenkins.read_bytes()
+    line = _one_error(["map", "--config", str(jenkins), "--speed", "0.1,0.2", "--load", "1,2",
+                       "--out", str(tmp_path / "t.nc"), "--csv", str(jenkins), "--overwrite"], capsys)
+    assert f"{str(jenkins)!r} is an input file of this command" in line
+    assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
+
+
+def test_basin_does_not_write_its_labels_over_its_initial_states(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    states = tmp_path / "labels.csv"
+    states.write_text("xi,v\n0,1\n1,0\n")
+    line = _one_error(["basin", "--lam", "2.5", "--zeta", "0.1", "--initial-states", str(states),
+                       "--out", str(tmp_path), "--overwrite"], capsys)
+    assert "is an input file of this command" in line
+    assert states.read_text() == "xi,v\n0,1\n1,0\n"
+
+
+def test_bare_stickslip_prints_its_help(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, err = run_cli([], capsys)
+    assert code == 0 and out.startswith("Usage: stickslip") and "simulate" in out and err == ""
+
+
+@pytest.mark.parametrize(("timeout", "message"), [
+    ("1e300", "--scheduler-timeout 1e+300 is beyond 86400 s"),  # was an OverflowError traceback
+    ("1e10", "--scheduler-timeout 10000000000.0 is beyond 86400 s")])
+def test_scheduler_timeout_is_bounded(timeout: str, message: str, tmp_path: Path,
+                                      capsys: pytest.CaptureFixture[str]) -> None:
+    line = _one_error(["map", "--lam", "1,2", "--zeta", "0.1,0.2", "--scheduler",
+                       "tcp://127.0.0.1:1", "--scheduler-timeout", timeout, "--out",
+                       str(tmp_path / "x.nc")], capsys)
+    assert message in line
+
+
+def test_an_empty_scheduler_address_is_named(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    line = _one_error(["map", "--lam", "1,2", "--zeta", "0.1,0.2", "--scheduler", "",
+                       "--out", str(tmp_path / "x.nc")], capsys)
+    assert "--scheduler '' is empty" in line
+
+
+def test_map_config_grids_take_si_values_beyond_the_dimensionless_bound(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # before: "load grid value 3000000.0 is beyond |load| <= 1e+06", a bound of dimensionless
+    # parameters, though simulate takes a 3 MN load (SI inputs up to 1e50)
+    machine = tmp_path / "m.toml"
+    machine.write_text(CHAIN)
+    code, _, err = run_cli(["map", "--config", str(machine), "--speed", "0.01,0.02", "--load",
+                            "2e6,3e6", "--out", str(tmp_path / "L.nc")], capsys)
+    assert code == 0, err
+    line = _one_error(["map", "--config", str(machine), "--speed", "0.01,0.02", "--load",
+                       "2e6,3e60", "--out", str(tmp_path / "L2.nc")], capsys)
+    assert "load grid value 3e+60 is beyond the supported range |load| <= 1e+50" in line
+
+
+def test_a_grid_too_large_names_the_delta_axis(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    line = _one_error(["map", "--lam", "0.1:10:100000", "--delta", "-0.1:0.3:1000000", "--zeta",
+                       "0.1", "--out", str(tmp_path / "big.nc")], capsys)
+    assert "use fewer points (--lam/--delta)" in line
+
+
+def test_basin_box_beyond_the_state_bound_is_said_in_the_users_columns(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    machine = tmp_path / "m.toml"
+    machine.write_text(CHAIN)
+    line = _one_error(["basin", "--config", str(machine), "--box", "x=-1e300:1e300"], capsys)
+    assert "--box x=-1e+300:1e+300 reaches beyond the supported state magnitude" in line
+    assert "np.float64" not in line
+
+
+@pytest.mark.parametrize(("text", "message"), [
+    ('system = 5\nm = "1 kg"\n', "system = 5 must be a table ([system])"),
+    (CHAIN.replace("contact_dof = 0", "contact_dof = 0\nname = 5"),
+     "[structure]: name = 5 must be a text in quotes")])
+def test_machine_file_keys_of_the_wrong_type_are_named(
+        text: str, message: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    machine = tmp_path / "m.toml"
+    machine.write_text(text)
+    assert message in _one_error(["simulate", "--config", str(machine)], capsys)
+
+
+def test_a_spacing_given_with_a_list_is_refused(capsys: pytest.CaptureFixture[str]) -> None:
+    line = _one_error(["boundary", "--zeta", "0.05,0.1", "--zeta-spacing", "log"], capsys)
+    assert "--zeta-spacing 'log' spaces a start:stop:n range" in line
+
+
+def test_tune_lam_max_below_the_ratio_bound_is_refused(capsys: pytest.CaptureFixture[str]) -> None:
+    # before: an "optimum" with lambda_crit_at_least 1e-300
+    line = _one_error(["tune", "--zeta", "0.1", "--objective", "stick-slip", "--lam-max", "1e-300"],
+                      capsys)
+    assert "--lam-max=1e-300 is below the supported range" in line
+
+
+@pytest.mark.parametrize(("text", "message"), [("xi,v\n1,2,3\n", "row 1: 3 values for the 2 columns"),
+                                               ("xi,v,tag\n1,2\n", "row 1: 2 values for the 3 columns")])
+def test_initial_state_rows_must_match_the_header(
+        text: str, message: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    states = tmp_path / "states.csv"
+    states.write_text(text)
+    line = _one_error(["basin", "--lam", "2", "--zeta", "0.1", "--initial-states", str(states)],
+                      capsys)
+    assert message in line
+
+
+def _rig_record(tmp_path: Path, header: str | None = None, zero_x: bool = False) -> Path:
+    lines = []
+    for line in (EXAMPLES / "rig_record.csv").read_text().splitlines():
+        if line.startswith("t ") and header is not None:
+            line = header
+        elif zero_x and not line.startswith(("#", "t ")):
+            parts = line.split(",")
+            line = ",".join([parts[0], "0", *parts[2:]])
+        lines.append(line)
+    path = tmp_path / "record.csv"
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+RIG = ["--mass", "1 kg", "--load", "100 N", "--speed", "5 cm/s"]
+
+
+def test_identify_refuses_a_constant_displacement_and_a_doubled_channel(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # before: "warning: invalid value encountered in divide", then "SVD did not converge"
+    line = _one_error(["identify", str(_rig_record(tmp_path, zero_x=True)), *RIG], capsys)
+    assert "the displacement x does not change during the stick phase" in line
+    line = _one_error(["identify", str(_rig_record(tmp_path, header="t [s],x [mm],x [mm]")), *RIG],
+                      capsys)
+    assert "two columns of the header (t [s], x [mm], x [mm]) are the x channel" in line
+
+
+def test_identify_fixed_mu_s_below_the_records_mu_k_is_named(capsys: pytest.CaptureFixture[str]) -> None:
+    # the example record's truth: mu_s 0.6, mu_k 0.4 (its header); before: "gamma=6.2e8 is beyond"
+    line = _one_error(["identify", str(EXAMPLES / "rig_record.csv"), *RIG, "--fix", "mu_s=0.1"],
+                      capsys)
+    assert "mu_s = 0.1 held fixed must exceed the record's kinetic friction coefficient" in line
+
+
+def test_a_foundation_ratio_out_of_range_names_the_inputs(capsys: pytest.CaptureFixture[str]) -> None:
+    line = _one_error(["design", "--m", "2 kg", "--k", "50 kN/m", "--c", "20 N*s/m", "--mu-s", "0.5",
+                       "--mu-k", "0.3", "--load", "500 N", "--speed", "5 cm/s", "--m-a", "1e-40 kg",
+                       "--k-a", "1e40 N/m", "--c-a", "0"], capsys)
+    assert "M = m_a/m = 5e-41 (m_a = 1e-40 kg, m = 2 kg) is outside the supported range" in line
+
+
+def test_cycles_of_a_memory_law_refuse_seeding_options(capsys: pytest.CaptureFixture[str]) -> None:
+    line = _one_error(["cycles", "--config", str(EXAMPLES / "friction_memory" / "lugre.toml"),
+                       "--seeds", "10", "--seed", "5"], capsys)
+    assert "--seeds, --seed: the cycles of a machine with a contact or a friction law" in line

@@ -155,7 +155,7 @@ def tune(
     """
     from stickslip.analysis.absorber_tuning import tune_foundation
     from stickslip.analysis.theory import MAX_TUNING_ZETA
-    from stickslip.model._validate import at_most, non_negative, positive, ratio
+    from stickslip.model._validate import at_most, non_negative, ratio
 
     if config is not None:
         _tune_machine(ctx, config, objective, json)
@@ -171,7 +171,7 @@ def tune(
             mass_ratio = ratio("--mass-ratio", mass_ratio)
         # checked whatever the objective: a value given is never silently ignored
         gamma = at_most("--gamma", non_negative("--gamma", gamma))
-        lam_max = at_most("--lam-max", positive("--lam-max", lam_max))
+        lam_max = ratio("--lam-max", lam_max)
     except ValueError as exc:
         raise BadInput(str(exc)) from None
     if objective not in ("absorber", "stick-slip", "stability"):

@@ -89,6 +89,11 @@ def read_states(path: Path, names: list[str]) -> tuple[list[dict[str, str]], lis
                        f"coordinates this structure does not have (its state is {', '.join(names)})")
     rows, values = [], []
     for k, row in enumerate(reader, start=2):
+        if None in row or None in row.values():  # DictReader's marks of extra and missing fields
+            given = len(row.get(None) or []) + sum(v is not None for key, v in row.items()
+                                                   if key is not None)
+            raise BadInput(f"--initial-states {str(path)!r}, row {k - 1}: {given} values for "
+                           f"the {len(columns)} columns of the header")
         try:
             values.append([float(row[c]) for c in names])
         except (TypeError, ValueError):
@@ -241,7 +246,7 @@ def basin(
     from contextlib import nullcontext
 
     from stickslip.cli.cleanup import UndoOnRefusal
-    from stickslip.cli.map_commands import _scheduler_context
+    from stickslip.cli.options import scheduler_context
     from stickslip.cli.progress import ProgressBar
     from stickslip.io.lock import output_lock
     from stickslip.sweep.execution import ExecutionOptions
@@ -249,7 +254,7 @@ def basin(
 
     enabled = not json and sys.stderr.isatty()
     store = None if out is None else out / "basin.parts"  # resume store, removed when done
-    reach = _scheduler_context(scheduler, scheduler_timeout)  # before any file is made
+    reach = scheduler_context(scheduler, scheduler_timeout)  # before any file is made
     undo = UndoOnRefusal([] if out is None else [out], [] if store is None else [store])
     if out is not None:
         out.mkdir(parents=True, exist_ok=True)  # every check passed: writing starts
@@ -493,7 +498,17 @@ def _sample_physical(structure: Any, slider: Any, reference: Any, samples: int,
             converted[dimensionless[i]] = (lo / scale - shift[i], hi / scale - shift[i])
         else:
             converted[dimensionless[i]] = (lo / reference.speed, hi / reference.speed)
-    return sample_box(structure, slider, samples, converted, seed)
+    try:
+        return sample_box(structure, slider, samples, converted, seed)
+    except ValueError as exc:  # say it in the user's columns and units
+        from stickslip.model.initial import MAX_STATE
+
+        if "reaches beyond" not in str(exc):
+            raise
+        raise BadInput(f"--box {', '.join(f'{k}={lo:g}:{hi:g}' for k, (lo, hi) in box.items())} "
+                       f"reaches beyond the supported state magnitude ({MAX_STATE:g} in units of "
+                       f"V/omega_n = {reference.length_scale:.4g} m and V = {reference.speed:.4g} "
+                       "m/s about steady sliding)") from None
 
 
 def undetermined_statuses(result: Any) -> dict[str, int]:

@@ -141,8 +141,10 @@ def physical_memory() -> int | None:
     return int(pages) * int(size) if pages > 0 and size > 0 else None
 
 
-def check_grid_memory(n_cells: int) -> None:
+def check_grid_memory(n_cells: int, axes: str = "--lam/--zeta") -> None:
     """Refuse a grid whose results would not fit in half the RAM, before anything is written.
+
+    ``axes`` names the options that set the grid, for the message.
 
     Each cell keeps ``N_FLOAT`` float and ``N_INT`` integer summaries (8 bytes each) of the
     engine, held in about :data:`_RESULT_COPIES` copies while the dataset is built and written.
@@ -155,7 +157,7 @@ def check_grid_memory(n_cells: int) -> None:
         raise BadInput(
             f"a grid of {n_cells:,} cells needs about {need / 2**30:,.1f} GiB for its results, "
             f"more than half of this machine's {ram / 2**30:,.1f} GiB; use fewer points "
-            "(--lam/--zeta) or split the map"
+            f"({axes}) or split the map"
         )
 
 

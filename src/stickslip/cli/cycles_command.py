@@ -41,7 +41,7 @@ def cycles(
     """
     from stickslip.analysis.cycles import find_cycles
     from stickslip.analysis.engine_run import EngineOptions
-    from stickslip.cli.console import BadInput
+    from stickslip.cli.console import BadInput, typed_options
     from stickslip.cli.machine_config import configured_machine, refuse_mix, require_dimensionless
     from stickslip.cli.time_options import parse_t_max
     from stickslip.model.parameters import Slider
@@ -62,6 +62,11 @@ def cycles(
         if t_max is not None and (machine_file.has_contact or machine_file.has_memory_law):
             raise BadInput(f"--t-max {t_max!r}: the cycles of a machine with a contact or a "
                            "friction law with memory take their own horizons; leave it out")
+        seeding = typed_options(ctx, ("seeds", "max_period", "seed"))
+        if seeding and (machine_file.has_contact or machine_file.has_memory_law):
+            raise BadInput(f"{', '.join(seeding)}: the cycles of a machine with a contact or a "
+                           "friction law with memory are found from runs of their own starts, "
+                           "not seeded; leave them out")
         if machine_file.has_contact and not machine_file.has_memory_law:
             from stickslip.cli.contact.commands import contact_cycles_command
 

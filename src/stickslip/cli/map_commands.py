@@ -8,7 +8,6 @@ output is written. ``boundary`` finds every critical lambda at each zeta.
 
 from __future__ import annotations
 
-import math
 import sys
 from pathlib import Path
 from typing import Annotated, Any
@@ -39,6 +38,7 @@ from stickslip.cli.options import (
     PLOT,
     SCHEDULER,
     SCHEDULER_TIMEOUT,
+    scheduler_context,
 )
 from stickslip.cli.progress import ProgressBar
 
@@ -70,6 +70,10 @@ def _parse_axes(lam: str | None, zeta: str, lam_spacing: str | None, zeta_spacin
                 ) -> tuple[Any, Any]:
     from stickslip.sweep.grid import Axis
 
+    for flag, text, spacing in (("--lam", lam, lam_spacing), ("--zeta", zeta, zeta_spacing)):
+        if spacing is not None and text is not None and ":" not in text:
+            raise BadInput(f"{flag}-spacing {spacing!r} spaces a start:stop:n range; {flag} "
+                           f"{text!r} is a list, whose values are taken as given")
     lam_axis = None if lam is None else Axis.parse(lam, "lambda", lam_spacing)
     return lam_axis, Axis.parse(zeta, "zeta", zeta_spacing)
 
@@ -250,8 +254,8 @@ def map_command(
         check_output_path(csv, overwrite=overwrite, option="--csv")
     if plot is not None:
         check_figure_path(plot, overwrite=overwrite)
-    check_grid_memory(config.n_cells)
-    reach = _scheduler_context(scheduler, scheduler_timeout)  # before any file is made
+    check_grid_memory(config.n_cells, "--lam/--delta" if delta is not None else "--lam/--zeta")
+    reach = scheduler_context(scheduler, scheduler_timeout)  # before any file is made
     fingerprint = config.fingerprint()
     undo = UndoOnRefusal([out.parent], [store_path(out)])  # before anything is made
     out.parent.mkdir(parents=True, exist_ok=True)  # every check passed: writing starts
@@ -287,33 +291,6 @@ def map_command(
         print_json(payload)
         return
     _print_map_summary(payload)
-
-
-#: Longest ``--scheduler-timeout``, seconds: one day.
-MAX_SCHEDULER_TIMEOUT = 86_400.0
-
-
-def _scheduler_context(scheduler: str | None, timeout: float) -> Any:
-    """Check ``--scheduler-timeout``; reach ``--scheduler`` within it (one line if not).
-
-    Returns the Dask configuration context that makes the run's own client use the same
-    bound (``stickslip.scheduler-timeout``), or a no-op context without a scheduler.
-    """
-    import contextlib
-
-    if not (timeout > 0.0 and math.isfinite(timeout)):
-        raise BadInput(f"--scheduler-timeout {timeout!r} must be a positive number of seconds")
-    if timeout > MAX_SCHEDULER_TIMEOUT:  # a socket's timeout overflows the platform's time_t
-        raise BadInput(f"--scheduler-timeout {timeout!r} is beyond {MAX_SCHEDULER_TIMEOUT:g} s "
-                       "(one day), the longest wait for a scheduler")
-    if scheduler is None:
-        return contextlib.nullcontext()
-    import dask
-
-    from stickslip.sweep.executors import _probe_tcp
-
-    _probe_tcp(scheduler, timeout)
-    return dask.config.set({"stickslip.scheduler-timeout": timeout})
 
 
 def _print_map_summary(p: dict[str, Any]) -> None:
@@ -566,7 +543,7 @@ def operating_map_command(config: Path, speed: str | None, load: str | None, *, 
         check_figure_path(plot, overwrite=overwrite)
     fingerprint = operating_fingerprint(machine, np.asarray(axes[0].values), np.asarray(axes[1].values),
                                         options)
-    reach = _scheduler_context(scheduler, scheduler_timeout)  # before any file is made
+    reach = scheduler_context(scheduler, scheduler_timeout)  # before any file is made
     store = store_path(out)
     undo = UndoOnRefusal([out.parent], [store])  # before anything is made
     out.parent.mkdir(parents=True, exist_ok=True)  # every check passed: writing starts

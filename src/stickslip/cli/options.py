@@ -111,3 +111,33 @@ def check_map_outputs(out: Path, csv: Path | None, plot: Path | None, overwrite:
         check_output_path(csv, overwrite=overwrite, option="--csv")
     if plot is not None:
         check_figure_path(plot, overwrite=overwrite)
+
+
+#: Longest ``--scheduler-timeout``, seconds: one day.
+MAX_SCHEDULER_TIMEOUT = 86_400.0
+
+
+def scheduler_context(scheduler: str | None, timeout: float) -> Any:
+    """Check ``--scheduler-timeout``; reach ``--scheduler`` within it (one line if not).
+
+    Returns the Dask configuration context that makes the run's own client use the same
+    bound (``stickslip.scheduler-timeout``), or a no-op context without a scheduler.
+    """
+    import contextlib
+    import math
+
+    from stickslip.cli.console import BadInput
+
+    if not (timeout > 0.0 and math.isfinite(timeout)):
+        raise BadInput(f"--scheduler-timeout {timeout!r} must be a positive number of seconds")
+    if timeout > MAX_SCHEDULER_TIMEOUT:  # a socket's timeout overflows the platform's time_t
+        raise BadInput(f"--scheduler-timeout {timeout!r} is beyond {MAX_SCHEDULER_TIMEOUT:g} s "
+                       "(one day), the longest wait for a scheduler")
+    if scheduler is None:
+        return contextlib.nullcontext()
+    import dask
+
+    from stickslip.sweep.executors import _probe_tcp
+
+    _probe_tcp(scheduler, timeout)
+    return dask.config.set({"stickslip.scheduler-timeout": timeout})

@@ -327,6 +327,9 @@ def read_machine_file(path: Path, *, label: str | None = None,
         if table is not None and not isinstance(table, dict):
             raise ValueError(f"{label}: {name} = {table!r} must be a table ([{name}])")
     top_level = sorted(k for k in data if k not in tables and k != "system")
+    if "system" in data and not isinstance(data["system"], dict):
+        raise ValueError(f"{label}: system = {data['system']!r} must be a table ([system]) of "
+                         "quantities")
     if "system" in data and top_level:
         raise ValueError(f"{label}: {', '.join(top_level)} at the top level and a [system] table "
                          "both give the quantities; give them in one place (the top level)")
@@ -468,6 +471,9 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
     if unknown:
         raise ValueError(f"{source}: unknown keys {', '.join(unknown)} (allowed: "
                          f"{', '.join(sorted(STRUCTURE_KEYS))})")
+    if not isinstance(table.get("name", ""), str):
+        raise ValueError(f"{source}: name = {table['name']!r} must be a text in quotes, e.g. "
+                         "name = \"slideway\"")
     name = str(table.get("name", "machine"))
     if len(name) > MAX_NAME_LENGTH:  # it titles figures: a 1 MB name took minutes to draw
         raise ValueError(f"{source}: [structure] name is {len(name)} characters long; at most "

@@ -217,7 +217,11 @@ def record_from_text(text: str, name: str, columns: list[ColumnSpec] | None = No
         columns = []
         for (column, unit) in header:  # not ``name``: that is the record's, for messages
             role = ALIASES.get(column.lower())
-            if role is not None and role not in [c.role for c in columns]:
+            if role is not None and role in [c.role for c in columns]:
+                raise RecordError(f"record {name!r}: two columns of the header "
+                                  f"({', '.join(header_raw)}) are the {role} channel; name the "
+                                  "one to use with --columns")
+            if role is not None:
                 columns.append(ColumnSpec(role, column, unit))
         if not any(c.role == "t" for c in columns):
             raise RecordError(f"record {name!r}: no time column (header {', '.join(header_raw)}); "

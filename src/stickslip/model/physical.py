@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from stickslip.model._validate import non_negative, positive, within
+from stickslip.model._validate import MAX_PARAMETER, MIN_RATIO, non_negative, positive, within
 from stickslip.model.friction import (
     CoulombFriction,
     FrictionLaw,
@@ -380,9 +380,16 @@ def foundation_to_dimensionless(foundation: PhysicalFoundation, m: float, k: flo
         ``(M, K, zeta_a)``, dimensionless.
     """
     m, k = positive("m", m), positive("k", k)
+    mass_ratio, stiffness_ratio = foundation.m_a / m, math.sqrt(foundation.k_a / k)
+    for name, value, inputs in (("M = m_a/m", mass_ratio, f"m_a = {foundation.m_a:g} kg, m = {m:g} kg"),
+                                ("K = sqrt(k_a/k)", stiffness_ratio,
+                                 f"k_a = {foundation.k_a:g} N/m, k = {k:g} N/m")):
+        if not MIN_RATIO <= value <= MAX_PARAMETER:  # the paper's ratios, bounded
+            raise ValueError(f"the foundation's {name} = {value:.3g} ({inputs}) is outside the "
+                             f"supported range [{MIN_RATIO:g}, {MAX_PARAMETER:g}]")
     return Foundation(
-        mass_ratio=foundation.m_a / m,
-        stiffness_ratio=math.sqrt(foundation.k_a / k),
+        mass_ratio=mass_ratio,
+        stiffness_ratio=stiffness_ratio,
         damping_ratio=foundation.c_a / (2.0 * math.sqrt(m * k)),
     )
 

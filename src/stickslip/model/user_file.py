@@ -56,7 +56,13 @@ def is_input(path: str | Path) -> bool:
 
 
 def forget_inputs() -> None:
-    """Start a new command: no file has been read for it yet."""
+    """Start a new command: no file has been read for it yet.
+
+    Returns
+    -------
+    None
+        Nothing.
+    """
     _INPUTS.clear()
 
 

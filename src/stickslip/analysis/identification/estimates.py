@@ -303,6 +303,11 @@ def estimate(record: MeasuredRecord, *, mass: float, load: float, speed: float) 
             sl = slice(ph.start, ph.breakaway + 1)
         rates.append(np.polyfit(t[sl], main[sl], 1)[0])
         if record.F is not None and record.x is not None:
+            if not float(np.ptp(record.x[sl])) > 0.0:  # a fit of F against a constant x
+                raise RecordError(
+                    f"the displacement x does not change during the stick phase from t = "
+                    f"{float(t[ph.start]):.6g} s, where the slider moves with the drive: check "
+                    "the x column (constant in the record?)")
             f_vs_x.append(np.polyfit(record.x[sl], record.F[sl], 1))
     rate = float(np.median(rates))
     if record.x is not None:

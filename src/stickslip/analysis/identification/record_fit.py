@@ -413,6 +413,12 @@ def _identify(record: MeasuredRecord, known: Mapping[str, float], law: str, *, m
     """:func:`identify` after its arguments are checked: the Coulomb fit that starts the others,
     the law(s) asked for, the result."""
     est = estimate(record, mass=mass, load=load, speed=speed)
+    if "mu_s" in known and "mu_k" not in known and not known["mu_s"] > est.mu_k:
+        raise ValueError(f"mu_s = {known['mu_s']!r} held fixed must exceed the record's kinetic "
+                         f"friction coefficient mu_k (about {est.mu_k:.3g} from its stick phases)")
+    if "mu_k" in known and "mu_s" not in known and not known["mu_k"] < est.mu_s:
+        raise ValueError(f"mu_k = {known['mu_k']!r} held fixed must be below the record's static "
+                         f"friction coefficient mu_s (about {est.mu_s:.3g} from its breakaways)")
     laws = ("coulomb", "linear", "stribeck") if law == "auto" else (law,)
     fits: dict[str, tuple[FitProblem, Any]] = {}
     coulomb_values: dict[str, float] | None = None
