@@ -62,8 +62,9 @@ class RunStatus(Enum):
     )
     MAX_STEPS = (
         engine.STATUS_MAX_STEPS,
-        f"step budget ({engine.MAX_STEPS} sub-steps) used up before a verdict: the structure "
-        "is so stiff or so heavily damped that its time steps are tiny; check the parameters",
+        f"step budget ({engine.MAX_STEPS} sub-steps) used up before a verdict: the run is "
+        "long for its time steps (a long t_max with a motion that does not settle, e.g. an "
+        "undamped one, or a structure so stiff or so heavily damped that its steps are tiny)",
     )
     CERTIFIED_OSCILLATION = (
         engine.STATUS_OSCILLATION,
