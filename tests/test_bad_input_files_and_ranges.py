@@ -393,4 +393,4 @@ def test_a_foundation_ratio_out_of_range_names_the_inputs(capsys: pytest.Capture
 def test_cycles_of_a_memory_law_refuse_seeding_options(capsys: pytest.CaptureFixture[str]) -> None:
     line = _one_error(["cycles", "--config", str(EXAMPLES / "friction_memory" / "lugre.toml"),
                        "--seeds", "10", "--seed", "5"], capsys)
-    assert "--seeds, --seed: the cycles of a machine with a contact or a friction law" in line
+    assert "--seeds, --seed: the cycles of a machine with a friction law with memory" in line

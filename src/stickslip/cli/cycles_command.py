@@ -63,10 +63,10 @@ def cycles(
             raise BadInput(f"--t-max {t_max!r}: the cycles of a machine with a contact or a "
                            "friction law with memory take their own horizons; leave it out")
         seeding = typed_options(ctx, ("seeds", "max_period", "seed"))
-        if seeding and (machine_file.has_contact or machine_file.has_memory_law):
-            raise BadInput(f"{', '.join(seeding)}: the cycles of a machine with a contact or a "
-                           "friction law with memory are found from runs of their own starts, "
-                           "not seeded; leave them out")
+        if seeding and machine_file.has_memory_law:  # a contact machine refuses them itself
+            raise BadInput(f"{', '.join(seeding)}: the cycles of a machine with a friction law "
+                           "with memory are found from runs of their own starts, not seeded; "
+                           "leave them out")
         if machine_file.has_contact and not machine_file.has_memory_law:
             from stickslip.cli.contact.commands import contact_cycles_command
 
