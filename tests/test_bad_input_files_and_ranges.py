@@ -394,3 +394,18 @@ def test_cycles_of_a_memory_law_refuse_seeding_options(capsys: pytest.CaptureFix
     line = _one_error(["cycles", "--config", str(EXAMPLES / "friction_memory" / "lugre.toml"),
                        "--seeds", "10", "--seed", "5"], capsys)
     assert "--seeds, --seed: the cycles of a machine with a friction law with memory" in line
+
+
+def test_a_script_may_rewrite_a_file_it_read_outside_a_command(tmp_path: Path) -> None:
+    # the input registry guards a command's outputs; the Python API keeps plain file semantics
+    import subprocess
+    import sys
+
+    table = tmp_path / "curve.csv"
+    table.write_text("v,f\n0,1\n2,0\n")
+    code = ("from stickslip.model.friction_input import read_friction_csv_columns\n"
+            "from stickslip.io.atomic import atomic_write_text\n"
+            f"read_friction_csv_columns({str(table)!r})\n"
+            f"atomic_write_text({str(table)!r}, 'v,f\\n0,1\\n3,0\\n')\n")
+    subprocess.run([sys.executable, "-c", code], check=True, timeout=120)
+    assert table.read_text() == "v,f\n0,1\n3,0\n"

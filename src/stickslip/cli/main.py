@@ -15,7 +15,7 @@ from importlib import import_module
 from types import FrameType
 from typing import Annotated, Any, NoReturn
 
-from stickslip.model.user_file import forget_inputs
+from stickslip.model.user_file import recording_inputs
 
 #: Exit code after Ctrl-C: 128 + SIGINT, as a shell reports a process that SIGINT ended.
 EXIT_INTERRUPTED = 130
@@ -448,9 +448,8 @@ def run(argv: list[str] | None = None) -> None:
     solver or a worker pool) prints one line on stderr and exits with code 130.
     """
     note: SigintNote | None = None
-    forget_inputs()  # a new command (tests run many in one process)
     try:
-        with noting_sigint() as note:
+        with noting_sigint() as note, recording_inputs():  # no output over an input of it
             args = sys.argv[1:] if argv is None else list(argv)
             announced = _announce_compilation(args)
             with warnings.catch_warnings():

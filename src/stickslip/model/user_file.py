@@ -12,15 +12,20 @@ from __future__ import annotations
 
 import os
 import stat
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 #: Largest text file read for a user by default, bytes: 64 MiB. Machine files, friction tables
 #: and initial-state lists are far smaller; records (:mod:`stickslip.io.record`) pass their own.
 MAX_TEXT_BYTES = 64 * 1024**2
 
-#: Every file read for the user since :func:`forget_inputs` (real paths): no output may
-#: replace one (``--csv machine.toml --overwrite`` turned the machine file into a table).
+#: Every file read for the user by the running command (real paths): no output of the command
+#: may replace one (``--csv machine.toml --overwrite`` turned the machine file into a table).
+#: Recorded only within :func:`recording_inputs` (the command line runs each command in it): a
+#: script using the Python API may rewrite a file it read.
 _INPUTS: set[str] = set()
+_RECORDING = [False]
 
 
 def note_input(path: str | Path) -> None:
@@ -36,7 +41,8 @@ def note_input(path: str | Path) -> None:
     None
         Nothing.
     """
-    _INPUTS.add(os.path.realpath(path))
+    if _RECORDING[0]:
+        _INPUTS.add(os.path.realpath(path))
 
 
 def is_input(path: str | Path) -> bool:
@@ -55,15 +61,22 @@ def is_input(path: str | Path) -> bool:
     return os.path.realpath(path) in _INPUTS
 
 
-def forget_inputs() -> None:
-    """Start a new command: no file has been read for it yet.
+@contextmanager
+def recording_inputs() -> Iterator[None]:
+    """Within: one command, whose files read are recorded (:func:`is_input`); after, none.
 
     Returns
     -------
-    None
-        Nothing.
+    contextmanager
+        Clears the record on entry and on exit.
     """
     _INPUTS.clear()
+    _RECORDING[0] = True
+    try:
+        yield
+    finally:
+        _INPUTS.clear()
+        _RECORDING[0] = False
 
 
 def read_user_text(path: str | Path, label: str, *, max_bytes: int = MAX_TEXT_BYTES,
