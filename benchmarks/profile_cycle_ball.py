@@ -80,25 +80,32 @@ def main() -> None:
           f"||J||_W = {norm_w:.3f}, kappa = {kappa:.3f}")
     ladder = [scale * cycle_proof.RADIUS_START * cycle_proof.RADIUS_FACTOR ** -i for i in range(args.radii)]
     radii = sorted(set(ladder) | {proof.radius, 2.0 * proof.radius}, reverse=True)
-    for radius in radii:
-        t = tube_at(radius)
-        if t.ok:
-            theta = norm_w + kappa * t.jacobian_bound
-            print(f"r = {radius:9.3e}: tube holds, E(r) = {t.jacobian_bound:9.3e}, theta = {theta:7.3f}"
-                  f" ({'contracts' if theta < 1.0 else 'no contraction'})")
-            continue
-        ph = cand.phases[t.failed_phase]
-        kind, band = mode_kind_band(ph.mode)
-        width = (f", band width {float(edges[band + 1] - edges[band]):.2e}" if kind != 2
-                 and np.isfinite(edges[band + 1]) else "")
-        print(f"r = {radius:9.3e}: tube fails in phase {t.failed_phase} ({KINDS[kind]}, band {band}"
-              f"{width}, duration {ph.duration:.3g}), carried deviation {t.failed_deviation:.2e}")
+    for equal_time in (False, True):
+        print("band by band (each edge an event):" if not equal_time
+              else "equal times across the band edges:")
+        for radius in radii:
+            ladder_line(cand, edges, tube_at(radius, equal_time), radius, norm_w, kappa)
     true_map(pmap, cand, cycle_proof._adapted_norm(cand.jac)[0])
     if args.states > 0:
         center = pmap.reduce(proof.fixed_point)
         states = sample_box(structure, slider, args.states, box, seed=1)
-        larger_balls(structure, slider, states, center, [proof.radius, 1e-4, 1e-3, 1e-2, 1e-1, 1.0])
+        larger_balls(structure, slider, states, center, sorted({proof.radius, 1e-4, 1e-3, 1e-2, 1e-1, 1.0}))
         steady_entry(structure, slider, states, (0.3, 0.2, 0.1))
+
+
+def ladder_line(cand, edges, t, radius, norm_w, kappa) -> None:  # type: ignore[no-untyped-def]
+    """One radius of the ladder: the contraction bound, or where the tube fails."""
+    if t.ok:
+        theta = norm_w + kappa * t.jacobian_bound
+        print(f"r = {radius:9.3e}: tube holds, E(r) = {t.jacobian_bound:9.3e}, theta = {theta:7.3f}"
+              f" ({'contracts' if theta < 1.0 else 'no contraction'})")
+        return
+    ph = cand.phases[t.failed_phase]
+    kind, band = mode_kind_band(ph.mode)
+    width = (f", band width {float(edges[band + 1] - edges[band]):.2e}" if kind != 2
+             and np.isfinite(edges[band + 1]) else "")
+    print(f"r = {radius:9.3e}: tube fails in phase {t.failed_phase} ({KINDS[kind]}, band {band}"
+          f"{width}, duration {ph.duration:.3g}), carried deviation {t.failed_deviation:.2e}")
 
 
 def true_map(pmap, cand, chol) -> None:  # type: ignore[no-untyped-def]

@@ -645,16 +645,21 @@ def test_folds_of_the_interpolant_near_the_hopf_point_are_said(tolerance: float,
         assert first.amplitude == pytest.approx(0.11374, abs=1e-5)
 
 
-def test_a_branch_seeded_from_an_unproven_candidate_is_traced_and_said() -> None:
+def test_a_branch_seeded_from_an_unproven_candidate_is_traced_and_said(
+        monkeypatch: pytest.MonkeyPatch) -> None:
     # a light, soft foundation (M = 0.0934, K = 0.0378, zeta_a = 0.715, lambda = 1.36, zeta =
     # 0.08) under the linear law: its stick-slip cycle at delta = 0.57 (period 884.175043,
     # tests/friction_oracle.py: DOP853 at rtol 1e-11, the spacing of the last stick onsets
     # over tau = 9000) has no existence proof, so find_cycles lists it as a candidate; the
     # diagram used to show nothing. Its branch is traced from the candidate, marked, and the
-    # warnings say so
+    # warnings say so. (The equal-time tube proves this cycle at some loads of the range and
+    # not at others, its balls being at the size of the engine's rounding: the proofs are
+    # switched off here, so that every seed is a candidate, as before that tube.)
+    from stickslip.analysis import cycle_proof
     from stickslip.model.friction import LinearFriction
     from stickslip.model.parameters import Foundation
 
+    monkeypatch.setattr(cycle_proof, "_ball", lambda *args, **kwargs: None)
     system = ContinuationSystem(1.36, 0.08, foundation=Foundation(0.0934, 0.0378, 0.715),
                                 friction=LinearFriction(0.57))
     result = continue_cycles(system, "delta", (0.55, 0.59), seeds=4)

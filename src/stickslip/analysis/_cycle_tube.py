@@ -14,13 +14,20 @@ carries, and a proof to its residual, so a proof does not rest on the last bits.
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from stickslip.analysis import _phase_flow as flow
+from stickslip.analysis._band_variation import BandVariation, band_growth
+from stickslip.analysis._interval_bounds import clear_of_zero, end_drift, interval_floor
+from stickslip.analysis._product_norms import ProductNorms
+from stickslip.analysis._tube_coordinates import Coordinates
+from stickslip.analysis._tube_phase import Phase
 from stickslip.analysis.return_map import ReturnMap
 from stickslip.kernel.linalg import expm
 from stickslip.kernel.system import SLIP_I, STICK, mode_kind_band
@@ -31,97 +38,10 @@ FloatArray = NDArray[np.float64]
 ROUNDING = 1e-13
 
 
-@dataclass(frozen=True)
-class Coordinates:
-    """The coordinates ``y = T^-1 z`` a tube is bounded in (the engine's state is ``z``).
-
-    The tube's bounds are 2-norm bounds, true in any coordinates; their size is not. In the
-    *energy coordinates* (:meth:`energy`) ``|y|^2 / 2`` is the structure's mechanical energy,
-    so a passive mode's flow does not grow (``||expm(A t)||_2 <= 1``), where in the engine's
-    coordinates it can grow by ``sqrt(cond)`` of the mass and stiffness matrices.
-    """
-
-    to_state: FloatArray  # T
-    from_state: FloatArray  # T^-1
-
-    @property
-    def to_state_norm(self) -> float:
-        """``||T||_2``: a deviation in ``y`` is at most this times larger in ``z``."""
-        return float(np.linalg.norm(self.to_state, 2))
-
-    @property
-    def from_state_norm(self) -> float:
-        """``||T^-1||_2``: a deviation in ``z`` is at most this times larger in ``y``."""
-        return float(np.linalg.norm(self.from_state, 2))
-
-    @classmethod
-    def identity(cls, n2: int) -> Coordinates:
-        """The engine's own coordinates."""
-        return cls(np.eye(n2), np.eye(n2))
-
-    @classmethod
-    def energy(cls, mass: FloatArray, stiffness: FloatArray) -> Coordinates:
-        """``y = (K^(1/2) q, M^(1/2) v)``; the identity unless both matrices are positive
-        definite (a structure with a rigid-body mode has no energy norm)."""
-        n = mass.shape[0]
-        roots = []
-        for matrix in (stiffness, mass):
-            sym = 0.5 * (np.asarray(matrix, dtype=np.float64) + np.asarray(matrix).T)
-            w, v = np.linalg.eigh(sym)
-            if not (w.size and np.all(np.isfinite(w)) and w[0] > 1e-12 * w[-1] > 0.0):
-                return cls.identity(2 * n)
-            roots.append((v * np.sqrt(w), v / np.sqrt(w)))  # columns scaled: V W^(1/2)
-        (k_half, k_inv_half), (m_half, m_inv_half) = roots
-        from_state = np.zeros((2 * n, 2 * n))
-        to_state = np.zeros((2 * n, 2 * n))
-        from_state[:n, :n] = k_half.T  # W^(1/2) V^T: a square root of K with |y|^2 = q' K q
-        from_state[n:, n:] = m_half.T
-        to_state[:n, :n] = k_inv_half  # its inverse V W^(-1/2)
-        to_state[n:, n:] = m_inv_half
-        return cls(to_state, from_state)
-
-
-@dataclass
-class Phase:
-    """Nominal data of one phase of the run behind ``P^q`` (see :func:`phases`)."""
-
-    mode: int
-    duration: float
-    a: FloatArray  # A of z' = A z + c
-    c: FloatArray
-    norm_a: float
-    functions: list[tuple[FloatArray, float]]  # (normal n, level g0): g = n.z - g0
-    ending: int  # index into functions of the event that ends the phase
-    start_zero: list[bool]  # functions that vanish at the start (left from their surface)
-    tangential: list[bool]  # ... and leave it tangentially: rate 0 on the whole start section
-    g: FloatArray  # (samples, functions) nominal g at the samples
-    rate: FloatArray  # (samples, functions) nominal n.f
-    curv: FloatArray  # (samples, functions) nominal n.A f, the second derivative of g
-    flow_norm: FloatArray  # ||f(z*(s_j))||_2 at the samples
-    m_norm: FloatArray  # bounds of ||expm(A s_j)||_2 at the samples (sampled_flow)
-    hs: FloatArray  # the sample intervals' lengths
-    z_end: FloatArray
-    f_minus: FloatArray  # field of this mode at z_end
-    f_plus: FloatArray  # field of the next mode at z_end (0 at the map's final section)
-    a_plus: FloatArray
-    belt_decision: bool  # ends at the belt speed: the next mode is chosen by the stick force
-    e_nominal: FloatArray  # expm(A t)
-    breakaway: bool  # ends with a breakaway (counted for the minimal-period check)
-    engine_norm_a: float  # ||A||_F in the engine's coordinates (its step size: the rounding)
-    salt: FloatArray = field(init=False)  # the nominal saltation matrix at the end
-    salt_norm: float = field(init=False)
-    e_norm: float = field(init=False)
-
-    def __post_init__(self) -> None:
-        nv = self.functions[self.ending][0]
-        self.salt = (np.eye(self.f_minus.size)
-                     + np.outer(self.f_plus - self.f_minus, nv) / float(nv @ self.f_minus))
-        self.salt_norm = float(np.linalg.norm(self.salt, 2))
-        self.e_norm = float(np.linalg.norm(self.e_nominal, 2))
-
-
-def _functions(pmap: ReturnMap, mode: int) -> list[tuple[FloatArray, float]]:
-    """Every event surface of ``mode``: ``n . z = g0`` (the engine's events, Eq. 20 and bands)."""
+def _functions(pmap: ReturnMap, mode: int, guard: bool = False) -> list[tuple[FloatArray, float]]:
+    """Every event surface of ``mode``: ``n . z = g0`` (the engine's events, Eq. 20 and bands);
+    with ``guard``, a slip mode above band 0 has the belt speed ``u = 0`` last (the one true
+    event the equal-time variant watches for there)."""
     lam, gamma = float(pmap.slider.lam), float(pmap.slider.gamma)
     kind, band = mode_kind_band(mode)
     if kind == STICK:
@@ -131,6 +51,8 @@ def _functions(pmap: ReturnMap, mode: int) -> list[tuple[FloatArray, float]]:
     out = [(pmap.slip_normal, 1.0 + sign * float(edges[band]))]
     if band + 1 < edges.size and math.isfinite(float(edges[band + 1])):
         out.append((pmap.slip_normal, 1.0 + sign * float(edges[band + 1])))
+    if guard and band > 0:
+        out.append((pmap.slip_normal, 1.0))
     return out
 
 
@@ -162,6 +84,7 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int, coords: Coordinates | None = 
     phases: list[Phase] = []
     n2 = 2 * pmap.n
     lift = to_y @ pmap.lift
+    bands = BandVariation.of(pmap.edges, pmap.flow_matrix, pmap.flow_constant, pmap.n, to_y, to_z)
     ends = np.append(seg_t[first + 1:last + 1], t_hit)
     for mode, t0, t1 in zip(seg_mode[first:last + 1], seg_t[first:last + 1], ends, strict=True):
         norm_a = float(np.linalg.norm(to_y @ pmap.flow_matrix[int(mode)] @ to_z))
@@ -180,7 +103,9 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int, coords: Coordinates | None = 
         scale = max(1.0, float(np.max(np.abs(z_end))))
         z0, z_end = to_y @ z0, to_y @ z_end
         a, c = to_y @ pmap.flow_matrix[mode] @ to_z, to_y @ pmap.flow_constant[mode]
-        functions = [(nv @ to_z, g0) for nv, g0 in _functions(pmap, mode)]
+        kind, band = mode_kind_band(mode)
+        slip_bands = bands if kind != STICK else None
+        functions = [(nv @ to_z, g0) for nv, g0 in _functions(pmap, mode, slip_bands is not None)]
         values_end = [abs(float(nv @ z_end) - g0) for nv, g0 in functions]
         ending = int(np.argmin(values_end))
         if values_end[ending] > 1e-7 * scale:
@@ -188,7 +113,7 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int, coords: Coordinates | None = 
         start_zero = [abs(float(nv @ z0) - g0) <= 1e-9 * scale for nv, g0 in functions]
         duration = t1 - t0
         norm_a = float(np.linalg.norm(a))
-        times, zs, m_norm = flow.sampled_flow(a, c, z0, duration, norm_a)
+        times, zs, m_norm, m_two = flow.sampled_flow(a, c, z0, duration, norm_a, bands is not None)
         hs = np.diff(times)
         fields = zs @ a.T + c
         normals = np.array([nv for nv, _ in functions])
@@ -218,7 +143,13 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int, coords: Coordinates | None = 
                             tangential, g, rate, curv,
                              np.linalg.norm(fields, axis=1), m_norm, hs, z_end,
                              a @ z_end + c, f_plus, a_plus, belt, expm(a * duration),
-                             bk, float(np.linalg.norm(pmap.flow_matrix[mode]))))
+                             bk, float(np.linalg.norm(pmap.flow_matrix[mode])),
+                            slip_bands, kind, band,
+                            (0 if band == 0 else len(functions) - 1) if slip_bands else -1,
+                            m_two=m_two))
+    for one, after in itertools.pairwise(phases):
+        one.edge_end = (one.bands is not None and after.bands is not None and not one.belt_decision
+                        and after.kind == one.kind and abs(after.band - one.band) == 1)
     return phases, z_hit
 
 
@@ -231,65 +162,70 @@ class Tube:
     breakaway_deviation: list[float] = field(default_factory=list)  # Z at each breakaway
     failed_phase: int = -1  # the phase whose check failed (not ok); -1 when ok
     failed_deviation: float = math.nan  # the deviation Z the tube carried into that phase
+    deltas: list[float] = field(default_factory=list)  # Delta_i >= ||X_i - X_i*|| per phase
 
 
-def interval_floor(values: FloatArray, curvature: FloatArray) -> FloatArray:
-    """Per sample interval: a lower bound of ``|v|`` over it; negative where ``v`` may vanish.
-
-    ``v`` is sampled at the interval's ends; ``curvature`` bounds ``|v''| h^2 / 8`` on each
-    interval, the error of the linear interpolant. With end values of one sign, ``|v| >=
-    min(|v_j|, |v_{j+1}|) - curvature`` there; an interval whose ends differ in sign gets -1.
-    """
-    same = np.sign(values[:-1]) * np.sign(values[1:]) > 0
-    low = np.minimum(np.abs(values[:-1]), np.abs(values[1:])) - curvature
-    return np.where(same, low, -1.0)
-
-
-def clear_of_zero(g: FloatArray, curvature: FloatArray, eps: FloatArray) -> NDArray[np.bool_]:
-    """Per sample interval: ``|g*| > eps`` on all of it (see :func:`interval_floor`)."""
-    return interval_floor(g, curvature) > eps
-
-
-def _end_time_deviation(ph: Phase, z_dev: float) -> float | None:
+def _end_time_deviation(ph: Phase, z_dev: float, extra: float = 0.0, kappa: float = 0.0,
+                        equal_time: bool = False, tight: bool = False) -> float | None:
     """``T``: how far the phase's end moves for starts within ``z_dev``; None without a bound.
 
     The event checks of :func:`tube_bound` for one phase: every event surface clear of the
     perturbed motions except in the windows next to the surfaces the phase starts on and ends
-    on, where the rate keeps its sign (see its docstring).
+    on, where the rate keeps its sign (see its docstring). The deviation at phase time ``s``
+    is ``M(s) z_dev + extra``. With ``equal_time`` (:mod:`stickslip.analysis._band_variation`)
+    the band edges are no events: only the belt speed ``u = 0`` is watched, a phase ending
+    at an edge has ``T = 0``, the perturbed field may differ by ``kappa`` times the deviation
+    (another band's), also in the curvature of a tangential departure from ``u = 0``. With
+    ``tight`` (the equal-time variant's run) the norms are the sampled 2-norms and the end's
+    spread along a surface is ``||n expm(A t*)||``, a row's norm.
     """
+    m_norm = ph.m_two if tight and ph.m_two is not None else ph.m_norm
     grow = np.exp(ph.norm_a * ph.hs)
-    m_int = np.maximum(ph.m_norm[:-1], ph.m_norm[1:]) * grow
+    m_int = np.maximum(m_norm[:-1], m_norm[1:]) * grow
     f_int = np.maximum(ph.flow_norm[:-1], ph.flow_norm[1:]) * grow
+    # a deviation bound coef * (M z_dev + extra), kept in the association of the band-by-band
+    # tube before the equal-time variant (extra = kappa = 0 there: the same floating values)
+    def bounded(coef: float, m: float | FloatArray) -> Any:
+        return coef * m * z_dev + coef * extra
+
     # |d^k/ds^k (n . z*)| <= ||n A^k|| F: the linear interpolant's error is that times h^2 / 8
     h2 = f_int * ph.hs ** 2 / 8.0
     t_dev = 0.0
-    for e, (nv, _g0) in enumerate(ph.functions):
+    ends = not (equal_time and ph.edge_end)  # the phase ends at an event
+    order = [e for e in range(len(ph.functions))
+             if not (ph.is_equal_time_edge(e) if equal_time else e == ph.zero_surface > 0)]
+    for e in order:  # (the guard u = 0 above band 0 is the equal-time variant's alone)
+        nv, _g0 = ph.functions[e]
         n_norm = float(np.linalg.norm(nv))
         na_norm = float(np.linalg.norm(nv @ ph.a))
-        eps = n_norm * m_int * z_dev
-        clear = clear_of_zero(ph.g[:, e], na_norm * h2, eps)
+        clear = clear_of_zero(ph.g[:, e], na_norm * h2, bounded(n_norm, m_int))
         n_int = clear.size
         lo = 0
         if ph.start_zero[e]:
             while lo < n_int and not clear[lo]:
                 lo += 1
         hi = n_int
-        if e == ph.ending:
+        if e == ph.ending and ends:
             while hi > lo and not clear[hi - 1]:
                 hi -= 1
         if not np.all(clear[lo:hi]):
             return None
+        rate_gain = na_norm + n_norm * kappa  # |n . (f(z) - f(z*))| per unit deviation
         for window in ((0, lo), (hi, n_int)):
             a_idx, b_idx = window
             if b_idx <= a_idx:
                 continue
+            m_w = float(np.max(m_int[a_idx:b_idx]))
             if a_idx == 0 and ph.tangential[e]:
                 # g = g' = 0 at the start for every perturbed motion: g'' keeps its sign
                 curvs = ph.curv[0:b_idx + 1, e]
                 na2 = float(np.linalg.norm(nv @ ph.a @ ph.a))
                 na3 = float(np.linalg.norm(nv @ ph.a @ ph.a @ ph.a))
                 floor = interval_floor(curvs, na3 * h2[a_idx:b_idx])
-                rho2 = float(np.min(floor)) - na2 * float(np.max(m_int[a_idx:b_idx])) * z_dev
+                # another band k: n A_k f_k(z) - n A f(z*) = n (A_k - A) f_k(z) + n A (A delta
+                # + r), |n (A_k - A) f_k(z)| <= kappa |g'| (rank one), ||r|| <= kappa ||delta||
+                slope = kappa * (float(np.max(np.abs(ph.rate[0:b_idx + 1, e]))) + bounded(rate_gain, m_w))
+                rho2 = float(np.min(floor)) - bounded(na2, m_w) - bounded(na_norm * kappa, m_w) - slope
                 if not (np.all(curvs > 0) or np.all(curvs < 0)) or rho2 <= 0.0:
                     return None
                 continue
@@ -298,29 +234,31 @@ def _end_time_deviation(ph: Phase, z_dev: float) -> float | None:
                 return None
             na2 = float(np.linalg.norm(nv @ ph.a @ ph.a))
             floor = interval_floor(rates, na2 * h2[a_idx:b_idx])
-            rho = float(np.min(floor)) - na_norm * float(np.max(m_int[a_idx:b_idx])) * z_dev
+            rho = float(np.min(floor)) - bounded(rate_gain, m_w)
             if rho <= 0.0:
                 return None
             if window[0] == hi and e == ph.ending:
-                eps_end = n_norm * float(ph.m_norm[-1]) * z_dev
+                row = float(np.linalg.norm(nv @ ph.e_nominal)) if tight else math.inf
+                eps_end = min(n_norm * float(m_norm[-1]), row) * z_dev + n_norm * extra
                 t_dev = eps_end / rho
                 if not t_dev * ph.norm_a < 1.0:
                     return None  # the end moves by a phase's worth: no bound
                 ext = math.exp(ph.norm_a * t_dev)
                 rate_end = abs(float(ph.rate[-1, e]))
-                if rate_end - na_norm * (float(ph.flow_norm[-1]) * ext * t_dev
-                                         + float(ph.m_norm[-1]) * ext * z_dev) <= 0.0:
+                if rate_end - rate_gain * (float(ph.flow_norm[-1]) * ext * t_dev
+                                           + float(m_norm[-1]) * ext * z_dev + extra) <= 0.0:
                     return None
-        if e == ph.ending and hi == n_int:
+        if e == ph.ending and ends and hi == n_int:
             # the end itself clear: impossible (g* vanishes there); treat as failure
             return None
     ext = math.exp(ph.norm_a * t_dev)
     f_end = float(np.linalg.norm(ph.f_minus))
-    for e, (nv, _g0) in enumerate(ph.functions):
+    for e in order:
+        nv = ph.functions[e][0]
         if e == ph.ending:
             continue  # the other surfaces past t*, up to t* + T
         n_norm = float(np.linalg.norm(nv))
-        spread = n_norm * float(ph.m_norm[-1]) * ext * z_dev
+        spread = n_norm * float(m_norm[-1]) * ext * z_dev + n_norm * extra
         # the nominal continuation moves g by at most T |n . f(z*)| + ||n^T A|| ||f|| T^2 e/2
         # (f(z*(t* + s)) = expm(A s) f(z*(t*)); see end_drift), or by ||n|| ||f|| e T
         along = min(n_norm * float(ph.flow_norm[-1]) * ext * t_dev,
@@ -328,44 +266,6 @@ def _end_time_deviation(ph: Phase, z_dev: float) -> float | None:
         if abs(float(ph.g[-1, e])) <= spread + along:
             return None
     return t_dev
-
-
-def end_drift(nv: FloatArray, a: FloatArray, f_star: FloatArray, f_norm: float, norm_a: float,
-              t_dev: float) -> float:
-    """Bound of ``|g*(t* + u) - g*(t*)|`` for ``0 <= u <= t_dev`` along the nominal flow.
-
-    With ``g = n . z - g0`` and ``z' = A z + c``, ``g*' = n . f`` and ``f(z*(t* + s)) =
-    expm(A s) f*`` (``f*`` the field at the phase's end). ``expm(A s) - I = int_0^s A
-    expm(A r) dr`` gives ``|n . (expm(A s) - I) f*| <= ||n^T A|| s exp(||A|| s) ||f*||``, so
-
-    ``|g*(t* + u) - g*(t*)| <= u |n . f*| + ||n^T A|| ||f*|| u^2 exp(||A|| u) / 2``,
-
-    increasing in ``u``: its value at ``t_dev`` bounds the window. Tighter than ``||n|| ||f*||
-    exp(||A|| T) T`` when the surface's rate ``n . f*`` is small (a band edge of the same
-    velocity near the one the phase ends on).
-
-    Parameters
-    ----------
-    nv : ndarray
-        The surface's normal ``n``.
-    a : ndarray
-        The mode's matrix ``A``.
-    f_star : ndarray
-        ``f*``: the nominal field at the phase's end.
-    f_norm : float
-        ``||f*||_2``.
-    norm_a : float
-        A bound of ``||A||_2`` (the Frobenius norm).
-    t_dev : float
-        ``T``: the window past ``t*``.
-
-    Returns
-    -------
-    float
-        The bound.
-    """
-    return (t_dev * abs(float(nv @ f_star))
-            + float(np.linalg.norm(nv @ a)) * f_norm * t_dev ** 2 * math.exp(norm_a * t_dev) / 2.0)
 
 
 #: Allowance for the engine's rounding per step, in units of the machine epsilon (see
@@ -404,9 +304,10 @@ def rounding_allowance(phases: list[Phase], scale: float) -> float:
     return max(ROUNDING, STEP_ROUNDING * float(np.finfo(np.float64).eps) * steps) * scale
 
 
+# longer than 120 lines: its docstring holds the tube's whole derivation
 def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArray,
                lam: float, gamma: float, radius: float, scale: float,
-               coords: Coordinates | None = None) -> Tube:
+               coords: Coordinates | None = None, equal_time: bool = False) -> Tube:
     """Bounds over every trajectory started in the ball ``||b - b_hat||_2 <= radius``.
 
     Derivation. In a phase of mode ``(A, c)`` two motions started at ``z*`` and ``z* + delta``
@@ -456,7 +357,11 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
     kept when smaller). Likewise ``prod X - prod X* = sum_i Q_i (X_i - X_i*) G(0, i)`` with
     the perturbed suffix ``Q_i = R X_N ... X_{i+1}``, ``||Q_i - Q_i*|| <= D_i = sum_{j>i}
     (||Q_j*|| + D_j) Delta_j ||G(i+1, j)||``, so ``E(r) = sum_i (||Q_i*|| + D_i) Delta_i
-    ||G(0, i) L||`` bounds ``||D P^q - J||``.
+    ||G(0, i) L||`` bounds ``||D P^q - J||``. The equal-time variant (``equal_time``, see
+    :mod:`stickslip.analysis._band_variation`: the band edges are no events) bounds
+    ``||(X_i - X_i*) G(0, i) L||`` by ``||S|| ||expm(A t) - expm(A t*)|| ||G(0, i) L|| +
+    ||S - S*|| ||expm(A t*) G(0, i) L||`` instead, the saltation's variation on the flowed
+    product rather than on ``||expm(A t*)||`` times its norm.
     """
     if coords is None:
         coords = Coordinates.identity(stick_normal.size)
@@ -468,41 +373,47 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
     stick_norm = float(np.linalg.norm(stick_normal))
     deltas: list[float] = []
     carried: list[float] = []  # Delta_j Z_j
+    weights: list[float] = []  # bounds of ||(X_i - X_i*) G(0, i) L||
     breakaway_dev: list[float] = []
     low_level = -lam * (1.0 + 2.0 * gamma)
     for i, ph in enumerate(phases):
         z_devs.append(z_dev)
-        t_dev = _end_time_deviation(ph, z_dev)
-        if t_dev is None:
+        et = equal_time and ph.bands is not None
+        timed = _phase_timing(ph, z_dev, et, equal_time)
+        if timed is None:
             return Tube(False, failed_phase=i, failed_deviation=z_dev)
+        extra, t_dev = timed
         ext = math.exp(ph.norm_a * t_dev)
-        z_event = float(ph.m_norm[-1]) * ext * z_dev + float(ph.flow_norm[-1]) * ext * t_dev
-        z_event += rounding
-        if ph.belt_decision:
-            force = float(stick_normal @ ph.z_end)
-            if min(abs(force - lam), abs(force - low_level)) <= stick_norm * z_event:
+        m_end = float(ph.m_two[-1]) if equal_time and ph.m_two is not None else float(ph.m_norm[-1])
+        z_event = (m_end * ext * z_dev + extra
+                   + float(ph.flow_norm[-1]) * ext * t_dev + rounding)
+        if et and ph.edge_end:
+            # equal times across the edge: X = expm(A t) against the perturbed Psi (saltation
+            # the identity for a continuous law; the nominal's own is rounding from it)
+            salt_off = float(np.linalg.norm(ph.salt - np.eye(ph.salt.shape[0]), 2)) * ph.e_norm
+            delta_i = extra / z_dev + salt_off if z_dev > 0.0 else salt_off
+            weight = delta_i * norms.prefix[i]
+        else:
+            if ph.belt_decision:
+                force = float(stick_normal @ ph.z_end)
+                if min(abs(force - lam), abs(force - low_level)) <= stick_norm * z_event:
+                    return Tube(False, failed_phase=i, failed_deviation=z_dev)
+            # the factor X = S expm(A t) and its variation over the tube
+            d_salt = _saltation_variation(ph, z_event)
+            if d_salt is None:
                 return Tube(False, failed_phase=i, failed_deviation=z_dev)
-        # the factor X = S expm(A t) and its variation over the tube
-        nv = ph.functions[ph.ending][0]
-        n_norm = float(np.linalg.norm(nv))
-        u_star = ph.f_plus - ph.f_minus
-        p_star = float(nv @ ph.f_minus)
-        dp = float(np.linalg.norm(nv @ ph.a)) * z_event
-        if abs(p_star) - dp <= 0.0:
-            return Tube(False, failed_phase=i, failed_deviation=z_dev)
-        jump = ph.a_plus - ph.a
-        if not (ph.belt_decision or ph.breakaway):
-            # a friction-band edge: both event points lie on the surface n . z = g0, so
-            # (f+ - f-)(z) - (f+ - f-)(z*) = (A+ - A-) P (z - z*) with P the projector onto
-            # the surface (the law is continuous there: A+ - A- is in n's column alone, and
-            # (A+ - A-) P vanishes up to rounding)
-            jump = jump - np.outer(jump @ nv, nv) / float(nv @ nv)
-        du = float(np.linalg.norm(jump)) * z_event
-        d_salt = n_norm * (du / (abs(p_star) - dp)
-                           + float(np.linalg.norm(u_star)) * dp / ((abs(p_star) - dp) * abs(p_star)))
-        d_exp = ph.norm_a * t_dev * float(ph.m_norm[-1]) * ext
-        deltas.append((ph.salt_norm + d_salt) * d_exp + d_salt * ph.e_norm)
-        carried.append(deltas[-1] * z_devs[-1])
+            d_exp = ph.norm_a * t_dev * m_end * ext + (extra / z_dev if z_dev > 0.0 else 0.0)
+            delta_i = (ph.salt_norm + d_salt) * d_exp + d_salt * ph.e_norm
+            # ||(X - X*) G L|| <= ||S|| ||expm(A t) - expm(A t*)|| ||G L|| + ||S - S*||
+            # ||expm(A t*) G L||, expm(A (t* + s)) - expm(A t*) = int_0^s expm(A u) du A
+            # expm(A t*) (and Psi's extra)
+            shift = (t_dev * ext * norms.flowed_rate[i]
+                     + (extra / z_dev if z_dev > 0.0 else 0.0) * norms.prefix[i])
+            weight = (delta_i * norms.prefix[i] if not equal_time else
+                      (ph.salt_norm + d_salt) * shift + d_salt * norms.flowed[i])
+        deltas.append(delta_i)
+        weights.append(weight)
+        carried.append(delta_i * z_devs[-1])
         tight = norms.prefix[i + 1] * radius + float(norms.between[1:i + 2, i + 1] @ np.array(carried))
         z_dev = min(z_event, tight + rounding)
         if ph.breakaway:
@@ -513,47 +424,116 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
     for i in range(n_ph - 1, -1, -1):
         j = slice(i + 1, n_ph)
         d_suffix[i] = float(((suffix[j] + d_suffix[j]) * delta[j]) @ norms.between[i + 1, j])
-    bound = float(((suffix + d_suffix[:n_ph]) * delta) @ np.array(norms.prefix[:n_ph]))
-    return Tube(True, bound, breakaway_dev)
+    if equal_time:
+        bound = float((suffix + d_suffix[:n_ph]) @ np.array(weights))
+    else:  # (the same floating sum as before the equal-time variant)
+        bound = float(((suffix + d_suffix[:n_ph]) * delta) @ np.array(norms.prefix[:n_ph]))
+    return Tube(True, bound, breakaway_dev, deltas=deltas)
 
 
-@dataclass
-class ProductNorms:
-    """Norms of the nominal products of :func:`tube_bound` (independent of the radius).
+def _saltation_variation(ph: Phase, z_event: float) -> float | None:
+    """A bound of ``||S - S*||`` over event states within ``z_event`` (None: the rate may vanish).
 
-    ``prefix[i] = ||G(0, i) L||`` (``i = 0..N``), ``suffix[i] = ||R G(i + 1, N)||`` and
-    ``between[j, i] = ||G(j, i)||`` (``G(j, i) = X*_{i-1} ... X*_j``, the identity for
-    ``j >= i``), 2-norms.
+    ``S = I + (f^+ - f^-) n^T / (n . f^-)``: ``f^+ - f^-`` moves by ``||A^+ - A^-|| Z_e`` (at
+    a friction-band edge by ``||(A^+ - A^-) P|| Z_e``, ``P`` the projector onto the surface,
+    which holds both event points: zero to rounding for a continuous law) and ``n . f^-`` by
+    ``||n^T A^-|| Z_e`` (see :func:`tube_bound`).
     """
+    nv = ph.functions[ph.ending][0]
+    n_norm = float(np.linalg.norm(nv))
+    u_star = ph.f_plus - ph.f_minus
+    p_star = float(nv @ ph.f_minus)
+    dp = float(np.linalg.norm(nv @ ph.a)) * z_event
+    if abs(p_star) - dp <= 0.0:
+        return None
+    jump = ph.a_plus - ph.a
+    if not (ph.belt_decision or ph.breakaway):
+        # a friction-band edge: (f+ - f-)(z) - (f+ - f-)(z*) = (A+ - A-) P (z - z*) (the law
+        # is continuous there: A+ - A- is in n's column alone, and (A+ - A-) P vanishes up to
+        # rounding)
+        jump = jump - np.outer(jump @ nv, nv) / float(nv @ nv)
+    du = float(np.linalg.norm(jump)) * z_event
+    return n_norm * (du / (abs(p_star) - dp)
+                     + float(np.linalg.norm(u_star)) * dp / ((abs(p_star) - dp) * abs(p_star)))
 
-    prefix: list[float]
-    suffix: list[float]
-    between: FloatArray
 
-    @classmethod
-    def of(cls, phases: list[Phase], lift: FloatArray, reduce_rows: FloatArray) -> ProductNorms:
-        """The norms of the nominal run's products (the factors ``X* = S expm(A t)``).
+def _phase_timing(ph: Phase, z_dev: float, et: bool, tight: bool) -> tuple[float, float] | None:
+    """``(extra, T)`` of a phase of :func:`tube_bound` (None: no bound).
 
-        ``between`` has ``N^2 / 2`` entries: the products of ``d`` consecutive factors are
-        formed for every start at once (``G(j, j + d) = X*_{j+d-1} G(j, j + d - 1)``, one
-        stacked product per ``d``) and their 2-norms taken as one stacked SVD.
-        """
-        n_ph = len(phases)
-        factors = np.array([ph.salt @ ph.e_nominal for ph in phases])
-        between = np.ones((n_ph + 1, n_ph + 1))
-        product = factors.copy()  # G(j, j + 1) for j = 0..N-1
-        for d in range(1, n_ph + 1):
-            starts = np.arange(n_ph - d + 1)
-            between[starts, starts + d] = np.linalg.svd(product, compute_uv=False)[:, 0]
-            if d < n_ph:
-                product = factors[d:] @ product[:-1]  # G(j, j + d + 1) = X*_{j+d} G(j, j + d)
-        prefix, current = [], lift.copy()
-        for i in range(n_ph + 1):
-            prefix.append(float(np.linalg.norm(current, 2)))
-            if i < n_ph:
-                current = factors[i] @ current
-        suffix, current = [0.0] * n_ph, reduce_rows.copy()
-        for i in range(n_ph - 1, -1, -1):
-            suffix[i] = float(np.linalg.norm(current, 2))
-            current = current @ factors[i]
-        return cls(prefix, suffix, between)
+    Band by band ``extra = 0``. At equal times (``et``) past an event at the phase's
+    end the growth is bounded over ``T < 1 / ||A||`` first, then over the ``T`` found with it.
+    """
+    kappa = extra = 0.0
+    past = 0.0 if ph.edge_end else 1.0 / ph.norm_a
+    for _ in range(2 if et and past else 1 if et else 0):
+        grown = _equal_time_growth(ph, z_dev, past)
+        if grown is None:
+            return None
+        kappa, _, extra = grown
+        if past:
+            t_found = _end_time_deviation(ph, z_dev, extra, kappa, et, tight)
+            if t_found is None:
+                return None
+            past = t_found
+    t_dev = _end_time_deviation(ph, z_dev, extra, kappa, et, tight)
+    return None if t_dev is None else (extra, t_dev)
+
+
+def _equal_time_growth(ph: Phase, z_dev: float, past: float) -> tuple[float, float, float] | None:
+    """``(kappa, M_bar, extra)`` of an equal-time slip phase (None: no consistent bound).
+
+    ``M_bar`` bounds ``||expm(A s)||`` over the phase and, past an event at its end, over
+    the window ``past >= T`` (``1 / ||A||``, the most the end-time check of
+    :func:`_end_time_deviation` allows, or a ``T`` it found with a larger
+    ``extra``); ``extra = M_bar Z (exp(M_bar kappa tau) - 1)`` is the deviation's part beyond
+    ``M(s) Z``, ``tau`` the time the nominal speed spends within the speed deviation of a
+    band edge (see :func:`~stickslip.analysis._band_variation.band_growth`).
+
+    Parameters
+    ----------
+    ph : Phase
+        The nominal slip phase (its ``bands`` set).
+    z_dev : float
+        ``Z``: the deviation bound at its start.
+    past : float
+        The window past its end (0 when it ends at a band edge).
+
+    Returns
+    -------
+    (float, float, float) or None
+    """
+    assert ph.bands is not None
+    m_norm = ph.m_two if ph.m_two is not None else ph.m_norm
+    grow = np.exp(ph.norm_a * ph.hs)
+    m_bar = float(np.max(np.maximum(m_norm[:-1], m_norm[1:]) * grow))
+    f_int = np.maximum(ph.flow_norm[:-1], ph.flow_norm[1:]) * grow
+    h2 = f_int * ph.hs ** 2 / 8.0
+    if past:
+        m_bar = max(m_bar, float(m_norm[-1]) * math.exp(ph.norm_a * past))
+    edges = [e for e in range(len(ph.functions)) if ph.is_equal_time_edge(e)]
+    floors = []
+    for e in edges:
+        nv = ph.functions[e][0]
+        floors.append((e, float(np.linalg.norm(nv @ ph.a)),
+                       interval_floor(ph.rate[:, e], float(np.linalg.norm(nv @ ph.a @ ph.a)) * h2),
+                       end_drift(nv, ph.a, ph.f_minus, float(np.linalg.norm(ph.f_minus)), ph.norm_a,
+                                 past)))
+
+    def exposure(d: float) -> float:
+        tau = 0.0
+        for e, na_norm, rho, drift in floors:
+            near = ~clear_of_zero(ph.g[:, e], na_norm * h2, np.full(h2.size, d))
+            crossing = ph.hs.copy()
+            rising = rho > 0.0  # at least rho: within d of the edge for at most 2 d / rho
+            with np.errstate(over="ignore"):  # a vanishing rate: the whole interval
+                crossing[rising] = np.minimum(ph.hs[rising], 2.0 * d / rho[rising])
+            tau += float(np.sum(crossing[near]))
+            if past and abs(float(ph.g[-1, e])) <= d + drift:
+                tau += past  # the window past an event at the end
+        return tau
+
+    grown = band_growth(ph.bands, ph.kind, ph.band, z_dev, m_bar, exposure)
+    if grown is None:
+        return None
+    kappa, growth = grown
+    return kappa, m_bar, m_bar * z_dev * (growth - 1.0)

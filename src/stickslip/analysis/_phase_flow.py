@@ -117,8 +117,8 @@ def two_norm_bounds(x: FloatArray) -> FloatArray:
     return np.sqrt(np.maximum(largest, 0.0) + 4.0 * x.shape[1] * eps * frobenius2)
 
 
-def sampled_flow(a: FloatArray, c: FloatArray, z0: FloatArray, duration: float, norm_a: float
-                 ) -> tuple[FloatArray, FloatArray, FloatArray]:
+def sampled_flow(a: FloatArray, c: FloatArray, z0: FloatArray, duration: float, norm_a: float,
+                 two_norm: bool = False) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """The affine flow ``z' = A z + c`` of a phase from ``z0`` at its :func:`sample_times`.
 
     The augmented propagators ``E(s) = expm([[A, c], [0, 0]] s)`` of the uniform grid are the
@@ -139,12 +139,16 @@ def sampled_flow(a: FloatArray, c: FloatArray, z0: FloatArray, duration: float, 
         The phase's start.
     duration, norm_a : float
         The phase's duration and ``||A||_F``.
+    two_norm : bool
+        Also the 2-norms themselves at the uniform grid's times (up to :data:`TWO_NORM_SIZE`
+        rows; beyond, and at the refined times, the bounds ``M``).
 
     Returns
     -------
-    (ndarray, ndarray, ndarray)
-        The times, the states ``z(s)`` there (shape ``(times, 2n)``) and bounds ``M(s)`` of
-        ``||expm(A s)||_2``.
+    (ndarray, ndarray, ndarray, ndarray)
+        The times, the states ``z(s)`` there (shape ``(times, 2n)``), bounds ``M(s)`` of
+        ``||expm(A s)||_2`` (Frobenius norms where the propagators are formed: the bounds
+        every tube uses) and the tighter bounds asked for with ``two_norm`` (else ``M``).
     """
     times, h = sample_times(duration, norm_a)
     n2 = a.shape[0]
@@ -162,10 +166,14 @@ def sampled_flow(a: FloatArray, c: FloatArray, z0: FloatArray, duration: float, 
     m_norm = np.empty(times.size)
     rows_on = np.flatnonzero(on_grid)
     z_aug = np.append(z0, 1.0)
+    exact = two_norm and n2 <= TWO_NORM_SIZE
+    kept = np.zeros((times.size, n2, n2)) if exact else None  # for one batched SVD
 
     def take(rows: NDArray[np.int64], props: FloatArray) -> None:
         zs[rows] = props[:, :n2, :n2] @ z0 + props[:, :n2, n2]
         m_norm[rows] = np.sqrt(np.sum(props[:, :n2, :n2] ** 2, axis=(1, 2)))
+        if kept is not None:
+            kept[rows] = props[:, :n2, :n2]
 
     if float(count) * float(n2 + 1) ** 3 <= DENSE_WORK:
         powers = np.eye(n2 + 1)[None]
@@ -201,11 +209,19 @@ def sampled_flow(a: FloatArray, c: FloatArray, z0: FloatArray, duration: float, 
             else:
                 zs[off] = _taylor_affine(aug, z_end, t - duration)[:n2]
                 m_norm[off] = m_before_end * math.exp(norm_a * (t - (count - 2) * h))
-        return times, zs, m_norm
+        return times, zs, m_norm, m_norm
     for off in np.flatnonzero(~on_grid):
         take(np.array([off]), expm(aug * times[off])[None])
-    return times, zs, m_norm
+    if kept is None:
+        return times, zs, m_norm, m_norm
+    m_two = np.asarray(np.linalg.svd(kept, compute_uv=False)[:, 0] * TWO_NORM_SLACK, dtype=np.float64)
+    return times, zs, m_norm, m_two
 
+
+#: :func:`sampled_flow` computes 2-norms (singular values) of propagators up to this size.
+TWO_NORM_SIZE = 16
+#: ... and rounds them up by this factor (the SVD's relative error is a few ulps).
+TWO_NORM_SLACK = 1.0 + 1e-12
 
 #: Terms at most of :func:`_taylor_affine`'s series (it stops when a term is below rounding).
 TAYLOR_TERMS = 200

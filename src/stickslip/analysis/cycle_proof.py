@@ -238,7 +238,7 @@ def _candidate(pmap: ReturnMap, b0: FloatArray, q: int) -> _Candidate | str:
                       value, coords)
 
 
-def tubes(pmap: ReturnMap, cand: _Candidate) -> tuple[Callable[[float], Tube], float]:
+def tubes(pmap: ReturnMap, cand: _Candidate) -> tuple[Callable[..., Tube], float]:
     """The tube bound about ``cand`` as a function of the ball's radius, and the state's scale.
 
     The nominal products' norms are formed once, in the candidate's coordinates (lift and
@@ -264,9 +264,9 @@ def tubes(pmap: ReturnMap, cand: _Candidate) -> tuple[Callable[[float], Tube], f
     scale = max(1.0, float(np.max(np.abs(pmap.state(cand.b_hat)))))
     lam, gamma = float(pmap.slider.lam), float(pmap.slider.gamma)
 
-    def at(radius: float) -> Tube:
+    def at(radius: float, equal_time: bool = False) -> Tube:
         return tube_bound(cand.phases, norms, pmap.stick_normal, lam, gamma, radius, scale,
-                          cand.coords)
+                          cand.coords, equal_time)
 
     return at, scale
 
@@ -276,10 +276,16 @@ def _ball(pmap: ReturnMap, cand: _Candidate, accept: Any) -> tuple[float, Tube] 
     :data:`RADIUS_BISECTIONS` bisections towards the next radius of the ladder (any radius
     that passes is a proof; the largest found is taken)."""
     tube_at, scale = tubes(pmap, cand)
+    # both variants of the tube are proofs: band by band, and at equal times across the
+    # edges of a continuous friction table (stickslip.analysis._band_variation)
+    variants = (False, True) if any(ph.bands is not None for ph in cand.phases) else (False,)
 
     def passing(radius: float) -> Tube | None:
-        tube = tube_at(radius)
-        return tube if tube.ok and accept(radius, tube) else None
+        for equal_time in variants:
+            tube = tube_at(radius, equal_time)
+            if tube.ok and accept(radius, tube):
+                return tube
+        return None
 
     for i in range(RADIUS_TRIES):
         radius = scale * RADIUS_START * RADIUS_FACTOR ** (-i)
@@ -490,6 +496,9 @@ def prove_existence(structure: Structure, slider: Slider, b_hat: FloatArray, q: 
         reasons.append(
             f"the tube fails at every radius tried, down to {_min_radius(pmap, cand):.2g}"
             if not bounds else
+            f"the Newton-Kantorovich bound ||(J - I)^-1|| E(r) falls to {min(bounds):.3g}, but "
+            "at no radius does the ball hold the map's residual with its rounding allowance"
+            if min(bounds) < 1.0 else
             f"the Newton-Kantorovich bound ||(J - I)^-1|| E(r) stays at {min(bounds):.3g} or "
             "above (it must be below 1) at every radius whose tube holds")
         return None

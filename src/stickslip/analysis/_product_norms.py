@@ -1,0 +1,60 @@
+"""Norms of a cycle tube's nominal products (:mod:`stickslip.analysis._cycle_tube`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from stickslip.analysis._tube_phase import Phase
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass
+class ProductNorms:
+    """Norms of the nominal products of a tube bound (independent of the radius).
+
+    ``prefix[i] = ||G(0, i) L||`` (``i = 0..N``), ``suffix[i] = ||R G(i + 1, N)||`` and
+    ``between[j, i] = ||G(j, i)||`` (``G(j, i) = X*_{i-1} ... X*_j``, the identity for
+    ``j >= i``), ``flowed[i] = ||expm(A_i t_i) G(0, i) L||`` (before the saltation) and
+    ``flowed_rate[i] = ||A_i expm(A_i t_i) G(0, i) L||``, 2-norms.
+    """
+
+    prefix: list[float]
+    suffix: list[float]
+    between: FloatArray
+    flowed: list[float] = field(default_factory=list)  # ||expm(A_i t_i) G(0, i) L||
+    flowed_rate: list[float] = field(default_factory=list)  # ||A_i expm(A_i t_i) G(0, i) L||
+
+    @classmethod
+    def of(cls, phases: list[Phase], lift: FloatArray, reduce_rows: FloatArray) -> ProductNorms:
+        """The norms of the nominal run's products (the factors ``X* = S expm(A t)``).
+
+        ``between`` has ``N^2 / 2`` entries: the products of ``d`` consecutive factors are
+        formed for every start at once (``G(j, j + d) = X*_{j+d-1} G(j, j + d - 1)``, one
+        stacked product per ``d``) and their 2-norms taken as one stacked SVD.
+        """
+        n_ph = len(phases)
+        factors = np.array([ph.salt @ ph.e_nominal for ph in phases])
+        between = np.ones((n_ph + 1, n_ph + 1))
+        product = factors.copy()  # G(j, j + 1) for j = 0..N-1
+        for d in range(1, n_ph + 1):
+            starts = np.arange(n_ph - d + 1)
+            between[starts, starts + d] = np.linalg.svd(product, compute_uv=False)[:, 0]
+            if d < n_ph:
+                product = factors[d:] @ product[:-1]  # G(j, j + d + 1) = X*_{j+d} G(j, j + d)
+        prefix, flowed, flowed_rate, current = [], [], [], lift.copy()
+        for i in range(n_ph + 1):
+            prefix.append(float(np.linalg.norm(current, 2)))
+            if i < n_ph:
+                moved = phases[i].e_nominal @ current
+                flowed.append(float(np.linalg.norm(moved, 2)))
+                flowed_rate.append(float(np.linalg.norm(phases[i].a @ moved, 2)))
+                current = factors[i] @ current
+        suffix, current = [0.0] * n_ph, reduce_rows.copy()
+        for i in range(n_ph - 1, -1, -1):
+            suffix[i] = float(np.linalg.norm(current, 2))
+            current = current @ factors[i]
+        return cls(prefix, suffix, between, flowed, flowed_rate)
