@@ -8,7 +8,8 @@ ratios 1, damping ratio 0.1), reached by ``simulate`` from one start and proven 
 :func:`stickslip.analysis.cycle_proof.prove_cycle`. For each radius of the proof's ladder
 (:data:`~stickslip.analysis.cycle_proof.RADIUS_START` down by
 :data:`~stickslip.analysis.cycle_proof.RADIUS_FACTOR`, the proven radius and twice it) it prints
-whether the tube holds (:func:`stickslip.analysis._cycle_tube.tube_bound`), the bound ``E(r)``
+whether the tube holds (:func:`stickslip.analysis._cycle_tube.tube_bound`; both variants: band
+by band, each edge an event, and at equal times across the band edges), the bound ``E(r)``
 of the Jacobian's variation over the ball and the contraction bound ``theta = ||J||_W + kappa
 E(r)`` (a proof needs ``theta < 1``), or the phase where the tube fails: its mode, band, the
 band's width in sliding speed, its duration and the deviation the tube carried into it.

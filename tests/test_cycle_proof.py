@@ -91,25 +91,43 @@ def test_a_proof_beyond_its_work_bound_is_declined_not_guessed(monkeypatch: pyte
     assert "period 1: its phases are beyond the work a proof may take" in run.certificate
 
 
-def test_an_unproven_candidate_says_why() -> None:
-    # a light, soft foundation (M = 0.0934, K = 0.0378, zeta_a = 0.715) under the linear law
-    # delta = 0.57, lambda = 1.36, zeta = 0.08: a stick-slip cycle of period 884.175043
-    # (tests/friction_oracle.py: DOP853 at rtol 1e-11, the spacing of the last stick onsets
-    # over tau = 9000). Its long slip phase grows deviations so much that the proof's bound on
-    # the Jacobian's variation falls below 1 only on balls too small to hold the engine's
-    # rounding (the band-by-band tube never contracts; the equal-time variant does):
-    # the run must not claim the cycle, and must say which step failed
+def _light_foundation():  # type: ignore[no-untyped-def]
+    """A light, soft foundation (M = 0.0934, K = 0.0378, zeta_a = 0.715) under the linear law
+    delta = 0.57, lambda = 1.36, zeta = 0.08: a stick-slip cycle of period 884.175043
+    (tests/friction_oracle.py: DOP853 at rtol 1e-11, the spacing of the last stick onsets over
+    tau = 9000)."""
     from stickslip.model.friction import LinearFriction
     from stickslip.model.parameters import Foundation
     from stickslip.model.structure import elastic_foundation
 
-    run = simulate(elastic_foundation(0.08, Foundation(0.0934, 0.0378, 0.715)),
-                   Slider(1.36, friction=LinearFriction(0.57)), options=EngineOptions(t_max=20000))
+    return (elastic_foundation(0.08, Foundation(0.0934, 0.0378, 0.715)),
+            Slider(1.36, friction=LinearFriction(0.57)))
+
+
+def test_the_light_foundation_cycle_is_proven_at_equal_times() -> None:
+    # its long slip phase grows deviations so much that the band-by-band tube never proves a
+    # contraction (the cycle was an unproven candidate); the equal-time tube across the law's
+    # edge (the floor at zero) does, on a small ball that direct runs from its boundary confirm
+    structure, slider = _light_foundation()
+    run = simulate(structure, slider, options=EngineOptions(t_max=20000))
+    assert run.verdict is Verdict.STICK_SLIP and run.cycle_proof.stick_phases == 1
+    assert run.period == pytest.approx(884.175043, rel=1e-8)
+    _check_ball(structure, slider, run, np.random.default_rng(2))
+
+
+def test_an_unproven_candidate_says_why(monkeypatch: pytest.MonkeyPatch) -> None:
+    # the light foundation's cycle with no ball proven at any radius (the proof's ladder
+    # switched off: a cycle beyond the tube's reach): the run must not claim the cycle, and
+    # must say which step failed
+    from stickslip.analysis import cycle_proof
+
+    monkeypatch.setattr(cycle_proof, "_ball", lambda *args, **kwargs: None)
+    structure, slider = _light_foundation()
+    run = simulate(structure, slider, options=EngineOptions(t_max=20000))
     assert run.verdict is Verdict.UNDETERMINED and run.status is RunStatus.UNPROVEN_CYCLE
     assert run.period == pytest.approx(884.175043, rel=1e-8)
-    assert "period-1 candidate, not proven; period 1: the contraction bound falls to " in run.certificate
-    best = float(run.certificate.split("the contraction bound falls to ")[1].split(",")[0])
-    assert best < 1.0 and "but at no radius does the ball hold the map's residual" in run.certificate
+    assert ("period-1 candidate, not proven; period 1: the deviation bound of its phases (the "
+            "tube) fails at every radius tried" in run.certificate)
 
 
 def test_the_soft_foundation_cycle_is_proven_in_energy_coordinates() -> None:

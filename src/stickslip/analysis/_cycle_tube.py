@@ -163,6 +163,7 @@ class Tube:
     failed_phase: int = -1  # the phase whose check failed (not ok); -1 when ok
     failed_deviation: float = math.nan  # the deviation Z the tube carried into that phase
     deltas: list[float] = field(default_factory=list)  # Delta_i >= ||X_i - X_i*|| per phase
+    weights: list[float] = field(default_factory=list)  # >= ||(X_i - X_i*) G(0, i) L||
 
 
 def _end_time_deviation(ph: Phase, z_dev: float, extra: float = 0.0, kappa: float = 0.0,
@@ -361,7 +362,10 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
     :mod:`stickslip.analysis._band_variation`: the band edges are no events) bounds
     ``||(X_i - X_i*) G(0, i) L||`` by ``||S|| ||expm(A t) - expm(A t*)|| ||G(0, i) L|| +
     ||S - S*|| ||expm(A t*) G(0, i) L||`` instead, the saltation's variation on the flowed
-    product rather than on ``||expm(A t*)||`` times its norm.
+    product rather than on ``||expm(A t*)||`` times its norm (and ``expm(A (t* + s)) -
+    expm(A t*) = int_0^s expm(A u) du A expm(A t*)``: ``||A expm(A t*) G(0, i) L||`` times
+    ``T e^{||A|| T}``); likewise ``||(X_j - X_j*) G(i + 1, j)||`` in ``D_i`` for a phase ``j``
+    ending at a breakaway (``ProductNorms.flowed_from``, ``rate_from``).
     """
     if coords is None:
         coords = Coordinates.identity(stick_normal.size)
@@ -374,6 +378,7 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
     deltas: list[float] = []
     carried: list[float] = []  # Delta_j Z_j
     weights: list[float] = []  # bounds of ||(X_i - X_i*) G(0, i) L||
+    split: dict[int, tuple[float, float, float, float]] = {}  # ||S||, T e^{||A|| T}, extra / Z, ||dS||
     breakaway_dev: list[float] = []
     low_level = -lam * (1.0 + 2.0 * gamma)
     for i, ph in enumerate(phases):
@@ -411,6 +416,9 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
                      + (extra / z_dev if z_dev > 0.0 else 0.0) * norms.prefix[i])
             weight = (delta_i * norms.prefix[i] if not equal_time else
                       (ph.salt_norm + d_salt) * shift + d_salt * norms.flowed[i])
+            if equal_time and i in norms.flowed_from:
+                split[i] = (ph.salt_norm + d_salt, t_dev * ext,
+                            extra / z_dev if z_dev > 0.0 else 0.0, d_salt)
         deltas.append(delta_i)
         weights.append(weight)
         carried.append(delta_i * z_devs[-1])
@@ -423,12 +431,18 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
     d_suffix = np.zeros(n_ph + 1)
     for i in range(n_ph - 1, -1, -1):
         j = slice(i + 1, n_ph)
-        d_suffix[i] = float(((suffix[j] + d_suffix[j]) * delta[j]) @ norms.between[i + 1, j])
+        terms = delta[j] * norms.between[i + 1, j]  # bounds of ||(X_j - X_j*) G(i + 1, j)||
+        for k, (s_norm, t_shift, x_coef, d_salt) in split.items():
+            if k > i:  # as the weights: the saltation's variation on the flowed product
+                terms[k - i - 1] = (s_norm * (t_shift * norms.rate_from[k][i + 1]
+                                              + x_coef * norms.between[i + 1, k])
+                                    + d_salt * norms.flowed_from[k][i + 1])
+        d_suffix[i] = float((suffix[j] + d_suffix[j]) @ terms)
     if equal_time:
         bound = float((suffix + d_suffix[:n_ph]) @ np.array(weights))
     else:  # (the same floating sum as before the equal-time variant)
         bound = float(((suffix + d_suffix[:n_ph]) * delta) @ np.array(norms.prefix[:n_ph]))
-    return Tube(True, bound, breakaway_dev, deltas=deltas)
+    return Tube(True, bound, breakaway_dev, deltas=deltas, weights=weights)
 
 
 def _saltation_variation(ph: Phase, z_event: float) -> float | None:

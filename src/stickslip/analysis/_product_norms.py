@@ -19,7 +19,9 @@ class ProductNorms:
     ``prefix[i] = ||G(0, i) L||`` (``i = 0..N``), ``suffix[i] = ||R G(i + 1, N)||`` and
     ``between[j, i] = ||G(j, i)||`` (``G(j, i) = X*_{i-1} ... X*_j``, the identity for
     ``j >= i``), ``flowed[i] = ||expm(A_i t_i) G(0, i) L||`` (before the saltation) and
-    ``flowed_rate[i] = ||A_i expm(A_i t_i) G(0, i) L||``, 2-norms.
+    ``flowed_rate[i] = ||A_i expm(A_i t_i) G(0, i) L||``, 2-norms; for a phase ``j`` that
+    ends at a breakaway, in a run with friction bands, ``flowed_from[j][k] = ||expm(A_j t_j)
+    G(k, j)||`` and ``rate_from[j][k] = ||A_j expm(A_j t_j) G(k, j)||`` (``k = 0..j``).
     """
 
     prefix: list[float]
@@ -27,6 +29,8 @@ class ProductNorms:
     between: FloatArray
     flowed: list[float] = field(default_factory=list)  # ||expm(A_i t_i) G(0, i) L||
     flowed_rate: list[float] = field(default_factory=list)  # ||A_i expm(A_i t_i) G(0, i) L||
+    flowed_from: dict[int, FloatArray] = field(default_factory=dict)
+    rate_from: dict[int, FloatArray] = field(default_factory=dict)
 
     @classmethod
     def of(cls, phases: list[Phase], lift: FloatArray, reduce_rows: FloatArray) -> ProductNorms:
@@ -57,4 +61,14 @@ class ProductNorms:
         for i in range(n_ph - 1, -1, -1):
             suffix[i] = float(np.linalg.norm(current, 2))
             current = current @ factors[i]
-        return cls(prefix, suffix, between, flowed, flowed_rate)
+        flowed_from, rate_from = {}, {}
+        if any(ph.bands is not None for ph in phases):  # the equal-time variant's
+            for j in (j for j, ph in enumerate(phases) if ph.breakaway):
+                heads = [phases[j].e_nominal, phases[j].a @ phases[j].e_nominal]
+                norms = np.zeros((2, j + 1))
+                for k in range(j, -1, -1):  # heads = expm(A_j t_j) G(k, j) and A_j times it
+                    norms[:, k] = [np.linalg.norm(h, 2) for h in heads]
+                    if k > 0:
+                        heads = [h @ factors[k - 1] for h in heads]
+                flowed_from[j], rate_from[j] = norms[0], norms[1]
+        return cls(prefix, suffix, between, flowed, flowed_rate, flowed_from, rate_from)
