@@ -167,7 +167,8 @@ class Tube:
 
 
 def _end_time_deviation(ph: Phase, z_dev: float, extra: float = 0.0, kappa: float = 0.0,
-                        equal_time: bool = False, tight: bool = False) -> float | None:
+                        equal_time: bool = False, tight: bool = False,
+                        open_window: list[bool] | None = None) -> float | None:
     """``T``: how far the phase's end moves for starts within ``z_dev``; None without a bound.
 
     The event checks of :func:`tube_bound` for one phase: every event surface clear of the
@@ -178,7 +179,11 @@ def _end_time_deviation(ph: Phase, z_dev: float, extra: float = 0.0, kappa: floa
     at an edge has ``T = 0``, the perturbed field may differ by ``kappa`` times the deviation
     (another band's), also in the curvature of a tangential departure from ``u = 0``. With
     ``tight`` (the equal-time variant's run) the norms are the sampled 2-norms and the end's
-    spread along a surface is ``||n expm(A t*)||``, a row's norm.
+    spread along a surface is ``||n expm(A t*)||``, a row's norm. ``open_window`` (equal times):
+    ``[True]`` when a tangential departure's window from ``u = 0`` is still open at the
+    phase's start (it spans the phases before, from the breakaway): ``g'' `` must keep its
+    sign on until ``|g*|`` clears the deviation, so ``g`` cannot return to zero; set to
+    whether it is open still at the phase's end.
     """
     m_norm = ph.m_two if tight and ph.m_two is not None else ph.m_norm
     grow = np.exp(ph.norm_a * ph.hs)
@@ -195,6 +200,8 @@ def _end_time_deviation(ph: Phase, z_dev: float, extra: float = 0.0, kappa: floa
     ends = not (equal_time and ph.edge_end)  # the phase ends at an event
     order = [e for e in range(len(ph.functions))
              if not (ph.is_equal_time_edge(e) if equal_time else e == ph.zero_surface > 0)]
+    carried_in = bool(open_window and open_window[0]) and equal_time
+    through = False  # the tangential window reaches the phase's end
     for e in order:  # (the guard u = 0 above band 0 is the equal-time variant's alone)
         nv, _g0 = ph.functions[e]
         n_norm = float(np.linalg.norm(nv))
@@ -202,9 +209,13 @@ def _end_time_deviation(ph: Phase, z_dev: float, extra: float = 0.0, kappa: floa
         clear = clear_of_zero(ph.g[:, e], na_norm * h2, bounded(n_norm, m_int))
         n_int = clear.size
         lo = 0
-        if ph.start_zero[e]:
+        carried = carried_in and e == ph.zero_surface
+        if ph.start_zero[e] or carried:
             while lo < n_int and not clear[lo]:
                 lo += 1
+        if equal_time and e == ph.zero_surface and (ph.tangential[e] or carried) \
+                and lo == n_int and not ends:
+            through = True
         hi = n_int
         if e == ph.ending and ends:
             while hi > lo and not clear[hi - 1]:
@@ -217,7 +228,7 @@ def _end_time_deviation(ph: Phase, z_dev: float, extra: float = 0.0, kappa: floa
             if b_idx <= a_idx:
                 continue
             m_w = float(np.max(m_int[a_idx:b_idx]))
-            if a_idx == 0 and ph.tangential[e]:
+            if a_idx == 0 and (ph.tangential[e] or carried):
                 # g = g' = 0 at the start for every perturbed motion: g'' keeps its sign
                 curvs = ph.curv[0:b_idx + 1, e]
                 na2 = float(np.linalg.norm(nv @ ph.a @ ph.a))
@@ -254,10 +265,12 @@ def _end_time_deviation(ph: Phase, z_dev: float, extra: float = 0.0, kappa: floa
             return None
     ext = math.exp(ph.norm_a * t_dev)
     f_end = float(np.linalg.norm(ph.f_minus))
+    if open_window is not None:
+        open_window[:] = [through]
     for e in order:
         nv = ph.functions[e][0]
-        if e == ph.ending:
-            continue  # the other surfaces past t*, up to t* + T
+        if e == ph.ending or (through and e == ph.zero_surface):
+            continue  # the other surfaces past t*, up to t* + T (the open window: no zero)
         n_norm = float(np.linalg.norm(nv))
         spread = n_norm * float(m_norm[-1]) * ext * z_dev + n_norm * extra
         # the nominal continuation moves g by at most T |n . f(z*)| + ||n^T A|| ||f|| T^2 e/2
@@ -378,15 +391,20 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
     deltas: list[float] = []
     carried: list[float] = []  # Delta_j Z_j
     weights: list[float] = []  # bounds of ||(X_i - X_i*) G(0, i) L||
+    window = [False]  # a tangential departure's window open across band edges
     split: dict[int, tuple[float, float, float, float]] = {}  # ||S||, T e^{||A|| T}, extra / Z, ||dS||
     breakaway_dev: list[float] = []
     low_level = -lam * (1.0 + 2.0 * gamma)
     for i, ph in enumerate(phases):
         z_devs.append(z_dev)
         et = equal_time and ph.bands is not None
-        timed = _phase_timing(ph, z_dev, et, equal_time)
+        if not et:
+            window[0] = False
+        timed = _phase_timing(ph, z_dev, et, equal_time, window)
         if timed is None:
             return Tube(False, failed_phase=i, failed_deviation=z_dev)
+        if not ph.edge_end:
+            window[0] = False  # the slip ends: no window goes on
         extra, t_dev = timed
         ext = math.exp(ph.norm_a * t_dev)
         m_end = float(ph.m_two[-1]) if equal_time and ph.m_two is not None else float(ph.m_norm[-1])
@@ -471,11 +489,14 @@ def _saltation_variation(ph: Phase, z_event: float) -> float | None:
                      + float(np.linalg.norm(u_star)) * dp / ((abs(p_star) - dp) * abs(p_star)))
 
 
-def _phase_timing(ph: Phase, z_dev: float, et: bool, tight: bool) -> tuple[float, float] | None:
+def _phase_timing(ph: Phase, z_dev: float, et: bool, tight: bool,
+                  window: list[bool] | None = None) -> tuple[float, float] | None:
     """``(extra, T)`` of a phase of :func:`tube_bound` (None: no bound).
 
     Band by band ``extra = 0``. At equal times (``et``) past an event at the phase's
-    end the growth is bounded over ``T < 1 / ||A||`` first, then over the ``T`` found with it.
+    end the growth is bounded over ``T < 1 / ||A||`` first, then over the ``T`` found with it;
+    ``window`` carries a tangential departure's open window across band edges (see
+    :func:`_end_time_deviation`).
     """
     kappa = extra = 0.0
     past = 0.0 if ph.edge_end else 1.0 / ph.norm_a
@@ -485,11 +506,12 @@ def _phase_timing(ph: Phase, z_dev: float, et: bool, tight: bool) -> tuple[float
             return None
         kappa, _, extra = grown
         if past:
-            t_found = _end_time_deviation(ph, z_dev, extra, kappa, et, tight)
+            t_found = _end_time_deviation(ph, z_dev, extra, kappa, et, tight,
+                                          None if window is None else list(window))
             if t_found is None:
                 return None
             past = t_found
-    t_dev = _end_time_deviation(ph, z_dev, extra, kappa, et, tight)
+    t_dev = _end_time_deviation(ph, z_dev, extra, kappa, et, tight, window)
     return None if t_dev is None else (extra, t_dev)
 
 
