@@ -4,14 +4,14 @@ Usage::
 
     .venv/bin/python benchmarks/bench_friction.py
 
-Measured on the 2-core development machine on 2026-11-26 (the test suite running beside it;
+Measured on the 2-core development machine on 2026-11-28 (load average about 1;
 ``simulate`` proves its stick-slip cycle, which visits every friction band the cycle crosses)::
 
-    linear, delta = 0.03            engine    16.95 ms  oracle 3.40 s  speed-up 201x
-    stribeck, tolerance 1e-4        engine   453.10 ms  oracle 2.75 s  speed-up   6x
-    stribeck, tolerance 1e-6        engine 15414.40 ms  oracle 5.12 s  speed-up 0.3x
-    rigid base map 1200 cells: linear 37372 cells/s, Coulomb 39412 cells/s
-    foundation map 1200 cells: linear  9810 cells/s, Coulomb  9683 cells/s
+    linear, delta = 0.03            engine    16.20 ms  oracle 1.08 s  speed-up  67x
+    stribeck, tolerance 1e-4        engine   515.08 ms  oracle 1.22 s  speed-up   2x
+    stribeck, tolerance 1e-6        engine  9558.28 ms  oracle 1.17 s  speed-up   0x
+    rigid base map 1200 cells: linear 136367 cells/s, Coulomb 161287 cells/s, ratio 1.18
+    foundation map 1200 cells: linear  34294 cells/s, Coulomb  38048 cells/s, ratio 1.11
 
 * Per run: the elastic foundation (zeta = 0.1, M = 1.5, K = 1, zeta_a = 0.5), lambda = 3,
   gamma = 2, from startup, with a linear law (delta = 0.03) and a Stribeck law
