@@ -430,9 +430,9 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
             # ||(X - X*) G L|| <= ||S|| ||expm(A t) - expm(A t*)|| ||G L|| + ||S - S*||
             # ||expm(A t*) G L||, expm(A (t* + s)) - expm(A t*) = int_0^s expm(A u) du A
             # expm(A t*) (and Psi's extra)
-            shift = (t_dev * ext * norms.flowed_rate[i]
-                     + (extra / z_dev if z_dev > 0.0 else 0.0) * norms.prefix[i])
-            weight = (delta_i * norms.prefix[i] if not equal_time else
+            shift = (t_dev * ext * norms.flowed_rate[i] if norms.flowed_rate else 0.0) + (
+                (extra / z_dev if z_dev > 0.0 else 0.0) * norms.prefix[i])
+            weight = (delta_i * norms.prefix[i] if not (equal_time and norms.flowed) else
                       (ph.salt_norm + d_salt) * shift + d_salt * norms.flowed[i])
             if equal_time and i in norms.flowed_from:
                 split[i] = (ph.salt_norm + d_salt, t_dev * ext,

@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from stickslip.analysis._phase_flow import TWO_NORM_SIZE
 from stickslip.analysis._tube_phase import Phase
 
 FloatArray = NDArray[np.float64]
@@ -19,8 +20,10 @@ class ProductNorms:
     ``prefix[i] = ||G(0, i) L||`` (``i = 0..N``), ``suffix[i] = ||R G(i + 1, N)||`` and
     ``between[j, i] = ||G(j, i)||`` (``G(j, i) = X*_{i-1} ... X*_j``, the identity for
     ``j >= i``), ``flowed[i] = ||expm(A_i t_i) G(0, i) L||`` (before the saltation) and
-    ``flowed_rate[i] = ||A_i expm(A_i t_i) G(0, i) L||``, 2-norms; for a phase ``j`` that
-    ends at a breakaway, in a run with friction bands, ``flowed_from[j][k] = ||expm(A_j t_j)
+    ``flowed_rate[i] = ||A_i expm(A_i t_i) G(0, i) L||``, 2-norms (these and the following
+    only in a run with friction bands, up to ``TWO_NORM_SIZE`` rows; else empty: the
+    equal-time variant then bounds as the band-by-band one); for a phase ``j`` that
+    ends at a breakaway, ``flowed_from[j][k] = ||expm(A_j t_j)
     G(k, j)||`` and ``rate_from[j][k] = ||A_j expm(A_j t_j) G(k, j)||`` (``k = 0..j``).
     """
 
@@ -49,20 +52,23 @@ class ProductNorms:
             between[starts, starts + d] = np.linalg.svd(product, compute_uv=False)[:, 0]
             if d < n_ph:
                 product = factors[d:] @ product[:-1]  # G(j, j + d + 1) = X*_{j+d} G(j, j + d)
+        # the equal-time variant's norms (a run with friction bands), on small structures
+        banded = any(ph.bands is not None for ph in phases) and factors.shape[1] <= TWO_NORM_SIZE
         prefix, flowed, flowed_rate, current = [], [], [], lift.copy()
         for i in range(n_ph + 1):
             prefix.append(float(np.linalg.norm(current, 2)))
             if i < n_ph:
-                moved = phases[i].e_nominal @ current
-                flowed.append(float(np.linalg.norm(moved, 2)))
-                flowed_rate.append(float(np.linalg.norm(phases[i].a @ moved, 2)))
+                if banded:
+                    moved = phases[i].e_nominal @ current
+                    flowed.append(float(np.linalg.norm(moved, 2)))
+                    flowed_rate.append(float(np.linalg.norm(phases[i].a @ moved, 2)))
                 current = factors[i] @ current
         suffix, current = [0.0] * n_ph, reduce_rows.copy()
         for i in range(n_ph - 1, -1, -1):
             suffix[i] = float(np.linalg.norm(current, 2))
             current = current @ factors[i]
         flowed_from, rate_from = {}, {}
-        if any(ph.bands is not None for ph in phases):  # the equal-time variant's
+        if banded:
             for j in (j for j, ph in enumerate(phases) if ph.breakaway):
                 heads = [phases[j].e_nominal, phases[j].a @ phases[j].e_nominal]
                 norms = np.zeros((2, j + 1))
