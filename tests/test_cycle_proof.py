@@ -196,17 +196,23 @@ def test_forty_random_machines_with_weakening_laws() -> None:
 
 
 def _random_weakening_machines(seed: int, count: int) -> None:
-    """The chains of :func:`random_machine` under a Stribeck law (v_s/V 0.1-0.5) or a linear
-    law (delta 0.2-0.8), alternately: every proven cycle's ball holds under direct runs from
-    its boundary (_check_ball: the package's own exact map, six iterations, by ``theta``), and
-    the run's state lies in it (an undetermined run claims nothing to check)."""
-    from stickslip.model.friction import LinearFriction, StribeckFriction
+    """The chains of :func:`random_machine` under a Stribeck law (v_s/V 0.1-0.5), a linear
+    law (delta 0.2-0.8) or a decreasing six-point table, in turn: every proven cycle's ball
+    holds under direct runs from its boundary (_check_ball: the package's own exact map, six
+    iterations, by ``theta``), and the run's state lies in it (an undetermined run claims
+    nothing to check). The laws' band edges exercise both tubes of the proof."""
+    from stickslip.model.friction import LinearFriction, StribeckFriction, TableFriction
 
     rng = np.random.default_rng(seed)
     for k in range(count):
         structure, slider = random_machine(rng)
-        law = (StribeckFriction(float(rng.uniform(0.1, 0.5))) if k % 2
-               else LinearFriction(float(rng.uniform(0.2, 0.8))))
+        if k % 3 == 2:
+            u = np.sort(rng.uniform(0.0, 2.0, 6))
+            u[0] = 0.0
+            law = TableFriction(tuple(u), tuple(np.sort(rng.uniform(-0.4, 1.0, 6))[::-1]))
+        else:
+            law = (StribeckFriction(float(rng.uniform(0.1, 0.5))) if k % 3
+                   else LinearFriction(float(rng.uniform(0.2, 0.8))))
         slider = Slider(slider.lam, gamma=slider.gamma, friction=law)
         run = simulate(structure, slider, record=False)
         if run.verdict is Verdict.STICK_SLIP:
