@@ -149,8 +149,10 @@ def test_the_soft_foundation_cycle_is_proven_in_energy_coordinates() -> None:
     _check_ball(structure, slider, run, np.random.default_rng(5))
 
 
-def _check_ball(structure: Structure, slider: Slider, run, rng: np.random.Generator) -> None:
-    """Direct runs from the proven ball's boundary stay in it and contract by ``theta``."""
+def _check_ball(structure: Structure, slider: Slider, run, rng: np.random.Generator,
+                points: int = 2, returns: int = 6) -> None:
+    """Direct runs from ``points`` states on the proven ball's boundary stay in it and contract
+    by ``theta`` over ``returns`` returns of the exact map."""
     proof = run.cycle_proof
     inner, _ = structure.contact_first()
     onto = 0 if proof.breakaway_onto == "slip-I" else 1
@@ -159,11 +161,11 @@ def _check_ball(structure: Structure, slider: Slider, run, rng: np.random.Genera
     chol = proof.norm_matrix
     rho = proof.radius / np.linalg.norm(np.linalg.inv(chol), 2)
     floor = 1e-12 * max(1.0, float(np.max(np.abs(proof.fixed_point))))
-    for _ in range(2):
+    for _ in range(points):
         u = rng.normal(size=b_hat.size)
         b = b_hat + np.linalg.solve(chol, u / np.linalg.norm(u)) * rho
         bound = rho
-        for _ in range(6):
+        for _ in range(returns):
             b_next = pmap(b, proof.stick_phases)
             assert b_next is not None  # the ball's states reach the section again
             dist = float(np.linalg.norm(chol @ (b_next - b_hat)))

@@ -25,6 +25,7 @@ from stickslip.kernel.system import SLIP_I
 from stickslip.model.friction import StribeckFriction
 from stickslip.model.parameters import Foundation
 from stickslip.model.structure import elastic_foundation
+from tests.test_cycle_proof import _check_ball
 
 
 def _foundation_weak():  # type: ignore[no-untyped-def]
@@ -113,7 +114,7 @@ def test_the_equal_time_variant_proves_a_larger_ball_that_holds(weak) -> None:  
     # the band-by-band tube contracts no ball beyond 4.4e-5 here (benchmarks/profile_cycle_ball.py);
     # the proof now takes the equal-time variant's larger ball, and direct runs of the exact
     # map from its boundary contract by theta (as tests/test_cycle_proof.py's _check_ball)
-    _, _, run, pmap, cand = weak
+    structure, slider, run, pmap, cand = weak
     proof = run.cycle_proof
     tube_at, _ = cycle_proof.tubes(pmap, cand)
     adapted = cycle_proof._adapted_norm(cand.jac)
@@ -122,19 +123,7 @@ def test_the_equal_time_variant_proves_a_larger_ball_that_holds(weak) -> None:  
     banded = tube_at(proof.radius, False)
     assert not (banded.ok and norm_w + kappa * banded.jacobian_bound < 1.0)
     assert proof.radius > 1.5e-4
-    b_hat = pmap.reduce(proof.fixed_point)
-    chol = proof.norm_matrix
-    rho = proof.radius / np.linalg.norm(np.linalg.inv(chol), 2)
-    rng = np.random.default_rng(11)
-    for _ in range(16):
-        u = rng.normal(size=b_hat.size)
-        b = b_hat + np.linalg.solve(chol, u / np.linalg.norm(u)) * rho
-        bound = rho
-        for _ in range(3):
-            b = pmap(b, proof.stick_phases)
-            assert b is not None
-            bound = proof.contraction * bound + proof.residual * np.linalg.norm(chol, 2)
-            assert float(np.linalg.norm(chol @ (b - b_hat))) <= bound + 1e-12
+    _check_ball(structure, slider, run, np.random.default_rng(11), points=16, returns=3)
 
 
 def test_a_tangential_window_spans_band_edges(weak) -> None:  # type: ignore[no-untyped-def]
