@@ -17,6 +17,7 @@ from stickslip.kernel.events import (
     event_free,
     first_reach,
     interior_range,
+    mode_taylor_vectors,
     propagate,
     signature,
 )
@@ -27,7 +28,6 @@ from stickslip.kernel.polynomial import (
     N_POLYNOMIALS,
     TAYLOR_DEGREE,
     taylor_state,
-    taylor_vectors,
 )
 from stickslip.kernel.prepared import prepared_tables
 from stickslip.kernel.system import (
@@ -354,7 +354,7 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
     u = np.empty((TAYLOR_DEGREE + 1, m))
     have_u = np.zeros(1, dtype=np.int64)
     coef = np.empty((N_POLYNOMIALS, TAYLOR_DEGREE + 1))
-    bp = np.empty(MAX_BREAKPOINTS)
+    bp = np.empty((3, MAX_BREAKPOINTS))  # breakpoints and their scratch (monotone_breakpoints)
     w = np.zeros(m)
     w1 = np.empty(m)
     w_end = np.empty(m)
@@ -389,7 +389,6 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
     just_broke_away = mode != STICK and w[n] == 1.0
     fresh = True  # the signature of w must be recomputed (at the start and after events)
     fill_mode(ahat, phi, hstep, sig_rows, mode)  # a mode prepared lazily (prepare_point)
-    phi_m, sig_m, ahat_m = phi[mode], sig_rows[mode], ahat[mode]  # rebound when the mode changes
     while status != STATUS_STUCK:  # one step per iteration, at most MAX_STEPS
         if mode_kind(mode) == SLIP_I and status == STATUS_RUNNING and lyapunov_applies(
                 mode_band(mode), lyap_lo, lyap_hi, n_lyap):
@@ -417,18 +416,18 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
                 status = STATUS_MAX_STEPS
             break
         if fresh:
-            signature(sig_m, w, sig0)
+            signature(sig_rows, mode, w, sig0)
             fresh = False
         h = hstep[mode]
         have_u[0] = 0
         if t + h > t_max:
             h = t_max - t
-            taylor_vectors(ahat_m, w, u, quick)
+            mode_taylor_vectors(ahat, mode, w, u, quick)
             have_u[0] = 1
             taylor_state(u, h, w1)
         else:
-            propagate(phi_m, w, w1)
-        signature(sig_m, w1, sig1)
+            propagate(phi, mode, w, w1)
+        signature(sig_rows, mode, w1, sig1)
         n_steps += 1
         departing = just_broke_away
         just_broke_away = False
@@ -438,19 +437,19 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             start, sign, offset = f_start[mode, e], f_sign[mode, e], f_offset[mode, e]
             if event_free(sig0, sig1, start, sign, offset, h):
                 continue
-            s = first_reach(sig_m, start, sign, offset, sig0, sig1, w, h, ahat_m, u, have_u, row,
-                            coef, bp, departing and ev_next[mode, e] == NEXT_BELT, quick)
+            s = first_reach(sig_rows, mode, start, sign, offset, sig0, sig1, w, h, ahat, u, have_u,
+                            row, coef, bp, departing and ev_next[mode, e] == NEXT_BELT, quick)
             if s < s_ev:
                 s_ev = s
                 e_ev = e
         s_end = h
         if e_ev >= 0:
             if have_u[0] == 0:
-                taylor_vectors(ahat_m, w, u, quick)
+                mode_taylor_vectors(ahat, mode, w, u, quick)
                 have_u[0] = 1
             taylor_state(u, s_ev, w_end)
             if not quick:  # the value ranges are not tracked (sig1 is only theirs)
-                signature(sig_m, w_end, sig1)
+                signature(sig_rows, mode, w_end, sig1)
             s_end = s_ev
         else:
             copy_vector(w_end, w1)
@@ -465,14 +464,14 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
                 # slip oscillation's); pruning by cur alone lost the cycle's own extremes
                 # after a larger transient (an amplitude 0.23 % low, independent audit)
                 if not settled:
-                    lo, hi = interior_range(sig_m, f_xi, sig0, sig1, w, s_end, ahat_m, u, have_u,
-                                             row, coef, bp, max(cur_xmin, os_xmin),
-                                             min(cur_xmax, os_xmax), lo, hi)
+                    lo, hi = interior_range(sig_rows, mode, f_xi, sig0, sig1, w, s_end, ahat, u,
+                                            have_u, row, coef, bp, max(cur_xmin, os_xmin),
+                                            min(cur_xmax, os_xmax), lo, hi)
                 vlo, vhi, settled = end_range(sig0, sig1, f_vel)
                 if not settled:
-                    vhi = interior_range(sig_m, f_vel, sig0, sig1, w, s_end, ahat_m, u, have_u,
-                                          row, coef, bp, -np.inf, min(cur_vmax, os_vmax), vlo,
-                                          vhi)[1]
+                    vhi = interior_range(sig_rows, mode, f_vel, sig0, sig1, w, s_end, ahat, u,
+                                         have_u, row, coef, bp, -np.inf, min(cur_vmax, os_vmax),
+                                         vlo, vhi)[1]
             cur_xmin = min(cur_xmin, lo)
             cur_xmax = max(cur_xmax, hi)
             cur_vmax = max(cur_vmax, vhi)
@@ -531,8 +530,8 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             if mode == STICK and t == stick_start:
                 n_stick -= 1  # a stick phase of zero duration is a touch, not a phase
             mode = new_mode
-            fill_mode(ahat, phi, hstep, sig_rows, mode)
-            phi_m, sig_m, ahat_m = phi[mode], sig_rows[mode], ahat[mode]
+            if hstep[mode] != hstep[mode]:  # first entry of a lazily prepared mode
+                fill_mode(ahat, phi, hstep, sig_rows, mode)
             if t == seg_t_last:
                 # the phase just left lasted no time: overwrite it, keep times increasing
                 n_seg -= 1

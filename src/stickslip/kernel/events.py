@@ -15,7 +15,6 @@ import numpy as np
 from numba import njit
 
 from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel is stamped with the whole kernel folder)
-from stickslip.kernel.linalg import dot
 from stickslip.kernel.polynomial import (
     DERIVATIVE_DEPTH,
     functional_polynomials,
@@ -34,47 +33,56 @@ from stickslip.kernel.system import N_ROWS, N_SIGNATURE
 
 
 @njit(cache=True, inline="always")
-def signature(sig_rows, w, out):
-    """Project the state on the mode's signature rows (once per state): ``out[b] = sig_rows[b] . w``."""
+def signature(sig_rows, mode, w, out):
+    """Project the state on the signature rows of ``mode`` (once per state):
+    ``out[b] = sig_rows[mode, b] . w``.
+
+    The per-mode tables are indexed, not sliced: a slice in the run loop costs numba two
+    atomic reference counts, more than the product itself.
+    """
     m = w.shape[0]
     if m == 5:
         for b in range(N_SIGNATURE):
             acc = 0.0
             for j in range(5):
-                acc += sig_rows[b, j] * w[j]
+                acc += sig_rows[mode, b, j] * w[j]
             out[b] = acc
     elif m == 3:
         for b in range(N_SIGNATURE):
             acc = 0.0
             for j in range(3):
-                acc += sig_rows[b, j] * w[j]
+                acc += sig_rows[mode, b, j] * w[j]
             out[b] = acc
     else:
         for b in range(N_SIGNATURE):
-            out[b] = dot(sig_rows[b], w)
+            acc = 0.0
+            for j in range(m):
+                acc += sig_rows[mode, b, j] * w[j]
+            out[b] = acc
 
 
 @njit(cache=True, inline="always")
-def propagate(phi, w, out):
-    """``out = phi @ w``: one full step (the arithmetic of :func:`~stickslip.kernel.linalg.matvec`)."""
+def propagate(phi, mode, w, out):
+    """``out = phi[mode] @ w``: one full step (the arithmetic of
+    :func:`~stickslip.kernel.linalg.matvec`; indexed, not sliced, as in :func:`signature`)."""
     m = w.shape[0]
     if m == 5:
         for i in range(5):
             acc = 0.0
             for j in range(5):
-                acc += phi[i, j] * w[j]
+                acc += phi[mode, i, j] * w[j]
             out[i] = acc
     elif m == 3:
         for i in range(3):
             acc = 0.0
             for j in range(3):
-                acc += phi[i, j] * w[j]
+                acc += phi[mode, i, j] * w[j]
             out[i] = acc
     else:
-        for i in range(phi.shape[0]):
+        for i in range(m):
             acc = 0.0
-            for j in range(phi.shape[1]):
-                acc += phi[i, j] * w[j]
+            for j in range(m):
+                acc += phi[mode, i, j] * w[j]
             out[i] = acc
 
 
@@ -124,7 +132,14 @@ def event_free(sig0, sig1, start, sign, offset, h):
     return g0 <= 0.0 and _taylor_bounds(sig0, sig1, start, sign, offset, h)[1] < 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
+def mode_taylor_vectors(ahat_table, mode, w, u, quick):
+    """:func:`~stickslip.kernel.polynomial.taylor_vectors` of ``ahat_table[mode]`` (the mode's
+    matrix taken without reference counts, as in :func:`first_reach`)."""
+    taylor_vectors(ahat_table[mode], w, u, quick)
+
+
+@njit(cache=True, _nrt=False)
 def _polynomials(sig_rows, start, sign, offset, u, row, coef, depth=DERIVATIVE_DEPTH + 1):
     """Taylor coefficients of the functional and its first ``depth`` derivatives over the step."""
     m = row.shape[0]
@@ -134,9 +149,9 @@ def _polynomials(sig_rows, start, sign, offset, u, row, coef, depth=DERIVATIVE_D
     functional_polynomials(u, row, coef, depth)
 
 
-@njit(cache=True)
-def first_reach(sig_rows, start, sign, offset, sig0, sig1, w0, h, ahat, u, have_u, row, coef,
-                bp, departing, quick=False):
+@njit(cache=True, _nrt=False)
+def first_reach(sig_table, mode, start, sign, offset, sig0, sig1, w0, h, ahat_table, u, have_u,
+                row, coef, bp, departing, quick=False):
     """First ``s`` in ``[0, h]`` where the event function ``g`` reaches 0 (``inf``: never).
 
     Called for the steps that :func:`event_free` does not settle. ``g = sign * sig[start] +
@@ -154,7 +169,14 @@ def first_reach(sig_rows, start, sign, offset, sig0, sig1, w0, h, ahat, u, have_
     Newton's iteration starts from the left end's tangent; the Taylor vectors use
     their quick form (:func:`~stickslip.kernel.polynomial.taylor_vectors`). The root is the same
     to rounding; the other runs keep the engine's historical arithmetic bit for bit.
+
+    ``sig_table`` and ``ahat_table`` are the per-mode tables; this function, like the rest of an
+    event search, is compiled without numba's reference counts (``_nrt=False``: it allocates
+    nothing), so taking the mode's rows here is free, where the run loop paid two atomic
+    counts per slice.
     """
+    sig_rows = sig_table[mode]
+    ahat = ahat_table[mode]
     if have_u[0] == 0:
         taylor_vectors(ahat, w0, u, quick)
         have_u[0] = 1
@@ -171,26 +193,29 @@ def first_reach(sig_rows, start, sign, offset, sig0, sig1, w0, h, ahat, u, have_
         return np.inf
     _polynomials(sig_rows, start, sign, offset, u, row, coef, np.int64(DERIVATIVE_DEPTH + 1))
     npts = monotone_breakpoints(coef, 0.0, h, bp)
-    ga = poly_value(coef, np.int64(0), bp[0])
+    ga = poly_value(coef, np.int64(0), bp[0, 0])
     for i in range(npts - 1):
-        gb = poly_value(coef, np.int64(0), bp[i + 1])
+        gb = poly_value(coef, np.int64(0), bp[0, i + 1])
         if gb >= 0.0 and gb > ga:
             if ga >= 0.0:
                 if not (departing and i == 0):
-                    return bp[i]
+                    return bp[0, i]
             else:
-                return monotone_root(coef, np.int64(0), bp[i], bp[i + 1], ga, gb, np.nan)
+                return monotone_root(coef, np.int64(0), bp[0, i], bp[0, i + 1], ga, gb, np.nan)
         ga = gb
     return np.inf
 
 
-@njit(cache=True)
-def interior_range(sig_rows, start, sig0, sig1, w0, s_end, ahat, u, have_u, row, coef, bp,
-                    known_lo, known_hi, lo, hi):
+@njit(cache=True, _nrt=False)
+def interior_range(sig_table, mode, start, sig0, sig1, w0, s_end, ahat_table, u, have_u, row,
+                   coef, bp, known_lo, known_hi, lo, hi):
     """Extend the end range ``[lo, hi]`` of ``sig[start]`` by its interior extrema on ``[0, s_end]``.
 
-    They are only located when they could extend ``[known_lo, known_hi]``.
+    They are only located when they could extend ``[known_lo, known_hi]``. The tables are
+    per mode, as in :func:`first_reach`.
     """
+    sig_rows = sig_table[mode]
+    ahat = ahat_table[mode]
     bound_lo, bound_hi = _taylor_bounds(sig0, sig1, start, 1.0, 0.0, s_end)
     if bound_lo >= known_lo and bound_hi <= known_hi:
         return lo, hi
@@ -200,7 +225,7 @@ def interior_range(sig_rows, start, sig0, sig1, w0, s_end, ahat, u, have_u, row,
     _polynomials(sig_rows, start, 1.0, 0.0, u, row, coef, np.int64(DERIVATIVE_DEPTH + 1))
     npts = monotone_breakpoints(coef, 0.0, s_end, bp)
     for i in range(1, npts - 1):
-        g = poly_value(coef, np.int64(0), bp[i])
+        g = poly_value(coef, np.int64(0), bp[0, i])
         lo = min(lo, g)
         hi = max(hi, g)
     return lo, hi
