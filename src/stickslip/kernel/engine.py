@@ -27,6 +27,7 @@ from stickslip.kernel.polynomial import (
     MAX_BREAKPOINTS,
     N_POLYNOMIALS,
     TAYLOR_DEGREE,
+    quick_state,
     taylor_state,
 )
 from stickslip.kernel.prepared import prepared_tables
@@ -447,7 +448,10 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             if have_u[0] == 0:
                 mode_taylor_vectors(ahat, mode, w, u, quick)
                 have_u[0] = 1
-            taylor_state(u, s_ev, w_end)
+            if quick:
+                quick_state(u, s_ev, w_end)
+            else:
+                taylor_state(u, s_ev, w_end)
             if not quick:  # the value ranges are not tracked (sig1 is only theirs)
                 signature(sig_rows, mode, w_end, sig1)
             s_end = s_ev

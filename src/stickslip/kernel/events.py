@@ -15,12 +15,15 @@ import numpy as np
 from numba import njit
 
 from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel is stamped with the whole kernel folder)
+from stickslip.kernel._leaf import leaf_kernel
 from stickslip.kernel.polynomial import (
     DERIVATIVE_DEPTH,
     functional_polynomials,
     monotone_breakpoints,
     monotone_root,
     poly_value,
+    quick_root,
+    quick_value,
     taylor_vectors,
 )
 from stickslip.kernel.system import N_ROWS, N_SIGNATURE
@@ -132,14 +135,14 @@ def event_free(sig0, sig1, start, sign, offset, h):
     return g0 <= 0.0 and _taylor_bounds(sig0, sig1, start, sign, offset, h)[1] < 0.0
 
 
-@njit(cache=True, _nrt=False)
+@leaf_kernel()
 def mode_taylor_vectors(ahat_table, mode, w, u, quick):
     """:func:`~stickslip.kernel.polynomial.taylor_vectors` of ``ahat_table[mode]`` (the mode's
     matrix taken without reference counts, as in :func:`first_reach`)."""
     taylor_vectors(ahat_table[mode], w, u, quick)
 
 
-@njit(cache=True, _nrt=False)
+@leaf_kernel()
 def _polynomials(sig_rows, start, sign, offset, u, row, coef, depth=DERIVATIVE_DEPTH + 1):
     """Taylor coefficients of the functional and its first ``depth`` derivatives over the step."""
     m = row.shape[0]
@@ -149,7 +152,7 @@ def _polynomials(sig_rows, start, sign, offset, u, row, coef, depth=DERIVATIVE_D
     functional_polynomials(u, row, coef, depth)
 
 
-@njit(cache=True, _nrt=False)
+@leaf_kernel()
 def first_reach(sig_table, mode, start, sign, offset, sig0, sig1, w0, h, ahat_table, u, have_u,
                 row, coef, bp, departing, quick=False):
     """First ``s`` in ``[0, h]`` where the event function ``g`` reaches 0 (``inf``: never).
@@ -167,13 +170,13 @@ def first_reach(sig_table, mode, start, sign, offset, sig0, sig1, w0, h, ahat_ta
     stick): when the end signs of ``g'``, ``g''`` and ``g'''`` agree, ``g`` is monotone on the
     step (the cheap test's argument), so the search for monotone pieces is skipped and
     Newton's iteration starts from the left end's tangent; the Taylor vectors use
-    their quick form (:func:`~stickslip.kernel.polynomial.taylor_vectors`). The root is the same
-    to rounding; the other runs keep the engine's historical arithmetic bit for bit.
+    their quick form (:func:`~stickslip.kernel.polynomial.taylor_vectors`) and the
+    polynomials Estrin's scheme (:func:`~stickslip.kernel.polynomial.quick_root`). The root
+    is the same to rounding; the other runs keep the engine's historical arithmetic bit for bit.
 
     ``sig_table`` and ``ahat_table`` are the per-mode tables; this function, like the rest of an
-    event search, is compiled without numba's reference counts (``_nrt=False``: it allocates
-    nothing), so taking the mode's rows here is free, where the run loop paid two atomic
-    counts per slice.
+    event search, is a leaf kernel (:mod:`stickslip.kernel._leaf`: no reference counts), so
+    taking the mode's rows here is free, where the run loop paid two atomic counts per slice.
     """
     sig_rows = sig_table[mode]
     ahat = ahat_table[mode]
@@ -183,13 +186,13 @@ def first_reach(sig_table, mode, start, sign, offset, sig0, sig1, w0, h, ahat_ta
     if quick and _no_sign_change(sig0, sig1, start):
         _polynomials(sig_rows, start, sign, offset, u, row, coef, np.int64(1))  # g and g' (Newton)
         ga = coef[0, 0]
-        gb = poly_value(coef, np.int64(0), h)
+        gb = quick_value(coef, h)
         if gb >= 0.0 and gb > ga:
             if ga >= 0.0:
                 return np.inf if departing else 0.0
             slope = coef[1, 0]
             tangent = -ga / slope if slope != 0.0 else np.nan  # Newton's first point from s = 0
-            return monotone_root(coef, np.int64(0), 0.0, h, ga, gb, tangent)
+            return quick_root(coef, 0.0, h, ga, gb, tangent)
         return np.inf
     _polynomials(sig_rows, start, sign, offset, u, row, coef, np.int64(DERIVATIVE_DEPTH + 1))
     npts = monotone_breakpoints(coef, 0.0, h, bp)
@@ -206,7 +209,7 @@ def first_reach(sig_table, mode, start, sign, offset, sig0, sig1, w0, h, ahat_ta
     return np.inf
 
 
-@njit(cache=True, _nrt=False)
+@leaf_kernel()
 def interior_range(sig_table, mode, start, sig0, sig1, w0, s_end, ahat_table, u, have_u, row,
                    coef, bp, known_lo, known_hi, lo, hi):
     """Extend the end range ``[lo, hi]`` of ``sig[start]`` by its interior extrema on ``[0, s_end]``.
