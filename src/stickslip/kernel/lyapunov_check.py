@@ -3,19 +3,20 @@
 :func:`~stickslip.kernel.system.prepare_bands` gives the functions (the energy, and the
 equilibrium band's ``a' P + P a = -I``) with the slip-I bands where each holds and the margin
 its bound must stay below; the run loop (:mod:`stickslip.kernel.engine`) evaluates them in
-slip-I. Arrays in, arrays out; leaf kernels (:mod:`stickslip.kernel._leaf`), as the run loop
-calls them on every step of the equilibrium's bands.
+slip-I. Arrays in, arrays out; inlined into the run loop, which calls them on every step of
+the equilibrium's bands (a call with seven array arguments cost fourteen atomic reference
+counts, :mod:`stickslip.kernel._leaf`).
 """
 
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 
 from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel is stamped with the whole kernel folder)
-from stickslip.kernel._leaf import leaf_kernel
 
 
-@leaf_kernel()
+@njit(cache=True, inline="always")
 def lyapunov_applies(band, lyap_lo, lyap_hi, n_lyap):
     """True when some Lyapunov function holds in slip-I of ``band``."""
     for p in range(n_lyap):
@@ -24,7 +25,7 @@ def lyapunov_applies(band, lyap_lo, lyap_hi, n_lyap):
     return False
 
 
-@leaf_kernel()
+@njit(cache=True, inline="always")
 def lyapunov_bound(w, z_eq, lyap, kappa, n_lyap, band, lyap_lo, lyap_hi, margin):
     """Smallest bound on ``sup |v_0|`` over the future, and whether one certifies steady sliding.
 
