@@ -13,19 +13,19 @@ from numba import njit
 from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel is stamped with the whole kernel folder)
 from stickslip.kernel import cycle_balls as cb
 from stickslip.kernel.events import (
+    P_FLAG,
     end_range,
     event_free,
     first_reach,
     interior_range,
     mode_taylor_vectors,
+    poly_scratch,
     propagate,
     signature,
 )
 from stickslip.kernel.linalg import copy_vector, dot, grown, grown_rows
 from stickslip.kernel.lyapunov_check import lyapunov_applies, lyapunov_bound
 from stickslip.kernel.polynomial import (
-    MAX_BREAKPOINTS,
-    N_POLYNOMIALS,
     TAYLOR_DEGREE,
     quick_state,
     taylor_state,
@@ -353,13 +353,12 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
     fsum = np.full(N_FLOAT, np.nan)
     isum = np.zeros(N_INT, dtype=np.int64)
     u = np.empty((TAYLOR_DEGREE + 1, m))
-    have_u = np.zeros(1, dtype=np.int64)
-    coef = np.empty((N_POLYNOMIALS, TAYLOR_DEGREE + 1))
-    bp = np.empty((3, MAX_BREAKPOINTS))  # breakpoints and their scratch (monotone_breakpoints)
+    # the event search's scratch (events.P_*: coefficients, breakpoints, row, flag), packed:
+    # each array passed to a call costs two atomic reference counts (kernel._leaf)
+    poly = poly_scratch(m)
     w = np.zeros(m)
     w1 = np.empty(m)
     w_end = np.empty(m)
-    row = np.empty(m)
     sig0 = np.empty(N_SIGNATURE)
     sig1 = np.empty(N_SIGNATURE)
     copy_vector(w, z0)  # w[:nz] = z0 (see kernel.linalg on slice assignment)
@@ -420,11 +419,11 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             signature(sig_rows, mode, w, sig0)
             fresh = False
         h = hstep[mode]
-        have_u[0] = 0
+        poly[P_FLAG, 0] = 0.0
         if t + h > t_max:
             h = t_max - t
             mode_taylor_vectors(ahat, mode, w, u, quick)
-            have_u[0] = 1
+            poly[P_FLAG, 0] = 1.0
             taylor_state(u, h, w1)
         else:
             propagate(phi, mode, w, w1)
@@ -438,16 +437,16 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
             start, sign, offset = f_start[mode, e], f_sign[mode, e], f_offset[mode, e]
             if event_free(sig0, sig1, start, sign, offset, h):
                 continue
-            s = first_reach(sig_rows, mode, start, sign, offset, sig0, sig1, w, h, ahat, u, have_u,
-                            row, coef, bp, departing and ev_next[mode, e] == NEXT_BELT, quick)
+            s = first_reach(sig_rows, mode, start, sign, offset, sig0, sig1, w, h, ahat, u, poly,
+                            departing and ev_next[mode, e] == NEXT_BELT, quick)
             if s < s_ev:
                 s_ev = s
                 e_ev = e
         s_end = h
         if e_ev >= 0:
-            if have_u[0] == 0:
+            if poly[P_FLAG, 0] == 0.0:
                 mode_taylor_vectors(ahat, mode, w, u, quick)
-                have_u[0] = 1
+                poly[P_FLAG, 0] = 1.0
             if quick:
                 quick_state(u, s_ev, w_end)
             else:
@@ -469,13 +468,12 @@ def run_prepared(mass, lam, gamma, edges, prepared, z0, t_max, max_events, cycle
                 # after a larger transient (an amplitude 0.23 % low, independent audit)
                 if not settled:
                     lo, hi = interior_range(sig_rows, mode, f_xi, sig0, sig1, w, s_end, ahat, u,
-                                            have_u, row, coef, bp, max(cur_xmin, os_xmin),
-                                            min(cur_xmax, os_xmax), lo, hi)
+                                            poly, max(cur_xmin, os_xmin), min(cur_xmax, os_xmax),
+                                            lo, hi)
                 vlo, vhi, settled = end_range(sig0, sig1, f_vel)
                 if not settled:
                     vhi = interior_range(sig_rows, mode, f_vel, sig0, sig1, w, s_end, ahat, u,
-                                         have_u, row, coef, bp, -np.inf, min(cur_vmax, os_vmax),
-                                         vlo, vhi)[1]
+                                         poly, -np.inf, min(cur_vmax, os_vmax), vlo, vhi)[1]
             cur_xmin = min(cur_xmin, lo)
             cur_xmax = max(cur_xmax, hi)
             cur_vmax = max(cur_vmax, vhi)

@@ -18,6 +18,8 @@ from stickslip.kernel import _cache  # noqa: F401  (first: every cached kernel i
 from stickslip.kernel._leaf import leaf_kernel
 from stickslip.kernel.polynomial import (
     DERIVATIVE_DEPTH,
+    N_POLYNOMIALS,
+    TAYLOR_DEGREE,
     functional_polynomials,
     monotone_breakpoints,
     monotone_root,
@@ -135,6 +137,27 @@ def event_free(sig0, sig1, start, sign, offset, h):
     return g0 <= 0.0 and _taylor_bounds(sig0, sig1, start, sign, offset, h)[1] < 0.0
 
 
+#: Rows of an event search's scratch (:func:`poly_scratch`): the coefficients of the event
+#: function and its derivatives (``N_POLYNOMIALS`` rows), the monotone breakpoints and their
+#: scratch (3 rows), the functional's row (the state's length) and a flag (column 0: the
+#: Taylor vectors of the step's start are computed, 1.0).
+P_BP = N_POLYNOMIALS
+P_ROW = P_BP + 3
+P_FLAG = P_ROW + 1
+
+
+@njit(cache=True)
+def poly_scratch(m):
+    """An event search's scratch for states of length ``m`` (rows ``P_*``), zeroed."""
+    return np.zeros((P_FLAG + 1, max(TAYLOR_DEGREE + 1, m)))
+
+
+@njit(cache=True, inline="always")
+def _scratch_views(poly, m):
+    """The coefficients, breakpoints and row of a scratch (views; see :func:`poly_scratch`)."""
+    return poly[:N_POLYNOMIALS], poly[P_BP:P_ROW], poly[P_ROW, :m]
+
+
 @leaf_kernel()
 def mode_taylor_vectors(ahat_table, mode, w, u, quick):
     """:func:`~stickslip.kernel.polynomial.taylor_vectors` of ``ahat_table[mode]`` (the mode's
@@ -153,8 +176,8 @@ def _polynomials(sig_rows, start, sign, offset, u, row, coef, depth=DERIVATIVE_D
 
 
 @leaf_kernel()
-def first_reach(sig_table, mode, start, sign, offset, sig0, sig1, w0, h, ahat_table, u, have_u,
-                row, coef, bp, departing, quick=False):
+def first_reach(sig_table, mode, start, sign, offset, sig0, sig1, w0, h, ahat_table, u, poly,
+                departing, quick=False):
     """First ``s`` in ``[0, h]`` where the event function ``g`` reaches 0 (``inf``: never).
 
     Called for the steps that :func:`event_free` does not settle. ``g = sign * sig[start] +
@@ -174,15 +197,18 @@ def first_reach(sig_table, mode, start, sign, offset, sig0, sig1, w0, h, ahat_ta
     polynomials Estrin's scheme (:func:`~stickslip.kernel.polynomial.quick_root`). The root
     is the same to rounding; the other runs keep the engine's historical arithmetic bit for bit.
 
-    ``sig_table`` and ``ahat_table`` are the per-mode tables; this function, like the rest of an
-    event search, is a leaf kernel (:mod:`stickslip.kernel._leaf`: no reference counts), so
-    taking the mode's rows here is free, where the run loop paid two atomic counts per slice.
+    ``sig_table`` and ``ahat_table`` are the per-mode tables, ``u`` the Taylor vectors of the
+    step's start and ``poly`` the search's scratch (:func:`poly_scratch`). This function,
+    like the rest of an event search, is a leaf kernel (:mod:`stickslip.kernel._leaf`: no
+    reference counts), so the views taken here are free; the run loop's call counts two per
+    array argument, hence the packing.
     """
     sig_rows = sig_table[mode]
     ahat = ahat_table[mode]
-    if have_u[0] == 0:
+    coef, bp, row = _scratch_views(poly, w0.shape[0])
+    if poly[P_FLAG, 0] == 0.0:
         taylor_vectors(ahat, w0, u, quick)
-        have_u[0] = 1
+        poly[P_FLAG, 0] = 1.0
     if quick and _no_sign_change(sig0, sig1, start):
         _polynomials(sig_rows, start, sign, offset, u, row, coef, np.int64(1))  # g and g' (Newton)
         ga = coef[0, 0]
@@ -210,8 +236,8 @@ def first_reach(sig_table, mode, start, sign, offset, sig0, sig1, w0, h, ahat_ta
 
 
 @leaf_kernel()
-def interior_range(sig_table, mode, start, sig0, sig1, w0, s_end, ahat_table, u, have_u, row,
-                   coef, bp, known_lo, known_hi, lo, hi):
+def interior_range(sig_table, mode, start, sig0, sig1, w0, s_end, ahat_table, u, poly, known_lo,
+                   known_hi, lo, hi):
     """Extend the end range ``[lo, hi]`` of ``sig[start]`` by its interior extrema on ``[0, s_end]``.
 
     They are only located when they could extend ``[known_lo, known_hi]``. The tables are
@@ -222,9 +248,10 @@ def interior_range(sig_table, mode, start, sig0, sig1, w0, s_end, ahat_table, u,
     bound_lo, bound_hi = _taylor_bounds(sig0, sig1, start, 1.0, 0.0, s_end)
     if bound_lo >= known_lo and bound_hi <= known_hi:
         return lo, hi
-    if have_u[0] == 0:
+    coef, bp, row = _scratch_views(poly, w0.shape[0])
+    if poly[P_FLAG, 0] == 0.0:
         taylor_vectors(ahat, w0, u, np.bool_(False))
-        have_u[0] = 1
+        poly[P_FLAG, 0] = 1.0
     _polynomials(sig_rows, start, 1.0, 0.0, u, row, coef, np.int64(DERIVATIVE_DEPTH + 1))
     npts = monotone_breakpoints(coef, 0.0, s_end, bp)
     for i in range(1, npts - 1):
