@@ -25,4 +25,5 @@ def leaf_kernel(**options: Any) -> Any:
     A leaf kernel may call only leaf kernels (numba compiles a callee with its caller's
     flags, and an allocation without reference counts is refused at compile time).
     """
-    return njit(cache=True, _nrt=False, **options)
+    flags: dict[str, Any] = {"cache": True, "_nrt": False, **options}  # _nrt: numba's own option
+    return njit(**flags)
