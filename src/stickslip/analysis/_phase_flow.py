@@ -210,8 +210,9 @@ def sampled_flow(a: FloatArray, c: FloatArray, z0: FloatArray, duration: float, 
                 zs[off] = _taylor_affine(aug, z_end, t - duration)[:n2]
                 m_norm[off] = m_before_end * math.exp(norm_a * (t - (count - 2) * h))
         return times, zs, m_norm, m_norm
-    for off in np.flatnonzero(~on_grid):
-        take(np.array([off]), expm(aug * times[off])[None])
+    off_grid = np.flatnonzero(~on_grid)
+    if off_grid.size:  # the refined times' own exponentials, taken in one batch
+        take(off_grid, np.stack([expm(aug * times[off]) for off in off_grid]))
     if kept is None:
         return times, zs, m_norm, m_norm
     if n2 <= TWO_NORM_SVD:
