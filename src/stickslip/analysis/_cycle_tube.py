@@ -413,7 +413,7 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
         if et and ph.edge_end:
             # equal times across the edge: X = expm(A t) against the perturbed Psi (saltation
             # the identity for a continuous law; the nominal's own is rounding from it)
-            salt_off = float(np.linalg.norm(ph.salt - np.eye(ph.salt.shape[0]), 2)) * ph.e_norm
+            salt_off = ph.salt_off
             delta_i = extra / z_dev + salt_off if z_dev > 0.0 else salt_off
             weight = delta_i * norms.prefix[i]
         else:
@@ -515,6 +515,31 @@ def _phase_timing(ph: Phase, z_dev: float, et: bool, tight: bool,
     return None if t_dev is None else (extra, t_dev)
 
 
+def _equal_time_floors(ph: Phase, past: float) -> tuple[float, FloatArray, list[Any]]:
+    """``(M_bar, h2, floors)`` of :func:`_equal_time_growth`: what depends on the phase and the
+    window ``past`` only (no radius), formed once per phase and window and kept in its cache."""
+    key = ("equal-time floors", past)
+    if key not in ph.cache:
+        m_norm = ph.m_two if ph.m_two is not None else ph.m_norm
+        grow = np.exp(ph.norm_a * ph.hs)
+        m_bar = float(np.max(np.maximum(m_norm[:-1], m_norm[1:]) * grow))
+        f_int = np.maximum(ph.flow_norm[:-1], ph.flow_norm[1:]) * grow
+        h2 = f_int * ph.hs ** 2 / 8.0
+        if past:
+            m_bar = max(m_bar, float(m_norm[-1]) * math.exp(ph.norm_a * past))
+        floors = []
+        for e in range(len(ph.functions)):
+            if not ph.is_equal_time_edge(e):
+                continue
+            nv = ph.functions[e][0]
+            floors.append((e, float(np.linalg.norm(nv @ ph.a)),
+                           interval_floor(ph.rate[:, e], float(np.linalg.norm(nv @ ph.a @ ph.a)) * h2),
+                           end_drift(nv, ph.a, ph.f_minus, float(np.linalg.norm(ph.f_minus)),
+                                     ph.norm_a, past)))
+        ph.cache[key] = (m_bar, h2, floors)
+    return ph.cache[key]
+
+
 def _equal_time_growth(ph: Phase, z_dev: float, past: float) -> tuple[float, float, float] | None:
     """``(kappa, M_bar, extra)`` of an equal-time slip phase (None: no consistent bound).
 
@@ -539,21 +564,7 @@ def _equal_time_growth(ph: Phase, z_dev: float, past: float) -> tuple[float, flo
     (float, float, float) or None
     """
     assert ph.bands is not None
-    m_norm = ph.m_two if ph.m_two is not None else ph.m_norm
-    grow = np.exp(ph.norm_a * ph.hs)
-    m_bar = float(np.max(np.maximum(m_norm[:-1], m_norm[1:]) * grow))
-    f_int = np.maximum(ph.flow_norm[:-1], ph.flow_norm[1:]) * grow
-    h2 = f_int * ph.hs ** 2 / 8.0
-    if past:
-        m_bar = max(m_bar, float(m_norm[-1]) * math.exp(ph.norm_a * past))
-    edges = [e for e in range(len(ph.functions)) if ph.is_equal_time_edge(e)]
-    floors = []
-    for e in edges:
-        nv = ph.functions[e][0]
-        floors.append((e, float(np.linalg.norm(nv @ ph.a)),
-                       interval_floor(ph.rate[:, e], float(np.linalg.norm(nv @ ph.a @ ph.a)) * h2),
-                       end_drift(nv, ph.a, ph.f_minus, float(np.linalg.norm(ph.f_minus)), ph.norm_a,
-                                 past)))
+    m_bar, h2, floors = _equal_time_floors(ph, past)
 
     def exposure(d: float) -> float:
         tau = 0.0

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -47,6 +49,9 @@ class Phase:
     zero_surface: int = -1  # the index of u = 0 in functions (-1: none)
     edge_end: bool = False  # ends at a band edge into the neighbouring band, same slip kind
     m_two: FloatArray | None = None  # tighter bounds of ||expm(A s_j)||_2 (sampled_flow's two_norm)
+    #: per-phase bounds that depend on no radius, kept across a proof's radii (see
+    #: :func:`stickslip.analysis._cycle_tube._equal_time_growth`)
+    cache: dict[Any, Any] = field(default_factory=dict, init=False, repr=False, compare=False)
     salt: FloatArray = field(init=False)  # the nominal saltation matrix at the end
     salt_norm: float = field(init=False)
     e_norm: float = field(init=False)
@@ -57,6 +62,12 @@ class Phase:
                      + np.outer(self.f_plus - self.f_minus, nv) / float(nv @ self.f_minus))
         self.salt_norm = float(np.linalg.norm(self.salt, 2))
         self.e_norm = float(np.linalg.norm(self.e_nominal, 2))
+
+    @cached_property
+    def salt_off(self) -> float:
+        """``||S - I||_2 ||expm(A t)||_2``: the nominal saltation's distance from the identity
+        (rounding for a band edge of a continuous law), times the propagator's norm."""
+        return float(np.linalg.norm(self.salt - np.eye(self.salt.shape[0]), 2)) * self.e_norm
 
     def is_equal_time_edge(self, e: int) -> bool:
         """Function ``e`` is a band edge the equal-time variant does not treat as an event."""
