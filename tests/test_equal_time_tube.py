@@ -16,7 +16,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from stickslip import InitialState, Slider, simulate
-from stickslip.analysis import _cycle_tube, cycle_proof
+from stickslip.analysis import _cycle_tube, _product_norms, cycle_proof
 from stickslip.analysis._band_variation import BandVariation, band_growth
 from stickslip.analysis.engine_run import EngineOptions
 from stickslip.analysis.return_map import ReturnMap
@@ -124,6 +124,27 @@ def test_the_equal_time_variant_proves_a_larger_ball_that_holds(weak) -> None:  
     assert not (banded.ok and norm_w + kappa * banded.jacobian_bound < 1.0)
     assert proof.radius > 1.5e-4
     _check_ball(structure, slider, run, np.random.default_rng(11), points=16, returns=3)
+
+
+def test_gram_bounds_of_many_products_give_the_same_proof(weak, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    # beyond SVD_PRODUCTS products (a fine table's cycle) the norms between phases are the
+    # Gram matrices' upper bounds (two_norm_bounds: its docstring's rounding argument) instead
+    # of singular values: each at or above numpy's 2-norm and within 1e-12 of it, and the
+    # proof of this cycle (202 phases, 20,503 products, under the threshold) the same ball
+    structure, slider, run, pmap, cand = weak
+    n2 = 2 * pmap.n  # the tube's lift and reduction, as cycle_proof.tubes forms them
+    lift = cand.coords.from_state @ pmap.lift
+    reduce = np.delete(np.eye(n2), [0, pmap.n], axis=0) @ cand.coords.to_state
+    exact = _product_norms.ProductNorms.of(cand.phases, lift, reduce)
+    monkeypatch.setattr(_product_norms, "SVD_PRODUCTS", 0)
+    bounded = _product_norms.ProductNorms.of(cand.phases, lift, reduce)
+    upper = np.triu_indices(len(cand.phases) + 1, 1)
+    assert np.all(bounded.between[upper] >= exact.between[upper])
+    assert np.max(bounded.between[upper] / exact.between[upper] - 1.0) < 1e-12
+    proof = cycle_proof.prove_cycle(structure, slider, run.cycle_proof.fixed_point, 1, EngineOptions())
+    assert proof is not None
+    assert proof.radius == run.cycle_proof.radius
+    assert proof.contraction == pytest.approx(run.cycle_proof.contraction, rel=1e-9)
 
 
 def test_a_tangential_window_spans_band_edges(weak) -> None:  # type: ignore[no-untyped-def]

@@ -7,7 +7,7 @@ import pytest
 from scipy.linalg import expm as scipy_expm
 from scipy.linalg import solve_continuous_lyapunov
 
-from stickslip.kernel.linalg import expm, solve_lyapunov
+from stickslip.kernel.linalg import expm, expm_at, solve_lyapunov
 from stickslip.kernel.polynomial import TAYLOR_DEGREE, taylor_state, taylor_vectors
 
 
@@ -19,6 +19,19 @@ def test_expm_matches_scipy(seed: int) -> None:
     ours = expm(a)
     ref = scipy_expm(a)
     assert np.allclose(ours, ref, rtol=1e-12, atol=1e-12 * np.abs(ref).max())
+
+
+def test_expm_at_is_the_exponentials_one_at_a_time_bit_for_bit() -> None:
+    # expm_at (the cycle proof's refined sample times, in one call) promises the bits of
+    # expm(a * t) taken one at a time, as the proof took them before (same product, same kernel)
+    rng = np.random.default_rng(5)
+    for _ in range(50):
+        a = rng.normal(size=(5, 5)) * rng.uniform(0.01, 10.0)
+        times = rng.uniform(0.0, 3.0, size=9) * 2.0 ** -rng.integers(0, 40, size=9)
+        stack = expm_at(a, times)
+        assert stack.shape == (9, 5, 5)
+        for t, e in zip(times, stack, strict=True):
+            assert np.array_equal(e, expm(a * t))
 
 
 def test_expm_of_nilpotent_jordan_block_is_exact() -> None:

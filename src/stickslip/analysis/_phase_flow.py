@@ -13,7 +13,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.kernel.linalg import expm
+from stickslip.kernel.linalg import expm, expm_at
 
 FloatArray = NDArray[np.float64]
 
@@ -212,7 +212,7 @@ def sampled_flow(a: FloatArray, c: FloatArray, z0: FloatArray, duration: float, 
         return times, zs, m_norm, m_norm
     off_grid = np.flatnonzero(~on_grid)
     if off_grid.size:  # the refined times' own exponentials, taken in one batch
-        take(off_grid, np.stack([expm(aug * times[off]) for off in off_grid]))
+        take(off_grid, expm_at(aug, times[off_grid]))
     if kept is None:
         return times, zs, m_norm, m_norm
     if n2 <= TWO_NORM_SVD:

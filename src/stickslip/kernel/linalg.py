@@ -161,6 +161,25 @@ def expm(a: np.ndarray) -> np.ndarray:
 
 
 @njit(cache=True)
+def expm_at(a: np.ndarray, times: np.ndarray) -> np.ndarray:
+    """``expm(a t)`` for every ``t`` of ``times``, stacked: shape ``(times.size, n, n)``.
+
+    Each is :func:`expm` of the product ``a t`` formed as numpy forms it (one rounded
+    product per entry), so the stack is bit for bit the exponentials taken one at a time,
+    without a call through the dispatcher for each.
+    """
+    n = a.shape[0]
+    out = np.empty((times.size, n, n))
+    scaled = np.empty((n, n))
+    for s in range(times.size):
+        for i in range(n):
+            for j in range(n):
+                scaled[i, j] = a[i, j] * times[s]
+        copy_matrix(out[s], expm(scaled))
+    return out
+
+
+@njit(cache=True)
 def gauss_solve(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, bool]:
     """Solve ``a x = b`` by Gaussian elimination with partial pivoting.
 
