@@ -4,14 +4,16 @@ Usage::
 
     .venv/bin/python benchmarks/bench_friction.py
 
-Measured on the 2-core development machine on 2026-11-28 (load average about 1;
-``simulate`` proves its stick-slip cycle, which visits every friction band the cycle crosses)::
+Measured on the 2-core development machine on 2026-11-28 at 11:03 (``simulate`` proves its
+stick-slip cycle, which visits every friction band the cycle crosses; 515 and 9,558 ms for the
+Stribeck runs earlier that day, before the proof sampled its phases in batches and bounded the
+norms of a fine table's 2 million products through their Gram matrices)::
 
-    linear, delta = 0.03            engine    16.20 ms  oracle 1.08 s  speed-up  67x
-    stribeck, tolerance 1e-4        engine   515.08 ms  oracle 1.22 s  speed-up   2x
-    stribeck, tolerance 1e-6        engine  9558.28 ms  oracle 1.17 s  speed-up   0x
-    rigid base map 1200 cells: linear 136367 cells/s, Coulomb 161287 cells/s, ratio 1.18
-    foundation map 1200 cells: linear  34294 cells/s, Coulomb  38048 cells/s, ratio 1.11
+    linear, delta = 0.03            engine    20.46 ms  oracle 1.15 s  speed-up  56x
+    stribeck, tolerance 1e-4        engine   290.61 ms  oracle 1.18 s  speed-up   4x
+    stribeck, tolerance 1e-6        engine  5283.58 ms  oracle 1.18 s  speed-up   0x
+    rigid base map 1200 cells: linear 160109 cells/s, Coulomb 194912 cells/s, ratio 1.22
+    foundation map 1200 cells: linear  38222 cells/s, Coulomb  42913 cells/s, ratio 1.12
 
 * Per run: the elastic foundation (zeta = 0.1, M = 1.5, K = 1, zeta_a = 0.5), lambda = 3,
   gamma = 2, from startup, with a linear law (delta = 0.03) and a Stribeck law
