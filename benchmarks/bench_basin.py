@@ -29,7 +29,8 @@ FOUNDATION_SAMPLES states: every 2-DOF state runs to its own verdict): samples/s
 region is 1-DOF; its baseline is the oracle), with its states, stick phases and share of the steps
 by verdict (where an N-DOF basin's time goes), and its labels against long direct runs without
 the proven balls of stickslip.sweep.basin_cycles (ten times the horizon, every state), with the
-samples/s of that path in the same run. ``--only foundation`` runs that case alone.
+samples/s of that path in the same run, and the time of the pilot (its first states' runs and
+proofs, before the threaded run). ``--only foundation`` runs that case alone.
 """
 
 from __future__ import annotations
@@ -62,6 +63,7 @@ from stickslip.kernel.engine import I_N_STEPS, I_N_STICK, I_STATUS
 from stickslip.kernel.outer_certificate import ESCAPE_F_LO
 from stickslip.model.friction import CoulombFriction, StribeckFriction
 from stickslip.sweep.basin import BasinSystem, basin_stability, run_state_batch, sample_box
+from stickslip.sweep.basin_cycles import pilot_balls
 
 HORIZON = 100.0
 FOUNDATION_SAMPLES = 20_000
@@ -143,6 +145,7 @@ def main() -> None:
             ab_lines.append(early_certificate_ab(structure, slider, states, args.repeats))
         if structure.n_dof > 1:
             ab_lines.append(f"{name}: " + work_by_verdict(result))
+            ab_lines.append(f"{name}: " + pilot_time(structure, slider, states, result))
             ab_lines.append(f"{name}: " + against_long_runs(structure, slider, states, result))
     for line in ab_lines:
         print(line)
@@ -179,6 +182,21 @@ def late_stick(structure, slider, state) -> str:  # type: ignore[no-untyped-def]
     return (f"differs from the oracle: the engine's run ({run.verdict.value}, certified at tau = "
             f"{run.t_certified:.1f}) first sticks at tau = {first:.1f}, the oracle's horizon is "
             f"{HORIZON:g}")
+
+
+def pilot_time(structure, slider, states, result) -> str:  # type: ignore[no-untyped-def]
+    """The pilot's share of the basin's time: its runs and proofs before the threaded run.
+
+    ``pilot_balls`` (stickslip.sweep.basin_cycles) runs the first states and proves their
+    cycles in Python, serially; best of three, against the basin's best elapsed time.
+    """
+    best = np.inf
+    for _ in range(3):
+        start = time.perf_counter()
+        pilot_balls(structure, slider, states, EngineOptions())
+        best = min(best, time.perf_counter() - start)
+    return (f"the pilot (runs and proofs of the first states, serial) {best:.2f} s of the "
+            f"basin's {result.elapsed:.2f} s")
 
 
 def against_long_runs(structure, slider, states, result) -> str:  # type: ignore[no-untyped-def]
