@@ -12,7 +12,8 @@ whether the tube holds (:func:`stickslip.analysis._cycle_tube.tube_bound`; both 
 by band, each edge an event, and at equal times across the band edges), the bound ``E(r)``
 of the Jacobian's variation over the ball and the contraction bound ``theta = ||J||_W + kappa
 E(r)`` (a proof needs ``theta < 1``), or the phase where the tube fails: its mode, band, the
-band's width in sliding speed, its duration and the deviation the tube carried into it.
+band's width in sliding speed, its duration and the deviation the tube carried into it; and,
+at the proven radius, which phases make ``E(r)`` (its first-order terms by kind of phase).
 
 Then the return map itself, sampled about its fixed point out to radius 0.3: its curvature
 and its local contraction factor in the proof's norm (observations: what a tighter tube could
@@ -42,6 +43,7 @@ from bench_basin import foundation_weak_case
 
 from stickslip import InitialState, simulate
 from stickslip.analysis import cycle_proof
+from stickslip.analysis._product_norms import ProductNorms
 from stickslip.analysis.engine_run import EngineOptions
 from stickslip.analysis.return_map import ReturnMap
 from stickslip.kernel.system import STICK, mode_kind_band
@@ -86,6 +88,7 @@ def main() -> None:
               else "equal times across the band edges:")
         for radius in radii:
             ladder_line(cand, edges, tube_at(radius, equal_time), radius, norm_w, kappa)
+    e_terms(pmap, cand, tube_at(proof.radius, True), proof.radius)
     true_map(pmap, cand, cycle_proof._adapted_norm(cand.jac)[0])
     if args.states > 0:
         center = pmap.reduce(proof.fixed_point)
@@ -107,6 +110,36 @@ def ladder_line(cand, edges, t, radius, norm_w, kappa) -> None:  # type: ignore[
              and np.isfinite(edges[band + 1]) else "")
     print(f"r = {radius:9.3e}: tube fails in phase {t.failed_phase} ({KINDS[kind]}, band {band}"
           f"{width}, duration {ph.duration:.3g}), carried deviation {t.failed_deviation:.2e}")
+
+
+def e_terms(pmap, cand, tube, radius) -> None:  # type: ignore[no-untyped-def]
+    """Where ``E(r)`` comes from: the tube's first-order terms ``||R G(i + 1, N)|| w_i`` by phase.
+
+    ``w_i`` bounds ``||(X_i - X_i*) G(0, i) L||`` (the equal-time variant's weights); the rest
+    of ``E`` is the suffixes' own variation (second order). Grouped by the phase's kind: the
+    departure after the breakaway (phase 0), the band-edge crossings, the arrival at the belt
+    speed, the stick phase; the largest single terms are listed with their phase.
+    """
+    if not tube.ok:
+        print(f"r = {radius:9.3e}: the equal-time tube fails; no terms")
+        return
+    reduce_rows = np.delete(np.eye(2 * pmap.n), [0, pmap.n], axis=0)
+    norms = ProductNorms.of(cand.phases, cand.coords.from_state @ pmap.lift,
+                            reduce_rows @ cand.coords.to_state)
+    terms = np.array(norms.suffix) * np.array(tube.weights)
+    last = len(cand.phases) - 1
+    groups = {"departure (phase 0)": [0],
+              "band-edge crossings": [i for i, ph in enumerate(cand.phases)
+                                      if 0 < i and not (ph.belt_decision or ph.breakaway)],
+              "arrival at the belt speed": [i for i, ph in enumerate(cand.phases) if ph.belt_decision],
+              "stick phase": [i for i, ph in enumerate(cand.phases) if ph.breakaway and i == last]}
+    parts = ", ".join(f"{name} {terms[idx].sum():.3g}" for name, idx in groups.items() if idx)
+    print(f"r = {radius:9.3e}: E(r) = {tube.jacobian_bound:.3g} = {terms.sum():.3g} first order "
+          f"({parts}) + {tube.jacobian_bound - terms.sum():.3g} from the suffixes' variation")
+    for i in np.argsort(-terms)[:5]:
+        kind, band = mode_kind_band(cand.phases[i].mode)
+        print(f"  phase {i:4d} ({KINDS[kind]}, band {band}, duration {cand.phases[i].duration:.3g}):"
+              f" {terms[i]:.3g} ({terms[i] / tube.jacobian_bound:.0%} of E)")
 
 
 def true_map(pmap, cand, chol) -> None:  # type: ignore[no-untyped-def]
