@@ -12,6 +12,7 @@ import warnings
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from importlib import import_module
+from pathlib import Path
 from types import FrameType
 from typing import Annotated, Any, NoReturn
 
@@ -216,26 +217,33 @@ ENGINE_COMMANDS = frozenset({"simulate", "map", "boundary", "basin", "basin-map"
 
 
 def engine_cache_is_cold() -> bool:
-    """True when numba has no compiled engine cached for the installed sources.
+    """True when numba has no compiled engine cached for the installed kernel sources.
 
     numba keeps an index (``*.nbi``) per compiled function next to the source (in
     ``__pycache__``), or under ``NUMBA_CACHE_DIR`` when that is set (then only there), and
-    discards it when the source changed; the run loop's index stands for the engine. Found
-    without importing numba. A kernel compiled although this says warm (another command's
-    kernels, a new signature) is still announced, by :class:`CompileWatch`.
+    uses it only when the stamp written in it is the kernel folder's
+    (:func:`stickslip.kernel._stamp.kernel_source_stamp`: the sources' names and contents,
+    not their times); the run loop's index stands for the engine. So the cache is warm when
+    an index of the run loop holds the current stamp (numba pickles it as its text): a
+    checkout that rewrites identical files keeps it warm, any kernel edit makes it cold.
+    Found without importing numba. A kernel compiled although this says warm (another
+    command's kernels, a new signature) is still announced, by :class:`CompileWatch`.
     """
-    from importlib.util import find_spec
-    from pathlib import Path
+    from stickslip.kernel._stamp import KERNEL_DIR, kernel_source_stamp
 
-    spec = find_spec("stickslip.kernel.engine")
-    if spec is None or spec.origin is None:
-        return False
-    source = Path(spec.origin)
     user_dir = os.environ.get("NUMBA_CACHE_DIR")
-    folders = [Path(user_dir)] if user_dir else [source.parent / "__pycache__"]
-    stamp = source.stat().st_mtime
-    return not any(index.stat().st_mtime >= stamp for folder in folders if folder.is_dir()
+    folders = [Path(user_dir)] if user_dir else [KERNEL_DIR / "__pycache__"]
+    stamp = kernel_source_stamp().encode()
+    return not any(_holds(index, stamp) for folder in folders if folder.is_dir()
                    for index in folder.rglob("engine.run_prepared-*.nbi"))
+
+
+def _holds(index: Path, stamp: bytes) -> bool:
+    """Whether the cache index file ``index`` holds ``stamp`` (False when it cannot be read)."""
+    try:
+        return stamp in index.read_bytes()
+    except OSError:
+        return False
 
 
 #: How long a command's first run compiles, roughly, on a 2-core machine with an empty cache

@@ -11,7 +11,8 @@ Importing this module (every kernel module does, before its first ``@njit(cache=
 puts three locators in front of numba's own, for the functions of this folder only. They
 keep numba's cache paths (``NUMBA_CACHE_DIR`` when set, else the source's ``__pycache__``,
 else numba's user-wide folder) and change one thing: the stamp is
-:func:`kernel_source_stamp`, the SHA-256 of every ``*.py`` of this folder, so any kernel edit
+:func:`~stickslip.kernel._stamp.kernel_source_stamp`, the SHA-256 of every ``*.py`` of this
+folder (names and contents, not times), so any kernel edit
 makes numba recompile every kernel on its next call (and overwrite the stale entries). The
 kernel layer imports nothing compiled from outside this folder (the layer rule), so the
 folder is the whole call tree. Functions elsewhere keep numba's locators. numba's locator
@@ -22,32 +23,10 @@ classes are not public API: if they are not found, numba's default stays (and
 from __future__ import annotations
 
 import functools
-import hashlib
 from pathlib import Path
 from typing import Any
 
-#: The kernel folder: every ``*.py`` here enters the stamp of every cached kernel.
-KERNEL_DIR = Path(__file__).resolve().parent
-
-
-def kernel_source_stamp(folder: Path | None = None) -> str:
-    """SHA-256 (hex) of the names and contents of every ``*.py`` in ``folder`` (the kernels').
-
-    The kernel folder's stamp is computed once per process (numba asks for it at every
-    ``@njit(cache=True)`` and every cache load; 3 ms once): an edit is seen by the next process,
-    which is when a stale cache would be loaded.
-    """
-    if folder is None:
-        return _kernel_folder_stamp()
-    digest = hashlib.sha256()
-    for path in sorted(Path(folder).glob("*.py")):
-        digest.update(path.name.encode() + b"\0" + path.read_bytes())
-    return digest.hexdigest()
-
-
-@functools.cache
-def _kernel_folder_stamp() -> str:
-    return kernel_source_stamp(KERNEL_DIR)
+from stickslip.kernel._stamp import KERNEL_DIR, kernel_source_stamp
 
 
 @functools.cache
