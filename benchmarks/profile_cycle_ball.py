@@ -13,7 +13,9 @@ by band, each edge an event, and at equal times across the band edges), the boun
 of the Jacobian's variation over the ball and the contraction bound ``theta = ||J||_W + kappa
 E(r)`` (a proof needs ``theta < 1``), or the phase where the tube fails: its mode, band, the
 band's width in sliding speed, its duration and the deviation the tube carried into it; and,
-at the proven radius, which phases make ``E(r)`` (its first-order terms by kind of phase).
+at the proven radius, which phases make ``E(r)`` (its first-order terms by kind of phase), and
+for the largest, how much of the event function's deviation a bound through its own row's
+products would keep (an observation).
 
 Then the return map itself, sampled about its fixed point out to radius 0.3: its curvature
 and its local contraction factor in the proof's norm (observations: what a tighter tube could
@@ -136,10 +138,32 @@ def e_terms(pmap, cand, tube, radius) -> None:  # type: ignore[no-untyped-def]
     parts = ", ".join(f"{name} {terms[idx].sum():.3g}" for name, idx in groups.items() if idx)
     print(f"r = {radius:9.3e}: E(r) = {tube.jacobian_bound:.3g} = {terms.sum():.3g} first order "
           f"({parts}) + {tube.jacobian_bound - terms.sum():.3g} from the suffixes' variation")
+    ratios = event_row_ratios(pmap, cand)
     for i in np.argsort(-terms)[:5]:
         kind, band = mode_kind_band(cand.phases[i].mode)
         print(f"  phase {i:4d} ({KINDS[kind]}, band {band}, duration {cand.phases[i].duration:.3g}):"
-              f" {terms[i]:.3g} ({terms[i] / tube.jacobian_bound:.0%} of E)")
+              f" {terms[i]:.3g} ({terms[i] / tube.jacobian_bound:.0%} of E); its event row's "
+              f"product over the products' norms {ratios[i]:.3g}")
+
+
+def event_row_ratios(pmap, cand) -> np.ndarray:  # type: ignore[no-untyped-def]
+    """Per phase, ``||n^T expm(A t*) G(0, i) L|| / (||n|| ||expm(A t*)|| ||G(0, i) L||)``.
+
+    ``n`` is the row of the event that ends the phase. The tube bounds an event function's
+    deviation at the event by ``||n|| M(t*) Z`` (norms multiplied); through the nominal
+    products, the first-order part of it is the numerator times the radius. The ratio is what
+    a bound through the event row's own products would keep of that part (an observation for
+    a tighter tube, not a bound).
+    """
+    current = cand.coords.from_state @ pmap.lift
+    ratios = np.empty(len(cand.phases))
+    for i, ph in enumerate(cand.phases):
+        row = ph.functions[ph.ending][0]
+        tight = float(np.linalg.norm(row @ ph.e_nominal @ current))
+        crude = float(np.linalg.norm(row)) * ph.e_norm * float(np.linalg.norm(current, 2))
+        ratios[i] = tight / crude if crude > 0.0 else np.nan
+        current = ph.salt @ ph.e_nominal @ current
+    return ratios
 
 
 def true_map(pmap, cand, chol) -> None:  # type: ignore[no-untyped-def]
