@@ -64,8 +64,12 @@ def friction_oracle_simulate(structure: Any, slider: Any, t_max: float, initial:
                              max_events: int = 10000) -> OracleResult:
     """Simulate ``structure`` with ``slider`` (its ``friction.value`` is the law) by solve_ivp.
 
-    Event modes are 0 slip-I, 1 slip-II, 2 stick (no bands).
+    Event modes are 0 slip-I, 1 slip-II, 2 stick (no bands). The contact is DOF 0: a
+    structure with its contact elsewhere is refused (pass ``structure.contact_first()[0]``).
     """
+    if getattr(structure, "contact_dof", 0) != 0:
+        raise ValueError(f"the friction oracle takes the contact on DOF 0, got contact_dof = "
+                         f"{structure.contact_dof}: pass structure.contact_first()[0]")
     if initial is None:
         from stickslip.model import startup_state
 
