@@ -424,3 +424,26 @@ def test_a_sixty_dof_cycle_is_proven_with_factored_propagators(monkeypatch: pyte
     proof = run.cycle_proof
     assert proof is not None and proof.contraction < 1.0 and proof.distance <= proof.radius
     _check_ball(structure, slider, run, np.random.default_rng(3))
+
+
+def test_profile_fine_table_proof_names_the_parts_it_times() -> None:
+    # benchmarks/profile_fine_table_proof.py (bench_friction.py's Stribeck case, here at the
+    # default tolerance 1e-4): the proof is most of a stick-slip run, and every part it times
+    # is found in the profile (a renamed function would print 0 calls), each within the whole
+    import subprocess
+    import sys
+
+    script = Path(__file__).resolve().parent.parent / "benchmarks" / "profile_fine_table_proof.py"
+    done = subprocess.run([sys.executable, str(script), "--tolerance", "1e-4"],
+                          capture_output=True, text=True, check=True, timeout=600)
+    lines = done.stdout.splitlines()
+    assert "verdict stick-slip" in lines[0] and "proven:" in lines[1]
+    shares = {line[:36].strip(): (int(line[36:].split()[0]), float(line.split()[-2]))
+              for line in lines[2:]}
+    assert len(shares) == 6
+    proof_calls, proof_share = shares["proof of the cycle (all)"]
+    assert proof_calls == 1 and proof_share > 50.0
+    for part in ("candidate: sampled phases", "norms of the products", "tube bounds (ladder)"):
+        calls, share = shares[part]
+        assert calls >= 1 and 0.0 < share < proof_share
+    assert shares["engine runs (the run and the proof)"][0] >= 1
