@@ -389,7 +389,7 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
     z_devs: list[float] = []
     stick_norm = float(np.linalg.norm(stick_normal))
     deltas: list[float] = []
-    carried: list[float] = []  # Delta_j Z_j
+    carried = np.empty(len(phases))  # Delta_j Z_j (filled phase by phase)
     weights: list[float] = []  # bounds of ||(X_i - X_i*) G(0, i) L||
     window = [False]  # a tangential departure's window open across band edges
     split: dict[int, tuple[float, float, float, float]] = {}  # ||S||, T e^{||A|| T}, extra / Z, ||dS||
@@ -439,8 +439,8 @@ def tube_bound(phases: list[Phase], norms: ProductNorms, stick_normal: FloatArra
                             extra / z_dev if z_dev > 0.0 else 0.0, d_salt)
         deltas.append(delta_i)
         weights.append(weight)
-        carried.append(delta_i * z_devs[-1])
-        tight = norms.prefix[i + 1] * radius + float(norms.between[1:i + 2, i + 1] @ np.array(carried))
+        carried[i] = delta_i * z_devs[-1]
+        tight = norms.prefix[i + 1] * radius + float(norms.between[1:i + 2, i + 1] @ carried[:i + 1])
         z_dev = min(z_event, tight + rounding)
         if ph.breakaway:
             breakaway_dev.append(z_dev * coords.to_state_norm)  # in the engine's coordinates

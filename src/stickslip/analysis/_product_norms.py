@@ -63,27 +63,39 @@ class ProductNorms:
                 product = factors[d:] @ product[:-1]  # G(j, j + d + 1) = X*_{j+d} G(j, j + d)
         # the equal-time variant's norms (a run with friction bands), on small structures
         banded = any(ph.bands is not None for ph in phases) and factors.shape[1] <= TWO_NORM_SIZE
-        prefix, flowed, flowed_rate, current = [], [], [], lift.copy()
+        # the products in order, their 2-norms in one stacked SVD each (the same LAPACK call
+        # per matrix as ``np.linalg.norm(x, 2)``, so the same numbers)
+        heads, moved, rates, current = [], [], [], lift.copy()
         for i in range(n_ph + 1):
-            prefix.append(float(np.linalg.norm(current, 2)))
+            heads.append(current)
             if i < n_ph:
                 if banded:
-                    moved = phases[i].e_nominal @ current
-                    flowed.append(float(np.linalg.norm(moved, 2)))
-                    flowed_rate.append(float(np.linalg.norm(phases[i].a @ moved, 2)))
+                    moved.append(phases[i].e_nominal @ current)
+                    rates.append(phases[i].a @ moved[-1])
                 current = factors[i] @ current
-        suffix, current = [0.0] * n_ph, reduce_rows.copy()
+        prefix = _two_norms(heads)
+        flowed, flowed_rate = (_two_norms(moved), _two_norms(rates)) if banded else ([], [])
+        tails, current = [], reduce_rows.copy()
         for i in range(n_ph - 1, -1, -1):
-            suffix[i] = float(np.linalg.norm(current, 2))
+            tails.append(current)
             current = current @ factors[i]
+        suffix = _two_norms(tails)[::-1]
         flowed_from, rate_from = {}, {}
         if banded:
             for j in (j for j, ph in enumerate(phases) if ph.breakaway):
-                heads = [phases[j].e_nominal, phases[j].a @ phases[j].e_nominal]
-                norms = np.zeros((2, j + 1))
-                for k in range(j, -1, -1):  # heads = expm(A_j t_j) G(k, j) and A_j times it
-                    norms[:, k] = [np.linalg.norm(h, 2) for h in heads]
+                ends = [phases[j].e_nominal, phases[j].a @ phases[j].e_nominal]
+                stack = []
+                for k in range(j, -1, -1):  # ends = expm(A_j t_j) G(k, j) and A_j times it
+                    stack.append(ends)
                     if k > 0:
-                        heads = [h @ factors[k - 1] for h in heads]
-                flowed_from[j], rate_from[j] = norms[0], norms[1]
+                        ends = [h @ factors[k - 1] for h in ends]
+                norms = np.array(_two_norms([h for pair in stack for h in pair])).reshape(j + 1, 2)
+                flowed_from[j], rate_from[j] = norms[::-1, 0].copy(), norms[::-1, 1].copy()
         return cls(prefix, suffix, between, flowed, flowed_rate, flowed_from, rate_from)
+
+
+def _two_norms(matrices: list[FloatArray]) -> list[float]:
+    """The 2-norms of equally shaped matrices (their largest singular values), as floats."""
+    if not matrices:
+        return []
+    return [float(x) for x in np.linalg.svd(np.array(matrices), compute_uv=False)[:, 0]]
