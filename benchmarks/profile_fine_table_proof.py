@@ -51,7 +51,11 @@ def main() -> None:
     parser.add_argument("--tolerance", type=float, default=1e-6, help="the law's table tolerance")
     args = parser.parse_args()
     structure = elastic_foundation(0.1, Foundation(1.5, 1.0, 0.5))
-    slider = Slider(3.0, friction=StribeckFriction(0.3, viscous=0.02, tolerance=args.tolerance))
+    try:
+        law = StribeckFriction(0.3, viscous=0.02, tolerance=args.tolerance)
+    except ValueError as err:
+        parser.error(f"--tolerance {args.tolerance:g}: {err}")  # one line, exit status 2
+    slider = Slider(3.0, friction=law)
     simulate(structure, slider, record=False)  # compile / load the cache
     start = time.perf_counter()
     result = simulate(structure, slider, record=False)
