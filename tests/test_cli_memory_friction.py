@@ -233,6 +233,11 @@ def test_json_gives_the_hopf_stiffness(tmp_path: Path, capsys: pytest.CaptureFix
     assert steady["stable"] is False
     assert steady["rice_ruina_critical_stiffness_N_m"] == pytest.approx(1e4, rel=1e-12)
     assert steady["critical_stiffness_N_m"] == pytest.approx(1e4, rel=1e-10)
+    # b < a (velocity strengthening): the closed form is negative, no stiffness destabilises
+    path.write_text(text.replace("b = 0.015", "b = 0.005"), encoding="utf-8")
+    code, out, err = _run(["simulate", "--config", str(path), "--t-max", "0.5 s", "--json"], capsys)
+    assert code == 0, err
+    assert json.loads(out)["steady_sliding"]["rice_ruina_critical_stiffness_N_m"] is None
 
 
 def test_a_run_that_stays_at_unstable_steady_sliding_says_to_kick_it(

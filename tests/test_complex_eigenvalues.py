@@ -74,6 +74,10 @@ def test_undamped_critical_mu_is_the_closed_form_of_hoffmann_2002(params: tuple[
     assert digits >= 11
     # the bracket's upper end is proven unstable: the undamped boundary lies below it
     assert found.bracket is not None and reference <= found.bracket[1] * (1 + 1e-13)
+    # and the value reported lies in the bracket reported (its lower end is not proven stable:
+    # at the coalescence the eigenvalues' bounds are wide, so the bisection may stop a rounding
+    # above the exact value)
+    assert found.bracket[0] <= found.mu <= found.bracket[1]
 
 
 def test_no_flutter_when_the_inclined_spring_leans_the_other_way() -> None:

@@ -87,7 +87,12 @@ def test_damped_slider_hopf_stiffness_and_the_undamped_closed_form(tmp_path: Pat
     assert result.critical_stiffness == pytest.approx(k_hopf, rel=1e-9)
     assert result.to_dict()["rice_ruina"]["critical_stiffness_N_per_m"] == pytest.approx(
         load * (b - a) / d_c * (1.0 + m * v**2 / (load * a * d_c)), rel=1e-12)
+    # at the boundary s = i w solves the cubic: w^2 = a0/a2 = k L/(m L + C)
+    w_hopf = math.sqrt(k_hopf * (v / d_c) / (m * v / d_c + big_c))
+    assert result.hopf_frequency == pytest.approx(w_hopf / (2.0 * math.pi), rel=1e-6)
+    assert result.to_dict()["hopf_frequency_Hz"] == result.hopf_frequency
     text = result.summary()
+    assert f"Hopf boundary at {w_hopf / (2.0 * math.pi):.6g} Hz" in text
     assert "critical k  32838.2352" in text
     assert "closed form of an undamped slider" in text
     assert "critical V  0.031953" in text  # the damped boundary along the speed
@@ -225,3 +230,14 @@ def test_cli_stability_refuses_a_contact_with_memory(tmp_path: Path,
     path, _ = _system(tmp_path, RATE_STATE + '\n[contact]\nnormal_stiffness = "1e5 N/m"\n')
     code, out, err = run_cli(["stability", "--config", str(path)], capsys)
     assert code == 2 and out == "" and "[contact]" in err and len(err.strip().splitlines()) == 1
+
+
+def test_velocity_strengthening_has_no_rice_ruina_stiffness(tmp_path: Path) -> None:
+    # b < a: k_c = N (b - a)/d_c (...) < 0, so no stiffness destabilises steady sliding (Rice
+    # and Ruina 1983); the answer is "none", not a negative stiffness
+    _, system = _system(tmp_path, RATE_STATE.replace("b = 0.015", "b = 0.005"))
+    result = memory_stability(system)
+    assert result.verdict == "stable"
+    assert result.to_dict()["rice_ruina"]["critical_stiffness_N_per_m"] is None
+    assert result.hopf_frequency is None
+    assert "k_c = none (b <= a" in result.summary()

@@ -215,6 +215,8 @@ def critical_friction(system: FrictionCoupledSystem, *, mu_max: float = MU_MAX,
             mu = exact_mu
             method = ("mode coalescence, g'(lambda*) = 0 (exact), inside the bisection bracket "
                       "whose upper end is proven unstable")
+    if undamped:  # the lower end is only "not proven unstable": the exact value may lie a
+        lo = min(lo, mu)  # rounding below it (an eigenvalue's bound is wide at coalescence)
     return CriticalFriction(mu, (lo, hi), kind, abs(crossing.imag) / (2 * math.pi),
                             tuple(sorted({m for m in modes if m > 0})), mu_max, method)
 

@@ -118,9 +118,10 @@ class MemoryResult:
             out["critical_stiffness_N_m"] = factor * k if math.isfinite(factor) else None
             law = self.system.friction
             if isinstance(law, RateStateFriction):
-                out["rice_ruina_critical_stiffness_N_m"] = rice_ruina_critical_stiffness(
+                k_c = rice_ruina_critical_stiffness(
                     self.system.load, law.a, law.b, law.d_c, float(self.system.mass[0, 0]),
                     self.system.schedule.last)
+                out["rice_ruina_critical_stiffness_N_m"] = k_c if k_c > 0.0 else None
         return out
 
     def to_dict(self) -> dict[str, Any]:

@@ -44,6 +44,7 @@ from stickslip.analysis.memory.friction import (
     kernel_system,
     rice_ruina_critical_stiffness,
     state_scales,
+    steady_sliding,
     steady_states,
 )
 from stickslip.kernel import stiff
@@ -320,6 +321,23 @@ class MemoryStability:
         return self.critical_stiffness_factor * float(self.system.stiffness[0, 0])
 
     @property
+    def hopf_frequency(self) -> float | None:
+        """Frequency of the oscillation born on the Hopf boundary in stiffness, Hz.
+
+        At every stiffness times :attr:`critical_stiffness_factor` the eigenvalue of largest
+        real part is (to the bisection's 1e-14) on the imaginary axis; its imaginary part over
+        ``2 pi`` is the frequency (for the 1-DOF rate-and-state slider Rice and Ruina's
+        ``(V / d_c) sqrt((b - a) / a) / (2 pi)`` when ``m = 0``). None when no boundary was
+        found.
+        """
+        factor = self.critical_stiffness_factor
+        if not math.isfinite(factor):
+            return None
+        at = steady_sliding(self.system.with_stiffness_scale(factor), self.speed)
+        z = at.eigenvalues[int(np.argmax(at.eigenvalues.real))]
+        return abs(float(z.imag)) / (2.0 * math.pi)
+
+    @property
     def rice_ruina(self) -> dict[str, float | None] | None:
         """Rice and Ruina's closed forms for the 1-DOF rate-and-state slider (None otherwise)."""
         law = self.system.friction
@@ -327,7 +345,7 @@ class MemoryStability:
             return None
         k_c = rice_ruina_critical_stiffness(self.system.load, law.a, law.b, law.d_c,
                                             float(self.system.mass[0, 0]), self.speed)
-        return {"critical_stiffness_N_per_m": k_c,
+        return {"critical_stiffness_N_per_m": k_c if k_c > 0.0 else None,
                 "critical_speed_m_per_s": rice_ruina_critical_speed(self.system)}
 
     def to_dict(self) -> dict[str, Any]:
@@ -343,6 +361,7 @@ class MemoryStability:
             "eigenvalue_bounds_per_s": [float(b) for b in self.bounds],
             "critical_stiffness_factor": factor if math.isfinite(factor) else None,
             "critical_stiffness_N_per_m": self.critical_stiffness,
+            "hopf_frequency_Hz": self.hopf_frequency,
             "critical_speeds_m_per_s": self.critical_speeds,
             "unstable_speeds_m_per_s": [list(r) for r in self.unstable_speeds],
             "speed_grid_m_per_s": [lo, hi, SPEED_POINTS],
@@ -368,11 +387,13 @@ class MemoryStability:
                      + (f" (+{values.size - 8}, listed by --json)" if values.size > 8 else "")
                      + " [1/s]")
         factor = p["critical_stiffness_factor"]
+        hopf = p["hopf_frequency_Hz"]
+        at = f" at {hopf:.6g} Hz" if hopf is not None else ""
         if self.critical_stiffness is not None:
-            lines.append(f"critical k  {self.critical_stiffness:.10g} N/m (Hopf boundary; "
+            lines.append(f"critical k  {self.critical_stiffness:.10g} N/m (Hopf boundary{at}; "
                          "steady sliding is unstable below it)")
         elif factor is not None:
-            lines.append(f"critical k  every stiffness x {factor:.10g} (Hopf boundary)")
+            lines.append(f"critical k  every stiffness x {factor:.10g} (Hopf boundary{at})")
         else:
             lines.append("critical k  none between 1e-6 and 1e6 times the stiffness")
         rr = p["rice_ruina"]
@@ -381,8 +402,10 @@ class MemoryStability:
             undamped = ("" if not np.any(self.system.damping) else
                         " (the closed form of an undamped slider; with the damping the Hopf "
                         "boundary is the critical k above)")
-            lines.append(f"Rice-Ruina  k_c = {rr['critical_stiffness_N_per_m']:.10g} N/m; critical "
-                         "speed " + (f"{speed:.10g} m/s" if speed is not None else "none")
+            k_c = rr["critical_stiffness_N_per_m"]
+            lines.append("Rice-Ruina  k_c = " + (f"{k_c:.10g} N/m" if k_c is not None else
+                                                 "none (b <= a: stable at every stiffness)")
+                         + "; critical speed " + (f"{speed:.10g} m/s" if speed is not None else "none")
                          + undamped)
         lo, hi, _ = p["speed_grid_m_per_s"]
         speeds = ", ".join(f"{v:.8g}" for v in self.critical_speeds) or "none"
