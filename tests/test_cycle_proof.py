@@ -447,3 +447,14 @@ def test_profile_fine_table_proof_names_the_parts_it_times() -> None:
         calls, share = shares[part]
         assert calls >= 1 and 0.0 < share < proof_share
     assert shares["engine runs (the run and the proof)"][0] >= 1
+
+
+def test_a_contraction_factor_never_prints_as_one() -> None:
+    # an audit found certificates reading "contracts (theta 1)" for theta = 0.99962 (three
+    # significant digits round it up): a contraction must read below 1
+    from stickslip.analysis.cycle_proof import _fraction
+
+    assert _fraction(0.99962) == "0.99962"
+    assert _fraction(0.9999999) == "0.999999"
+    assert _fraction(0.946) == "0.946"
+    assert float(_fraction(0.99987)) < 1.0

@@ -191,7 +191,7 @@ def _cycle(case: str) -> tuple[ReturnMap, Cycle]:
 def test_exact_jacobian_agrees_with_central_differences(case: str) -> None:
     pmap, cycle = _cycle(case)
     fixed = pmap.reduce(cycle.breakaway_state)
-    run = pmap._run(cycle.breakaway_state, 1)
+    run = pmap.recorded_run(cycle.breakaway_state, 1)
     assert run is not None
     bands_crossed = {mode_kind_band(int(m))[1] for m in run[0].segment_modes}
     # a law with bands must cross an edge in the cycle, else its saltation is not exercised

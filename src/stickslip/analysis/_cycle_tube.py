@@ -67,7 +67,7 @@ def phases(pmap: ReturnMap, b: FloatArray, q: int, coords: Coordinates | None = 
     if coords is None:
         coords = Coordinates.identity(2 * pmap.n)
     to_y, to_z = coords.from_state, coords.to_state
-    run = pmap._run(pmap.state(b), q)
+    run = pmap.recorded_run(pmap.state(b), q)
     if run is None:
         return None
     result, times = run
@@ -314,7 +314,17 @@ def rounding_allowance(phases: list[Phase], scale: float) -> float:
     float
         The allowance, in the state's units.
     """
-    steps = sum(2.0 * ph.duration * ph.engine_norm_a + 1.0 for ph in phases)
+    return step_allowance(sum(engine_steps(ph.duration, ph.engine_norm_a) for ph in phases), scale)
+
+
+def engine_steps(duration: float, norm_a: float) -> float:
+    """At most ``2 t ||A||_F + 1`` engine steps in a phase of duration ``t`` (``h ||A|| <= 1/2``)."""
+    return 2.0 * duration * norm_a + 1.0
+
+
+def step_allowance(steps: float, scale: float) -> float:
+    """:data:`STEP_ROUNDING` machine epsilons of ``scale`` per step (at least :data:`ROUNDING`
+    of it): the allowance of :func:`rounding_allowance` for ``steps`` engine steps."""
     return max(ROUNDING, STEP_ROUNDING * float(np.finfo(np.float64).eps) * steps) * scale
 
 

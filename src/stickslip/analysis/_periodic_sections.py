@@ -282,7 +282,7 @@ class StickSlipSection:
                        options=self.pmap.options, record=False)
         if run.verdict is Verdict.STICK_SLIP and run.period is not None and run.amplitude is not None:
             return float(run.period), float(run.amplitude), float(run.stick_ratio or 0.0)
-        mapped = self.pmap._run(z, self.k)
+        mapped = self.pmap.recorded_run(z, self.k)
         if mapped is None:
             return None
         result, times = mapped

@@ -127,6 +127,14 @@ class CycleProof:
     norm_matrix: FloatArray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)
     """``C`` of the adapted norm ``||x||_W = ||C x||_2``; the proven ball is
     ``||C (b - b_hat)|| <= radius / ||C^-1||_2``."""
+    margin: float = math.nan
+    """How far (Euclidean, in ``b``) the true state may lie from the run's computed one and
+    still be in the ball: ``(rho - ||C (b_0 - b_hat)||) / ||C||_2``."""
+    run_error: float = math.nan
+    """A bound of the run's own rounding carried to that state
+    (:func:`stickslip.analysis.run_rounding.run_rounding`; NaN until checked)."""
+    run_gain: float = math.nan
+    """The largest growth of an error of one phase of the run by that state."""
 
     @property
     def moduli(self) -> FloatArray:
@@ -139,10 +147,13 @@ class CycleProof:
         more = "" if self.moduli.size <= 4 else f" (+{self.moduli.size - 4})"
         later = (f" {self.extra_stick_phases} stick phase(s) later" if self.extra_stick_phases
                  else "")
+        rounding = (f", its rounding carried there at most {self.run_error:.1e}"
+                    if math.isfinite(self.run_error) else "")
         return (f"proven: the {self.stick_phases}-stick-phase return map contracts (theta "
-                f"{self.contraction:.3g}) a ball of radius {self.radius:.2e} about its fixed "
-                f"point, which holds the run's state{later} (distance {self.distance:.2e}); no "
-                f"shorter period; |multipliers| {moduli}{more}")
+                f"{_fraction(self.contraction)}) a ball of radius {self.radius:.2e} about its "
+                f"fixed point, which holds the run's state{later} (distance "
+                f"{self.distance:.2e}{rounding}); no shorter period; |multipliers| "
+                f"{moduli}{more}")
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready numbers of the proof."""
@@ -157,7 +168,18 @@ class CycleProof:
             "residual": num(self.residual),
             "extra_stick_phases": self.extra_stick_phases,
             "breakaway_onto": self.breakaway_onto,
+            "margin": num(self.margin),
+            "run_rounding_bound": num(self.run_error),
+            "run_rounding_gain": num(self.run_gain),
         }
+
+
+def _fraction(theta: float) -> str:
+    """``theta`` to three digits, but never rounded up to 1 (a contraction reads below 1)."""
+    text = f"{theta:.3g}"
+    if theta < 1.0 and float(text) >= 1.0:
+        return f"{math.floor(theta * 1e6) / 1e6:.6f}".rstrip("0")
+    return text
 
 
 def divisors(k: int) -> list[int]:
@@ -419,10 +441,12 @@ def prove_cycle(structure: Structure, slider: Slider, breakaway_state: FloatArra
         while True:  # bounded: at most extra_breakaways more breakaways, in chunks
             if pmap.direction_of(state) == direction:
                 b = pmap.reduce(state)
-                if float(np.linalg.norm(chol @ (b - cand.b_hat))) <= rho:
+                inside = float(np.linalg.norm(chol @ (b - cand.b_hat)))
+                if inside <= rho:
+                    norm_c = float(np.linalg.norm(chol, 2)) if chol.size else 1.0
                     return CycleProof(q, pmap.state(cand.b_hat), multipliers, theta, radius,
                                       float(np.linalg.norm(b - cand.b_hat)), cand.residual,
-                                      extra, onto, chol)
+                                      extra, onto, chol, (rho - inside) / norm_c)
             if extra >= extra_breakaways:
                 break
             if not later:

@@ -10,6 +10,8 @@ its Jacobian from the saltation matrices of every event; :func:`newton_fixed_poi
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -22,6 +24,17 @@ from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
 
 FloatArray = NDArray[np.float64]
+
+
+class PhaseFactor(NamedTuple):
+    """One phase of a linearised run (:meth:`ReturnMap.phase_factors`)."""
+
+    propagator: FloatArray  #: ``expm(A t)``
+    jump: FloatArray  #: ``f^+ - f^-``, the field's jump at the event ending the phase
+    normal: FloatArray  #: ``n``, the event surface's normal
+    rate: float  #: ``n . f^-``
+    mode: int  #: the phase's mode code
+    duration: float  #: ``t``, dimensionless
 #: Events allowed per friction band in a run of the return map: a stick-slip cycle crosses
 #: each band edge a few times, and a run spans at most ``2 max_period + 1`` breakaways (the
 #: Coulomb law, one band: 400 events; a Stribeck interpolant of 100 bands: 40,000).
@@ -98,8 +111,8 @@ class ReturnMap:
         n = self.n
         return np.concatenate([state[1:n], state[n + 1:]])
 
-    def _run(self, state: FloatArray, count: int, *, on_section: bool = True
-             ) -> tuple[SimulationResult, FloatArray] | None:
+    def recorded_run(self, state: FloatArray, count: int, *, on_section: bool = True
+                     ) -> tuple[SimulationResult, FloatArray] | None:
         """The recorded run from ``state`` and the times of its next ``count`` breakaways.
 
         None when there are fewer: in particular when steady sliding is certified, after which
@@ -144,7 +157,7 @@ class ReturnMap:
 
         Empty when there are fewer (see :meth:`_run`).
         """
-        run = self._run(state, count, on_section=False)
+        run = self.recorded_run(state, count, on_section=False)
         if run is None:
             return []
         result, times = run
@@ -157,7 +170,7 @@ class ReturnMap:
 
         A change of the signature along a branch is a grazing: a phase appears or vanishes.
         """
-        run = self._run(self.state(b), k)
+        run = self.recorded_run(self.state(b), k)
         if run is None:
             return None
         result, times = run
@@ -254,24 +267,58 @@ class ReturnMap:
         :func:`stickslip.simulate` with ``record=True``; the event states are the recorded
         phase starts).
         """
-        run = self._run(self.state(b), k)
+        run = self.recorded_run(self.state(b), k)
         if run is None:
             return None
         result, times = run
-        t_hit = float(times[-1])
+        factors = self.phase_factors(result, float(times[-1]))
+        if factors is None:
+            return None
+        z_hit, steps = factors
+        jac = self.lift.copy()
+        for propagator, jump, normal, rate, _, _ in steps:
+            jac = propagator @ jac
+            # saltation (a zero f_plus at the free final event: the projection onto the section)
+            jac = jac + np.outer(jump, normal @ jac) / rate
+        if not np.all(np.isfinite(jac)):
+            return None
+        return self.reduce(z_hit), self.reduce(jac)
+
+    def phase_factors(self, result: SimulationResult, t_hit: float
+                      ) -> tuple[FloatArray, list[PhaseFactor]] | None:
+        """The state at the breakaway ``t_hit`` and the factors of the linearised run up to it.
+
+        Phase ``i`` (mode ``(A, c)``, duration ``t``) contributes ``S_i expm(A t)`` with the
+        saltation ``S_i = I + (f^+ - f^-) n^T / (n . f^-)`` of the event that ends it
+        (:meth:`linearise` derives it; at ``t_hit``, ``f^+ = 0``: the projection onto the
+        section). The run's first phase starts at ``tau = 0``.
+
+        Parameters
+        ----------
+        result : SimulationResult
+            A recorded run that has a breakaway at ``t_hit``.
+        t_hit : float
+            The breakaway's time.
+
+        Returns
+        -------
+        (ndarray, list of PhaseFactor) or None
+            The full state at ``t_hit`` and one :class:`PhaseFactor` per phase;
+            None when the phase ending at ``t_hit`` is no stick phase or an event is grazing.
+        """
         seg_t, seg_mode, seg_z = result.segment_times, result.segment_modes, result.segment_states
         q, v, _ = result.state_at(np.array([t_hit]))
         z_hit = np.concatenate([q[0], v[0]])
         last = int(np.searchsorted(seg_t, t_hit, side="left")) - 1  # the phase ending at t_hit
         if last < 0 or int(seg_mode[last]) != STICK:
             return None
-        jac = self.lift.copy()
+        steps: list[PhaseFactor] = []
         for i in range(last + 1):
             mode = int(seg_mode[i])
             t_end = t_hit if i == last else float(seg_t[i + 1])
             # the kernel's expm (the engine's own, tested against scipy's): no BLAS calls, which
             # on a busy machine contend with the numba threads (scipy's took ~5 ms per 4x4 there)
-            jac = expm(self.flow_matrix[mode] * (t_end - float(seg_t[i]))) @ jac
+            propagator = expm(self.flow_matrix[mode] * (t_end - float(seg_t[i])))
             z_event = z_hit if i == last else seg_z[i + 1]
             normal = self._normal(mode)
             f_minus = self._field(mode, z_event)
@@ -280,11 +327,9 @@ class ReturnMap:
                 return None  # a grazing event: the map is not differentiable here
             f_plus = np.zeros_like(f_minus) if i == last else self._field(int(seg_mode[i + 1]),
                                                                            z_event)
-            # saltation (f_plus = 0 at the free final event: the projection onto the section)
-            jac = jac + np.outer(f_plus - f_minus, normal @ jac) / rate
-        if not np.all(np.isfinite(jac)):
-            return None
-        return self.reduce(z_hit), self.reduce(jac)
+            steps.append(PhaseFactor(propagator, f_plus - f_minus, normal, rate, mode,
+                                     t_end - float(seg_t[i])))
+        return z_hit, steps
 
 
 def newton_fixed_point(pmap: ReturnMap, b0: FloatArray, k: int, tol: float = 1e-11,

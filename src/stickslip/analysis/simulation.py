@@ -36,6 +36,7 @@ from stickslip.analysis.engine_run import (  # noqa: F401 (their home until now:
     TimeHistory,
     run_engine,
 )
+from stickslip.analysis.run_rounding import rounding_to_entry
 from stickslip.analysis.verdict import RunStatus, Verdict
 from stickslip.model._validate import friction_range
 from stickslip.model.initial import InitialState
@@ -135,6 +136,18 @@ def prove_run(result: SimulationResult, opts: EngineOptions) -> SimulationResult
                        certificate=f"undetermined (period-{k} candidate, not proven; "
                                    f"{'; '.join(why) or 'no period gave a proof'}): "
                                    f"{result.certificate}")
+    rounding = rounding_to_entry(structure, slider, result.initial, opts, proof.extra_stick_phases)
+    if rounding is None or not rounding.bound <= proof.margin:
+        carried = ("cannot be carried through its phases (an event grazes)" if rounding is None
+                   else f"carried to it, up to {rounding.bound:.1e} (an error grows up to "
+                        f"{rounding.gain:.1e}-fold along the run)")
+        return replace(result, verdict=Verdict.UNDETERMINED, status=RunStatus.UNPROVEN_CYCLE,
+                       certificate=f"undetermined (period-{proof.stick_phases} cycle proven, "
+                                   f"ball of radius {proof.radius:.2e}, but the run's rounding "
+                                   f"{carried} may exceed the margin {proof.margin:.1e} of its "
+                                   "state in the ball: the computed run need not be the motion "
+                                   f"from its start): {result.certificate}")
+    proof = replace(proof, run_error=rounding.bound, run_gain=rounding.gain)
     certificate = f"{result.certificate}; {proof.describe()}"
     if proof.stick_phases == k:
         return replace(result, certificate=certificate, cycle_proof=proof)
