@@ -409,3 +409,36 @@ def test_a_script_may_rewrite_a_file_it_read_outside_a_command(tmp_path: Path) -
             f"atomic_write_text({str(table)!r}, 'v,f\\n0,1\\n3,0\\n')\n")
     subprocess.run([sys.executable, "-c", code], check=True, timeout=120)
     assert table.read_text() == "v,f\n0,1\n3,0\n"
+
+
+@pytest.mark.parametrize("out", ["", " "])
+def test_basin_refuses_an_empty_output_folder(out: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                              capsys: pytest.CaptureFixture[str]) -> None:
+    # an audit: `basin --out ""` wrote labels.csv and basin.nc into the current folder, and
+    # `--out " "` made a folder named " "
+    monkeypatch.chdir(tmp_path)
+    line = _one_error(["basin", "--lam", "2.5", "--zeta", "0.1", "--samples", "10", "--out", out],
+                      capsys)
+    assert f"--out {out!r} is empty" in line
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_machine_files_table_in_the_dimensionless_form_is_refused(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # an audit: a table with columns v, f was read as v [m/s] and mu, silently another law
+    (tmp_path / "vf.csv").write_text("v,f\n0,0.3\n0.01,0.2\n")
+    config = tmp_path / "machine.toml"
+    config.write_text(SLIDER + '[friction]\nlaw = "table"\ntable = "vf.csv"\n')
+    line = _one_error(["simulate", "--config", str(config)], capsys)
+    assert "gives f, the dimensionless form" in line and "vf.csv" in line
+
+
+def test_a_lambda_beyond_the_range_names_the_operating_point(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # an audit: a belt speed of 10 nm/s gave "lambda=1e7 is beyond the supported range" with
+    # neither the file nor the speed that made it
+    config = tmp_path / "machine.toml"
+    config.write_text(SLIDER.replace('speed = "1 cm/s"', 'speed = "10 nm/s"'))
+    line = _one_error(["simulate", "--config", str(config)], capsys)
+    assert str(config) in line and "at the belt speed 1e-08 m/s and load 1000 N" in line
+    assert "lambda=" in line and "beyond the supported range" in line

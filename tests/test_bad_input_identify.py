@@ -285,3 +285,28 @@ def test_a_chain_of_powers_in_a_header_unit_is_refused(tmp_path: Path,
     bad.write_text(text, encoding="utf-8")
     line = _error([str(bad), *KNOWN], capsys, tmp_path)
     assert "unit 'kN**9**9**9': a unit's power must be one number" in line
+
+
+def test_an_absurd_finite_value_is_named_with_its_sample(tmp_path: Path,
+                                                         capsys: pytest.CaptureFixture[str]) -> None:
+    # an audit: x = 1e300 in one cell overflowed the fit's squares and printed k = null
+    lines = EXAMPLE.read_text().splitlines()
+    first = next(i for i, line in enumerate(lines) if line[:1].isdigit())
+    cells = lines[first + 1].split(",")
+    cells[1] = "1e300"  # x [mm]
+    lines[first + 1] = ",".join(cells)
+    record = tmp_path / "record.csv"
+    record.write_text("\n".join(lines) + "\n")
+    line = _error([str(record), *KNOWN], capsys, tmp_path)
+    assert "column x = 1e+297 at sample 2" in line and "beyond 1e+12" in line
+
+
+def test_a_record_too_long_to_fit_is_refused_before_it_is_parsed(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    # an audit: a 3,000,000-row record ran for minutes without a word; the bound is lowered
+    # here so that the example's 1,000-odd rows exceed it
+    from stickslip.analysis.identification import estimates
+
+    monkeypatch.setattr(estimates, "MAX_RECORD_SAMPLES", 100)
+    line = _error([str(EXAMPLE), *KNOWN], capsys)
+    assert "more than 100: cut it to 10-20 stick-slip periods or decimate it" in line

@@ -137,7 +137,7 @@ def basin(
     workers: WORKERS = None,
     scheduler: SCHEDULER = None,
     scheduler_timeout: SCHEDULER_TIMEOUT = 10.0,
-    out: Annotated[Path | None, typer.Option(
+    out_text: Annotated[str | None, typer.Option(
         "--out", help="folder for labels.csv and basin.nc; an interrupted run resumes from "
         "DIR/basin.parts")] = None,
     plot: Annotated[Path | None, typer.Option("--plot", help="basin picture (.png, .pdf, .svg)")] = None,
@@ -167,6 +167,10 @@ def basin(
     )
 
     refuse_mix(ctx, config)
+    if out_text is not None and not out_text.strip():
+        # a folder: the empty name would be the current one (what typer makes of "")
+        raise BadInput(f"--out {out_text!r} is empty: name a folder for labels.csv and basin.nc")
+    out = None if out_text is None else Path(out_text)
     drawn = typed_options(ctx, ("samples", "seed"))
     if initial_states is not None and drawn:
         verb = "draw" if len(drawn) > 1 else "draws"

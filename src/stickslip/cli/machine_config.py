@@ -268,15 +268,26 @@ def configured_machine(config: Path) -> ConfiguredMachine:
 
     machine_file = load_machine_file(config)
     refuse_memory_law(machine_file)
+    from stickslip.model._validate import friction_range
+
     try:
         if not machine_file.has_structure:
             system = config_system(config)
-            return ConfiguredMachine(system.structure(), system.slider(), system,
-                                     machine_from_physical_system(system), system=system)
-        machine, reduction = config_machine(config)
-        structure, slider = machine.to_dimensionless()
-        return ConfiguredMachine(structure, slider, machine.reference_system(), machine,
-                                 reduction=reduction)
+            configured = ConfiguredMachine(system.structure(), system.slider(), system,
+                                           machine_from_physical_system(system), system=system)
+        else:
+            machine, reduction = config_machine(config)
+            structure, slider = machine.to_dimensionless()
+            configured = ConfiguredMachine(structure, slider, machine.reference_system(), machine,
+                                           reduction=reduction)
+        try:  # what simulate checks, said with the operating point it comes from
+            friction_range(configured.slider.lam, configured.slider.gamma)
+        except ValueError as exc:
+            point = configured.machine
+            raise ValueError(f"at the belt speed {point.speed:g} m/s and load {point.load:g} N, "
+                             f"{exc}; the speed or the load is far outside the machine's "
+                             "scales") from None
+        return configured
     except BadInput:
         raise
     except ValueError as exc:

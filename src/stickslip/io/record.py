@@ -35,7 +35,11 @@ from typing import Any
 
 import numpy as np
 
-from stickslip.analysis.identification.estimates import MeasuredRecord, RecordError
+from stickslip.analysis.identification.estimates import (
+    MeasuredRecord,
+    RecordError,
+    check_record_length,
+)
 from stickslip.io.toml_file import read_toml_file
 from stickslip.model.units import POWER_RULE, unit_powers_bounded
 from stickslip.model.user_file import read_user_text
@@ -204,6 +208,7 @@ def record_from_text(text: str, name: str, columns: list[ColumnSpec] | None = No
         In SI units, with the rig's signs.
     """
     lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+    check_record_length(repr(name), len(lines) - 1)  # before its rows are parsed
     if len(lines) < 2:
         raise RecordError(f"record {name!r} needs a header row and data rows")
     rows = list(csv.reader(lines))

@@ -31,7 +31,8 @@ def read_friction_csv_columns(path: str | Path) -> tuple[list[float], list[float
     """The ``v`` and ``mu`` columns of a measured friction curve (CSV with a header row).
 
     ``#`` starts a comment line. Returns the speeds and friction values as read (no units).
-    A file with columns ``v`` and ``f`` (the dimensionless form) is read the same way.
+    A file with columns ``v`` and ``f`` (the dimensionless form) is refused (see
+    :func:`friction_csv_columns`).
     Spreadsheet exports are read too: a UTF-8 byte-order mark, ``;`` separators and, with
     ``;``, decimal commas (``0,35``).
 
@@ -49,7 +50,9 @@ def read_friction_csv_columns(path: str | Path) -> tuple[list[float], list[float
 
 
 def friction_csv_columns(text: str, p: str = "(text)") -> tuple[list[float], list[float]]:
-    """The ``v`` and ``mu`` (or ``f``) columns of a friction curve given as CSV text.
+    """The ``v`` [m/s] and ``mu`` columns of a friction curve given as CSV text.
+
+    A dimensionless ``f`` column is refused: its numbers read as ``mu`` would be another law.
 
     The rules of :func:`read_friction_csv_columns` (which reads a file through this); ``p``
     names the source in error messages (an uploaded file's name, say).
@@ -66,7 +69,13 @@ def friction_csv_columns(text: str, p: str = "(text)") -> tuple[list[float], lis
     tuple of list of float
         The speed and friction columns.
     """
-    _, v, y = _friction_csv(text, p)
+    second, v, y = _friction_csv(text, p)
+    if second == "f":
+        raise ValueError(
+            f"friction table {p} gives f, the dimensionless form (f = (mu - mu_k)/(mu_s - mu_k) "
+            "against v over the belt speed); a machine file's table takes v [m/s] and mu: "
+            "convert it (mu = mu_k + f (mu_s - mu_k), v times the belt speed), or give the "
+            "dimensionless table to a dimensionless command as --friction table:FILE.csv")
     return v, y
 
 

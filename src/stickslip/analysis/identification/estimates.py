@@ -34,6 +34,20 @@ from scipy.optimize import brentq
 from scipy.signal import find_peaks, savgol_filter
 
 FloatArray = NDArray[np.float64]
+#: Largest magnitude of a record's force, displacement or velocity, SI (N, m, m/s): far beyond
+#: any rig, and far below where the fit's squares overflow.
+MAX_RECORD_VALUE = 1e12
+#: Most samples of a record: 100 s at 10 kHz. The fit's engine runs span the record, so a
+#: longer one takes minutes; 10 to 20 stick-slip periods determine the parameters.
+MAX_RECORD_SAMPLES = 1_000_000
+
+
+def check_record_length(name: str, samples: int) -> None:
+    """Refuse a record of more than :data:`MAX_RECORD_SAMPLES` samples, in one line."""
+    if samples > MAX_RECORD_SAMPLES:
+        raise RecordError(f"record {name} has {samples:,} samples, more than "
+                          f"{MAX_RECORD_SAMPLES:,}: cut it to 10-20 stick-slip periods or "
+                          "decimate it (keep 40 or more samples per period)")
 
 #: Fewest breakaways (stick phases ending in a peak of the force) a record must show.
 MIN_STICK_PHASES = 2
@@ -84,6 +98,7 @@ class MeasuredRecord:
         t = np.asarray(self.t, dtype=np.float64).reshape(-1)
         if t.size < 3:
             raise RecordError(f"record {self.source} has {t.size} samples; it needs many stick-slip periods")
+        check_record_length(self.source, t.size)
         if not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0.0):
             raise RecordError(f"record {self.source}: the times t must be finite and strictly increasing")
         object.__setattr__(self, "t", t - t[0])
@@ -97,6 +112,12 @@ class MeasuredRecord:
                                   f"t has {t.size}")
             if not np.all(np.isfinite(arr)):
                 raise RecordError(f"record {self.source}: column {name} has NaN or infinite values")
+            beyond = np.flatnonzero(np.abs(arr) > MAX_RECORD_VALUE)
+            if beyond.size:
+                i = int(beyond[0])
+                raise RecordError(f"record {self.source}: column {name} = {arr[i]:.6g} at sample "
+                                  f"{i + 1} (t = {t[i] - t[0]:.6g} s) is beyond {MAX_RECORD_VALUE:g} "
+                                  "in SI units: a corrupt cell, or a wrong unit")
             object.__setattr__(self, name, arr)
         if self.F is None and self.x is None:
             raise RecordError(f"record {self.source} needs a force column F or a displacement column x")
