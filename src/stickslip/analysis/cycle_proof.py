@@ -392,7 +392,8 @@ def _min_radius(pmap: ReturnMap, cand: _Candidate) -> float:
 
 def prove_cycle(structure: Structure, slider: Slider, breakaway_state: FloatArray,
                 candidate_phases: int, options: EngineOptions, *,
-                extra_breakaways: int = 512, why: list[str] | None = None) -> CycleProof | None:
+                extra_breakaways: int = 512, min_margin: float = 0.0,
+                why: list[str] | None = None) -> CycleProof | None:
     """Prove the stable cycle a run converges to, with its minimal period (see module notes).
 
     Parameters
@@ -408,6 +409,10 @@ def prove_cycle(structure: Structure, slider: Slider, breakaway_state: FloatArra
     extra_breakaways : int
         When the run's state is not yet inside the proven ball, the run goes on for at
         most this many more breakaways (the map ``P`` iterated exactly) to enter it.
+    min_margin : float
+        The run goes on until its state is inside the ball by at least this much (Euclidean,
+        in ``b``; the proof's ``margin``): room for the run's own rounding
+        (:mod:`stickslip.analysis.run_rounding`).
     why : list of str, optional
         Filled with one phrase per period tried that gave no proof (``"period q: ..."``).
 
@@ -442,8 +447,8 @@ def prove_cycle(structure: Structure, slider: Slider, breakaway_state: FloatArra
             if pmap.direction_of(state) == direction:
                 b = pmap.reduce(state)
                 inside = float(np.linalg.norm(chol @ (b - cand.b_hat)))
-                if inside <= rho:
-                    norm_c = float(np.linalg.norm(chol, 2)) if chol.size else 1.0
+                norm_c = float(np.linalg.norm(chol, 2)) if chol.size else 1.0
+                if inside <= rho and (rho - inside) / norm_c >= min_margin:
                     return CycleProof(q, pmap.state(cand.b_hat), multipliers, theta, radius,
                                       float(np.linalg.norm(b - cand.b_hat)), cand.residual,
                                       extra, onto, chol, (rho - inside) / norm_c)

@@ -97,6 +97,14 @@ def simulate(
     return prove_run(run_engine(structure, slider, initial, opts, record, run_to_t_max), opts)
 
 
+#: Proofs tried again, each asking the run to go on until its state is deeper in the ball,
+#: when the run's rounding (:mod:`stickslip.analysis.run_rounding`) exceeds the margin.
+MARGIN_RETRIES = 2
+#: A run whose rounding grows more than this (a chaotic transient) is not tried again: going
+#: on cannot undo what its transient amplified.
+MARGIN_GAIN = 1e6
+
+
 def prove_run(result: SimulationResult, opts: EngineOptions) -> SimulationResult:
     """The run with its stick-slip candidate proven, corrected to the minimal period, or undetermined.
 
@@ -137,6 +145,15 @@ def prove_run(result: SimulationResult, opts: EngineOptions) -> SimulationResult
                                    f"{'; '.join(why) or 'no period gave a proof'}): "
                                    f"{result.certificate}")
     rounding = rounding_to_entry(structure, slider, result.initial, opts, proof.extra_stick_phases)
+    for _ in range(MARGIN_RETRIES):  # bounded: a run that entered the ball at its edge goes on
+        if rounding is None or rounding.bound <= proof.margin or rounding.gain > MARGIN_GAIN:
+            break
+        deeper = prove_cycle(structure, slider, state, k, opts, min_margin=2.0 * rounding.bound)
+        if deeper is None:
+            break
+        proof = deeper
+        rounding = rounding_to_entry(structure, slider, result.initial, opts,
+                                     proof.extra_stick_phases)
     if rounding is None or not rounding.bound <= proof.margin:
         carried = ("cannot be carried through its phases (an event grazes)" if rounding is None
                    else f"carried to it, up to {rounding.bound:.1e} (an error grows up to "
