@@ -135,7 +135,7 @@ def test_unprovable_candidate_is_undetermined(monkeypatch: pytest.MonkeyPatch) -
 
     structure, slider = _weak_foundation()
     monkeypatch.setattr(basin_cycles, "prove_run",
-                        lambda result, opts: replace(result, status=RunStatus.UNPROVEN_CYCLE,
+                        lambda result, opts, **_: replace(result, status=RunStatus.UNPROVEN_CYCLE,
                                                      verdict=Verdict.UNDETERMINED))
     box = {"xi": (-0.7, 0.7), "v": (-0.7, 1.3), "xi_a": (-0.2, 0.2), "v_a": (-0.2, 0.2)}
     states = sample_box(structure, slider, 12, box, seed=1)

@@ -25,7 +25,7 @@ from __future__ import annotations
 import warnings
 from dataclasses import replace
 
-from stickslip.analysis.cycle_proof import prove_cycle
+from stickslip.analysis.cycle_proof import CycleProof, prove_cycle
 from stickslip.analysis.engine_run import (  # noqa: F401 (their home until now: re-exported)
     DEFAULT_CYCLE_TOL,
     DEFAULT_MAX_EVENTS,
@@ -105,7 +105,8 @@ MARGIN_RETRIES = 2
 MARGIN_GAIN = 1e6
 
 
-def prove_run(result: SimulationResult, opts: EngineOptions) -> SimulationResult:
+def prove_run(result: SimulationResult, opts: EngineOptions, *,
+              carry_rounding: bool = True) -> SimulationResult:
     """The run with its stick-slip candidate proven, corrected to the minimal period, or undetermined.
 
     One degree of freedom: the breakaway state is unique (``xi' = 1``, ``S = lambda``), so the
@@ -122,6 +123,10 @@ def prove_run(result: SimulationResult, opts: EngineOptions) -> SimulationResult
         A run of :func:`~stickslip.analysis.engine_run.run_engine` (contact on DOF 0).
     opts : EngineOptions
         Its engine options (the horizon of the proof's runs).
+    carry_rounding : bool
+        Also bound the run's own rounding carried to the state found in the ball
+        (:mod:`stickslip.analysis.run_rounding`; a basin does not, see
+        :mod:`stickslip.sweep.basin_cycles`).
 
     Returns
     -------
@@ -144,6 +149,8 @@ def prove_run(result: SimulationResult, opts: EngineOptions) -> SimulationResult
                        certificate=f"undetermined (period-{k} candidate, not proven; "
                                    f"{'; '.join(why) or 'no period gave a proof'}): "
                                    f"{result.certificate}")
+    if not carry_rounding:
+        return _proven(result, proof, opts)
     rounding = rounding_to_entry(structure, slider, result.initial, opts, proof.extra_stick_phases)
     for _ in range(MARGIN_RETRIES):  # bounded: a run that entered the ball at its edge goes on
         if rounding is None or rounding.bound <= proof.margin or rounding.gain > MARGIN_GAIN:
@@ -164,7 +171,12 @@ def prove_run(result: SimulationResult, opts: EngineOptions) -> SimulationResult
                                    f"{carried} may exceed the margin {proof.margin:.1e} of its "
                                    "state in the ball: the computed run need not be the motion "
                                    f"from its start): {result.certificate}")
-    proof = replace(proof, run_error=rounding.bound, run_gain=rounding.gain)
+    return _proven(result, replace(proof, run_error=rounding.bound, run_gain=rounding.gain), opts)
+
+
+def _proven(result: SimulationResult, proof: CycleProof, opts: EngineOptions) -> SimulationResult:
+    """The run with its proof: its own cycle, or the proof's shorter one (see :func:`prove_run`)."""
+    structure, slider, k = result.structure, result.slider, result.cycle_length
     certificate = f"{result.certificate}; {proof.describe()}"
     if proof.stick_phases == k:
         return replace(result, certificate=certificate, cycle_proof=proof)

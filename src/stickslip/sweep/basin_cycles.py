@@ -18,10 +18,10 @@ observation (:mod:`stickslip.analysis.cycle_proof` says why), so a basin proves 
 
 The kernel's balls are fixed before the first chunk, so a state's run does not depend on the
 chunking, the backend or a resume; the labels are those of :func:`stickslip.simulate` from
-each state, but for one bound: a run that enters a ball proven before is labelled without
-carrying its own rounding to that state (:mod:`stickslip.analysis.run_rounding`, about 0.1 ms
-per phase in Python, more than the run itself), so on a chaotic transient ``simulate`` may
-answer ``undetermined`` where the basin says stick-slip. One degree of freedom needs none of
+each state, but for one bound: a basin does not carry a run's own rounding to the state it
+finds in a ball (:mod:`stickslip.analysis.run_rounding`, about 0.1 ms per phase in Python,
+more than the run itself), so on a chaotic transient ``simulate`` may answer
+``undetermined`` where the basin says stick-slip. One degree of freedom needs none of
 this (the breakaway state is unique).
 """
 
@@ -138,7 +138,7 @@ class ProvenBalls:
                 p = self.holding(state_later)[0]
                 if p >= 0:
                     return p, result
-        proven = prove_run(result, self.options)
+        proven = prove_run(result, self.options, carry_rounding=False)
         self.add(proven)
         return -1, proven
 
