@@ -402,13 +402,13 @@ def test_a_script_may_rewrite_a_file_it_read_outside_a_command(tmp_path: Path) -
     import sys
 
     table = tmp_path / "curve.csv"
-    table.write_text("v,f\n0,1\n2,0\n")
+    table.write_text("v,mu\n0,0.4\n2,0.3\n")
     code = ("from stickslip.model.friction_input import read_friction_csv_columns\n"
             "from stickslip.io.atomic import atomic_write_text\n"
             f"read_friction_csv_columns({str(table)!r})\n"
-            f"atomic_write_text({str(table)!r}, 'v,f\\n0,1\\n3,0\\n')\n")
+            f"atomic_write_text({str(table)!r}, 'v,mu\\n0,0.4\\n3,0.3\\n')\n")
     subprocess.run([sys.executable, "-c", code], check=True, timeout=120)
-    assert table.read_text() == "v,f\n0,1\n3,0\n"
+    assert table.read_text() == "v,mu\n0,0.4\n3,0.3\n"
 
 
 @pytest.mark.parametrize("out", ["", " "])

@@ -34,8 +34,8 @@ from scipy.optimize import brentq
 from scipy.signal import find_peaks, savgol_filter
 
 FloatArray = NDArray[np.float64]
-#: Largest magnitude of a record's force, displacement or velocity, SI (N, m, m/s): far beyond
-#: any rig, and far below where the fit's squares overflow.
+#: Largest magnitude of a record's displacement or velocity, SI (m, m/s): far beyond any rig,
+#: and far below where the fit's squares overflow (a force is checked against the load).
 MAX_RECORD_VALUE = 1e12
 #: Most samples of a record: 100 s at 10 kHz. The fit's engine runs span the record, so a
 #: longer one takes minutes; 10 to 20 stick-slip periods determine the parameters.
@@ -43,7 +43,20 @@ MAX_RECORD_SAMPLES = 1_000_000
 
 
 def check_record_length(name: str, samples: int) -> None:
-    """Refuse a record of more than :data:`MAX_RECORD_SAMPLES` samples, in one line."""
+    """Refuse a record of more than :data:`MAX_RECORD_SAMPLES` samples, in one line.
+
+    Parameters
+    ----------
+    name : str
+        How the message names the record.
+    samples : int
+        Its number of samples (data rows).
+
+    Returns
+    -------
+    None
+        Returns when the record is short enough; raises :class:`RecordError` otherwise.
+    """
     if samples > MAX_RECORD_SAMPLES:
         raise RecordError(f"record {name} has {samples:,} samples, more than "
                           f"{MAX_RECORD_SAMPLES:,}: cut it to 10-20 stick-slip periods or "
@@ -112,7 +125,9 @@ class MeasuredRecord:
                                   f"t has {t.size}")
             if not np.all(np.isfinite(arr)):
                 raise RecordError(f"record {self.source}: column {name} has NaN or infinite values")
-            beyond = np.flatnonzero(np.abs(arr) > MAX_RECORD_VALUE)
+            # (a force has its own check against the normal load, which names the unit)
+            limit = math.inf if name == "F" else MAX_RECORD_VALUE
+            beyond = np.flatnonzero(np.abs(arr) > limit)
             if beyond.size:
                 i = int(beyond[0])
                 raise RecordError(f"record {self.source}: column {name} = {arr[i]:.6g} at sample "
