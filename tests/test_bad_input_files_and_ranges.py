@@ -442,3 +442,29 @@ def test_a_lambda_beyond_the_range_names_the_operating_point(
     line = _one_error(["simulate", "--config", str(config)], capsys)
     assert str(config) in line and "at the belt speed 1e-08 m/s and load 1000 N" in line
     assert "lambda=" in line and "beyond the supported range" in line
+
+
+def test_design_names_the_operating_point_of_a_lambda_beyond_the_range(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # an audit: design's own loading path (1 DOF, flags or a file) said only "lambda=... is
+    # beyond the supported range", without the file or the speed and load that made it
+    config = tmp_path / "machine.toml"
+    config.write_text(SLIDER.replace('speed = "1 cm/s"', 'speed = "10 nm/s"'))
+    line = _one_error(["design", "--config", str(config)], capsys)
+    assert str(config) in line and "at the belt speed 1e-08 m/s and load 1000 N" in line
+    line = _one_error(["design", "--m", "2 kg", "--k", "50 kN/m", "--c", "20 N*s/m", "--mu-s",
+                       "0.5", "--mu-k", "0.3", "--load", "1e9 N", "--speed", "1e-9 m/s"], capsys)
+    assert "at the belt speed 1e-09 m/s and load 1e+09 N, lambda=" in line
+    assert "beyond the supported range" in line
+
+
+def test_a_modal_tables_bad_entry_is_named_once(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # an audit: "[structure] modes: [structure] modes.shapes = ..." repeated its prefix
+    config = tmp_path / "machine.toml"
+    config.write_text('mu_s = 0.5\nmu_k = 0.3\nload = "100 N"\nspeed = "1 cm/s"\n[structure]\n'
+                      'modes = { frequencies = ["10 Hz", "30 Hz"], damping_ratios = [0.02, 0.02],'
+                      ' shapes = ["a", 1.0] }\n')
+    line = _one_error(["simulate", "--config", str(config)], capsys)
+    assert "modes.shapes = ['a', 1.0] must be a number or a list of numbers" in line
+    assert line.count("[structure]") == 1

@@ -163,6 +163,15 @@ def test_singular_stiffness_of_a_floating_chain_is_refused_at_any_size(
     assert "stiffness = 'K.mtx' is singular" in line and "not grounded" in line
 
 
+def test_an_all_zero_stiffness_is_said_so(tmp_path: Path,
+                                          capsys: pytest.CaptureFixture[str]) -> None:
+    # an audit: it was "a free rigid-body mode (stiffness eigenvalue 0, at most 1e-12 of the
+    # largest 2.23e-308)", the floor of the floats shown as a stiffness
+    zeros = np.zeros((3, 3)).tolist()
+    line = _refused(tmp_path, f"mass = {M3}\nstiffness = {zeros}\ncontact_dof = 0\n", capsys)
+    assert "stiffness matrix is all zeros" in line and "e-308" not in line
+
+
 @pytest.mark.parametrize("n", [3, 100])
 def test_zero_mass_at_one_dof_is_refused_naming_the_dof(n: int, tmp_path: Path,
                                                         capsys: pytest.CaptureFixture[str]) -> None:

@@ -10,8 +10,9 @@ from typing import TYPE_CHECKING, Annotated, Any
 import typer
 
 from stickslip.cli.console import BadInput, print_json
-from stickslip.cli.machine_config import collect_inputs, load_machine_file
+from stickslip.cli.machine_config import collect_inputs, load_machine_file, out_of_scale
 from stickslip.cli.progress import DesignProgress
+from stickslip.model._validate import friction_range
 from stickslip.model.units import QUANTITIES, to_si
 
 if TYPE_CHECKING:
@@ -215,6 +216,12 @@ def design(
     system = PhysicalSystem(mass=v["m"], stiffness=v["k"], damping=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"],
                             load=v["load"], speed=v["speed"], foundation=foundation,
                             friction=read_friction_config(config))
+    try:
+        slider = system.slider()
+        friction_range(slider.lam, slider.gamma)
+    except ValueError as exc:  # lambda or gamma beyond range: say where it comes from
+        source = f"--config {str(config)!r}: " if config is not None else ""
+        raise BadInput(source + out_of_scale(v["speed"], v["load"], exc)) from None
     deflection = None
     if max_foundation_deflection is not None:
         try:

@@ -262,6 +262,25 @@ class ConfiguredMachine:
                 "reference_stiffness_N_per_m": self.reference.stiffness}
 
 
+def out_of_scale(speed: float, load: float, exc: Exception) -> str:
+    """The message for a dimensionless group beyond range, said with its operating point.
+
+    Parameters
+    ----------
+    speed, load : float
+        The belt speed [m/s] and normal load [N] the group comes from.
+    exc : Exception
+        The model's refusal (it names the group and its range).
+
+    Returns
+    -------
+    str
+        One line: the operating point, the refusal, and what it means.
+    """
+    return (f"at the belt speed {speed:g} m/s and load {load:g} N, {exc}; the speed or the "
+            "load is far outside the machine's scales")
+
+
 def configured_machine(config: Path) -> ConfiguredMachine:
     """The machine of ``config`` ready to run (see :class:`ConfiguredMachine`)."""
     from stickslip.model.machine import machine_from_physical_system
@@ -283,10 +302,8 @@ def configured_machine(config: Path) -> ConfiguredMachine:
         try:  # what simulate checks, said with the operating point it comes from
             friction_range(configured.slider.lam, configured.slider.gamma)
         except ValueError as exc:
-            point = configured.machine
-            raise ValueError(f"at the belt speed {point.speed:g} m/s and load {point.load:g} N, "
-                             f"{exc}; the speed or the load is far outside the machine's "
-                             "scales") from None
+            raise ValueError(out_of_scale(configured.machine.speed, configured.machine.load,
+                                          exc)) from None
         return configured
     except BadInput:
         raise

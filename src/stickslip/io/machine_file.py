@@ -380,11 +380,11 @@ def _modal_table(table: dict[str, Any], source: str) -> tuple[Any, Any, Any]:
     m: Any
     c: Any
     k: Any
+    ratios = _numbers(modes["damping_ratios"], f"{source} modes.damping_ratios")
+    shapes = _numbers(modes["shapes"], f"{source} modes.shapes")  # each names itself once
     try:
         with np.errstate(over="raise", invalid="raise", under="raise"):
-            m, c, k = modal_structure(freqs, _numbers(modes["damping_ratios"],
-                                                      f"{source} modes.damping_ratios"),
-                                      _numbers(modes["shapes"], f"{source} modes.shapes"))
+            m, c, k = modal_structure(freqs, ratios, shapes)
     except FloatingPointError:
         raise ValueError(f"{source} modes: frequencies {modes['frequencies']!r} and shapes "
                          f"{modes['shapes']!r} give matrices beyond the range of floating-point "

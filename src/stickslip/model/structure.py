@@ -263,6 +263,9 @@ def check_matrices(mass: FloatArray, damping: FloatArray, stiffness: FloatArray)
                          f"{m_eig.min():.3g} to {m_eig.max():.3g}, a ratio beyond "
                          f"{1 / FREE_MODE_RTOL:.0e} (check the units of the masses)")
     k_eig, k_vec = np.linalg.eigh(stiffness)
+    if not np.any(stiffness):
+        raise ValueError("stiffness matrix is all zeros: the structure has no spring (every "
+                         "DOF is free); give the springs, to the ground among them")
     k_top = max(float(np.abs(k_eig).max()), np.finfo(float).tiny)
     if k_eig.min() < -FREE_MODE_RTOL * k_top:
         raise ValueError(f"stiffness matrix is not positive semi-definite: eigenvalue "
