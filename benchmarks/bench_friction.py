@@ -4,16 +4,16 @@ Usage::
 
     .venv/bin/python benchmarks/bench_friction.py
 
-Measured on the 2-core development machine on 2026-11-28 at 11:03 (``simulate`` proves its
-stick-slip cycle, which visits every friction band the cycle crosses; 515 and 9,558 ms for the
-Stribeck runs earlier that day, before the proof sampled its phases in batches and bounded the
-norms of a fine table's 2 million products through their Gram matrices)::
+Measured on the 2-core development machine on 2026-11-29 at 11:42, a slow day on the shared
+machine (the oracle 3.8x slower than on 2026-11-28 11:03, when the ratios were 56x, 4x and
+0.22x); ``simulate`` proves its stick-slip cycle, which visits every friction band the cycle
+crosses, and bounds the run's own rounding::
 
-    linear, delta = 0.03            engine    20.46 ms  oracle 1.15 s  speed-up  56x
-    stribeck, tolerance 1e-4        engine   290.61 ms  oracle 1.18 s  speed-up   4x
-    stribeck, tolerance 1e-6        engine  5283.58 ms  oracle 1.18 s  speed-up   0x
-    rigid base map 1200 cells: linear 160109 cells/s, Coulomb 194912 cells/s, ratio 1.22
-    foundation map 1200 cells: linear  38222 cells/s, Coulomb  42913 cells/s, ratio 1.12
+    linear, delta = 0.03            engine    54.63 ms  oracle 4.36 s  speed-up  80x
+    stribeck, tolerance 1e-4        engine  1035.78 ms  oracle 4.13 s  speed-up   4x
+    stribeck, tolerance 1e-6        engine 14572.11 ms  oracle 4.90 s  speed-up   0x
+    rigid base map 1200 cells: linear  30179 cells/s, Coulomb  40266 cells/s, ratio 1.33
+    foundation map 1200 cells: linear   7843 cells/s, Coulomb   9263 cells/s, ratio 1.18
 
 * Per run: the elastic foundation (zeta = 0.1, M = 1.5, K = 1, zeta_a = 0.5), lambda = 3,
   gamma = 2, from startup, with a linear law (delta = 0.03) and a Stribeck law
