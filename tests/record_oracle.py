@@ -59,8 +59,10 @@ class RigRecord:
 def simulate_rig(*, m: float, k: float, c: float, mu_s: float, mu: Callable[[float], float],
                  load: float, speed: float, t_end: float, fs: float, t_start: float = 0.0,
                  mu_s_per_stick: Sequence[float] | None = None, max_events: int = 5000,
-                 ) -> RigRecord:
-    """Start-up run (spring relaxed, slider stuck) sampled at ``fs`` Hz on ``[t_start, t_end]``.
+                 x0: float = 0.0) -> RigRecord:
+    """Start-up run (slider stuck, the spring at ``x0``: relaxed by default, compressed for
+    ``x0 < 0``, a preload that makes the first stick phase longer) sampled at ``fs`` Hz on
+    ``[t_start, t_end]``.
 
     The samples' times are shifted so that the record starts at ``t = 0``.
     """
@@ -84,7 +86,7 @@ def simulate_rig(*, m: float, k: float, c: float, mu_s: float, mu: Callable[[flo
     pieces: list[tuple[float, float, str, object, float]] = []
     breakaways: list[float] = []
     t, _x, mode, n_stick = 0.0, 0.0, "stick", 0
-    y = np.array([0.0, vb])
+    y = np.array([x0, vb])
     for _ in range(max_events):
         if t >= t_end:
             break

@@ -277,6 +277,19 @@ def test_a_force_only_record_of_the_wrong_sign_is_said(tmp_path: Path,
     assert "the force at breakaway is -" in line and "check the sign of F" in line
 
 
+def test_a_flipped_force_beside_a_displacement_names_both_signs(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # an audit: F negated, x right: the hint named "the sign of x" alone (the rising phases
+    # the estimator reads are F's, so x moves backwards there)
+    record = read_record(EXAMPLE)
+    assert record.F is not None and record.x is not None
+    flipped = tmp_path / "flipped.csv"
+    np.savetxt(flipped, np.column_stack([record.t, record.x, -record.F]), delimiter=",",
+               header="t,x,F", comments="")
+    line = _error([str(flipped), *KNOWN], capsys, tmp_path)
+    assert "the signs of x and F (--columns F=-NAME or x=-NAME flips a column)" in line
+
+
 def test_a_chain_of_powers_in_a_header_unit_is_refused(tmp_path: Path,
                                                        capsys: pytest.CaptureFixture[str]) -> None:
     # pint computed kN**9**9**9 (an integer of 10**369 digits) for hours before refusing it

@@ -68,6 +68,52 @@ def test_coulomb_two_percent_noise_force_only():
     assert result.parameters["force_offset"].free is False  # F alone: offset held at 0
 
 
+def test_without_a_force_channel_its_zero_is_not_fitted():
+    """x and v alone: the force's offset and drift act on no residual (an audit found the
+    drift's Jacobian column exactly zero, yet it was a free parameter, reported undetermined,
+    correlated to -0.97 with mu_k and counted in the free parameters)."""
+    rng = np.random.default_rng(10)
+    rig = _rig(t_end=0.73)
+    result = identify(MeasuredRecord(rig.t, x=noisy(rig.x, 0.005, rng), v=noisy(rig.v, 0.005, rng)),
+                      KNOWN)
+    for name in ("force_offset", "force_drift"):
+        assert result.parameters[name].free is False and result.parameters[name].value == 0.0
+        assert not any(name in pair for pair in result.correlations)
+    assert sorted(n for n, p in result.parameters.items() if p.free) == ["c", "k", "mu_k", "mu_s"]
+    _check(result, {"k": K, "mu_s": MU_S, "mu_k": MU_K}, 0.01)
+
+
+@pytest.mark.parametrize("preload", [-0.003, -0.006])
+def test_a_start_up_from_a_preloaded_spring_uses_every_stick_phase(preload):
+    """A record from the start: the spring compressed by 3 or 6 mm, so the first stick phase
+    lasts two or three periods. An audit found the whole record's autocorrelation then peaks
+    at two or three periods: 4 stick phases of 12 found, then a refusal ("the stated mass is
+    0.0351 times the 28.5 kg the slip phases imply") or "no repeating cycle"."""
+    rng = np.random.default_rng(11)
+    rig = _rig(t_end=1.4, t_start=0.0, x0=preload)
+    assert rig.breakaways.size >= 11  # the oracle's own count of the stick phases that end
+    rec = MeasuredRecord(rig.t, F=noisy(rig.F, 0.001, rng), x=noisy(rig.x, 0.001, rng))
+    result = identify(rec, KNOWN)
+    assert result.cycles_used >= rig.breakaways.size - 1
+    _check(result, {"k": K, "c": C, "mu_s": MU_S, "mu_k": MU_K}, 0.01)
+
+
+def test_uneven_time_steps_are_fitted_with_a_warning():
+    """The second half of the record at half the rate (steps of 0.5 ms, then 1 ms): the fit
+    runs on the record's own times, and the estimates' even-step reading is said."""
+    rng = np.random.default_rng(12)
+    rig = _rig(t_end=0.93)
+    h = rig.t.size // 2
+    keep = np.concatenate([np.arange(h), np.arange(h, rig.t.size, 2)])
+    rec = MeasuredRecord(rig.t[keep], F=noisy(rig.F, 0.005, rng)[keep],
+                         x=noisy(rig.x, 0.005, rng)[keep])
+    result = identify(rec, KNOWN)
+    assert any("time steps range from 0.0005 to 0.001 s" in w for w in result.warnings)
+    _check(result, {"k": K, "mu_s": MU_S, "mu_k": MU_K}, 0.01)
+    even = identify(MeasuredRecord(rig.t, F=rig.F, x=rig.x), KNOWN)
+    assert not any("time steps" in w for w in even.warnings)
+
+
 def test_force_offset_without_displacement_is_undetermined():
     """With F alone a force offset a and a common shift d of mu_s and mu_k are the same
     record: the motion depends on mu_s - mu_k, and the shift moves the kinetic equilibrium

@@ -285,6 +285,48 @@ def _stick_phases(t: FloatArray, main: FloatArray, peaks: NDArray[np.int64], per
     return stick
 
 
+def _stick_at_period(t: FloatArray, main: FloatArray, dt: float,
+                     period: float) -> tuple[list[StickPhase], int]:
+    """The stick phases of the record for a stick-slip period ``period`` (s), and the
+    half-width (samples) of the smoothing window they were found with."""
+    if period / dt < MIN_SAMPLES_PER_PERIOD:
+        raise RecordError(f"the record has {period / dt:.0f} samples per stick-slip period; "
+                          f"at least {MIN_SAMPLES_PER_PERIOD} are needed")
+    half = max(2, round(period / dt / 60.0))
+    wide = max(half, round(period / dt / 10.0))
+    smooth = savgol_filter(main, 2 * half + 1, 2)
+    slope = savgol_filter(main, 2 * wide + 1, 2, deriv=1, delta=dt)
+    sigma_smooth = noise_level(main) * math.sqrt(3.0 / (2 * half + 1))
+    peaks, _ = find_peaks(smooth, distance=max(1, int(0.6 * period / dt)),
+                          prominence=0.3 * float(np.ptp(smooth)))
+    return _stick_phases(t, main, peaks, period, dt, wide, slope, smooth, sigma_smooth), half
+
+
+def _periodic_stick(t: FloatArray, main: FloatArray,
+                    dt: float) -> tuple[float, list[StickPhase], int]:
+    """The stick-slip period (s), the stick phases and their smoothing half-width.
+
+    The period is the first autocorrelation peak of the whole record, and also of its later
+    half: a start-up from a preloaded spring (a long first stick phase, a slow transient)
+    can dominate the whole record's autocorrelation with a lag two or three periods long, so
+    that most stick phases are missed. The candidate that finds more stick phases is taken
+    (the whole record's on a tie); the later half's only when the whole record has none.
+    """
+    tried: list[tuple[float, list[StickPhase], int]] = []
+    first_error: RecordError | None = None
+    h = t.size // 2
+    for times, signal in ((t, main), (t[h:] - t[h], main[h:])):
+        try:
+            period = _dominant_period(times, signal)
+            tried.append((period, *_stick_at_period(t, main, dt, period)))
+        except RecordError as exc:
+            first_error = first_error or exc
+    if not tried:
+        assert first_error is not None
+        raise first_error
+    return max(tried, key=lambda c: len(c[1]))  # the first of equals: the whole record's
+
+
 def estimate(record: MeasuredRecord, *, mass: float, load: float, speed: float) -> RecordEstimates:
     """Read starting values from the record: period, stick phases, ``k``, ``mu_s``, ``mu_k``.
 
@@ -310,20 +352,8 @@ def estimate(record: MeasuredRecord, *, mass: float, load: float, speed: float) 
     t = record.t
     main = record.F if record.F is not None else record.x
     assert main is not None
-    period = _dominant_period(t, main)
     dt = t[-1] / (t.size - 1)
-    if period / dt < MIN_SAMPLES_PER_PERIOD:
-        raise RecordError(f"the record has {period / dt:.0f} samples per stick-slip period; "
-                          f"at least {MIN_SAMPLES_PER_PERIOD} are needed")
-    half = max(2, round(period / dt / 60.0))
-    wide = max(half, round(period / dt / 10.0))
-    smooth = savgol_filter(main, 2 * half + 1, 2)
-    slope = savgol_filter(main, 2 * wide + 1, 2, deriv=1, delta=dt)
-    sigma = noise_level(main)
-    sigma_smooth = sigma * math.sqrt(3.0 / (2 * half + 1))
-    peaks, _ = find_peaks(smooth, distance=max(1, int(0.6 * period / dt)),
-                          prominence=0.3 * float(np.ptp(smooth)))
-    stick = _stick_phases(t, main, peaks, period, dt, wide, slope, smooth, sigma_smooth)
+    period, stick, half = _periodic_stick(t, main, dt)
     if len(stick) < MIN_STICK_PHASES:
         raise RecordError(
             f"the record shows {len(stick)} complete stick phase(s) (a linear rise of the force "
@@ -352,11 +382,15 @@ def estimate(record: MeasuredRecord, *, mass: float, load: float, speed: float) 
         x_rate = float(np.median(x_rates))
         x_rate_error = float(np.std(x_rates, ddof=1) / math.sqrt(x_rates.size))
         if not abs(x_rate / speed - 1.0) <= STICK_SPEED_RTOL:
+            # the rising phases are those of F when it is recorded: a flipped F shows its
+            # slips as rises, and x moves backwards there (an audit: the hint named x alone)
+            signs = ("the signs of x and F (--columns F=-NAME or x=-NAME flips a column)"
+                     if record.F is not None else "the sign of x (--columns x=-NAME flips it)")
             raise RecordError(
                 f"the record has no stick phase: its rising phases move at {x_rate:.4g} m/s, "
                 f"{x_rate / speed:.3g} times the drive speed V = {speed:.4g} m/s (a sticking slider "
-                f"moves with the belt, within {STICK_SPEED_RTOL:.0%}); check --speed and the sign "
-                "of x, or that the record shows stick-slip")
+                f"moves with the belt, within {STICK_SPEED_RTOL:.0%}); check --speed and "
+                f"{signs}, or that the record shows stick-slip")
     peak = float(np.median([ph.peak_value for ph in stick]))
     onset = float(np.median([ph.onset_value for ph in stick if ph.start > 0] or [stick[-1].onset_value]))
     # slip duration: from a breakaway to the next stick onset

@@ -10,6 +10,10 @@ from numpy.typing import NDArray
 
 FloatArray = NDArray[np.float64]
 
+#: The terminal's line for a fit whose optimiser stopped at its evaluation budget.
+NOT_CONVERGED = ("warning     the fit did not converge (its evaluation budget ran out): the "
+                 "values and errors are where the optimiser stopped, not an optimum")
+
 
 def checked_record(columns: tuple[FloatArray, ...], minimum: int, what: str) -> tuple[FloatArray, ...]:
     """The record's columns as float arrays: equal lengths of at least ``minimum``, finite, the

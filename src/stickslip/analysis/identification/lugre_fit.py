@@ -33,7 +33,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.identification.fit_statistics import checked_record, linearised_errors
+from stickslip.analysis.identification.fit_statistics import (
+    NOT_CONVERGED,
+    checked_record,
+    linearised_errors,
+)
 from stickslip.kernel.lugre_response import lugre_force
 
 FloatArray = NDArray[np.float64]
@@ -90,6 +94,8 @@ class LuGreFit:
     t: FloatArray = field(default_factory=lambda: np.zeros(0), repr=False)
     force: FloatArray = field(default_factory=lambda: np.zeros(0), repr=False)
     force_fit: FloatArray = field(default_factory=lambda: np.zeros(0), repr=False)
+    #: False when the optimiser stopped at its budget (the values are where it stopped)
+    converged: bool = True
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready (SI); ``friction_table``: the machine file's ``[friction]`` with a load."""
@@ -99,7 +105,7 @@ class LuGreFit:
             "law": "lugre", "parameters": {k: num(v) for k, v in self.values.items()},
             "standard_errors": {k: num(v) for k, v in self.errors.items()},
             "units": UNITS, "undetermined": self.undetermined, "rms_residual_N": self.rms,
-            "n_samples": self.n, "load_N": self.load,
+            "n_samples": self.n, "load_N": self.load, "converged": self.converged,
             "model": "LuGre driven by the record's sliding velocity (Canudas de Wit et al. 1995)"}
         if self.load is not None:
             out["friction_table"] = {
@@ -121,6 +127,8 @@ class LuGreFit:
             lines.append(f"mu_c, mu_s  {self.values['F_c'] / self.load:.6g}, "
                          f"{self.values['F_s'] / self.load:.6g} (load {self.load:g} N)")
         lines.append(f"residual    rms {self.rms:.3g} N")
+        if not self.converged:
+            lines.append(NOT_CONVERGED)
         return "\n".join(lines)
 
 
@@ -202,7 +210,8 @@ def fit_lugre(t: FloatArray, v: FloatArray, force: FloatArray, *, load: float | 
         undetermined += [name for name in ("sigma0", "sigma1") if name not in undetermined]
     fitted = model_force(t, v, float(best.x[6]), _unpack(best.x[:6]))
     rms = float(np.sqrt(np.mean((fitted - force) ** 2)))
-    return LuGreFit(values, errors, undetermined, rms, int(t.size), load, t, force, fitted)
+    return LuGreFit(values, errors, undetermined, rms, int(t.size), load, t, force, fitted,
+                    converged=best.status > 0)
 
 
 __all__ = ["LuGreFit", "fit_lugre", "model_force"]

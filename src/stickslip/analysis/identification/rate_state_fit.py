@@ -41,7 +41,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.identification.fit_statistics import checked_record, linearised_errors
+from stickslip.analysis.identification.fit_statistics import (
+    NOT_CONVERGED,
+    checked_record,
+    linearised_errors,
+)
 from stickslip.analysis.memory.friction import integrate_run
 from stickslip.model.state_friction import (
     MAX_PSI_OVER_A,
@@ -195,6 +199,8 @@ class RateStateFit:
     t: FloatArray = field(repr=False)
     mu: FloatArray = field(repr=False)
     mu_fit: FloatArray = field(repr=False)
+    #: False when the optimiser stopped at its budget (the values are where it stopped)
+    converged: bool = True
 
     @property
     def law(self) -> RateStateFriction:
@@ -215,6 +221,7 @@ class RateStateFit:
                 "steps": [[t, v] for t, v in zip(self.schedule.times, self.schedule.speeds,
                                                  strict=True)],
                 "stiffness_N_per_m": self.stiffness, "load_N": self.load,
+                "converged": self.converged,
                 "model": "quasi-static spring-slider, regularised rate-and-state law"}
 
     def summary(self) -> str:
@@ -233,6 +240,8 @@ class RateStateFit:
                      f"(velocity {'weakening' if weakening else 'strengthening'})")
         lines.append(f"residual    rms {self.rms:.3g} in mu; v_ref {self.schedule.first:.6g} m/s "
                      "(the first step)")
+        if not self.converged:
+            lines.append(NOT_CONVERGED)
         return "\n".join(lines)
 
 
@@ -314,7 +323,7 @@ def fit_rate_state(t: FloatArray, x_lp: FloatArray, mu: FloatArray, *, stiffness
     fitted = model_mu(t, schedule, stiffness, load, fitted_law)
     rms = float(np.sqrt(np.mean((fitted - mu) ** 2)))
     return RateStateFit(values, errors, undetermined, rms, schedule, evolution, stiffness, load,
-                        int(t.size), t, mu, fitted)
+                        int(t.size), t, mu, fitted, converged=best.status > 0)
 
 
 __all__ = ["RateStateFit", "fit_rate_state", "load_point_steps", "model_mu"]

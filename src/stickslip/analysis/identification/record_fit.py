@@ -122,6 +122,9 @@ NOISE_FLOOR = 1e-5
 #: (``k / omega^2``, :class:`~stickslip.analysis.identification.estimates.RecordEstimates`) is
 #: flagged: the slip phases of a 1 kg slider last 1000**0.5 times less than those of 1000 kg.
 MASS_FACTOR = 10.0
+#: Time steps that spread by more than this fraction of their median are flagged: the
+#: estimates (autocorrelation, filters, the noise from second differences) take even steps.
+UNEVEN_STEPS = 0.1
 #: A load-cell force beyond this many times the normal load is refused before any fit: the
 #: spring holds the slider against friction, ``|F| <= mu_s W`` in stick plus the slip's
 #: overshoot, so a friction coefficient of a thousand means wrong units (of F or --load).
@@ -548,6 +551,10 @@ def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tup
     criteria = {name: _criteria_report(p, r) for name, (p, r) in fits.items()}
     warnings = _judge(record, est, chi2, res.fun.size - _n_params(problem), mass=mass,
                       speed=speed)
+    if not res.success:
+        warnings += (f"the fit did not converge ({res.message}, {int(res.nfev)} evaluations): the "
+                     "values and standard errors are where the optimiser stopped, not an "
+                     "optimum; fix parameters you know (--fix) or try another --law",)
     rms = {n: float(np.sqrt(np.mean((model[n] - getattr(record, n)) ** 2))) for n in record.channels}
     stick_cycles = sum(1 for seg in problem.segments if seg.in_stick and seg.stop - seg.start > 1)
     return IdentificationResult(
@@ -589,6 +596,14 @@ def _judge(record: MeasuredRecord, est: RecordEstimates, chi2: float, dof: int, 
                    "closest model, not of the record")
     if mass_note:
         out.append(mass_note + ": check --mass")
+    steps = np.diff(record.t)
+    step = float(np.median(steps))
+    if float(np.ptp(steps)) > UNEVEN_STEPS * step:
+        out.append(f"the record's time steps range from {float(steps.min()):.4g} to "
+                   f"{float(steps.max()):.4g} s: the period, the stick phases and the noise "
+                   "levels are read as from even steps, so stick phases may go unused and the "
+                   "noise (and the standard errors) come out larger; the fit itself uses the "
+                   "record's own times")
     ratio_v = est.stick_speed / speed  # NaN without x: no note
     if (abs(ratio_v - 1.0) > STICK_SPEED_NOTE
             and abs(est.stick_speed - speed) > 5.0 * est.stick_speed_error):

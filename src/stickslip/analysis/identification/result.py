@@ -268,6 +268,8 @@ class IdentificationResult:
             f"# identified by stickslip identify from {_toml_string(self.source)} (law {self.law})",
             "# residual RMS: " + ", ".join(f"{n} {r:.4g} {_CHANNEL_UNITS[n]}"
                                            for n, r in self.residual_rms.items()),
+            *(["# warning: the fit did not converge; these values are where the optimiser "
+               "stopped"] if not self.success else []),
             "[system]",
             f'm = "{self.mass!r} kg"',
             f'k = "{v["k"]!r} N/m"',
@@ -376,8 +378,6 @@ class IdentificationResult:
             lines += [f"    C({a}, {b}) = {v:+.3f}" for _, a, b, v in strong]
         if self.undetermined:
             lines.append(f"[[Undetermined]] {', '.join(self.undetermined)}: {UNDETERMINED_RULE}")
-        if not self.success:
-            lines.append(f"warning: the optimiser did not converge: {self.message}")
         return "\n".join(lines)
 
     def plot(self, **kwargs: Any) -> Any:
