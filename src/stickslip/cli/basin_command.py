@@ -326,7 +326,8 @@ def _contact_basin(ctx: typer.Context, config: Path, machine_file: Any, *, sampl
         else:
             intervals = parse_box(box) if box is not None else default_box(system)
             starts = sample_contact_box(system, samples, intervals, seed)
-        with progress_bar(json, f"basin {len(starts)} starts (contact)", "samples") as bar:
+        with progress_bar(json, f"basin {len(starts)} starts (contact)", "samples",
+                          shorten="--samples sets fewer states, --t-max a shorter horizon") as bar:
             result = contact_basin(system, starts, t_max=horizon, workers=workers or DEFAULT_WORKERS,
                                    progress=bar)
     except BadInput:

@@ -5,11 +5,23 @@ from __future__ import annotations
 import time
 from typing import Any
 
+#: Without a bar (``--json``, or stderr not a terminal), a run projected to take longer than
+#: this (s) after :data:`NOTE_AFTER` s says so once on stderr, with how to shorten it.
+LONG_RUN = 600.0
+NOTE_AFTER = 15.0
+
 
 class ProgressBar:
-    """A rich progress bar on stderr with cells per second and time left."""
+    """A rich progress bar on stderr with cells per second and time left.
 
-    def __init__(self, enabled: bool, label: str, unit: str = "cells") -> None:
+    Without a bar, ``shorten`` (what makes the run shorter, e.g. ``"--samples sets fewer"``)
+    asks for one note on stderr when the run is projected to last beyond :data:`LONG_RUN`.
+    """
+
+    def __init__(self, enabled: bool, label: str, unit: str = "cells",
+                 shorten: str | None = None) -> None:
+        self._shorten = shorten
+        self._note_from: tuple[int, float] | None = None
         self._unit = unit
         self._bar: Any = None
         self._task: Any = None
@@ -46,6 +58,7 @@ class ProgressBar:
 
     def __call__(self, done: int, total: int) -> None:
         if self._bar is None:
+            self._note_long(done, total)
             return
         now = time.perf_counter()
         if self._task is None:
@@ -56,6 +69,29 @@ class ProgressBar:
         # the total may grow (a boundary search opens brackets as it goes)
         self._bar.update(self._task, completed=done, total=total,
                          rate=f"{rate:,.0f}" if rate >= 10.0 else f"{rate:.2g}")
+
+
+    def _note_long(self, done: int, total: int) -> None:
+        """One note on stderr when a run without a bar is projected to be long."""
+        if self._shorten is None:
+            return
+        now = time.perf_counter()
+        if self._note_from is None:
+            self._note_from = (done, now)
+            return
+        self._start_done, self._started = self._note_from
+        elapsed = now - self._started
+        if elapsed < NOTE_AFTER or done <= self._start_done:
+            return
+        left = (total - done) * elapsed / (done - self._start_done)
+        hint, self._shorten = self._shorten, None  # once
+        if left > LONG_RUN:
+            import sys
+
+            rate = (done - self._start_done) / elapsed
+            print(f"stickslip: note: {self._label}: about {left / 3600.0:.2g} h left at "
+                  f"{rate:.3g} {self._unit}/s ({done} of {total} done); {hint}",
+                  file=sys.stderr, flush=True)
 
 
 class DesignProgress:

@@ -29,11 +29,12 @@ def refuse_options(ctx: typer.Context, names: tuple[str, ...], command: str) -> 
                        "machine (it runs the exact contact engine)")
 
 
-def progress_bar(json: bool, label: str, unit: str = "runs") -> Any:
-    """The progress bar on a terminal (not with --json)."""
+def progress_bar(json: bool, label: str, unit: str = "runs", shorten: str | None = None) -> Any:
+    """The progress bar on a terminal (not with --json); without one, ``shorten`` asks for a
+    note on stderr when the run is projected to be long (:class:`ProgressBar`)."""
     from stickslip.cli.progress import ProgressBar
 
-    return ProgressBar(not json and sys.stderr.isatty(), label, unit=unit)
+    return ProgressBar(not json and sys.stderr.isatty(), label, unit=unit, shorten=shorten)
 
 
 def contact_cycles_command(ctx: typer.Context, config: Path, machine_file: Any, *,
