@@ -604,7 +604,15 @@ def test_bad_friction_slope_is_one_line_and_nothing_is_computed() -> None:
         ({"friction_law": "stribeck", "mu_0": "0.6"}, "above μs"),
         ({"friction_law": "stribeck", "exponent": ""}, "is empty"),
         ({"friction_law": "table"}, "upload a CSV"),
-        ({"friction_law": "table", "friction_table": "v,f\n0,0.1\n"}, "columns v [m/s] and mu"),
+        ({"friction_law": "table", "friction_table": "v,f\n0,0.1\n"}, "takes v [m/s] and mu"),
+        # an audit: only comment lines escaped as StopIteration, a 200,000-digit field as a
+        # bare _csv.Error (the page showed Streamlit's redacted error)
+        ({"friction_law": "table", "friction_table": "# measured on rig 3\n"},
+         "needs a header row and at least one data row"),
+        ({"friction_law": "table", "friction_table": "v,mu\n0," + "1" * 200_000 + "\n"},
+         "row 2: not a readable CSV row"),
+        ({"friction_law": "table", "friction_table": "v [mm/s],mu\n0,0.4\n"},
+         "column v is given in 'mm/s'; it takes v in m/s"),
         ({"friction_law": "table", "friction_table": "v,mu\n0,x\n"}, "not two numbers"),
         ({"friction_law": "table", "friction_table": "v,mu\n0,0.4\n0.1,-0.2\n"}, "negative"),
     ],
@@ -629,7 +637,7 @@ def test_stribeck_and_table_inputs_convert_in_si() -> None:
     # u_s = v_s / V = 0.5 / 0.05; r0 = (mu_0 - mu_k) / (mu_s - mu_k) = 0.15 / 0.2
     assert isinstance(law, StribeckFriction)
     assert law.velocity_ratio == pytest.approx(10.0) and law.mu0_ratio == pytest.approx(0.75)
-    curve = "v,mu\n0.0,0.45\n0.05,0.35\n0.5,0.3\n"
+    curve = "v [m/s],mu\n0.0,0.45\n0.05,0.35\n0.5,0.3\n"  # the uploader's own header
     system, errors = web.parse_inputs(base | {"friction_law": "table", "friction_table": curve,
                                               "friction_table_name": "tribometer.csv"})
     assert system is not None and not errors

@@ -107,6 +107,16 @@ def test_bad_contact_values_are_one_line_naming_the_upload() -> None:
     assert len(message.splitlines()) == 1 and str(BRAKE_PAD) not in message
 
 
+def test_a_refused_friction_table_of_a_flat_contact_machine_names_the_upload_once() -> None:
+    # an audit: "machine file 'machine.toml': machine file 'machine.toml': [friction] table ..."
+    files = {"machine.toml": (JENKINS + '[friction]\nlaw = "table"\ntable = "mu.csv"\n').encode(),
+             "mu.csv": b"v,mu\n0,0.3\n0.1,x\n"}
+    with pytest.raises(ValueError) as info:
+        contact_machine(uploaded_machine_file(files))
+    message = str(info.value)
+    assert message.count("machine file 'machine.toml'") == 1 and "not two numbers" in message
+
+
 def test_the_info_line_names_the_analyses_that_apply() -> None:
     for words in ("complex-eigenvalue analysis", "time history", "design", "absorbers",
                   "bifurcation diagram"):

@@ -227,10 +227,12 @@ def test_the_largest_upload_is_a_stated_limit() -> None:
     # hostile uploads of the audit of 2026-11-27, each refused before its bulk is parsed
     # (a 50 MB one-value-per-line CSV took 44 s and 2.8 GB, a 13 M-row friction table 45 s)
     ("rows", "'K.csv' cannot be read: it has 2000000 line breaks and 1 values in its first row"),
-    ("columns", "'K.csv' cannot be read: it has 1 rows and 2000001 values in its first row"),
+    # (the first row's count is checked against the upload's DOF limit first)
+    ("columns", "'K.csv' cannot be read: it is 2000001x2000001, a 2000001-DOF model, beyond the "
+                f"{UPLOAD_MAX_DOF} DOF accepted here"),
     ("table", "friction table 'mu.csv' has 2000001 lines, far more than the 1999 points"),
     ("toml", f"the machine file holds 2.9 MB, beyond the {UPLOAD_MAX_TOML_MB} MB accepted"),
-    ("name", "[structure] name is 201 characters long; at most 200"),
+    ("name", "[structure]: name is 201 characters long; at most 200"),
     ("nested", "its arrays or tables nest too deeply"),
 ])
 def test_a_hostile_upload_is_refused_before_its_bulk_is_read(case: str, needle: str) -> None:

@@ -468,3 +468,20 @@ def test_a_modal_tables_bad_entry_is_named_once(
     line = _one_error(["simulate", "--config", str(config)], capsys)
     assert "modes.shapes = ['a', 1.0] must be a number or a list of numbers" in line
     assert line.count("[structure]") == 1
+
+
+def test_a_speed_schedule_beyond_its_bound_is_refused_before_its_rows_are_read(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # an audit: a 40,000-row schedule (0.8 MB of TOML) took 15 s to parse and six minutes of
+    # the app's one worker; a schedule holds at most MAX_SCHEDULE_STEPS steps
+    from stickslip.model.state_friction import MAX_SCHEDULE_STEPS, SpeedSchedule
+
+    rows = ", ".join(f'["{i} s", "{1 + i % 2} mm/s"]' for i in range(MAX_SCHEDULE_STEPS + 1))
+    example = Path(__file__).resolve().parents[1] / "examples" / "friction_memory" / "rate_state.toml"
+    config = tmp_path / "machine.toml"
+    config.write_text(example.read_text().replace('speed = "1 mm/s"', f"speed = [{rows}]"))
+    line = _one_error(["simulate", "--config", str(config)], capsys)
+    assert f"has {MAX_SCHEDULE_STEPS + 1} rows, more than the {MAX_SCHEDULE_STEPS} steps" in line
+    n = MAX_SCHEDULE_STEPS + 1
+    with pytest.raises(ValueError, match=f"has {n} steps, more than the {MAX_SCHEDULE_STEPS}"):
+        SpeedSchedule(tuple(float(i) for i in range(n)), (1e-3,) * n)

@@ -341,3 +341,40 @@ def test_mode_frequencies_in_rad_per_s_and_rpm_are_converted_to_hz(units: tuple[
     f = np.sqrt(eigh(k, m, eigvals_only=True)) / (2 * math.pi)
     expected = [75.398 / (2 * math.pi), 251.327 / (2 * math.pi)] if "rad" in str(units[0]) else [12.0, 40.0]
     np.testing.assert_allclose(f, expected, rtol=1e-12)
+
+
+# --- uploads (the web app's limits): refused from the header, before the entries ---------
+
+def test_an_npy_header_cut_inside_its_dictionary_is_one_line() -> None:
+    # an audit: a header "{'descr': '<f8', 'fortran_order': False, 'shape': (6," escaped as
+    # tokenize.TokenError ("EOF in multi-line statement")
+    header = b"{'descr': '<f8', 'fortran_order': False, 'shape': (6,".ljust(63) + b"\n"
+    content = b"\x93NUMPY\x01\x00" + len(header).to_bytes(2, "little") + header + bytes(288)
+    with pytest.raises(ValueError, match=r"K.npy' cannot be read: its .npy header is not valid"):
+        read_matrix("K.npy", quantity="stiffness", source="stiffness", content=content)
+
+
+@pytest.mark.parametrize("kind", ["csv", "mtx", "npy"])
+def test_a_model_above_max_dof_is_refused_before_its_entries_are_read(kind: str,
+                                                                       tmp_path: Path) -> None:
+    # an audit: a 4990x4990 CSV of zeros (47.5 MB, under the upload limit) took 18 s and
+    # 1.36 GB of the app's memory before its 1,000-DOF limit refused it; here a 1,200-DOF
+    # model against max_dof = 1,000, and the same file read in full without the limit
+    n = 1200
+    path = tmp_path / f"K.{kind}"
+    if kind == "csv":
+        path.write_text("\n".join(",".join(["0"] * n) for _ in range(n)) + "\n")
+    elif kind == "mtx":
+        scipy.io.mmwrite(str(path), scipy.sparse.identity(n, format="coo"))
+    else:
+        np.save(path, np.eye(n))
+    content = path.read_bytes()
+    tracemalloc.start()
+    with pytest.raises(ValueError, match=rf"it is {n}x{n}, a {n}-DOF model, beyond the 1000 DOF"):
+        read_matrix(path.name, quantity="stiffness", source="stiffness", content=content,
+                    max_dof=1000)
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    assert peak < 2 * len(content) + 1_000_000  # the text or bytes themselves, no parsed rows
+    assert read_matrix(path.name, quantity="stiffness", source="stiffness",
+                       content=content).shape == (n, n)

@@ -125,8 +125,10 @@ def contact_machine(machine_file: Any) -> ContactMachine:
                 speed=values["speed"], friction=machine_file.friction(),
                 foundation=PhysicalFoundation(values["m_a"], values["k_a"], values["c_a"])
                 if given else None)
-        except ValueError as exc:
-            raise ValueError(f"{label}: {exc}") from None
+        except ValueError as exc:  # named once: the friction table's message names the file
+            message = str(exc)
+            raise ValueError(message if message.startswith(f"{label}:")
+                             else f"{label}: {message}") from None
         machine = machine_from_physical_system(system)
     index = None if contact is None else contact.normal_dof
     if reduction is not None and index is not None:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import csv
 import re
 import sys
 from pathlib import Path
@@ -30,7 +29,7 @@ from stickslip.cli.options import (
     SCHEDULER,
     SCHEDULER_TIMEOUT,
 )
-from stickslip.model.user_file import read_user_text
+from stickslip.model.user_file import csv_rows, read_user_text
 
 BOX_HELP = ("sampling box, e.g. 'xi=-4:4,v=-3:1.5' (dimensionless, shifted: xi, v, xi_a, v_a) or, "
             "with --config, 'x=-0.001:0.001,v=-0.02:0.02' (SI: m, m/s; x from where the spring is "
@@ -71,8 +70,13 @@ def read_states(path: Path, names: list[str]) -> tuple[list[dict[str, str]], lis
                               hint="name the CSV file itself")
     except ValueError as exc:
         raise BadInput(str(exc)) from None
-    reader = csv.DictReader(line for line in text.splitlines() if line.strip() and not line.startswith("#"))
-    columns = list(reader.fieldnames or [])
+    try:
+        table = csv_rows((line for line in text.splitlines()
+                          if line.strip() and not line.startswith("#")),
+                         f"--initial-states {str(path)!r}")
+    except ValueError as exc:
+        raise BadInput(str(exc)) from None
+    columns = table[0] if table else []
     repeated = sorted({c for c in columns if columns.count(c) > 1})
     if repeated:
         raise BadInput(f"--initial-states {str(path)!r} names the column(s) {', '.join(repeated)} "
@@ -88,12 +92,11 @@ def read_states(path: Path, names: list[str]) -> tuple[list[dict[str, str]], lis
         raise BadInput(f"--initial-states {str(path)!r}: the column(s) {', '.join(foreign)} name state "
                        f"coordinates this structure does not have (its state is {', '.join(names)})")
     rows, values = [], []
-    for k, row in enumerate(reader, start=2):
-        if None in row or None in row.values():  # DictReader's marks of extra and missing fields
-            given = len(row.get(None) or []) + sum(v is not None for key, v in row.items()
-                                                   if key is not None)
-            raise BadInput(f"--initial-states {str(path)!r}, row {k - 1}: {given} values for "
-                           f"the {len(columns)} columns of the header")
+    for k, fields in enumerate(table[1:], start=2):
+        if len(fields) != len(columns):
+            raise BadInput(f"--initial-states {str(path)!r}, row {k - 1}: {len(fields)} values "
+                           f"for the {len(columns)} columns of the header")
+        row = dict(zip(columns, fields, strict=True))
         try:
             values.append([float(row[c]) for c in names])
         except (TypeError, ValueError):

@@ -476,7 +476,7 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
                          "name = \"slideway\"")
     name = str(table.get("name", "machine"))
     if len(name) > MAX_NAME_LENGTH:  # it titles figures: a 1 MB name took minutes to draw
-        raise ValueError(f"{source}: [structure] name is {len(name)} characters long; at most "
+        raise ValueError(f"{source}: name is {len(name)} characters long; at most "
                          f"{MAX_NAME_LENGTH}")
     if "modes" in table:
         m, c, k = _modal_table(table, source)
@@ -495,7 +495,8 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
     mats = {key: read_matrix(table[key], quantity=key, unit=table.get(f"{key}_unit"),
                              base_dir=base_dir, source=f"{source} {key}",
                              content=None if files is None or not isinstance(table[key], str)
-                             else uploaded_file(table[key], files, f"{source} {key}"))
+                             else uploaded_file(table[key], files, f"{source} {key}"),
+                             max_dof=max_dof)
             for key in ("mass", "stiffness", "damping") if key in table}
     if "damping_unit" in table and "damping" not in table:
         raise ValueError(f"{source}: damping_unit is given but no damping matrix")

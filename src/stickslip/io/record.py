@@ -27,7 +27,6 @@ Units are converted by pint; a unit of the wrong dimension is refused with one l
 
 from __future__ import annotations
 
-import csv
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -42,7 +41,7 @@ from stickslip.analysis.identification.estimates import (
 )
 from stickslip.io.toml_file import read_toml_file
 from stickslip.model.units import POWER_RULE, unit_powers_bounded
-from stickslip.model.user_file import read_user_text
+from stickslip.model.user_file import csv_rows, read_user_text
 
 ROLES: dict[str, tuple[str, str]] = {
     "t": ("[time]", "s"),
@@ -211,7 +210,10 @@ def record_from_text(text: str, name: str, columns: list[ColumnSpec] | None = No
     check_record_length(repr(name), len(lines) - 1)  # before its rows are parsed
     if len(lines) < 2:
         raise RecordError(f"record {name!r} needs a header row and data rows")
-    rows = list(csv.reader(lines))
+    try:
+        rows = csv_rows(lines, f"record {name!r}")
+    except ValueError as exc:
+        raise RecordError(str(exc)) from None
     header_raw = [h.strip() for h in rows[0]]
     header: list[tuple[str, str | None]] = []
     for h in header_raw:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+import tokenize
 from pathlib import Path
 from typing import Any
 
@@ -48,7 +49,14 @@ def unit_factor(quantity: str, unit: object, *, source: str) -> float:
     """SI value of one ``unit`` of ``quantity`` (``"kN/m"`` for a stiffness: 1000.0)."""
     if not isinstance(unit, str) or not unit.strip():
         raise ValueError(f"{source} = {unit!r} must be a unit such as 'kg' or 'N/m'")
-    return to_si(quantity, f"1 {unit.strip()}", source=source)
+    text = unit.strip()
+    try:
+        return to_si(quantity, f"1 {text}", source=source)
+    except ValueError as exc:  # said of what the user wrote, not of the "1 " put before it
+        message = str(exc).replace(repr(f"1 {text}"), repr(text), 1)
+        if "one number followed by a unit" in message:
+            message = f"{source} = {text!r} must be a unit alone (such as 'kN/m'), without a number"
+        raise ValueError(message) from None
 
 
 class _Unreadable(ValueError):
@@ -58,11 +66,14 @@ class _Unreadable(ValueError):
 _KINDS = {".mtx": "Matrix Market", ".npy": "NumPy .npy", ".csv": "CSV"}
 
 
-def _read_file(path: Path, source: str, content: bytes | None = None) -> Any:
+def _read_file(path: Path, source: str, content: bytes | None = None,
+               max_dof: int | None = None) -> Any:
     """The matrix in the file ``path``, or in ``content`` (an uploaded file named ``path``).
 
     With ``content`` nothing is read from disk, the messages name the file by its base name
-    only, and a parser's own message (which may quote the file) is replaced by ours.
+    only, and a parser's own message (which may quote the file) is replaced by ours. A model
+    above ``max_dof`` DOF is refused from its header or first row, before its entries are
+    read (a 4990x4990 CSV took 18 s and 1.4 GB to parse before an audit's refusal).
     """
     uploaded = content is not None
     shown = repr(path.name) if uploaded else repr(str(path))
@@ -75,15 +86,15 @@ def _read_file(path: Path, source: str, content: bytes | None = None) -> Any:
     try:
         handle: Any = io.BytesIO(content) if content is not None else path
         if suffix == ".mtx":
-            return _read_mtx(handle if uploaded else str(path), uploaded)
+            return _read_mtx(handle if uploaded else str(path), uploaded, max_dof)
         if suffix == ".npy":
-            return _read_npy(handle, uploaded)
+            return _read_npy(handle, uploaded, max_dof)
         size = len(content) if content is not None else path.stat().st_size
         if size > MAX_CSV_BYTES:
             raise _Unreadable(f"it holds {size} bytes, beyond the {MAX_CSV_BYTES} read from a .csv "
                               "(use a sparse .mtx for large models)")
         raw = content if content is not None else path.read_bytes()
-        return _read_csv(raw.decode("utf-8-sig"))
+        return _read_csv(raw.decode("utf-8-sig"), max_dof)
     except _Unreadable as exc:
         raise ValueError(f"{source}: {shown} cannot be read: {exc}") from None
     except UnicodeDecodeError:
@@ -139,7 +150,13 @@ def _check_one_triangle(coo: Any, symmetry: str) -> None:
             "twice; mark it general or keep the lower triangle only")
 
 
-def _read_mtx(handle: Any, uploaded: bool) -> Any:
+def _beyond(n: int, max_dof: int | None) -> None:
+    """Refuse a model of ``n`` DOF above ``max_dof`` (before its entries are read)."""
+    if max_dof is not None and n > max_dof:
+        raise _Unreadable(f"it is {n}x{n}, a {n}-DOF model, beyond the {max_dof} DOF accepted here")
+
+
+def _read_mtx(handle: Any, uploaded: bool, max_dof: int | None = None) -> Any:
     import scipy.io
     import scipy.sparse
 
@@ -166,6 +183,7 @@ def _read_mtx(handle: Any, uploaded: bool) -> Any:
         raise _Unreadable(f"it is {rows}x{cols}, not square")
     if rows > MAX_SPARSE_DOF:
         raise _Unreadable(f"it has {rows} DOF, beyond the supported {MAX_SPARSE_DOF}")
+    _beyond(rows, max_dof)
     if fmt == "array" and rows * cols > MAX_DENSE_ENTRIES:
         raise _Unreadable(f"it is a dense {rows}x{cols} array; store large models sparse "
                           "(coordinate format)")
@@ -181,7 +199,7 @@ def _read_mtx(handle: Any, uploaded: bool) -> Any:
     return np.asarray(data, dtype=np.float64)
 
 
-def _read_npy(handle: Any, uploaded: bool) -> Any:
+def _read_npy(handle: Any, uploaded: bool, max_dof: int | None = None) -> Any:
     """One array from a ``.npy`` file; its magic and header are checked before it is loaded
     (an empty file, a ``.npz`` archive or a pickle under that name, an object array, a size
     beyond :data:`MAX_DENSE_ENTRIES`)."""
@@ -198,11 +216,15 @@ def _read_npy(handle: Any, uploaded: bool) -> Any:
             version = np.lib.format.read_magic(file)
             shape, _order, dtype = (np.lib.format.read_array_header_1_0(file) if version == (1, 0)
                                     else np.lib.format.read_array_header_2_0(file))
-        except (ValueError, SyntaxError, TypeError) as exc:  # numpy's text may quote parser objects
+        # numpy's text may quote parser objects; a header cut inside its dictionary is a
+        # tokenizer's error (an audit: "EOF in multi-line statement")
+        except (ValueError, SyntaxError, TypeError, tokenize.TokenError) as exc:
             raise _Unreadable("its .npy header is not valid (numpy.save writes a dictionary of "
                               "descr, fortran_order and shape)") from exc
         if dtype.hasobject:
             raise _Unreadable("it holds Python objects (pickled data), which are never loaded")
+        if len(shape) == 2:
+            _beyond(int(shape[0]), max_dof)
         entries = int(np.prod(shape, dtype=np.float64))
         if entries > MAX_DENSE_ENTRIES:
             raise _Unreadable(f"it holds {entries} entries, beyond {MAX_DENSE_ENTRIES} (use a "
@@ -214,7 +236,7 @@ def _read_npy(handle: Any, uploaded: bool) -> Any:
     return np.array(data, dtype=np.float64)
 
 
-def _read_csv(text: str) -> Any:
+def _read_csv(text: str, max_dof: int | None = None) -> Any:
     """Rows of numbers, comma or semicolon separated; a bad entry is named by row and column."""
     delimiter = ";" if ";" in text and "," not in text else ","
     # a structure matrix is square: so many rows as values in the first, counted before any
@@ -222,6 +244,7 @@ def _read_csv(text: str) -> Any:
     start = len(text) - len(text.lstrip())
     end = text.find("\n", start)
     n_columns = text[start:end if end >= 0 else len(text)].count(delimiter) + 1
+    _beyond(n_columns, max_dof)
     line_breaks = text.count("\n")  # no list of lines yet: a bound first
     if line_breaks > 4 * n_columns + 16:
         raise _Unreadable(f"it has {line_breaks} line breaks and {n_columns} values in its first "
@@ -249,7 +272,7 @@ def _read_csv(text: str) -> Any:
 
 def read_matrix(spec: object, *, quantity: str, unit: object = None,
                 base_dir: Path | None = None, source: str = "matrix",
-                content: bytes | None = None) -> Any:
+                content: bytes | None = None, max_dof: int | None = None) -> Any:
     """One structure matrix in SI units: a dense array, or a ``scipy.sparse`` CSR matrix.
 
     Parameters
@@ -266,6 +289,8 @@ def read_matrix(spec: object, *, quantity: str, unit: object = None,
     content : bytes, optional
         The bytes of the file ``spec`` names (an uploaded file, checked by the caller): then
         nothing is read from disk and messages never quote the file or a server path.
+    max_dof : int, optional
+        Refuse a file of a model above so many DOF before its entries are read.
 
     Returns
     -------
@@ -280,7 +305,7 @@ def read_matrix(spec: object, *, quantity: str, unit: object = None,
         path = Path(spec)
         if content is None and base_dir is not None and not path.is_absolute():
             path = base_dir / path
-        data = _read_file(path, f"{source} = {spec!r}", content)
+        data = _read_file(path, f"{source} = {spec!r}", content, max_dof)
         where = f"{source} = {spec!r}"
     elif isinstance(spec, list):
         where = f"{source} (inline)"

@@ -7,7 +7,6 @@ with one-line errors in the model's words (the command line adds its flag name).
 
 from __future__ import annotations
 
-import csv
 from pathlib import Path
 
 from stickslip.model.friction import (
@@ -19,7 +18,7 @@ from stickslip.model.friction import (
     TableFriction,
     check_stribeck_parameter,
 )
-from stickslip.model.user_file import read_user_text
+from stickslip.model.user_file import csv_rows, read_user_text
 
 
 def _read_csv_text(path: str | Path) -> str:
@@ -79,6 +78,29 @@ def friction_csv_columns(text: str, p: str = "(text)") -> tuple[list[float], lis
     return v, y
 
 
+#: Largest magnitude of a friction table's entry (a speed in m/s, a friction coefficient):
+#: far beyond any machine, and far from overflow once divided by a belt speed.
+MAX_TABLE_VALUE = 1e6
+
+#: The units a friction table's header may name: ``v [m/s]``, ``mu [-]`` (the app's uploader
+#: and the docs write them so); another unit (``v [mm/s]``) is refused, not converted.
+_HEADER_UNITS = {"v": ("m/s",), "mu": ("-", "1", ""), "f": ("-", "1", "")}
+
+
+def _column_name(field: str, p: str) -> str:
+    """A header field's column name, lower case, without a unit in brackets the column takes."""
+    name = field.strip().lower()
+    for left, right in (("[", "]"), ("(", ")")):
+        if name.endswith(right) and left in name:
+            base, unit = name[: name.index(left)].strip(), name[name.index(left) + 1:-1].strip()
+            if base in _HEADER_UNITS:
+                if unit.replace(" ", "") not in _HEADER_UNITS[base]:
+                    raise ValueError(f"friction table {p}: column {base} is given in {unit!r}; "
+                                     f"it takes {base} in {_HEADER_UNITS[base][0]}")
+                return base
+    return name
+
+
 def _friction_csv(text: str, p: str) -> tuple[str, list[float], list[float]]:
     """``(name of the second column, "mu" or "f"; v; its values)`` of a friction CSV text."""
     if text.count("\n") > 8 * MAX_BANDS:  # a bound before any list of lines is made
@@ -91,10 +113,10 @@ def _friction_csv(text: str, p: str) -> tuple[str, list[float], list[float]]:
     if len(lines) > MAX_BANDS:  # the header and MAX_BANDS - 1 points, counted before reading
         raise ValueError(f"friction table {p} has {len(lines) - 1} rows, more than the "
                          f"{MAX_BANDS - 1} points a table law takes")
-    rows = list(csv.reader(lines, delimiter=delimiter))
+    rows = csv_rows(lines, f"friction table {p}", delimiter)
     if len(rows) < 2:
         raise ValueError(f"friction table {p} needs a header row and at least one data row")
-    header = [h.strip().lower() for h in rows[0]]
+    header = [_column_name(h, p) for h in rows[0]]
     if "v" not in header or ("mu" not in header and "f" not in header):
         raise ValueError(f"friction table {p} needs columns v and mu (or v and f), got "
                          f"{len(header)} columns with other names")
@@ -116,6 +138,11 @@ def _friction_csv(text: str, p: str) -> tuple[str, list[float], list[float]]:
             # the line itself is not quoted: the message never shows a file's content
             raise ValueError(f"friction table {p}, line {k}: not two numbers in columns "
                              f"{header[iv]} and {second}") from None
+        if not (abs(v[-1]) <= MAX_TABLE_VALUE and abs(y[-1]) <= MAX_TABLE_VALUE):
+            # an audit: v = 1e308 became "u=inf must be finite" once divided by the belt speed
+            raise ValueError(f"friction table {p}, line {k}: {header[iv]} = {v[-1]!r}, "
+                             f"{second} = {y[-1]!r}: each must be finite and at most "
+                             f"{MAX_TABLE_VALUE:g} in magnitude")
     return second, v, y
 
 

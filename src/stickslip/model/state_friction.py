@@ -278,6 +278,12 @@ class LuGreFriction:
 
 StateFriction = RateStateFriction | LuGreFriction
 
+#: Most steps of a speed schedule: velocity-step and slide-hold-slide protocols have tens; an
+#: audit's 40,000-row schedule (a 0.8 MB machine file) kept the app's one worker busy for six
+#: minutes.
+MAX_SCHEDULE_STEPS = 1000
+
+
 @dataclass(frozen=True)
 class SpeedSchedule:
     """Piecewise-constant drive (load-point, belt) speed: ``speeds[i]`` from ``times[i]`` on.
@@ -295,6 +301,9 @@ class SpeedSchedule:
     speeds: tuple[float, ...]
 
     def __post_init__(self) -> None:
+        if len(self.times) > MAX_SCHEDULE_STEPS:
+            raise ValueError(f"a speed schedule has {len(self.times)} steps, more than the "
+                             f"{MAX_SCHEDULE_STEPS} supported")
         times = tuple(finite("schedule time", t) for t in self.times)
         speeds = tuple(positive("speed", v) if i in (0, len(self.speeds) - 1) or v != 0.0
                        else 0.0 for i, v in enumerate(self.speeds))

@@ -13,6 +13,7 @@ import numpy as np
 
 from stickslip.model.inputs import MEMORY_LAWS
 from stickslip.model.state_friction import (
+    MAX_SCHEDULE_STEPS,
     LuGreFriction,
     MemorySystem,
     RateStateFriction,
@@ -174,6 +175,9 @@ def speed_schedule_from_config(value: Any, *, source: str) -> SpeedSchedule:
     if not isinstance(value, list):
         return SpeedSchedule.constant(_positive_speed(to_si("speed", value, source=f"{source} ="),
                                                       value, source))
+    if len(value) > MAX_SCHEDULE_STEPS:  # before any row is parsed
+        raise ValueError(f"{source} has {len(value)} rows, more than the {MAX_SCHEDULE_STEPS} "
+                         "steps a schedule takes")
     times: list[float] = []
     speeds: list[float] = []
     for i, row in enumerate(value):

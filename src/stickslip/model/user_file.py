@@ -10,9 +10,10 @@ failure one ``ValueError`` line naming the file and why.
 
 from __future__ import annotations
 
+import csv
 import os
 import stat
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -118,3 +119,30 @@ def read_user_text(path: str | Path, label: str, *, max_bytes: int = MAX_TEXT_BY
     except UnicodeDecodeError as exc:
         raise ValueError(f"{label} is not UTF-8 text ({exc.reason} at byte {exc.start}); "
                          "save it as UTF-8") from None
+
+
+def csv_rows(lines: Iterable[str], label: str, delimiter: str = ",") -> list[list[str]]:
+    """The rows of CSV lines; a row the csv module refuses is one ``ValueError`` naming ``label``.
+
+    The module refuses, for one, a field longer than its limit (131,072 characters): an
+    upload of one 200,000-digit number used to escape as a bare ``_csv.Error``.
+
+    Parameters
+    ----------
+    lines : iterable of str
+        The lines (comments and blank lines already dropped).
+    label : str
+        The source in messages (a file's name, an upload's).
+    delimiter : str
+        The separator.
+
+    Returns
+    -------
+    list of list of str
+        The fields of every row.
+    """
+    reader = csv.reader(lines, delimiter=delimiter)
+    try:
+        return list(reader)
+    except csv.Error as exc:
+        raise ValueError(f"{label}, row {reader.line_num}: not a readable CSV row ({exc})") from None
