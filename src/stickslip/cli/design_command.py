@@ -17,7 +17,7 @@ from stickslip.model.units import QUANTITIES, to_si
 
 if TYPE_CHECKING:
     from stickslip.analysis.simulation import EngineOptions
-    from stickslip.model.physical import PhysicalFriction
+    from stickslip.model.physical import PhysicalFriction, PhysicalSystem
 
 
 
@@ -173,7 +173,6 @@ def design(
     fixes it (docs/structures.md).
     """
     from stickslip.analysis.design import design_foundation
-    from stickslip.model.physical import PhysicalFoundation, PhysicalSystem
 
     options = _engine_options(t_max)
     flags = {"m": m, "k": k, "c": c, "mu_s": mu_s, "mu_k": mu_k, "load": load, "speed": speed,
@@ -209,19 +208,7 @@ def design(
         if speed_scan:
             typer.echo(speed_changes_text(machine_payload["speed_scan"]))
         return
-    v = collect_inputs(flags, config)
-    foundation = None
-    if "m_a" in v:
-        foundation = PhysicalFoundation(v["m_a"], v["k_a"], v["c_a"])
-    system = PhysicalSystem(mass=v["m"], stiffness=v["k"], damping=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"],
-                            load=v["load"], speed=v["speed"], foundation=foundation,
-                            friction=read_friction_config(config))
-    try:
-        slider = system.slider()
-        friction_range(slider.lam, slider.gamma)
-    except ValueError as exc:  # lambda or gamma beyond range: say where it comes from
-        source = f"--config {str(config)!r}: " if config is not None else ""
-        raise BadInput(source + out_of_scale(v["speed"], v["load"], exc)) from None
+    system = _slider_system(flags, config)
     deflection = None
     if max_foundation_deflection is not None:
         try:
@@ -239,6 +226,28 @@ def design(
         print_json(payload)
         return
     typer.echo(format_report(payload))
+
+
+def _slider_system(flags: dict[str, Any], config: Path | None) -> PhysicalSystem:
+    """The 1-DOF machine of the flags or file, its dimensionless groups in range (a lambda
+    beyond it is said with the operating point, and the file, it comes from)."""
+    from stickslip.model.physical import PhysicalFoundation
+    from stickslip.model.physical import PhysicalSystem as System
+
+    v = collect_inputs(flags, config)
+    foundation = None
+    if "m_a" in v:
+        foundation = PhysicalFoundation(v["m_a"], v["k_a"], v["c_a"])
+    system = System(mass=v["m"], stiffness=v["k"], damping=v["c"], mu_s=v["mu_s"], mu_k=v["mu_k"],
+                    load=v["load"], speed=v["speed"], foundation=foundation,
+                    friction=read_friction_config(config))
+    try:
+        slider = system.slider()
+        friction_range(slider.lam, slider.gamma)
+    except ValueError as exc:
+        source = f"--config {str(config)!r}: " if config is not None else ""
+        raise BadInput(source + out_of_scale(v["speed"], v["load"], exc)) from None
+    return system
 
 
 def memory_design_command(config: Path, given: list[str], *, json: bool) -> None:

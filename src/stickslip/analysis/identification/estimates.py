@@ -211,6 +211,33 @@ class RecordEstimates:
         return [p.breakaway for p in self.stick_phases]
 
 
+#: Time steps that spread by more than this fraction of their median are flagged: the
+#: estimates (autocorrelation, filters, the noise from second differences) take even steps.
+UNEVEN_STEPS = 0.1
+
+
+def uneven_steps_note(t: FloatArray) -> str | None:
+    """A warning when the record's time steps are not even (:data:`UNEVEN_STEPS`), else None.
+
+    Parameters
+    ----------
+    t : ndarray
+        The record's times, s.
+
+    Returns
+    -------
+    str or None
+        The warning's text.
+    """
+    steps = np.diff(t)
+    if not float(np.ptp(steps)) > UNEVEN_STEPS * float(np.median(steps)):
+        return None
+    return (f"the record's time steps range from {float(steps.min()):.4g} to "
+            f"{float(steps.max()):.4g} s: the period, the stick phases and the noise levels are "
+            "read as from even steps, so stick phases may go unused and the noise (and the "
+            "standard errors) come out larger; the fit itself uses the record's own times")
+
+
 def _dominant_period(t: FloatArray, y: FloatArray) -> float:
     """The stick-slip period from the first peak of the autocorrelation, s."""
     z = y - np.linspace(y[0], y[-1], y.size)

@@ -51,10 +51,12 @@ from stickslip.analysis.identification.estimates import (
     RecordError,
     RecordEstimates,
     estimate,
+    uneven_steps_note,
 )
 from stickslip.analysis.identification.problem import (
     LAW_PARAMETERS,
     FitProblem,
+    bootstrap_intervals,
     build_problem,
     parameter_covariance,
     solve_fit,
@@ -122,9 +124,6 @@ NOISE_FLOOR = 1e-5
 #: (``k / omega^2``, :class:`~stickslip.analysis.identification.estimates.RecordEstimates`) is
 #: flagged: the slip phases of a 1 kg slider last 1000**0.5 times less than those of 1000 kg.
 MASS_FACTOR = 10.0
-#: Time steps that spread by more than this fraction of their median are flagged: the
-#: estimates (autocorrelation, filters, the noise from second differences) take even steps.
-UNEVEN_STEPS = 0.1
 #: A load-cell force beyond this many times the normal load is refused before any fit: the
 #: spring holds the slider against friction, ``|F| <= mu_s W`` in stick plus the slip's
 #: overshoot, so a friction coefficient of a thousand means wrong units (of F or --load).
@@ -481,31 +480,6 @@ def _bic(problem: FitProblem, res: Any) -> float:
     return _criteria(problem, res)[1]
 
 
-def _bootstrap(problem: FitProblem, res: Any, n_boot: int, seed: int) -> dict[str, tuple[float, float]]:
-    """95 % percentile intervals of the reported parameters over cycles drawn with replacement.
-
-    Each refit weighs every segment (cycle) by how often it was drawn and starts from the
-    optimum; the segment states of undrawn cycles drop out of the residual.
-    """
-    rng = np.random.default_rng(seed)
-    n = problem.record.t.size
-    n_ch = len(problem.record.channels)
-    samples: list[dict[str, float]] = []
-    for _ in range(n_boot):
-        draw = rng.integers(0, len(problem.segments), len(problem.segments))
-        counts = np.bincount(draw, minlength=len(problem.segments)).astype(np.float64)
-        w = np.empty(n)
-        for seg, count in zip(problem.segments, counts, strict=True):
-            w[seg.start:seg.stop] = math.sqrt(count)
-        refit = solve_fit(problem, res.x, weights=np.tile(w, n_ch), max_nfev=60)
-        samples.append(problem.values(refit.x))
-    out: dict[str, tuple[float, float]] = {}
-    for name in samples[0] if samples else []:
-        vals = np.array([s[name] for s in samples])
-        out[name] = (float(np.percentile(vals, 2.5)), float(np.percentile(vals, 97.5)))
-    return out
-
-
 def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tuple[FitProblem, Any]],
             *, chosen: str, bootstrap: int, seed: int, known: Mapping[str, Any], mass: float,
             load: float, speed: float, fit_offset: bool, window: str = "") -> IdentificationResult:
@@ -517,7 +491,7 @@ def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tup
     stderr = np.sqrt(np.clip(np.diag(cov), 0.0, None))
     with np.errstate(divide="ignore", invalid="ignore"):
         corr = cov / np.outer(stderr, stderr)
-    intervals = _bootstrap(problem, res, bootstrap, seed) if bootstrap > 0 else {}
+    intervals = bootstrap_intervals(problem, res, bootstrap, seed) if bootstrap > 0 else {}
     model = problem.simulate_record(res.x)
     knot_names = [f"table_mu_{i}" for i in range(len(problem.table_v))]
     visited = visited_knots(problem.table_v, float(np.max(speed - model["v"]))) if knot_names else []
@@ -596,14 +570,9 @@ def _judge(record: MeasuredRecord, est: RecordEstimates, chi2: float, dof: int, 
                    "closest model, not of the record")
     if mass_note:
         out.append(mass_note + ": check --mass")
-    steps = np.diff(record.t)
-    step = float(np.median(steps))
-    if float(np.ptp(steps)) > UNEVEN_STEPS * step:
-        out.append(f"the record's time steps range from {float(steps.min()):.4g} to "
-                   f"{float(steps.max()):.4g} s: the period, the stick phases and the noise "
-                   "levels are read as from even steps, so stick phases may go unused and the "
-                   "noise (and the standard errors) come out larger; the fit itself uses the "
-                   "record's own times")
+    uneven = uneven_steps_note(record.t)
+    if uneven is not None:
+        out.append(uneven)
     ratio_v = est.stick_speed / speed  # NaN without x: no note
     if (abs(ratio_v - 1.0) > STICK_SPEED_NOTE
             and abs(est.stick_speed - speed) > 5.0 * est.stick_speed_error):
