@@ -26,6 +26,7 @@ from stickslip.analysis.machine_absorber import (
     MachineDesign,
     mounted_on_foundation,
     tune_machine_absorber,
+    with_absorber,
 )
 from stickslip.model.machine import Machine, machine_from_physical_system
 from stickslip.model.parameters import Foundation
@@ -159,3 +160,21 @@ def test_tuned_slideway_critical_speed_is_where_steady_sliding_stops_being_prove
     assert [run(v).verdict for v in (0.70e-3, 0.755e-3, 0.80e-3)] == [
         Verdict.STEADY_SLIDING, Verdict.STICK_SLIP, Verdict.STEADY_SLIDING]
     assert critical.speed > 5e-4
+
+
+def test_an_absorbers_lambda_c_is_in_the_bare_machines_scaling() -> None:
+    """An absorber on the contact DOF adds its spring to ``k_ref``: its onset's ``lambda_c``
+    was in that machine's own scaling, 4 % off the bare machine's beside it (an audit's
+    3-DOF chain). In the bare scaling, ``lambda_c = (mu_s - mu_k) W / (V_c sqrt(m_ref k_ref))``
+    (the definition after Eq. 27) with the bare machine's ``m_ref``, ``k_ref``."""
+    machine = Machine(mass=np.diag([2.0, 1.0, 3.0]),
+                      stiffness=np.array([[5e4, -2e4, 0.0], [-2e4, 3.5e4, -1.5e4], [0.0, -1.5e4, 4e4]]),
+                      damping=np.array([[30.0, -10.0, 0.0], [-10.0, 18.0, -6.0], [0.0, -6.0, 20.0]]),
+                      contact_dof=1, mu_s=0.5, mu_k=0.3, load=200.0, speed=0.02)
+    (hinf,) = tune_machine_absorber(machine, 0.5, 1, stick_slip=False)
+    lam, speed = hinf.critical.lam, hinf.critical.speed
+    bare = (machine.mu_s - machine.mu_k) * machine.load / (
+        speed * math.sqrt(machine.reference_mass * machine.reference_stiffness))
+    assert lam == pytest.approx(bare, rel=1e-12)
+    own = with_absorber(machine, 0.5, hinf.stiffness, hinf.damping, 1)
+    assert own.reference_stiffness > machine.reference_stiffness  # the scalings differ here

@@ -163,12 +163,18 @@ class CriticalPoint:
 
     @classmethod
     def of(cls, machine: Machine, options: EngineOptions | None = None,
-           on_run: Callable[[str, float, SimulationResult], None] | None = None) -> CriticalPoint:
-        """Onset of stick-slip of ``machine``: ``lambda_c`` in its own contact scaling, SI values.
+           on_run: Callable[[str, float, SimulationResult], None] | None = None,
+           scale_of: Machine | None = None) -> CriticalPoint:
+        """Onset of stick-slip of ``machine``: ``lambda_c`` and the SI values.
 
         The verdict at a belt speed does not depend on the scaling, so ``V_c`` and ``W_c``
         of machines with different ``m_ref``, ``k_ref`` (an absorber on the contact DOF) are
-        comparable; their ``lambda_c`` are not. With the machine's own friction law
+        comparable; their ``lambda_c`` are only in one scaling: ``lambda_c`` is given in the
+        scaling of ``scale_of`` (the bare machine, for an absorber's onset), else in the
+        machine's own. At the same ``V_c``, ``lambda = dmu W / (V sqrt(m_ref k_ref))`` gives
+        ``lambda_c(scale_of) = lambda_c(own) sqrt(m_ref k_ref / (m_ref' k_ref'))`` (an
+        audit found an absorber's 0.3568 beside the bare machine's scale, 0.3713 in it).
+        With the machine's own friction law
         (:func:`~stickslip.analysis.critical.speed_and_load_onsets`): under a law that moves
         with the belt speed or the load, ``V_c`` and ``W_c`` come from one search each and
         ``lam`` is the one at ``V_c``.
@@ -182,6 +188,9 @@ class CriticalPoint:
         load = math.inf if not math.isfinite(lam_load) else machine.load_for_lambda(lam_load)
         undetermined = onsets.speed.n_undetermined + (
             onsets.load.n_undetermined if onsets.own_law else 0)  # Coulomb: one search for both
+        if scale_of is not None:
+            lam *= math.sqrt(machine.reference_mass * machine.reference_stiffness
+                             / (scale_of.reference_mass * scale_of.reference_stiffness))
         return cls(lam, speed, load, undetermined, onsets.speed.undetermined_above)
 
     def to_dict(self) -> dict[str, Any]:
@@ -401,7 +410,8 @@ def tune_machine_absorber(machine: Machine, mass: float, attach_dof: int | None,
     x_h = np.asarray(best.params, dtype=np.float64)
     hinf_machine = build_si(x_h)
     designs = [AbsorberDesign("hinf", mass, float(x_h[0]) * k_ref, float(x_h[1]) * c_scale, attach_dof,
-                              _peak_si(hinf_machine), CriticalPoint.of(hinf_machine))]
+                              _peak_si(hinf_machine),
+                              CriticalPoint.of(hinf_machine, scale_of=machine))]
     if stick_slip:
         def objective(y: FloatArray) -> float:
             x = np.exp(np.clip(y, np.log([b[0] for b in bounds]), np.log([b[1] for b in bounds])))
@@ -420,7 +430,7 @@ def tune_machine_absorber(machine: Machine, mass: float, attach_dof: int | None,
         ss_machine = build_si(x_s)
         designs.append(AbsorberDesign("stick-slip", mass, float(x_s[0]) * k_ref,
                                       float(x_s[1]) * c_scale, attach_dof, _peak_si(ss_machine),
-                                      CriticalPoint.of(ss_machine)))
+                                      CriticalPoint.of(ss_machine, scale_of=machine)))
     return tuple(designs)
 
 
