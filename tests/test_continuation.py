@@ -180,6 +180,10 @@ def test_stribeck_diagram_joins_the_slip_oscillation_to_the_stick_slip_branch() 
     assert all(not p.stable for p in slip.points if p.amplitude > 0.05)
     grazes = sorted(e.param for e in result.events if e.type == "grazing")
     assert len(grazes) == 2 and grazes[1] - grazes[0] < 1e-6
+    # the multiplier grows continuously into the grazing (the flow is smooth up to the belt
+    # speed): no drop at the branch's end (an audit found 1.37 there after 1.74)
+    near = sorted((p for p in slip.points if p.amplitude > 0.9), key=lambda p: p.amplitude)
+    assert all(b.multiplier >= a.multiplier - 1e-4 for a, b in zip(near, near[1:], strict=False))
 
 
 def _stribeck_oracle_amplitude(lam: float, gamma: float = 2.0) -> float:
@@ -207,6 +211,29 @@ def _stribeck_oracle_amplitude(lam: float, gamma: float = 2.0) -> float:
     # converged backwards: the last extrema repeat
     assert abs(top[-1] - top[-2]) < 1e-10 and abs(bottom[-1] - bottom[-2]) < 1e-10
     return 0.5 * float(top[-1] - bottom[-1])
+
+
+def test_an_orbit_that_touches_the_belt_between_samples_is_no_slip_oscillation() -> None:
+    """An audit: at the grazing end of the slip-oscillation branch (lam = 0.46598501 of the
+    diagram above) the section map took an orbit that touched the belt between two of its 400
+    samples for a slip oscillation whose next maximum was the stick's start (xi' = 1); the
+    central difference across it gave the end point the multiplier 1.37, where the points
+    before it had 1.7392-1.7402 and the helper's smooth-law orbit 1.7406. The engine's own
+    phases of that run hold a stick phase; the map must say None."""
+    from stickslip.analysis._periodic_sections import SlipSection
+    from stickslip.analysis.simulation import EngineOptions, simulate
+    from stickslip.kernel.system import STICK, mode_kind_band
+    from stickslip.model.initial import InitialState
+
+    system = ContinuationSystem(0.4659850097591768, ZETA_S,
+                                friction=StribeckFriction(VS, tolerance=1e-5))
+    section = SlipSection(system, EngineOptions())
+    z0 = section.full_state(np.array([0.9999999]))
+    run = simulate(section.structure, section.slider, initial=InitialState(z0[:1], z0[1:]),
+                   options=section.options.with_t_max(20.0), record=True, run_to_t_max=True)
+    assert STICK in {mode_kind_band(int(m))[0] for m in run.segment_modes}
+    assert section.step(np.array([0.9999999])) is None
+    assert section.step(np.array([0.9999])) is not None  # well below the belt: a maximum
 
 
 def test_unstable_slip_oscillation_matches_backward_time_solve_ivp() -> None:
