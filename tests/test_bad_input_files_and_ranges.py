@@ -433,25 +433,20 @@ def test_a_machine_files_table_in_the_dimensionless_form_is_refused(
     assert "gives f, the dimensionless form" in line and "vf.csv" in line
 
 
+@pytest.mark.parametrize("command", ["simulate", "design"])
 def test_a_lambda_beyond_the_range_names_the_operating_point(
-        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+        command: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     # an audit: a belt speed of 10 nm/s gave "lambda=1e7 is beyond the supported range" with
-    # neither the file nor the speed that made it
+    # neither the file nor the speed that made it (design: its own 1-DOF loading path)
     config = tmp_path / "machine.toml"
     config.write_text(SLIDER.replace('speed = "1 cm/s"', 'speed = "10 nm/s"'))
-    line = _one_error(["simulate", "--config", str(config)], capsys)
+    line = _one_error([command, "--config", str(config)], capsys)
     assert str(config) in line and "at the belt speed 1e-08 m/s and load 1000 N" in line
     assert "lambda=" in line and "beyond the supported range" in line
 
 
-def test_design_names_the_operating_point_of_a_lambda_beyond_the_range(
-        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    # an audit: design's own loading path (1 DOF, flags or a file) said only "lambda=... is
-    # beyond the supported range", without the file or the speed and load that made it
-    config = tmp_path / "machine.toml"
-    config.write_text(SLIDER.replace('speed = "1 cm/s"', 'speed = "10 nm/s"'))
-    line = _one_error(["design", "--config", str(config)], capsys)
-    assert str(config) in line and "at the belt speed 1e-08 m/s and load 1000 N" in line
+def test_design_flags_name_the_operating_point_of_a_lambda_beyond_the_range(
+        capsys: pytest.CaptureFixture[str]) -> None:
     line = _one_error(["design", "--m", "2 kg", "--k", "50 kN/m", "--c", "20 N*s/m", "--mu-s",
                        "0.5", "--mu-k", "0.3", "--load", "1e9 N", "--speed", "1e-9 m/s"], capsys)
     assert "at the belt speed 1e-09 m/s and load 1e+09 N, lambda=" in line
