@@ -153,9 +153,39 @@ def test_hopf_boundaries_are_the_closed_forms_on_the_rigid_base() -> None:
     v_h = v_s * math.log(w * dmu / (v_s * (c + w * sigma_v)))
     w_h = c / (dmu * math.exp(-v / v_s) / v_s - sigma_v)
     assert bounds.speeds == (pytest.approx(v_h, rel=1e-9),)
-    assert bounds.unstable_speeds == ((pytest.approx(v / 1e3), pytest.approx(v_h, rel=1e-9)),)
+    assert bounds.unstable_speeds == ((bounds.scan[0], pytest.approx(v_h, rel=1e-9)),)
     assert bounds.load == pytest.approx(w_h, rel=1e-12)
     assert "unstable at belt speeds below 0.1" in bounds.sentence()
+    # the law's slope stays at -dmu/v_s + sigma_v as v -> 0: unstable down to where the law's
+    # scaling ends, and the sentence names that speed instead of claiming every lower speed
+    assert bounds.scan[0] < v / 1e3
+    assert f"and down to at least {bounds.scan[0]:.3g} m/s" in bounds.sentence()
+
+
+def test_a_gaussian_stribeck_law_is_stable_again_far_below_the_belt_speed() -> None:
+    # Derivation: with mu = mu_k + dmu exp(-(v/v_s)^2) the slope mu'(v) = -2 dmu v/v_s^2
+    # exp(-(v/v_s)^2) vanishes as v -> 0, so the rigid-base net damping c + W mu'(v) (one DOF,
+    # Routh-Hurwitz) is positive again below the lower root of c = 2 W dmu v/v_s^2
+    # exp(-(v/v_s)^2), about c v_s^2/(2 W dmu) = 7.2e-6 m/s at W = 10 kN: 26 times below the
+    # scan's first decades (V/1000 = 1.9e-4 m/s), where the old sentence said "below" the
+    # upper root alone (an audit of design on a Stribeck machine)
+    from stickslip.analysis.stability_boundaries import stability_boundaries
+
+    gauss = dataclasses.replace(STRIBECK, load=1e4, friction=dataclasses.replace(
+        STRIBECK.friction, exponent=2.0, viscous=0.0))
+    c, w, dmu, v_s = gauss.damping, gauss.load, gauss.mu_s - gauss.mu_k, 0.1
+
+    def net_damping(v: float) -> float:
+        return c - w * dmu * 2.0 * v / v_s**2 * math.exp(-((v / v_s) ** 2))
+
+    peak = v_s / math.sqrt(2.0)  # where the slope is steepest
+    low = brentq(net_damping, 1e-12, peak, xtol=1e-300, rtol=1e-14)
+    high = brentq(net_damping, peak, 100.0 * v_s, rtol=1e-14)
+    assert low < gauss.speed / 1e3
+    bounds = stability_boundaries(gauss, rigid_base(gauss.zeta))
+    assert bounds.speeds == (pytest.approx(low, rel=1e-9), pytest.approx(high, rel=1e-9))
+    assert bounds.unstable_speeds == ((bounds.speeds[0], bounds.speeds[1]),)
+    assert f"unstable at belt speeds {low:.4g} to {high:.4g} m/s" in bounds.sentence()
 
 
 def test_hopf_boundary_with_a_foundation_is_where_the_growth_rate_changes_sign() -> None:
@@ -210,4 +240,4 @@ def test_design_of_a_structure_with_a_stribeck_law_gives_its_stability_and_bound
     code, out, err = run_cli(["design", "--config", str(config), "--no-stick-slip-optimum"], capsys)
     assert code == 0, err
     assert "steady sliding with the friction law (stribeck): UNSTABLE, growth rate 17.07 1/s" in out
-    assert "unstable at belt speeds below 0.1498 m/s (W = 100 N)" in out
+    assert "unstable at belt speeds below 0.1498 m/s and down to at least" in out

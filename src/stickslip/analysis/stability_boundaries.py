@@ -19,7 +19,13 @@ and the foundation's ratios only, not on ``V`` or ``W``. Hence:
   unstable above it; a law that does not weaken there has none;
 * along the speed (``W`` held) the boundaries are the roots of ``delta_crit - delta_local(V)``,
   found by a scan of :data:`SPEED_POINTS` log-spaced speeds from ``V / SPEED_SPAN`` to
-  ``V SPEED_SPAN`` and refined by Brent's method to :data:`SPEED_RTOL`.
+  ``V SPEED_SPAN`` and refined by Brent's method to :data:`SPEED_RTOL`. Where steady sliding
+  is still unstable at an end of that scan, the scan walks on, at the same spacing, for at
+  most :data:`EXTENSION_DECADES` decades until it is stable: a Stribeck law with ``n > 1``
+  has a slope that vanishes as ``v -> 0``, so steady sliding is stable again at low enough
+  speeds (``c + W mu'(v) > 0`` on one DOF), often far below ``V / SPEED_SPAN``. A range still
+  open there is reported with the speed where the scan stopped, not as reaching zero or
+  infinity.
 """
 
 from __future__ import annotations
@@ -45,6 +51,8 @@ SPEED_SPAN = 1e3
 SPEED_POINTS = 601
 #: Relative tolerance of a refined boundary speed.
 SPEED_RTOL = 1e-10
+#: Decades the scan walks on beyond an end where steady sliding is still unstable.
+EXTENSION_DECADES = 12
 
 
 @dataclass(frozen=True)
@@ -87,9 +95,9 @@ class StabilityBoundaries:
             if a <= lo and b >= hi:
                 parts.append(f"every belt speed scanned ({lo:.3g} to {hi:.3g} m/s)")
             elif a <= lo:
-                parts.append(f"belt speeds below {b:.4g} m/s")
+                parts.append(f"belt speeds below {b:.4g} m/s and down to at least {lo:.3g} m/s")
             elif b >= hi:
-                parts.append(f"belt speeds above {a:.4g} m/s")
+                parts.append(f"belt speeds above {a:.4g} m/s and up to at least {hi:.3g} m/s")
             else:
                 parts.append(f"belt speeds {a:.4g} to {b:.4g} m/s")
         speeds = ("unstable at " + ", ".join(parts) if parts
@@ -166,11 +174,12 @@ def boundaries_along(structure: Structure, slider_at: Callable[[float], Slider],
     def margin(v: float) -> float:
         return delta_crit - steady_sliding_stability(structure, slider_at(float(v))).delta_local
 
-    lo, hi = speed / SPEED_SPAN, speed * SPEED_SPAN
-    grid = np.geomspace(lo, hi, SPEED_POINTS)
+    grid = np.geomspace(speed / SPEED_SPAN, speed * SPEED_SPAN, SPEED_POINTS)
     values = np.array([margin(v) for v in grid])
+    grid, values = _walk_open_ends(margin, grid, values)
+    lo, hi = float(grid[0]), float(grid[-1])
     speeds: list[float] = []
-    for i in range(SPEED_POINTS - 1):
+    for i in range(len(grid) - 1):
         a, b = values[i], values[i + 1]
         if a == 0.0 or (a < 0.0) != (b < 0.0):
             speeds.append(float(grid[i]) if a == 0.0 else float(
@@ -184,6 +193,45 @@ def boundaries_along(structure: Structure, slider_at: Callable[[float], Slider],
     critical_load = load * max(delta_crit, 0.0) / local if local > 0.0 else None
     return StabilityBoundaries(tuple(speeds), tuple(unstable), (lo, hi), critical_load,
                                (load, speed))
+
+
+def _walk_open_ends(margin: Callable[[float], float], grid: np.ndarray,
+                    values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``grid`` and ``values`` walked on past an end where the margin is negative (unstable).
+
+    The walk keeps the grid's ratio between neighbours and stops at the first speed with a
+    margin of at least zero, after :data:`EXTENSION_DECADES` decades, or where the friction
+    law cannot be scaled to the speed (a Stribeck ``v_s / V`` beyond its supported range).
+    """
+    ratio = float(grid[1] / grid[0])
+    steps = math.ceil(EXTENSION_DECADES / math.log10(ratio))
+    below: list[tuple[float, float]] = []
+    v = float(grid[0])
+    while values[0] < 0.0 and len(below) < steps and (not below or below[-1][1] < 0.0):
+        step = _margin_within_law(margin, v / ratio)
+        if step is None:
+            break
+        v = step[0]
+        below.append(step)
+    above: list[tuple[float, float]] = []
+    v = float(grid[-1])
+    while values[-1] < 0.0 and len(above) < steps and (not above or above[-1][1] < 0.0):
+        step = _margin_within_law(margin, v * ratio)
+        if step is None:
+            break
+        v = step[0]
+        above.append(step)
+    points = [*reversed(below), *zip(grid.tolist(), values.tolist(), strict=True), *above]
+    return np.array([p[0] for p in points]), np.array([p[1] for p in points])
+
+
+def _margin_within_law(margin: Callable[[float], float],
+                       v: float) -> tuple[float, float] | None:
+    """``(v, margin(v))``, or ``None`` where the law is outside its range at ``v``."""
+    try:
+        return v, margin(v)
+    except ValueError:
+        return None
 
 
 def steady_sliding_report(structure: Structure, slider: Slider, boundaries: StabilityBoundaries, *,
