@@ -188,6 +188,55 @@ def test_a_gaussian_stribeck_law_is_stable_again_far_below_the_belt_speed() -> N
     assert f"unstable at belt speeds {low:.4g} to {high:.4g} m/s" in bounds.sentence()
 
 
+def test_hopf_boundaries_keep_a_foundations_window_of_stability() -> None:
+    # The foundation (M, K, zeta_a) = (1.17013, 0.109102, 0.69939) at zeta = 0.1 (docs/
+    # continuation.md) is stable for delta < 0.61488, unstable to 0.62413, stable again to
+    # 0.68562 and unstable beyond (stability_intervals). Derivation: with mu = mu_k + dmu
+    # exp(-v/v_s), delta_local(V) = W dmu exp(-V/v_s) / (2 v_s sqrt(m k)) = exp(-V/v_s) here
+    # (W = 5 N, dmu = 0.4, v_s = 0.01 m/s, m k = 1e4 kg N/m), so the speed boundaries are
+    # V_i = v_s ln(1/c_i) at the three weakenings c_i where the verdict changes, and along the
+    # load W_i = W c_i / delta_local(V). The scan once took delta_crit - delta_local alone and
+    # reported "unstable below 0.004863 m/s" across the window 0.003774-0.004714 m/s.
+    from stickslip.analysis.stability import stability_intervals, steady_sliding_stability
+    from stickslip.analysis.stability_boundaries import stability_boundaries
+    from stickslip.model.structure import Foundation
+
+    structure = elastic_foundation(0.1, Foundation(1.17013, 0.109102, 0.69939))
+    system = PhysicalSystem(mass=1.0, stiffness=1e4, damping=20.0, mu_s=0.6, mu_k=0.2, load=5.0,
+                            speed=0.02, friction=PhysicalFriction(law="stribeck",
+                                                                  stribeck_velocity=0.01))
+    intervals = stability_intervals(structure)
+    assert [stable for *_, stable in intervals] == [True, False, True, False]
+    changes = [hi for _, hi, _ in intervals[:-1]]
+    bounds = stability_boundaries(system, structure)
+    assert bounds.speeds == tuple(pytest.approx(0.01 * math.log(1.0 / c), rel=1e-9)
+                                  for c in reversed(changes))
+    v1, v2, v3 = bounds.speeds
+    assert bounds.unstable_speeds == ((bounds.scan[0], v1), (v2, v3))
+
+    def growth(v: float) -> float:
+        return steady_sliding_stability(structure, dataclasses.replace(system, speed=v).slider()
+                                        ).growth_rate
+
+    assert growth(0.5 * (v1 + v2)) < 0.0 < growth(0.5 * (v2 + v3))  # the window, the eigenvalues
+    local = math.exp(-2.0)  # delta_local at V = 0.02 m/s
+    (a1, b1), (a2, b2) = bounds.unstable_loads
+    assert (a1, b1, a2) == tuple(pytest.approx(5.0 * c / local, rel=1e-12) for c in changes)
+    assert math.isinf(b2) and bounds.load == a1
+    assert "unstable at loads 22.72 to 23.06 N, above 25.33 N" in bounds.sentence()
+
+
+def test_the_onset_frequency_of_one_dof_is_its_natural_frequency() -> None:
+    # one DOF at the Hopf weakening delta = zeta: s^2 + 2 (zeta - delta) s + 1 = s^2 + 1, so the
+    # onset is at omega = 1 per unit tau, f_H = sqrt(k/m) / (2 pi)
+    from stickslip.analysis.stability_boundaries import stability_boundaries
+
+    bounds = stability_boundaries(STRIBECK, rigid_base(STRIBECK.zeta))
+    f_h = math.sqrt(STRIBECK.stiffness / STRIBECK.mass) / (2.0 * math.pi)
+    assert bounds.hopf_frequencies == (pytest.approx(f_h, rel=1e-12),)
+    assert f"onset frequency {f_h:.4g} Hz" in bounds.sentence()
+
+
 def test_hopf_boundary_with_a_foundation_is_where_the_growth_rate_changes_sign() -> None:
     # the boundary of the 2-DOF machine against the eigenvalues of its linearisation (the
     # growth rate of steady sliding) just on either side of it, rebuilt at each speed and load

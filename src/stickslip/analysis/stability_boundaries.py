@@ -26,6 +26,19 @@ and the foundation's ratios only, not on ``V`` or ``W``. Hence:
   speeds (``c + W mu'(v) > 0`` on one DOF), often far below ``V / SPEED_SPAN``. A range still
   open there is reported with the speed where the scan stopped, not as reaching zero or
   infinity.
+
+Some structures (foundations near the stability optimum) lose stability at ``delta_crit`` and
+regain it at a larger weakening before losing it again: steady sliding is stable on the
+intervals of :func:`stickslip.analysis.stability.stability_intervals`. The margin of a speed
+is therefore the distance of ``delta_local`` from the nearest weakening where the verdict
+changes, positive where stable: ``delta_crit - delta_local`` on a structure without such a
+window, and every boundary, also the window's, a root. Along the load the boundaries are
+``W c / delta_local`` for each such weakening ``c``.
+
+Hopf frequency. At a boundary a pair of eigenvalues ``+-i omega`` of the linearisation (slip-I
+with the slope ``-2 c``) crosses the imaginary axis; the onset frequency ``omega omega_n /
+(2 pi)`` (Hz) depends on the structure and ``c`` alone, not on which speed or load brought the
+law's slope there. One DOF: ``s^2 + 1 = 0`` at ``c = zeta``, so ``f_H = omega_n / (2 pi)``.
 """
 
 from __future__ import annotations
@@ -39,7 +52,12 @@ from typing import Any
 import numpy as np
 from scipy.optimize import brentq
 
-from stickslip.analysis.stability import critical_weakening, steady_sliding_stability
+from stickslip.analysis.stability import (
+    critical_weakening,
+    slip_matrix,
+    stability_intervals,
+    steady_sliding_stability,
+)
 from stickslip.model.machine import Machine
 from stickslip.model.parameters import Slider
 from stickslip.model.physical import PhysicalSystem
@@ -68,10 +86,17 @@ class StabilityBoundaries:
     scan : (float, float)
         The speeds scanned, m/s.
     load : float or None
-        ``W_H`` (N, at the operating speed): unstable above it; ``None`` when the law does not
-        weaken at the belt speed (no load makes steady sliding unstable).
+        ``W_H`` (N, at the operating speed): the first load where steady sliding loses
+        stability; ``None`` when the law does not weaken at the belt speed (no load makes
+        steady sliding unstable).
     operating : (float, float)
         The operating load (N) and belt speed (m/s) the two searches hold.
+    unstable_loads : tuple of (float, float)
+        Ranges of loads (N, at the operating speed) where it is unstable (the last one open,
+        ``inf``); more than one where the structure regains stability (see the module notes).
+    hopf_frequencies : tuple of float
+        The onset frequency (Hz) at each weakening where the verdict changes, ascending in
+        the weakening (the module notes).
     """
 
     speeds: tuple[float, ...]
@@ -79,13 +104,17 @@ class StabilityBoundaries:
     scan: tuple[float, float]
     load: float | None
     operating: tuple[float, float]
+    unstable_loads: tuple[tuple[float, float], ...] = ()
+    hopf_frequencies: tuple[float, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready: ``critical_speeds_m_s``, ``unstable_speeds_m_s``, ``speed_scan_m_s``,
         ``critical_load_N``."""
         return {"critical_speeds_m_s": list(self.speeds),
                 "unstable_speeds_m_s": [list(r) for r in self.unstable_speeds],
-                "speed_scan_m_s": list(self.scan), "critical_load_N": self.load}
+                "speed_scan_m_s": list(self.scan), "critical_load_N": self.load,
+                "unstable_loads_N": [list(r) for r in self.unstable_loads],
+                "hopf_frequencies_Hz": list(self.hopf_frequencies)}
 
     def sentence(self) -> str:
         """One line: the unstable speeds (at the load) and loads (at the speed)."""
@@ -102,11 +131,19 @@ class StabilityBoundaries:
                 parts.append(f"belt speeds {a:.4g} to {b:.4g} m/s")
         speeds = ("unstable at " + ", ".join(parts) if parts
                   else f"stable at every belt speed scanned ({lo:.3g} to {hi:.3g} m/s)")
-        loads = ("stable at every load" if self.load is None
-                 else f"unstable at loads above {self.load:.4g} N")
+        if self.load is None:
+            loads = "stable at every load"
+        elif len(self.unstable_loads) > 1:
+            loads = "unstable at loads " + ", ".join(
+                f"above {a:.4g} N" if math.isinf(b) else f"{a:.4g} to {b:.4g} N"
+                for a, b in self.unstable_loads)
+        else:
+            loads = f"unstable at loads above {self.load:.4g} N"
         w, v = self.operating
+        onset = (f"; onset frequency {', '.join(f'{f:.4g}' for f in self.hopf_frequencies)} Hz"
+                 if self.hopf_frequencies else "")
         return (f"linear stability boundary (Hopf): {speeds} (W = {w:.4g} N); {loads} "
-                f"(V = {v:.4g} m/s)")
+                f"(V = {v:.4g} m/s){onset}")
 
 
 def stability_boundaries(system: PhysicalSystem, structure: Structure) -> StabilityBoundaries:
@@ -125,7 +162,8 @@ def stability_boundaries(system: PhysicalSystem, structure: Structure) -> Stabil
         See the module notes for the derivation.
     """
     return boundaries_along(structure, lambda v: replace(system, speed=v).slider(),
-                            speed=system.speed, load=system.load)
+                            speed=system.speed, load=system.load,
+                            natural_frequency=system.natural_frequency)
 
 
 def machine_stability_boundaries(machine: Machine) -> StabilityBoundaries:
@@ -148,11 +186,12 @@ def machine_stability_boundaries(machine: Machine) -> StabilityBoundaries:
     structure = machine.to_dimensionless()[0].contact_first()[0]
     return boundaries_along(
         structure, lambda v: machine.with_operating_point(speed=v, load=machine.load).slider(),
-        speed=machine.speed, load=machine.load)
+        speed=machine.speed, load=machine.load,
+        natural_frequency=machine.reference_system().natural_frequency)
 
 
 def boundaries_along(structure: Structure, slider_at: Callable[[float], Slider], *, speed: float,
-                     load: float) -> StabilityBoundaries:
+                     load: float, natural_frequency: float) -> StabilityBoundaries:
     """The Hopf boundaries of ``structure`` along the belt speed, and along the load.
 
     Parameters
@@ -163,6 +202,8 @@ def boundaries_along(structure: Structure, slider_at: Callable[[float], Slider],
         The dimensionless slider at a belt speed (m/s), the load held.
     speed, load : float
         The operating point, m/s and N.
+    natural_frequency : float
+        ``omega_n`` of the dimensionless time, rad/s.
 
     Returns
     -------
@@ -170,9 +211,16 @@ def boundaries_along(structure: Structure, slider_at: Callable[[float], Slider],
         See the module notes for the derivation.
     """
     delta_crit = critical_weakening(structure)
+    intervals = stability_intervals(structure) if math.isfinite(delta_crit) else []
+    changes = _verdict_changes(intervals)
 
     def margin(v: float) -> float:
-        return delta_crit - steady_sliding_stability(structure, slider_at(float(v))).delta_local
+        d = steady_sliding_stability(structure, slider_at(float(v))).delta_local
+        if not changes:
+            return delta_crit - d
+        c = min(changes, key=lambda x: abs(d - x))
+        distance = c - d if c > d else d - c
+        return distance if _stable_at(intervals, d) else -distance
 
     grid = np.geomspace(speed / SPEED_SPAN, speed * SPEED_SPAN, SPEED_POINTS)
     values = np.array([margin(v) for v in grid])
@@ -191,8 +239,40 @@ def boundaries_along(structure: Structure, slider_at: Callable[[float], Slider],
             unstable.append((a, b))
     local = steady_sliding_stability(structure, slider_at(speed)).delta_local
     critical_load = load * max(delta_crit, 0.0) / local if local > 0.0 else None
+    unstable_loads: list[tuple[float, float]] = []
+    if critical_load is not None:
+        for a, b, stable in intervals:
+            if not stable:
+                unstable_loads.append((load * a / local, load * b / local))
+    frequencies = tuple(_onset_frequency(structure, c) * natural_frequency / (2.0 * math.pi)
+                        for c in changes if c > 0.0)
     return StabilityBoundaries(tuple(speeds), tuple(unstable), (lo, hi), critical_load,
-                               (load, speed))
+                               (load, speed), tuple(unstable_loads), frequencies)
+
+
+def _verdict_changes(intervals: list[tuple[float, float, bool]]) -> list[float]:
+    """The weakenings where steady sliding's verdict changes, ascending (0 first when it is
+    unstable without weakening), from the intervals of
+    :func:`~stickslip.analysis.stability.stability_intervals` (none: stable at every one)."""
+    changes = [0.0] if intervals and not intervals[0][2] else []
+    for (_, hi, before), (_, _, after) in itertools.pairwise(intervals):
+        if before != after:
+            changes.append(hi)
+    return changes
+
+
+def _stable_at(intervals: list[tuple[float, float, bool]], d: float) -> bool:
+    """The verdict at a weakening ``d``: its interval's (the first one's for ``d < 0``)."""
+    if d < 0.0:
+        return intervals[0][2]
+    return next((stable for _, hi, stable in intervals if d < hi), intervals[-1][2])
+
+
+def _onset_frequency(structure: Structure, weakening: float) -> float:
+    """``omega`` (per unit ``tau``) of the eigenvalue pair on the imaginary axis at a Hopf
+    weakening: the one whose real part is nearest zero."""
+    values = np.linalg.eigvals(slip_matrix(structure, -2.0 * weakening))
+    return float(abs(values[int(np.argmin(np.abs(values.real)))].imag))
 
 
 def _walk_open_ends(margin: Callable[[float], float], grid: np.ndarray,
