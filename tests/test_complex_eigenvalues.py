@@ -266,7 +266,8 @@ def test_contact_refuses_bad_values_in_one_line() -> None:
         (dict(normal_dof=1, normal_stiffness=0.0), "must be positive"),
         (dict(normal_dof=1, normal_stiffness=1.0, normal_damping=-2.0), "must not be negative"),
         (dict(normal_dof=-1, normal_stiffness=1.0), "whole number"),
-        (dict(tangential_damping=1.0), "need tangential_stiffness"),
+        (dict(tangential_damping=1.0),
+         "tangential_damping needs tangential_stiffness (the spring of the Jenkins element it"),
         (dict(tangential_stiffness=1e6, mass=0.0), "must be positive"),
     ]
     for kwargs, why in cases:
@@ -281,9 +282,14 @@ def test_contact_refuses_bad_values_in_one_line() -> None:
 
 
 
-def test_steady_sliding_that_lifts_off_is_refused() -> None:
+def test_steady_sliding_past_self_locking_is_refused_as_a_wedge() -> None:
     # K[n, t] > 0: past the divergence point (det K_eff < 0) the steady state's normal force
-    # N_0 = W - k_n q_0[n], q_0 = K_eff^-1 (mu W e_t), written out here for the 2x2, is negative
+    # N_0 = W - k_n q_0[n], q_0 = K_eff^-1 (mu W e_t), written out here for the 2x2, is negative.
+    # Written out, N_0 = W / (1 + a mu) with a = k_n (K_0^-1)[n, t], K_0 = K + k_n e_n e_n^T:
+    # here K_0 = [[1e6, 0.9e6], [0.9e6, 2e6]], (K_0^-1)[1, 0] = -0.9e6 / (2e12 - 0.81e12), so
+    # the self-locking coefficient is -1/a = 1.19e12 / 0.9e12 = 1.3222..., where det K_eff = 0
+    # and N_0 grows without bound; beyond it the friction wedges the slider into the belt (an
+    # audit found it called lift-off, while the engine shows it stuck with a growing N)
     k = np.array([[1.0e6, 0.9e6], [0.9e6, 1.0e6]])
     kn, w, mu = 1.0e6, 1000.0, 2.0
     k_eff = k + np.array([[0.0, mu * kn], [0.0, kn]])
@@ -294,8 +300,17 @@ def test_steady_sliding_that_lifts_off_is_refused() -> None:
     system = FrictionCoupledSystem(machine.mass, machine.damping, k, 0, 1, normal_stiffness=kn,
                                    load=w)
     assert system.normal_force(mu) == pytest.approx(n0, rel=1e-12)
-    with pytest.raises(ValueError, match="has no contact: the normal force would be N = -"):
+    lock = 1.19e12 / 0.9e12
+    assert system.self_locking_mu() == pytest.approx(lock, rel=1e-12)
+    assert np.linalg.det(k + np.array([[0.0, lock * kn], [0.0, kn]])) == pytest.approx(0.0, abs=1e-3)
+    assert system.normal_force(lock * (1.0 - 1e-9)) > 1e8 * w
+    with pytest.raises(ValueError, match=(r"no steady sliding: mu = 2 is past the self-locking "
+                                          r"coefficient 1\.32222.*N = -.*wedges the slider")):
         complex_eigenvalue_analysis(machine, contact)
+    away = FrictionCoupledSystem(machine.mass, machine.damping, np.array([[1e6, -0.9e6],
+                                                                           [-0.9e6, 1e6]]),
+                                 0, 1, normal_stiffness=kn, load=w)
+    assert away.self_locking_mu() is None  # K[n, t] < 0: a > 0, N_0 = W / (1 + a mu) > 0
 
 
 @pytest.mark.slow

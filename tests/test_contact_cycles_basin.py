@@ -78,6 +78,21 @@ def test_cycles_period_is_that_of_simulate_and_of_the_solve_ivp_oracle(
     assert cycle["period_s"] == pytest.approx(breaks[-1] - breaks[-2], rel=1e-8)
 
 
+def test_cycles_of_a_contact_take_t_max(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # its certificate says "increase t_max", so --t-max must be taken (an audit found it
+    # refused): a horizon of 1 s is shorter than one period of the stick-slip cycle (7.48 s,
+    # simulate --config on this file; the start-up run repeats at t = 66 s), so every start
+    # ends undetermined at it
+    config = write(tmp_path, slider_text(0.05))
+    code, out, err = run_cli(["cycles", "--config", config, "--json", "--t-max", "1 s"], capsys)
+    assert code == 0, err
+    p = json.loads(out)
+    assert p["n_cycles"] == 0 and len(p["undetermined_starts"]) == 8, p
+    assert all("time horizon" in text for text in p["undetermined_starts"].values())
+    code, _, err = run_cli(["cycles", "--config", config, "--t-max", "-1 s"], capsys)
+    assert code == 2 and "--t-max" in err
+
+
 def test_estimated_multiplier_is_the_contraction_of_a_run_onto_the_cycle() -> None:
     # source: the run from start-up converges on the cycle; successive breakaway states'
     # differences shrink by the dominant multiplier's modulus each period (one nonzero

@@ -359,3 +359,52 @@ def test_a_fast_pad_without_a_contact_damper_lifts_off_and_comes_back(speed: flo
     names = {"break+": "breakaway forward", "break-": "breakaway backward", "re-stick": "belt speed"}
     assert [names.get(k, k) for k, _, _ in ref][:len(first)] == [e.kind for e in first]
     assert all(e.t == pytest.approx(t, rel=1e-8) for e, (_, t, _) in zip(first, ref, strict=False))
+
+
+#: A pad past self-locking (an audit's machine: springs 1e6 N/m, a contact spring 5e7 N/m at
+#: 70 degrees, k_n = 5e7 N/m, mu_k = 0.6 above the self-locking coefficient 0.4897)
+WEDGE_K = np.array([[6848888.922025552, 16069690.242163485],
+                    [16069690.242163485, 45151111.07797444]])
+
+
+def wedged_pad() -> ContactSystem:
+    return ContactSystem(0.1 * np.eye(2), np.diag([40.0, 4.0]), WEDGE_K, 0, 1, 1000.0, 5.0, 0.8,
+                         0.6, normal_stiffness=5e7)
+
+
+def test_a_run_out_of_samples_reports_the_time_it_reached() -> None:
+    # the wedged pad sticks for good after its second event; a run that spends its sample
+    # budget in that stick phase reached the sampled time, not the phase's start (an audit:
+    # t = 0.000115 s printed for a run that had got beyond 100 s). Doubling the budget doubles
+    # the time reached, to within one chunk of samples
+    runs = [simulate_contact(wedged_pad(), t_max=1e300, max_samples=n) for n in (5_000, 10_000)]
+    for run, n in zip(runs, (5_000, 10_000), strict=True):
+        assert run.verdict is Verdict.UNDETERMINED and len(run.events) == 2
+        assert run.samples <= n and f"sample budget of {n} exhausted at t = " in run.certificate
+        assert run.t_end > 100.0 * run.events[-1].t
+    assert runs[1].t_end == pytest.approx(2.0 * runs[0].t_end, rel=0.05)
+
+
+def test_simulate_of_a_wedged_pad_says_why_it_has_no_verdict(
+        tmp_path: Any, capsys: pytest.CaptureFixture[str]) -> None:
+    # N_0 = W / (1 + a mu) with a = k_n (K_0^-1)[n, t] (docs/brake_squeal.md): -1/a, computed
+    # here with numpy, is where steady sliding self-locks
+    from tests.cli_helpers import run_cli
+
+    k0 = WEDGE_K + np.diag([0.0, 5e7])
+    lock = -1.0 / (5e7 * np.linalg.inv(k0)[1, 0])
+    assert 0.48 < lock < 0.6
+    for name, matrix in (("M", 0.1 * np.eye(2)), ("C", np.diag([40.0, 4.0])), ("K", WEDGE_K)):
+        np.savetxt(tmp_path / f"{name}.csv", matrix, delimiter=",")
+    (tmp_path / "machine.toml").write_text(
+        'mu_s = 0.8\nmu_k = 0.6\nload = "1 kN"\nspeed = "5 m/s"\n[structure]\nmass = "M.csv"\n'
+        'stiffness = "K.csv"\ndamping = "C.csv"\ncontact_dof = 0\nnormal_dof = 1\n[contact]\n'
+        'normal_stiffness = "5e7 N/m"\n')
+    code, out, err = run_cli(["simulate", "--config", str(tmp_path / "machine.toml"), "--t-max",
+                              "0.01 s"], capsys)
+    assert code == 0, err
+    assert "verdict     undetermined" in out
+    assert f"is at or past the self-locking coefficient {lock:.6g}" in out
+    code, _, err = run_cli(["stability", "--config", str(tmp_path / "machine.toml")], capsys)
+    assert code == 2 and f"past the self-locking coefficient {lock:.6g}" in err
+    assert "wedges the slider into the belt" in err and "lifts" not in err

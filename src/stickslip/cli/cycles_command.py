@@ -59,9 +59,9 @@ def cycles(
         from stickslip.cli.machine_config import load_machine_file
 
         machine_file = load_machine_file(config, normal_coupling=True)
-        if t_max is not None and (machine_file.has_contact or machine_file.has_memory_law):
-            raise BadInput(f"--t-max {t_max!r}: the cycles of a machine with a contact or a "
-                           "friction law with memory take their own horizons; leave it out")
+        if t_max is not None and machine_file.has_memory_law:
+            raise BadInput(f"--t-max {t_max!r}: the cycles of a machine with a friction law with "
+                           "memory take their own horizons; leave it out")
         seeding = typed_options(ctx, ("seeds", "max_period", "seed"))
         if seeding and machine_file.has_memory_law:  # a contact machine refuses them itself
             raise BadInput(f"{', '.join(seeding)}: the cycles of a machine with a friction law "
@@ -70,7 +70,7 @@ def cycles(
         if machine_file.has_contact and not machine_file.has_memory_law:
             from stickslip.cli.contact.commands import contact_cycles_command
 
-            contact_cycles_command(ctx, config, machine_file, json=json)
+            contact_cycles_command(ctx, config, machine_file, json=json, t_max=t_max)
             return
         _refuse_contact(machine_file)
         if machine_file.has_memory_law:  # the stiff engine's runs from kicked starts

@@ -119,8 +119,9 @@ class Contact:
             extra = [k for k, v in (("tangential_damping", self.tangential_damping != 0.0),
                                     ("mass", self.mass is not None)) if v]
             if extra:
-                raise ValueError(f"[contact] {' and '.join(extra)} need tangential_stiffness (the "
-                                 "spring of the Jenkins element they belong to)")
+                verb, who = ("need", "they belong") if len(extra) > 1 else ("needs", "it belongs")
+                raise ValueError(f"[contact] {' and '.join(extra)} {verb} tangential_stiffness (the "
+                                 f"spring of the Jenkins element {who} to)")
 
     @property
     def has_normal_dof(self) -> bool:

@@ -153,6 +153,17 @@ class Horizon:
     samples: int
 
 
+class SampleBudgetExhausted(RuntimeError):
+    """The search used its budget of samples with no event found up to ``dt`` (s) after the
+    phase's start, where the state is ``z``; ``samples`` is what it used."""
+
+    def __init__(self, max_samples: int, dt: float, z: FloatArray, samples: int) -> None:
+        super().__init__(f"sample budget of {max_samples} exhausted")
+        self.dt = dt
+        self.z = z
+        self.samples = samples
+
+
 def first_event(flow: AffineFlow, z0: FloatArray, normals: FloatArray, levels: FloatArray,
                 horizon: float, *, max_samples: int,
                 stop: Callable[[FloatArray], bool] | None = None) -> Found | Settled | Horizon:
@@ -169,8 +180,9 @@ def first_event(flow: AffineFlow, z0: FloatArray, normals: FloatArray, levels: F
     horizon : float
         Longest duration searched, s (> 0).
     max_samples : int
-        Budget of samples; exceeding it (or :data:`MAX_REFINEMENTS` halvings) raises
-        ``RuntimeError`` (the caller reports it).
+        Budget of samples; exceeding it raises :class:`SampleBudgetExhausted` (with how far
+        the search got), :data:`MAX_REFINEMENTS` halvings ``RuntimeError`` (the caller
+        reports both).
     stop : callable, optional
         Checked at each chunk's end; True ends the search there (:class:`Settled`).
 
@@ -203,7 +215,7 @@ def first_event(flow: AffineFlow, z0: FloatArray, normals: FloatArray, levels: F
         chunk = min(2 * chunk, CHUNK)
         used += k
         if used > max_samples:
-            raise RuntimeError(f"sample budget of {max_samples} exhausted")
+            raise SampleBudgetExhausted(max_samples, done * h, z, used - k)
         powers = flow.step_powers(k)
         zs = np.vstack([z[None, :], powers[:, :n_d, :n_d] @ z + powers[:, :n_d, n_d]])
         g = zs @ normals.T + levels

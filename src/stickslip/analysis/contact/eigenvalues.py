@@ -156,13 +156,19 @@ def complex_eigenvalue_analysis(machine: Machine, contact: Contact | None, *,
     Raises
     ------
     ValueError
-        Steady sliding without contact (``N_0 <= 0``: the friction lifts the slider off).
+        No steady sliding (``N_0 <= 0``): the friction coupling is past its self-locking
+        coefficient (``FrictionCoupledSystem.self_locking_mu``).
     """
     system, mu = coupled_system(machine, contact, normal_dof=normal_dof)
     n0 = system.normal_force(mu)
     if not n0 > 0.0:
-        raise ValueError(f"steady sliding at mu = {mu:.6g} has no contact: the normal force would "
-                         f"be N = {n0:.6g} N (the friction coupling lifts the slider off)")
+        lock = system.self_locking_mu()
+        where = (f"mu = {mu:.6g} is past the self-locking coefficient {lock:.6g}, where the normal "
+                 "force of steady sliding grows without bound (divergence)" if lock is not None
+                 else f"mu = {mu:.6g} is the self-locking coefficient (divergence)")
+        raise ValueError(f"no steady sliding: {where}; its equilibrium would need N = {n0:.6g} N. "
+                         "The friction wedges the slider into the belt (sprag): it sticks with "
+                         "a growing normal force instead")
     values, bounds = system.eigenvalues(mu)
     verdict = {1: "unstable", -1: "stable", 0: "marginal"}[verdict_of(values, bounds)]
     import scipy.linalg

@@ -67,7 +67,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from stickslip.analysis.blas_threads import one_blas_thread
-from stickslip.analysis.contact._events import Found, Settled, first_event
+from stickslip.analysis.contact._events import (
+    Found,
+    SampleBudgetExhausted,
+    Settled,
+    first_event,
+)
 from stickslip.analysis.contact._modes import (
     MODE_LABELS,
     SLIP_BACKWARD,
@@ -329,7 +334,11 @@ def simulate_contact(system: ContactSystem, *, t_max: float | None = None,
             found = first_event(ms.flow, z, normals, levels, horizon - t,
                                 max_samples=max_samples - used, stop=stop)
         except RuntimeError as exc:
-            certificate = (f"{exc}: no verdict (a shorter horizon, t_max or --t-max, or a "
+            reason = str(exc)
+            if isinstance(exc, SampleBudgetExhausted):  # no event before exc.dt: time reached
+                t, used = t + exc.dt, used + exc.samples
+                reason = f"sample budget of {max_samples} exhausted at t = {t:.6g} s"
+            certificate = (f"{reason}: no verdict (a shorter horizon, t_max or --t-max, or a "
                            "less stiff contact needs fewer samples)")
             break
         used += found.samples

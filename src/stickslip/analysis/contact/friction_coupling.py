@@ -112,6 +112,7 @@ from stickslip.analysis.blas_threads import one_blas_thread
 from stickslip.model.contact import check_contact_stiffness
 
 if TYPE_CHECKING:
+    from stickslip.analysis.contact._modes import ContactSystem
     from stickslip.model.contact import Contact
     from stickslip.model.machine import Machine
 
@@ -234,6 +235,31 @@ class FrictionCoupledSystem:
         except np.linalg.LinAlgError:
             return math.nan  # the divergence point itself: no equilibrium
         return float(self.load - self.normal_stiffness * q0[n])
+
+    def self_locking_mu(self) -> float | None:
+        """The friction coefficient where steady sliding self-locks (divergence), or None.
+
+        Derivation: with ``K_0`` the contact stiffness (:meth:`contact_stiffness`) the
+        equilibrium is ``(K_0 + mu k_n e_t e_n^T) q_0 = mu W e_t``; by the Sherman-Morrison
+        formula ``q_0 = mu W K_0^-1 e_t / (1 + a mu)`` with ``a = k_n (K_0^-1)[n, t]``, so
+        ``N_0 = W - k_n q_0[n] = W / (1 + a mu)`` and ``det K(mu) = det K_0 (1 + a mu)``. For
+        ``a < 0`` the normal force grows without bound as ``mu -> -1/a`` (the static stiffness
+        loses its definiteness: divergence) and beyond it the equilibrium would need ``N_0 <
+        0``: the friction wedges the slider into the belt (self-locking, sprag), it does not
+        lift it off. For ``a >= 0`` (or no normal DOF) no coefficient self-locks.
+
+        Returns
+        -------
+        float or None
+            ``-1 / a``, dimensionless; None when ``a >= 0`` or without a normal DOF.
+        """
+        if self.normal_dof is None:
+            return None
+        e_t = np.zeros(self.n_dof)
+        e_t[self.tangential_dof] = 1.0
+        a = self.normal_stiffness * float(np.linalg.solve(self.contact_stiffness(), e_t)[
+            self.normal_dof])
+        return -1.0 / a if a < 0.0 else None
 
     def matrices(self, mu: float) -> tuple[FloatArray, FloatArray, FloatArray]:
         """``(M, C(mu), K(mu))`` of the linearisation about steady sliding (module docstring).
@@ -560,3 +586,35 @@ def coupled_system(machine: Machine, contact: Contact | None, *, normal_dof: int
                          tangential_damping=contact.tangential_damping,
                          contact_mass=contact.mass)
     return system, mu
+
+
+def self_locking_note(system: ContactSystem) -> str | None:
+    """What a run of a machine without steady sliding should say, or None when it has one.
+
+    Steady sliding at ``mu_k`` needs ``N_0 = W / (1 + a mu_k) > 0``
+    (:meth:`FrictionCoupledSystem.self_locking_mu`); past the self-locking coefficient it has
+    none: the friction wedges the slider into the belt, where it sticks with a growing normal
+    force, which no horizon turns into one of the engine's verdicts.
+
+    Parameters
+    ----------
+    system : ContactSystem
+        The machine (SI).
+
+    Returns
+    -------
+    str or None
+        One sentence, or None when steady sliding exists (or there is no normal DOF).
+    """
+    if system.normal_dof is None:
+        return None
+    coupled = FrictionCoupledSystem(system.mass, system.damping, system.stiffness,
+                                    system.tangential_dof, system.normal_dof,
+                                    normal_stiffness=system.normal_stiffness, load=system.load)
+    lock = coupled.self_locking_mu()
+    if lock is None or system.mu_k < lock:
+        return None
+    return (f"no steady sliding: mu_k = {system.mu_k:.6g} is at or past the self-locking "
+            f"coefficient {lock:.6g} (the friction wedges the slider into the belt, where it "
+            "sticks with a growing normal force): steady sliding cannot be the verdict, and a "
+            "longer horizon is unlikely to bring one")

@@ -8,6 +8,7 @@ repeated to 1e-9), not proven; every answer says so.
 
 from __future__ import annotations
 
+import math
 import sys
 from pathlib import Path
 from typing import Any
@@ -38,16 +39,24 @@ def progress_bar(json: bool, label: str, unit: str = "runs", shorten: str | None
 
 
 def contact_cycles_command(ctx: typer.Context, config: Path, machine_file: Any, *,
-                           json: bool) -> None:
-    """``cycles --config`` with a contact (:func:`find_contact_cycles`)."""
+                           json: bool, t_max: str | None = None) -> None:
+    """``cycles --config`` with a contact (:func:`find_contact_cycles`); ``t_max`` the horizon
+    of each start's run (``--t-max``: seconds with a unit, or natural times)."""
     from stickslip.analysis.contact.cycles import find_contact_cycles
     from stickslip.cli.contact.simulation import contact_run_system
+    from stickslip.cli.time_options import parse_t_max
 
     refuse_options(ctx, ("seeds", "max_period", "seed"), "cycles")
     system, machine = contact_run_system(config, machine_file)
+    time_scale = 1.0 / system.omega_ref
+    tau = parse_t_max(t_max, time_scale)
+    horizon = None if tau is None else tau * time_scale
+    if horizon is not None and not (math.isfinite(horizon) and horizon > 0.0):
+        raise BadInput(f"--t-max {t_max!r} must be positive")
     try:
         with progress_bar(json, "cycles: 8 starts") as bar:
-            result = find_contact_cycles(system, workers=DEFAULT_WORKERS, progress=bar)
+            result = find_contact_cycles(system, t_max=horizon, workers=DEFAULT_WORKERS,
+                                         progress=bar)
     except ValueError as exc:
         raise BadInput(f"{machine_file.label}: {exc}") from None
     payload = result.to_dict()

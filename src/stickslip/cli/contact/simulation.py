@@ -59,6 +59,8 @@ def simulate_contact_command(ctx: typer.Context, config: Path, machine_file: Any
     """Run a contact machine and print the answer (``--json``: verdict, period_s, amplitude_m,
     separated, the last events, the machine; ``--history-times``: the time history)."""
     from stickslip.analysis.contact.engine import simulate_contact
+    from stickslip.analysis.contact.friction_coupling import self_locking_note
+    from stickslip.analysis.verdict import Verdict
     from stickslip.cli.time_options import parse_history_times, parse_t_max
 
     typed = [flag for name, flag in REFUSED.items()
@@ -82,6 +84,8 @@ def simulate_contact_command(ctx: typer.Context, config: Path, machine_file: Any
     except ValueError as exc:
         raise BadInput(f"{machine_file.label}: {exc}") from None
     payload = run.to_dict()
+    if run.verdict is Verdict.UNDETERMINED:
+        payload["note"] = self_locking_note(system)
     payload.update({"config": str(config), "machine": machine.name, "n_dof": system.n_dof,
                     "contact_dof": system.tangential_dof, "normal_dof": system.normal_dof,
                     "contact": _contact_summary(system)})
@@ -126,4 +130,6 @@ def _summary(p: dict[str, Any]) -> str:
         f"separated   {'yes: the contact lifted off' if p['separated'] else 'no'}",
         f"events      {p['n_events']} ({counts}) up to t = {fmt(p['t_end_s'])} s",
     ]
+    if p.get("note"):
+        lines.append(f"note        {p['note']}")
     return "\n".join(lines)
