@@ -153,6 +153,38 @@ def test_lugre_critical_speed_is_routh_hurwitz(tmp_path: Path) -> None:
         assert spectrum_sign(*linear_spectrum(system, speed)) == expected, speed
 
 
+def test_lugre_critical_stiffness_side_is_read_not_assumed(tmp_path: Path,
+                                                           capsys: pytest.CaptureFixture[str]) -> None:
+    # Routh-Hurwitz of the module notes' cubic in k: a2 a1 > a3 a0 reads k (sigma1 beta + sigma2)
+    # + A B > 0 with A = m alpha + sigma1 beta + sigma2, B = sigma0 beta + sigma2 alpha, so
+    # k_c = -A B / (sigma1 beta + sigma2), and where sigma1 beta + sigma2 < 0 a STIFFER slider
+    # is unstable (an audit: the summary said "unstable below it" while k = 5000 N/m, above
+    # k_c, was unstable and 1000 N/m stable). The audit's slider: m = 1 kg, N = 10 N, V = 1 cm/s
+    m, load, v, s0, s1, s2, mu_c, mu_s, vs = 1.0, 10.0, 0.01, 1e5, 2000.0, 40.0, 0.5, 0.7, 5e-3
+    g = load * (mu_c + (mu_s - mu_c) * math.exp(-(v / vs) ** 2))
+    dg = load * (mu_s - mu_c) * math.exp(-(v / vs) ** 2) * (-2.0 * v / vs**2)
+    alpha, beta = s0 * v / g, v * dg / g
+    assert s1 * beta + s2 < 0.0
+    big_a, big_b = m * alpha + s1 * beta + s2, s0 * beta + s2 * alpha
+    k_c = -big_a * big_b / (s1 * beta + s2)
+    text = LUGRE.replace('k = "2 N/m"', 'k = "{k} N/m"').replace('load = "1 N"', 'load = "10 N"')
+    text = text.replace('speed = "0.1 m/s"', 'speed = "1 cm/s"').replace(
+        "316.22776601683796", "2000").replace('"0.4 N*s/m"', '"40 N*s/m"').replace(
+        "mu_c = 1.0", "mu_c = 0.5").replace("mu_s = 1.5", "mu_s = 0.7").replace('"1 mm/s"',
+                                                                           '"5 mm/s"')
+    for k, verdict in ((5000.0, "unstable"), (1000.0, "stable")):
+        path, system = _system(tmp_path, text.format(k=k))
+        result = memory_stability(system)
+        assert result.verdict == verdict
+        assert result.critical_stiffness == pytest.approx(k_c, rel=1e-10)
+        assert result.unstable_side == "above"
+        code, out, err = run_cli(["stability", "--config", str(path)], capsys)
+        assert code == 0, err
+        assert "steady sliding is unstable above it" in out
+    _, system = _system(tmp_path, RATE_STATE)
+    assert memory_stability(system).unstable_side == "below"  # Rice and Ruina
+
+
 def test_neutral_is_not_rounded() -> None:
     values = np.array([-1.0 + 2j, 1e-15 - 2j])
     assert spectrum_sign(values, np.array([1e-12, 1e-12])) == 0

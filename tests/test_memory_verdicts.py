@@ -171,7 +171,15 @@ def test_unstable_equilibrium_is_not_a_verdict() -> None:
     system = _slider(law, m=1.0, k=0.8 * k_c, load=1.0, speed=1e-6)
     result = ms.simulate_memory(system, t_max=50.0)
     assert result.verdict is Verdict.UNDETERMINED
-    assert "linearly unstable" in result.reason
+    assert "linearly unstable" in result.reason and "--initial-kick" in result.reason
+    # the quasi-static slider (m = 0; Rice-Ruina k_c = N (b - a)/d_c = 500 N/m at N = 1 N) has
+    # no velocity to kick (--initial-kick is refused for it): the advice is a speed schedule
+    quasi = _slider(law, m=0.0, k=0.8 * 500.0, load=1.0, speed=1e-6)
+    result = ms.simulate_memory(quasi, t_max=50.0)
+    assert result.verdict is Verdict.UNDETERMINED and "linearly unstable" in result.reason
+    assert "speed schedule" in result.reason and "--initial-kick" not in result.reason
+    with pytest.raises(ValueError, match="needs the slider's mass"):
+        ms.simulate_memory(quasi, t_max=50.0, kick=0.5)
 
 
 def _exact_stribeck_period() -> float:
@@ -265,3 +273,45 @@ def test_slip_reversals_and_quasi_stick_of_the_lugre_cycle() -> None:
     assert np.allclose(late[per_period:] - late[:-per_period], result.period, rtol=1e-6)
     # the stick phase: the spring loads from about F_c to F_s at k V = 0.2 N/s
     assert 0.3 < result.stick_ratio < 1.0
+
+
+def test_a_lugre_cycle_with_two_upward_crossings_per_period_is_certified() -> None:
+    # an audit's slider (m = 0.2 kg, k = 500 N/m, N = 10 N, V = 6 mm/s, sigma0 = 1e5 N/m,
+    # sigma1 = 20 N s/m, sigma2 = 0.5 N s/m, mu_c = 0.5, mu_s = 0.7, v_s = 5 mm/s) crosses
+    # q' = 0 upward twice per period, 1.2752 s and 0.0101 s apart: the shooting seeded with
+    # the last gap alone never converged ("undetermined", at any t_max). Source of the check:
+    # solve_ivp (Radau, rtol 1e-10) of LuGre written out here, x'' = (-k x + F)/m, v_r = V - x',
+    # z' = v_r - sigma0 |v_r| z / g(v_r), F = sigma0 z + sigma1 z' + sigma2 v_r, from the
+    # certified state for one period: it comes back, having crossed once in between
+    from scipy.integrate import solve_ivp
+
+    m, k, load, v, s0, s1, s2, mu_c, mu_s, v_s = 0.2, 500.0, 10.0, 6e-3, 1e5, 20.0, 0.5, 0.5, 0.7, 5e-3
+    law = LuGreFriction(sigma0=s0, sigma1=s1, sigma2=s2, mu_c=mu_c, mu_s=mu_s,
+                        stribeck_velocity=v_s)
+    result = ms.simulate_memory(_slider(law, m=m, k=k, load=load, speed=v), kick=-1.0)
+    assert result.verdict is Verdict.STICK_SLIP, result.reason
+    orbit = result.orbit
+    assert orbit is not None and orbit.stable
+
+    def g(u: float) -> float:
+        return load * (mu_c + (mu_s - mu_c) * math.exp(-((u / v_s) ** 2)))
+
+    def rhs(_: float, y: np.ndarray) -> list[float]:
+        x, xd, z = y
+        slip = v - xd
+        zd = slip - s0 * abs(slip) * z / g(slip)
+        return [xd, (-k * x + s0 * z + s1 * zd + s2 * slip) / m, zd]
+
+    def upward(_: float, y: np.ndarray) -> float:
+        return float(y[1])
+
+    upward.direction = 1  # type: ignore[attr-defined]
+    ref = solve_ivp(rhs, (0.0, orbit.period * (1.0 + 1e-9)), orbit.y0, method="Radau",
+                    rtol=1e-10, atol=1e-14, events=upward)
+    scale = mf.state_scales(_slider(law, m=m, k=k, load=load, speed=v), v)
+    assert np.max(np.abs(ref.y[:, -1] - orbit.y0) / scale) < 1e-6  # it closes after one period
+    inner = [t for t in ref.t_events[0] if 1e-6 < t < orbit.period * (1.0 - 1e-6)]
+    assert len(inner) == 1 and inner[0] == pytest.approx(1.2752218, rel=1e-6)
+    between = ref.y_events[0][next(i for i, t in enumerate(ref.t_events[0]) if t == inner[0])]
+    assert np.max(np.abs(between - orbit.y0) / scale) > 1e-2  # a distinct crossing: minimal
+    assert orbit.period == pytest.approx(1.2852847, rel=1e-7)  # the audit's own Radau run

@@ -168,7 +168,8 @@ def flow(system: MemorySystem, y: FloatArray, speed: float) -> FloatArray:
 
 def shoot_cycle(system: MemorySystem, y_start: FloatArray, period_guess: float, *,
                 speed: float | None = None, rtol: float = DEFAULT_RTOL,
-                tolerance: float = SHOOTING_TOLERANCE) -> PeriodicOrbit | None:
+                tolerance: float = SHOOTING_TOLERANCE,
+                min_fraction: float = 0.2) -> PeriodicOrbit | None:
     """Newton shooting for a fixed point of the return map to the section ``q_c' = 0``.
 
     Unknown: the state ``y0`` on the section. Equations: ``P(y0) - y0 = 0`` and the section
@@ -192,6 +193,10 @@ def shoot_cycle(system: MemorySystem, y_start: FloatArray, period_guess: float, 
         Relative tolerance of the runs.
     tolerance : float
         Largest scaled residual accepted.
+    min_fraction : float
+        The return counted is the first after this fraction of the period: 0.2 takes the
+        next upward crossing; an orbit that crosses the section upward ``p`` times per
+        period needs a fraction beyond its ``(p-1)``-th crossing.
 
     Returns
     -------
@@ -203,7 +208,8 @@ def shoot_cycle(system: MemorySystem, y_start: FloatArray, period_guess: float, 
     y = np.asarray(y_start, dtype=np.float64).copy()
     period = period_guess
     for it in range(1, MAX_NEWTON + 1):
-        ret = return_map(system, y, v, min_time=0.2 * period, t_limit=5.0 * period, rtol=rtol)
+        ret = return_map(system, y, v, min_time=min_fraction * period, t_limit=5.0 * period,
+                         rtol=rtol)
         if ret is None:
             return None
         y1, phi, period = ret

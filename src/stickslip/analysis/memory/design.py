@@ -130,7 +130,8 @@ class MemoryDesign:
         p = self.to_dict()
         lines = [f"friction    {p['friction']}",
                  f"operating   V = {p['speed_m_per_s']:.6g} m/s, N = {p['load_N']:.6g} N"]
-        for key, label in (("startup", "start-up"), ("nudged", "nudged")):
+        still = "steady" if self.system.quasi_static else "nudged"  # its one run is not kicked
+        for key, label in (("startup", "start-up"), ("nudged", still)):
             r = p[key]
             if r is None:
                 lines.append(f"{label:11} - (the quasi-static slider has no velocity to kick)")

@@ -292,10 +292,13 @@ def simulate_memory(system: MemorySystem, *, t_max: float | None = None, kick: f
                   slip_reversals=[float(t) for t in run.reversal_times])
     nan = math.nan
     if run.status != stiff.STATUS_DONE:
-        why = ("the step budget was used up (typically where the slip speed reverses: near "
-               "v = 0 rate-and-state friction is extremely steep, dF/dv = N a exp(psi/a)/(2 v_ref), "
-               "and the steps shrink to follow it; a shorter --t-max still reports the history)"
-               if run.status == stiff.STATUS_MAX_STEPS
+        steep = ("near v = 0 rate-and-state friction is extremely steep, dF/dv = N a "
+                 "exp(psi/a)/(2 v_ref)" if isinstance(system.friction, RateStateFriction)
+                 else "there the bristle state of LuGre turns over on the time scale "
+                 "g(v)/(sigma0 |v|)")
+        why = ("the step budget was used up (typically where the slip speed reverses: "
+               f"{steep}, and the steps shrink to follow it; a shorter --t-max still reports the "
+               "history)" if run.status == stiff.STATUS_MAX_STEPS
                else "the step size fell to round-off")
         return MemoryResult(verdict=Verdict.UNDETERMINED, certificate="",
                             reason=f"the run stopped at {run.t:.6g} s: {why}", orbit=None,
@@ -315,14 +318,19 @@ def simulate_memory(system: MemorySystem, *, t_max: float | None = None, kick: f
     if run.cross_t.size >= 3:
         period_guess = float(run.cross_t[-1] - run.cross_t[-2])
         orbit = shoot_cycle(system, run.cross_y[-1], period_guess, rtol=rtol)
+        if orbit is None:
+            orbit = _shoot_longer_lags(system, run, scale, rtol)
         if orbit is not None:
             return _cycle_result(system, orbit, common)
     if at_unstable_equilibrium:
         # before the shooting's message: round-off crossings of the section at the equilibrium
         # are no oscillation, and a longer run from it stays there (the shipped rate_state.toml)
+        how = ("a speed schedule that steps the drive speed: the quasi-static slider has no "
+               "velocity of its own to kick" if system.quasi_static
+               else "--initial-kick, e.g. 0.5")
         reason = (f"steady sliding is linearly unstable (growth rate {steady.growth_rate:.6g} 1/s) "
-                  "but the run stayed at it (an unstable equilibrium); start it off steady "
-                  "sliding (--initial-kick, e.g. 0.5): a longer run from it stays there")
+                  f"but the run stayed at it (an unstable equilibrium); start it off steady "
+                  f"sliding ({how}): a longer run from it stays there")
     elif run.cross_t.size >= 3:
         reason = ("the run oscillates but Newton shooting on the section q_c' = 0 did not "
                   "converge; increase t_max")
@@ -330,6 +338,36 @@ def simulate_memory(system: MemorySystem, *, t_max: float | None = None, kick: f
         reason = "the run neither reached steady sliding nor settled on a cycle; increase t_max"
     return MemoryResult(verdict=Verdict.UNDETERMINED, certificate="", reason=reason, orbit=None,
                         period=nan, amplitude=nan, min_slip_speed=nan, **common)
+
+
+#: Crossings per period tried when one crossing per period does not converge, and how close
+#: (scaled, every component) the last crossing must come to the one that many back.
+MAX_CROSSINGS_PER_PERIOD = 4
+LAG_MATCH = 1e-2
+
+
+def _shoot_longer_lags(system: MemorySystem, run: Any, scale: FloatArray,
+                       rtol: float) -> PeriodicOrbit | None:
+    """Newton shooting for an orbit that crosses the section ``p > 1`` times per period.
+
+    A LuGre cycle can cross ``q_c' = 0`` upward twice per period (an audit's slider: gaps of
+    1.2752 s and 0.0101 s, period 1.2853 s), so the last gap is no period guess. The lags
+    ``p = 2, ...`` (:data:`MAX_CROSSINGS_PER_PERIOD`) at which the last crossing's state comes
+    back within :data:`LAG_MATCH` are tried in ascending order (the smallest first, so the
+    period found is the minimal one the run shows), each with the period guess of its ``p``
+    gaps and the return counted after the ``(p-1)``-th crossing (half-way to the ``p``-th).
+    """
+    t, y = run.cross_t, run.cross_y
+    for p in range(2, min(MAX_CROSSINGS_PER_PERIOD, t.size - 1) + 1):
+        if float(np.max(np.abs(y[-1] - y[-1 - p]) / scale)) > LAG_MATCH:
+            continue
+        period = float(t[-1] - t[-1 - p])
+        inner = float(t[-2] - t[-1 - p])  # the (p-1)-th crossing, after the period's start
+        orbit = shoot_cycle(system, y[-1], period, rtol=rtol,
+                            min_fraction=0.5 * (inner + period) / period)
+        if orbit is not None:
+            return orbit
+    return None
 
 
 #: Samples of one period for the cycle's amplitude and smallest slip speed.

@@ -338,6 +338,25 @@ class MemoryStability:
         return abs(float(z.imag)) / (2.0 * math.pi)
 
     @property
+    def unstable_side(self) -> str | None:
+        """``"below"`` or ``"above"``: on which side of the Hopf boundary in stiffness steady
+        sliding is unstable (None when no boundary was found).
+
+        Rate-and-state on one DOF loses stability below ``k_c`` (Rice and Ruina); a LuGre
+        slider with ``sigma_1 beta + sigma_2 < 0`` (``beta = V g'(V) / g(V)``) loses it above:
+        its characteristic polynomial ``m s^3 + (m alpha + sigma_1 beta + sigma_2) s^2 + (k +
+        sigma_0 beta + sigma_2 alpha) s + k alpha`` (``alpha = sigma_0 V / g``) has the
+        Routh-Hurwitz condition ``k (sigma_1 beta + sigma_2) + A B > 0``, which a larger ``k``
+        breaks when the bracket is negative. So the side is read from the eigenvalues at a
+        stiffness 1e-4 below the boundary, not assumed.
+        """
+        factor = self.critical_stiffness_factor
+        if not math.isfinite(factor):
+            return None
+        below = steady_sliding(self.system.with_stiffness_scale(factor * (1.0 - 1e-4)), self.speed)
+        return "below" if below.growth_rate > 0.0 else "above"
+
+    @property
     def rice_ruina(self) -> dict[str, float | None] | None:
         """Rice and Ruina's closed forms for the 1-DOF rate-and-state slider (None otherwise)."""
         law = self.system.friction
@@ -362,6 +381,7 @@ class MemoryStability:
             "critical_stiffness_factor": factor if math.isfinite(factor) else None,
             "critical_stiffness_N_per_m": self.critical_stiffness,
             "hopf_frequency_Hz": self.hopf_frequency,
+            "unstable_side_of_critical_stiffness": self.unstable_side,
             "critical_speeds_m_per_s": self.critical_speeds,
             "unstable_speeds_m_per_s": [list(r) for r in self.unstable_speeds],
             "speed_grid_m_per_s": [lo, hi, SPEED_POINTS],
@@ -389,11 +409,13 @@ class MemoryStability:
         factor = p["critical_stiffness_factor"]
         hopf = p["hopf_frequency_Hz"]
         at = f" at {hopf:.6g} Hz" if hopf is not None else ""
+        side = p["unstable_side_of_critical_stiffness"]
         if self.critical_stiffness is not None:
             lines.append(f"critical k  {self.critical_stiffness:.10g} N/m (Hopf boundary{at}; "
-                         "steady sliding is unstable below it)")
+                         f"steady sliding is unstable {side} it)")
         elif factor is not None:
-            lines.append(f"critical k  every stiffness x {factor:.10g} (Hopf boundary{at})")
+            lines.append(f"critical k  every stiffness x {factor:.10g} (Hopf boundary{at}; "
+                         f"unstable {side} it)")
         else:
             lines.append("critical k  none between 1e-6 and 1e6 times the stiffness")
         rr = p["rice_ruina"]
