@@ -315,3 +315,42 @@ def test_a_lugre_cycle_with_two_upward_crossings_per_period_is_certified() -> No
     between = ref.y_events[0][next(i for i, t in enumerate(ref.t_events[0]) if t == inner[0])]
     assert np.max(np.abs(between - orbit.y0) / scale) > 1e-2  # a distinct crossing: minimal
     assert orbit.period == pytest.approx(1.2852847, rel=1e-7)  # the audit's own Radau run
+
+
+def test_a_run_that_spends_its_steps_in_quasi_sticks_still_proves_its_cycle() -> None:
+    # an audit's slider (m = 1 kg, k = 1 N/m, N = 1 N, V = 1 m/s, a = 0.01, b = 0.015, d_c = 1
+    # cm, aging) sticks to 7.8e-12 m/s each 6.29 s cycle: its steps fell below the round-off of
+    # the clock at 7,023 s ("undetermined"; --t-max 7000 s certified it). The clock restarts,
+    # and a run out of steps shoots from the crossings it reached. Source of the check: the
+    # classic law, mu = mu_ref + a ln(v_r/v_ref) + b ln(v_ref theta/d_c) (the regularised one
+    # differs by exp(-2 mu/a)-order terms here), written out in (x, ln v_r, ln theta) with
+    # v_r' = (k x - N mu)/m and integrated by solve_ivp (Radau, rtol 1e-11) from the certified
+    # state for one period: it comes back, and crosses the section once
+    from scipy.integrate import solve_ivp
+
+    m, k, load, v, a, b, d_c, mu_ref, v_ref = 1.0, 1.0, 1.0, 1.0, 0.01, 0.015, 0.01, 0.6, 1.0
+    system = _slider(RateStateFriction(a=a, b=b, d_c=d_c, mu_ref=mu_ref, v_ref=v_ref), m=m, k=k,
+                     load=load, speed=v)
+    result = ms.simulate_memory(system, kick=0.5)
+    assert result.verdict is Verdict.STICK_SLIP, result.reason
+    assert result.t_end > 7100.0  # the clock restarted past its round-off at 7,023 s
+    orbit = result.orbit
+    assert orbit is not None and orbit.stable
+    obs = mf.observables(system, orbit.y0[None, :], np.array([v]))
+    start = [float(obs["x"][0]), math.log(float(obs["slip"][0])), math.log(float(obs["state"][0]))]
+
+    def rhs(_: float, y: np.ndarray) -> list[float]:
+        x, log_slip, log_theta = y
+        slip, theta = math.exp(log_slip), math.exp(log_theta)
+        mu = mu_ref + a * math.log(slip / v_ref) + b * math.log(v_ref * theta / d_c)
+        return [v - slip, (k * x - load * mu) / m / slip, 1.0 / theta - slip / d_c]
+
+    def section(_: float, y: np.ndarray) -> float:
+        return float(y[1]) - math.log(v)  # q' = 0: the slip speed falls through V
+
+    section.direction = -1  # type: ignore[attr-defined]
+    ref = solve_ivp(rhs, (0.0, orbit.period * (1.0 + 1e-9)), start, method="Radau", rtol=1e-11,
+                    atol=1e-12, events=section)
+    assert np.max(np.abs(ref.y[:, -1] - ref.y[:, 0])) < 1e-7  # closes after one period
+    assert [t for t in ref.t_events[0] if t > 1e-6] == [pytest.approx(orbit.period, rel=1e-9)]
+    assert result.min_slip_speed == pytest.approx(float(np.exp(ref.y[1].min())), rel=1e-3)

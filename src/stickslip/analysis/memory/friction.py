@@ -52,6 +52,8 @@ FEW_SPEEDS = 8
 MAX_STEPS = 2_000_000
 #: Section crossings kept per run.
 MAX_CROSSINGS = 4096
+#: Fresh calls of the integrator after its steps fell below the round-off of its clock.
+MAX_CLOCK_RESTARTS = 100
 
 
 def rice_ruina_critical_stiffness(load: float, a: float, b: float, d_c: float, mass: float,
@@ -442,18 +444,32 @@ def integrate_run(system: MemorySystem, y0: FloatArray, t_max: float, *,
         if t_end <= t:
             break
         atol = rtol * state_scales(system, scale_speeds[i], steady[i])
-        stats = np.array([0.0, 0.0, 0.0, 0.0, math.inf, -math.inf, 0.0])
         last = i + 1 == len(sched.speeds)
-        status, t, _h = stiff.integrate(ks.kind, ks.law, ks.p, ks.amat, ks.bvec, ks.iv, ks.is_,
-                                       ks.kq, z, ks.n, False, t, t_end, float(speed), rtol, atol,
-                                       0.0, 0.0, MAX_STEPS, h_times, z_out, False, 0.0, cross_t,
-                                       cross_z, reversal_t[min(reversals, MAX_CROSSINGS):],
-                                       stats)
-        steps += int(stats[0])
-        rejected += int(stats[1])
-        reversals += int(stats[6])
+        segment_steps = segment_cross = 0
+        # a call whose steps fell below the round-off of its own clock (1e-14 of the time since
+        # its start: a slip reversal thousands of seconds into a run) goes on in a fresh call
+        # from where it stopped, whose clock starts at zero; the drive speed is constant within
+        # the segment, so the motion does not depend on the clock. A run that never underflows
+        # makes one call, as before; the restarts share the segment's step budget
+        for _call in range(MAX_CLOCK_RESTARTS + 1):
+            stats = np.array([0.0, 0.0, 0.0, 0.0, math.inf, -math.inf, 0.0])
+            start = t
+            status, t, _h = stiff.integrate(
+                ks.kind, ks.law, ks.p, ks.amat, ks.bvec, ks.iv, ks.is_, ks.kq, z, ks.n, False, t,
+                t_end, float(speed), rtol, atol, 0.0, 0.0, MAX_STEPS - segment_steps, h_times,
+                z_out, False, 0.0, cross_t[min(segment_cross, MAX_CROSSINGS):],
+                cross_z[min(segment_cross, MAX_CROSSINGS):],
+                reversal_t[min(reversals, MAX_CROSSINGS):], stats)
+            segment_steps += int(stats[0]) + int(stats[1])
+            steps += int(stats[0])
+            rejected += int(stats[1])
+            reversals += int(stats[6])
+            segment_cross += int(stats[3])
+            if (status != stiff.STATUS_STEP_UNDERFLOW or not t > start
+                    or segment_steps >= MAX_STEPS):
+                break
         if last:
-            n_cross = min(int(stats[3]), MAX_CROSSINGS)
+            n_cross = min(segment_cross, MAX_CROSSINGS)
         if status != stiff.STATUS_DONE:
             break
     return _Run(t, z, status, cross_t[:n_cross].copy(), cross_z[:n_cross].copy(),

@@ -300,6 +300,12 @@ def simulate_memory(system: MemorySystem, *, t_max: float | None = None, kick: f
                f"{steep}, and the steps shrink to follow it; a shorter --t-max still reports the "
                "history)" if run.status == stiff.STATUS_MAX_STEPS
                else "the step size fell to round-off")
+        # the crossings it did reach are states of the run: a periodic orbit shot from them is
+        # proven as at the horizon (a rate-and-state cycle of 6.29 s settles within 7,000 s,
+        # yet its quasi-sticks spend the steps of the default 16,000 s horizon)
+        orbit = _shoot_from_crossings(system, run, state_scales(system, v), rtol)
+        if orbit is not None:
+            return _cycle_result(system, orbit, common)
         return MemoryResult(verdict=Verdict.UNDETERMINED, certificate="",
                             reason=f"the run stopped at {run.t:.6g} s: {why}", orbit=None,
                             period=nan, amplitude=nan, min_slip_speed=nan, **common)
@@ -315,13 +321,9 @@ def simulate_memory(system: MemorySystem, *, t_max: float | None = None, kick: f
             reason="steady sliding: linearly stable and reached", orbit=None, period=nan,
             amplitude=nan, min_slip_speed=nan, **common)
     at_unstable_equilibrium = not steady.stable and distance < STEADY_TOLERANCE
-    if run.cross_t.size >= 3:
-        period_guess = float(run.cross_t[-1] - run.cross_t[-2])
-        orbit = shoot_cycle(system, run.cross_y[-1], period_guess, rtol=rtol)
-        if orbit is None:
-            orbit = _shoot_longer_lags(system, run, scale, rtol)
-        if orbit is not None:
-            return _cycle_result(system, orbit, common)
+    orbit = _shoot_from_crossings(system, run, scale, rtol)
+    if orbit is not None:
+        return _cycle_result(system, orbit, common)
     if at_unstable_equilibrium:
         # before the shooting's message: round-off crossings of the section at the equilibrium
         # are no oscillation, and a longer run from it stays there (the shipped rate_state.toml)
@@ -344,6 +346,17 @@ def simulate_memory(system: MemorySystem, *, t_max: float | None = None, kick: f
 #: (scaled, every component) the last crossing must come to the one that many back.
 MAX_CROSSINGS_PER_PERIOD = 4
 LAG_MATCH = 1e-2
+
+
+def _shoot_from_crossings(system: MemorySystem, run: Any, scale: FloatArray,
+                          rtol: float) -> PeriodicOrbit | None:
+    """Newton shooting from the run's last section crossing (None: fewer than three, or no
+    convergence): one crossing per period first, then :func:`_shoot_longer_lags`."""
+    if run.cross_t.size < 3:
+        return None
+    period_guess = float(run.cross_t[-1] - run.cross_t[-2])
+    orbit = shoot_cycle(system, run.cross_y[-1], period_guess, rtol=rtol)
+    return orbit if orbit is not None else _shoot_longer_lags(system, run, scale, rtol)
 
 
 def _shoot_longer_lags(system: MemorySystem, run: Any, scale: FloatArray,
