@@ -12,6 +12,7 @@ reported undetermined.
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 import numpy as np
@@ -63,6 +64,16 @@ def test_no_step_leaves_the_law_undetermined() -> None:
     mu = 0.6 + 1e-4 * np.random.default_rng(0).normal(size=t.size)
     fit = fit_rate_state(t, 1e-6 * t, mu, stiffness=K, load=LOAD)
     assert {"a", "b", "d_c"} <= set(fit.undetermined)
+    # but the level is determined: steady sliding at v_ref (the first speed) is mu = mu_ref, so
+    # mu_ref is the least-squares constant, the record's mean, with the standard error of a
+    # mean, s / sqrt(n) (an audit found it "+- inf UNDETERMINED"), and no sign of b - a is
+    # concluded from two undetermined values
+    assert "mu_ref" not in fit.undetermined
+    assert fit.values["mu_ref"] == pytest.approx(float(np.mean(mu)), abs=1e-7)
+    n = t.size
+    s = math.sqrt(float(np.sum((mu - np.mean(mu)) ** 2)) / (n - 4))  # the fit's s^2 = RSS/(n - p)
+    assert fit.errors["mu_ref"] == pytest.approx(s / math.sqrt(n), rel=0.02)
+    assert "b - a" in fit.summary() and "undetermined: the record does not fix a and b" in fit.summary()
 
 
 def _run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:

@@ -68,12 +68,48 @@ def linearised_errors(jac: FloatArray, cost: float, names: tuple[str, ...]) -> d
     s2 = 2.0 * cost / max(jac.shape[0] - len(names), 1)
     norms = np.linalg.norm(jac, axis=0)
     if not np.all(norms > 0.0):
-        return {name: math.inf for name in names}
+        return _estimable_errors(jac, s2, names)
     gram = (jac / norms).T @ (jac / norms)
     try:
         if np.linalg.cond(gram) > 1e14:
             raise np.linalg.LinAlgError
         cov = np.linalg.inv(gram) / np.outer(norms, norms) * s2
     except np.linalg.LinAlgError:
-        return {name: math.inf for name in names}
+        return _estimable_errors(jac, s2, names)
     return {name: math.sqrt(max(float(cov[i, i]), 0.0)) for i, name in enumerate(names)}
+
+
+#: Singular values below this fraction of the largest span the Jacobian's null space, and a
+#: parameter whose unit vector has a component above :data:`NULL_COMPONENT` in it is not
+#: determined by the record.
+RANK_TOLERANCE = 1e-7
+NULL_COMPONENT = 1e-6
+
+
+def _estimable_errors(jac: FloatArray, s2: float, names: tuple[str, ...]) -> dict[str, float]:
+    """Standard errors where ``J^T J`` is singular: finite for the parameters the record still
+    determines, ``inf`` for the others.
+
+    A parameter ``p_i`` is determined (estimable) when its unit vector ``e_i`` lies in the row
+    space of ``J``, i.e. has no component in the null space (the right singular vectors of the
+    column-scaled ``J`` whose singular values fall below :data:`RANK_TOLERANCE` of the
+    largest); its variance is then ``s^2 e_i^T (J^T J)^+ e_i`` with the pseudo-inverse, which
+    does not depend on the undetermined directions. Example: a rate-and-state record without
+    a speed step is steady sliding at ``v_ref``, where ``mu = mu_ref`` and the columns of ``a``,
+    ``b`` and ``d_c`` vanish: ``mu_ref`` is the record's level, the other three undetermined.
+    """
+    norms = np.linalg.norm(jac, axis=0)
+    scale = np.where(norms > 0.0, norms, 1.0)
+    _, sv, vt = np.linalg.svd(jac / scale, full_matrices=True)
+    keep = np.zeros(vt.shape[0], dtype=bool)
+    keep[: sv.size] = sv > RANK_TOLERANCE * (float(sv[0]) if sv.size and sv[0] > 0 else 1.0)
+    null = vt[~keep]
+    out = {}
+    for i, name in enumerate(names):
+        if not keep.any() or (null.size and float(np.max(np.abs(null[:, i]))) > NULL_COMPONENT):
+            out[name] = math.inf
+            continue
+        rows = vt[keep]
+        variance = float(np.sum((rows[:, i] / sv[keep]) ** 2)) / scale[i] ** 2 * s2
+        out[name] = math.sqrt(max(variance, 0.0))
+    return out

@@ -237,7 +237,9 @@ class RateStateFit:
                          f"{self.errors[name]:.2g}{flag}")
         weakening = self.values["b"] > self.values["a"]
         lines.append(f"b - a       {self.values['b'] - self.values['a']:.4g} "
-                     f"(velocity {'weakening' if weakening else 'strengthening'})")
+                     + ("(undetermined: the record does not fix a and b; it needs a speed step)"
+                        if {"a", "b"} & set(self.undetermined)
+                        else f"(velocity {'weakening' if weakening else 'strengthening'})"))
         lines.append(f"residual    rms {self.rms:.3g} in mu; v_ref {self.schedule.first:.6g} m/s "
                      "(the first step)")
         if not self.converged:
