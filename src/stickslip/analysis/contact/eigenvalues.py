@@ -35,6 +35,7 @@ from stickslip.analysis.contact.friction_coupling import (
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
+    from stickslip.analysis.contact._modes import ContactSystem
     from stickslip.model.contact import Contact
     from stickslip.model.machine import Machine
 
@@ -178,3 +179,35 @@ def complex_eigenvalue_analysis(machine: Machine, contact: Contact | None, *,
                            critical_friction(system, mu_max=mu_max, n_scan=n_scan),
                            critical_friction(system.undamped(), mu_max=mu_max, n_scan=n_scan),
                            np.sqrt(np.maximum(w2, 0.0)) / (2 * math.pi), system)
+
+
+def self_locking_note(system: ContactSystem) -> str | None:
+    """What a run of a machine without steady sliding should say, or None when it has one.
+
+    Steady sliding at ``mu_k`` needs ``N_0 = W / (1 + a mu_k) > 0``
+    (:meth:`FrictionCoupledSystem.self_locking_mu`); past the self-locking coefficient it has
+    none: the friction wedges the slider into the belt, where it sticks with a growing normal
+    force, which no horizon turns into one of the engine's verdicts.
+
+    Parameters
+    ----------
+    system : ContactSystem
+        The machine (SI).
+
+    Returns
+    -------
+    str or None
+        One sentence, or None when steady sliding exists (or there is no normal DOF).
+    """
+    if system.normal_dof is None:
+        return None
+    coupled = FrictionCoupledSystem(system.mass, system.damping, system.stiffness,
+                                    system.tangential_dof, system.normal_dof,
+                                    normal_stiffness=system.normal_stiffness, load=system.load)
+    lock = coupled.self_locking_mu()
+    if lock is None or system.mu_k < lock:
+        return None
+    return (f"no steady sliding: mu_k = {system.mu_k:.6g} is at or past the self-locking "
+            f"coefficient {lock:.6g} (the friction wedges the slider into the belt, where it "
+            "sticks with a growing normal force): steady sliding cannot be the verdict, and a "
+            "longer horizon is unlikely to bring one")

@@ -58,8 +58,8 @@ def simulate_contact_command(ctx: typer.Context, config: Path, machine_file: Any
                              plot: Path | None, json: bool) -> None:
     """Run a contact machine and print the answer (``--json``: verdict, period_s, amplitude_m,
     separated, the last events, the machine; ``--history-times``: the time history)."""
+    from stickslip.analysis.contact.eigenvalues import self_locking_note
     from stickslip.analysis.contact.engine import simulate_contact
-    from stickslip.analysis.contact.friction_coupling import self_locking_note
     from stickslip.analysis.verdict import Verdict
     from stickslip.cli.time_options import parse_history_times, parse_t_max
 
