@@ -300,6 +300,18 @@ def test_a_modes_table_beyond_the_direct_limit_is_refused_with_the_limit(
     assert "modes has 400 modes; at most 60" in line
 
 
+@pytest.mark.parametrize("attach", [1, 5])
+def test_an_absorber_on_a_modal_coordinate_is_refused(attach: int, tmp_path: Path,
+                                                      capsys: pytest.CaptureFixture[str]) -> None:
+    # a modes table's coordinates after the contact are modal amplitudes (m sqrt(kg)): an
+    # absorber there is no machine (an audit: attach_dof = 1 "tuned" c_a = 1e-149 N s/m, and
+    # attach_dof = 5 was a 50-line IndexError traceback)
+    line = _refused(tmp_path, "modes = {frequencies = [41.1, 71.2], damping_ratios = [0.02, 0.05], "
+                              "shapes = [-0.866, 0.5]}\n[absorber]\nmass = \"0.1 kg\"\n"
+                              f"attach_dof = {attach}\n", capsys)
+    assert f"[absorber] attach_dof = {attach}: a structure given by modes has one point" in line
+
+
 @pytest.mark.parametrize(("frequencies", "shapes"), [("[1e300, 40.0]", "[0.5, 0.2]"),
                                                      ("[12.0, 40.0]", "[1e300, 0.2]")])
 def test_modes_of_1e300_are_refused_without_overflow_warnings(

@@ -13,6 +13,7 @@ import json
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 from scipy.optimize import brentq
 
@@ -224,6 +225,37 @@ def test_hopf_boundaries_keep_a_foundations_window_of_stability() -> None:
     assert (a1, b1, a2) == tuple(pytest.approx(5.0 * c / local, rel=1e-12) for c in changes)
     assert math.isinf(b2) and bounds.load == a1
     assert "unstable at loads 22.72 to 23.06 N, above 25.33 N" in bounds.sentence()
+
+
+def test_unstable_load_ranges_are_one_where_a_second_pair_crosses() -> None:
+    # a 3-DOF chain whose second and third Hopf weakenings add unstable pairs to an already
+    # unstable motion: the verdict changes once, so the loads give one range (an audit found
+    # "unstable at loads 5.828 to 23.32 N, 23.32 to 47.13 N, ..." on a 4-DOF machine), and the
+    # growth rate (eigenvalues) is positive on both sides of the inner weakenings
+    from stickslip.analysis.stability import growth_rate, stability_intervals
+    from stickslip.analysis.stability_boundaries import stability_boundaries
+    from stickslip.model.structure import Structure
+
+    rng = np.random.default_rng(3)
+    mass = np.diag(np.r_[1.0, rng.uniform(0.2, 3.0, 2)])
+    springs = rng.uniform(0.2, 3.0, 3)
+    stiffness = np.zeros((3, 3))
+    stiffness[0, 0] = springs[0]
+    for i in (1, 2):  # ground - k0 - x0 - k1 - x1 - k2 - x2
+        stiffness[i - 1:i + 1, i - 1:i + 1] += springs[i] * np.array([[1.0, -1.0], [-1.0, 1.0]])
+    stiffness /= stiffness[0, 0]
+    damping = rng.uniform(0.01, 0.2) * stiffness + rng.uniform(0.0, 0.1) * mass
+    structure = Structure(mass, damping, stiffness)
+    intervals = stability_intervals(structure)
+    assert [stable for *_, stable in intervals] == [True, False, False, False]
+    for _, hi, _ in intervals[1:-1]:
+        assert growth_rate(structure, hi * (1.0 - 1e-6)) > 0.0 < growth_rate(structure, hi * (1.0 + 1e-6))
+    bounds = stability_boundaries(STRIBECK, structure)
+    local = intervals[0][1] * STRIBECK.load / bounds.load  # delta_local at the operating point
+    assert bounds.unstable_loads == ((pytest.approx(STRIBECK.load * intervals[0][1] / local),
+                                      math.inf),)
+    assert f"unstable at loads above {bounds.load:.4g} N" in bounds.sentence()
+    assert len(bounds.hopf_frequencies) == 1
 
 
 def test_the_onset_frequency_of_one_dof_is_its_natural_frequency() -> None:

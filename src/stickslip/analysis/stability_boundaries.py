@@ -242,7 +242,12 @@ def boundaries_along(structure: Structure, slider_at: Callable[[float], Slider],
     unstable_loads: list[tuple[float, float]] = []
     if critical_load is not None:
         for a, b, stable in intervals:
-            if not stable:
+            if stable:
+                continue
+            if unstable_loads and unstable_loads[-1][1] == load * a / local:
+                # a Hopf weakening where a second pair crosses: unstable on both sides
+                unstable_loads[-1] = (unstable_loads[-1][0], load * b / local)
+            else:
                 unstable_loads.append((load * a / local, load * b / local))
     frequencies = tuple(_onset_frequency(structure, c) * natural_frequency / (2.0 * math.pi)
                         for c in changes if c > 0.0)

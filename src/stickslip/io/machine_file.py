@@ -480,6 +480,12 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
                          f"{MAX_NAME_LENGTH}")
     if "modes" in table:
         m, c, k = _modal_table(table, source)
+        if absorber is not None and absorber.attach_dof not in (None, 0):
+            # the coordinates after the contact are modal amplitudes, not points of the machine
+            raise ValueError(f"{source.replace('[structure]', '[absorber]')} attach_dof = "
+                             f"{absorber.attach_dof}: a structure given by modes has one point, "
+                             "the contact (attach_dof = 0), or attach = \"foundation\"; its other "
+                             "coordinates are modal amplitudes, where no absorber can hang")
         return m, c, k, 0, name, None
     for key in ("mass", "stiffness"):
         if key not in table:
