@@ -115,3 +115,23 @@ def test_the_windows_are_those_of_an_independent_integration(speed: float, stick
     engine = simulate(structure, slider, record=False)
     assert (stick_starts.size > 0) is sticks
     assert engine.verdict.value == ("stick-slip" if sticks else "steady-sliding")
+
+
+def test_an_undetermined_load_onset_is_not_called_stick_slip() -> None:
+    # under a law that moves with V and W the speed and load searches are separate: an audit's
+    # 4-DOF Stribeck machine printed "stick-slip ... above W_c=3.147 N" where the run past the
+    # load onset was undetermined (steady sliding, its own reference showed, up to the Hopf load
+    # 5.83 N), because only the speed search's flag was carried
+    both = CriticalPoint(0.5, 0.09666, 3.147, 0, False, False)
+    assert both.describe() == "stick-slip below V_c=0.09666 m/s / above W_c=3.147 N"
+    open_load = CriticalPoint(0.5, 0.09666, 3.147, 0, False, True)
+    text = open_load.describe()
+    assert text.startswith("stick-slip below V_c=0.09666 m/s / steady sliding proven at the runs "
+                           "below W_c=3.147 N (the run just past it is undetermined")
+    assert open_load.to_dict()["load_undetermined_past_onset"] is True
+    assert open_load.to_dict()["undetermined_past_onset"] is False
+    # the Coulomb law's one search serves both: the load follows the speed's flag, as before
+    coulomb = CriticalPoint(0.5, 0.09666, 3.147, 0, True)
+    assert coulomb.to_dict()["load_undetermined_past_onset"] is True
+    assert coulomb.describe().startswith("steady sliding proven at the runs above V_c=0.09666 m/s "
+                                         "/ below W_c=3.147 N")

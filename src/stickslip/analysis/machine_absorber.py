@@ -140,6 +140,9 @@ class CriticalPoint:
     undetermined: int = 0
     #: the run just past the speed onset ended undetermined, not proven stick-slip
     undetermined_above: bool = False
+    #: the same for the load onset (None: the speed's; with a law that moves with V and W the
+    #: two searches are separate, and one can end undetermined while the other does not)
+    load_undetermined_above: bool | None = None
 
     def describe(self, with_lambda: bool = False) -> str:
         """``stick-slip below V_c=... m/s / above W_c=... N``, with what the searches left open.
@@ -150,7 +153,15 @@ class CriticalPoint:
         """
         speed, load = f"V_c={self.speed:.4g} m/s", f"W_c={self.load:.4g} N"
         lam = f" (lambda_c={self.lam:.4g})" if with_lambda else ""
-        if self.undetermined_above:
+        load_open = (self.undetermined_above if self.load_undetermined_above is None
+                     else self.load_undetermined_above)
+        if load_open != self.undetermined_above:
+            open_note = "(the run just past it is undetermined, not proven stick-slip)"
+            text = (f"steady sliding proven at the runs above {speed} {open_note}"
+                    if self.undetermined_above else f"stick-slip below {speed}")
+            text += (f" / steady sliding proven at the runs below {load} {open_note}"
+                     if load_open else f" / stick-slip above {load}") + lam
+        elif self.undetermined_above:
             # the searches prove steady sliding at their runs, not at every speed between them
             text = (f"steady sliding proven at the runs above {speed} / below {load}{lam}, the "
                     "onset searched (the run just past it is undetermined, not proven stick-slip)")
@@ -191,7 +202,8 @@ class CriticalPoint:
         if scale_of is not None:
             lam *= math.sqrt(machine.reference_mass * machine.reference_stiffness
                              / (scale_of.reference_mass * scale_of.reference_stiffness))
-        return cls(lam, speed, load, undetermined, onsets.speed.undetermined_above)
+        return cls(lam, speed, load, undetermined, onsets.speed.undetermined_above,
+                   onsets.load.undetermined_above if onsets.own_law else None)
 
     def to_dict(self) -> dict[str, Any]:
         """``lambda_c``, ``critical_speed_m_per_s``, ``critical_load_N`` (None when infinite)."""
@@ -200,7 +212,11 @@ class CriticalPoint:
 
         return {"lambda_c": num(self.lam), "critical_speed_m_per_s": num(self.speed),
                 "critical_load_N": num(self.load), "undetermined_runs": self.undetermined,
-                "undetermined_past_onset": self.undetermined_above, "onset_search": ONSET_NOTE}
+                "undetermined_past_onset": self.undetermined_above,
+                "load_undetermined_past_onset": (self.undetermined_above
+                                                 if self.load_undetermined_above is None
+                                                 else self.load_undetermined_above),
+                "onset_search": ONSET_NOTE}
 
 
 @dataclass(frozen=True)

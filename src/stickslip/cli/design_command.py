@@ -136,7 +136,8 @@ def design(
     stick_slip_optimum: Annotated[
         bool,
         typer.Option("--stick-slip-optimum/--no-stick-slip-optimum",
-                     help="also find the foundation best against stick-slip (a few seconds)"),
+                     help="also find the foundation best against stick-slip (seconds on 1-2 "
+                          "DOF, minutes on a [structure] machine)"),
     ] = True,
     max_foundation_deflection: Annotated[
         str | None,

@@ -130,7 +130,9 @@ def modal_structure(frequencies_hz: Sequence[float], damping_ratios: Sequence[fl
         ``M = T'T``, ``C = T' diag(2 zeta_i w_i) T``, ``K = T' diag(w_i^2) T``; since
         ``phi' T = e_0'``, the contact force enters DOF 0 alone and the receptance at the
         contact is exactly ``sum phi_i^2 / (w_i^2 - w^2 + 2 i zeta_i w_i w)``. The contact is
-        DOF 0.
+        DOF 0. A start-up state at rest in these coordinates (``eta_i' = 0``, the contact at the
+        belt speed) is not a matrix model's physical rest: start-up verdicts can differ between
+        the two (docs/structures.md).
     """
     f = np.asarray(frequencies_hz, dtype=np.float64).reshape(-1)
     z = np.asarray(damping_ratios, dtype=np.float64).reshape(-1)
