@@ -354,3 +354,22 @@ def test_a_run_that_spends_its_steps_in_quasi_sticks_still_proves_its_cycle() ->
     assert np.max(np.abs(ref.y[:, -1] - ref.y[:, 0])) < 1e-7  # closes after one period
     assert [t for t in ref.t_events[0] if t > 1e-6] == [pytest.approx(orbit.period, rel=1e-9)]
     assert result.min_slip_speed == pytest.approx(float(np.exp(ref.y[1].min())), rel=1e-3)
+
+
+def test_a_run_keeps_its_last_section_crossings(monkeypatch: pytest.MonkeyPatch) -> None:
+    # the compiled run keeps the section crossings in a ring: a run with more crossings than
+    # the ring holds must return its LAST ones, oldest first (it used to keep the first ones,
+    # and the cycle was then shot from the middle of the run). The reference is the same run
+    # with a ring large enough for all of them: the same integration, so the same bits.
+    law = LuGreFriction(sigma0=1e5, sigma1=math.sqrt(1e5), sigma2=0.4, mu_c=1.0, mu_s=1.5,
+                        stribeck_velocity=1e-3)
+    one = _slider(law, m=1.0, k=2.0, load=1.0, speed=0.1)
+    start, _ = ms.initial_state(one, kick=-1.0)  # stuck to the drive: the cycle's start-up
+    full = mf.integrate_run(one, start, 200.0)
+    assert full.cross_t.size >= 20  # about 31 periods of 6.36 s
+    monkeypatch.setattr(mf, "MAX_CROSSINGS", 8)
+    ring = mf.integrate_run(one, start, 200.0)
+    assert ring.cross_t.size == 8
+    assert np.array_equal(ring.cross_t, full.cross_t[-8:])
+    assert np.array_equal(ring.cross_y, full.cross_y[-8:])
+    assert np.all(np.diff(ring.cross_t) > 0.0)

@@ -248,8 +248,9 @@ def integrate(kind: int, law: int, p: np.ndarray, amat: np.ndarray, bvec: np.nda
     section_after : float
         See above, s.
     cross_t, cross_z : ndarray
-        Buffers for the times and states ``y`` of upward section crossings (the first
-        ``len(cross_t)`` are kept; ``stats[3]`` counts them all).
+        Ring buffers for the times and states ``y`` of upward section crossings: crossing
+        ``i`` (from 0) is written to row ``i mod len(cross_t)``, so the last ``len(cross_t)``
+        are kept (:func:`ring_order` gives their order); ``stats[3]`` counts them all.
     reversal_t : ndarray
         Buffer for the times of slip reversals (the slip speed ``V - q_c'`` changes sign,
         located like the crossings; the first ``len(reversal_t)`` are kept).
@@ -475,8 +476,8 @@ def _integrate_slip_form(kind: int, law: int, p: np.ndarray, amat: np.ndarray, b
                             hi = mid
                     dense_value(z, znew, c3, c4, hi, zd)
                     tc = t + hi * h
-                    nc = int(stats[3])
-                    if nc < n_cross_buf:
+                    if n_cross_buf > 0:  # a ring: crossing i at i mod n_cross_buf
+                        nc = int(stats[3]) % n_cross_buf
                         cross_t[nc] = tc
                         for i in range(cross_z.shape[1]):
                             cross_z[nc, i] = zd[i]
@@ -553,3 +554,26 @@ __all__ = [  # the laws' names are re-exported: one module for the engine's call
     "contact_speed", "dense_value", "integrate", "jacobian", "jacobian_derivative_times",
     "law_values", "lu_factor", "lu_solve", "quasi_static_speed", "rhs",
 ]
+
+
+def ring_order(count: int, size: int) -> np.ndarray:
+    """Rows of a ring buffer of ``size`` rows in the order they were written, oldest first.
+
+    :func:`integrate` writes section crossing ``i`` (from 0) to row ``i mod size``; after
+    ``count`` crossings the buffer holds the last ``min(count, size)`` of them.
+
+    Parameters
+    ----------
+    count : int
+        Crossings written (``stats[3]``).
+    size : int
+        Rows of the buffer.
+
+    Returns
+    -------
+    ndarray of int
+        Row indices, oldest crossing first.
+    """
+    if count <= size:
+        return np.arange(count)
+    return (np.arange(size) + count) % size

@@ -50,7 +50,8 @@ DEFAULT_RTOL = 1e-8
 FEW_SPEEDS = 8
 #: Attempted steps per schedule segment (a bound on every run).
 MAX_STEPS = 2_000_000
-#: Section crossings kept per run.
+#: Section crossings kept per run: the last ones of the last speed (the compiled run keeps them
+#: in a ring).
 MAX_CROSSINGS = 4096
 #: Fresh calls of the integrator after its steps fell below the round-off of its clock.
 MAX_CLOCK_RESTARTS = 100
@@ -429,7 +430,7 @@ def integrate_run(system: MemorySystem, y0: FloatArray, t_max: float, *,
     z_out = np.full((h_times.size, ks.n), np.nan)
     cross_t = np.empty(MAX_CROSSINGS)
     cross_z = np.empty((MAX_CROSSINGS, ks.n))
-    n_cross = 0
+    kept_t, kept_z = np.empty(0), np.empty((0, ks.n))  # the last segment's last crossings
     reversal_t = np.empty(MAX_CROSSINGS)
     steps = rejected = reversals = 0
     status = stiff.STATUS_DONE
@@ -439,13 +440,15 @@ def integrate_run(system: MemorySystem, y0: FloatArray, t_max: float, *,
     for v in sched.speeds:
         scale_speeds.append(v if v > 0.0 else scale_speeds[-1])  # the first speed is positive
     steady = steady_states(system, np.asarray(scale_speeds, dtype=np.float64))
+    last = False
     for i, speed in enumerate(sched.speeds):
         t_end = min(sched.times[i + 1], t_max) if i + 1 < len(sched.times) else t_max
         if t_end <= t:
             break
         atol = rtol * state_scales(system, scale_speeds[i], steady[i])
         last = i + 1 == len(sched.speeds)
-        segment_steps = segment_cross = 0
+        segment_steps = 0
+        kept_t, kept_z = np.empty(0), np.empty((0, ks.n))
         # a call whose steps fell below the round-off of its own clock (1e-14 of the time since
         # its start: a slip reversal thousands of seconds into a run) goes on in a fresh call
         # from where it stopped, whose clock starts at zero; the drive speed is constant within
@@ -457,22 +460,24 @@ def integrate_run(system: MemorySystem, y0: FloatArray, t_max: float, *,
             status, t, _h = stiff.integrate(
                 ks.kind, ks.law, ks.p, ks.amat, ks.bvec, ks.iv, ks.is_, ks.kq, z, ks.n, False, t,
                 t_end, float(speed), rtol, atol, 0.0, 0.0, MAX_STEPS - segment_steps, h_times,
-                z_out, False, 0.0, cross_t[min(segment_cross, MAX_CROSSINGS):],
-                cross_z[min(segment_cross, MAX_CROSSINGS):],
+                z_out, False, 0.0, cross_t, cross_z,
                 reversal_t[min(reversals, MAX_CROSSINGS):], stats)
             segment_steps += int(stats[0]) + int(stats[1])
             steps += int(stats[0])
             rejected += int(stats[1])
             reversals += int(stats[6])
-            segment_cross += int(stats[3])
+            # the call's ring of crossings, oldest first, after those of the calls before it
+            rows = stiff.ring_order(int(stats[3]), MAX_CROSSINGS)
+            kept_t = np.concatenate([kept_t, cross_t[rows]])[-MAX_CROSSINGS:]
+            kept_z = np.concatenate([kept_z, cross_z[rows]])[-MAX_CROSSINGS:]
             if (status != stiff.STATUS_STEP_UNDERFLOW or not t > start
                     or segment_steps >= MAX_STEPS):
                 break
-        if last:
-            n_cross = min(segment_cross, MAX_CROSSINGS)
         if status != stiff.STATUS_DONE:
             break
-    return _Run(t, z, status, cross_t[:n_cross].copy(), cross_z[:n_cross].copy(),
+    if not last:  # the run ended before its last segment: no crossings of the last speed
+        kept_t, kept_z = np.empty(0), np.empty((0, ks.n))
+    return _Run(t, z, status, kept_t, kept_z,
                 z_out if history_times is not None else None, steps, rejected, reversals,
                 reversal_t[:min(reversals, MAX_CROSSINGS)].copy())
 
