@@ -82,6 +82,9 @@ def _copy(tmp_path: Path, replace: dict[str, str] | None = None, extra: str = ""
     ({'normal_stiffness = "5e7 N/m"': 'normal_stiffnes = "5e7 N/m"'}, "", "unknown keys normal_stiffnes"),
     ({'normal_stiffness = "5e7 N/m"': ""}, "", "normal_dof = 1 needs [contact] normal_stiffness"),
     ({}, 'normal_damping = "-1 N*s/m"\n', "normal_damping = -1.0 must not be negative"),
+    # a constant coefficient (Hoffmann et al. 2002 use one): the analysis needs mu_k alone
+    ({"mu_k = 0.4": "mu_k = 0.5"}, "", "mu_s = mu_k = 0.5: the model needs static friction "
+     "above kinetic friction; the eigenvalues of steady sliding depend on mu_k alone"),
 ])
 def test_bad_contact_is_refused_in_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str],
                                             replace: dict[str, str], extra: str, why: str) -> None:

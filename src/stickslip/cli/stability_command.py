@@ -100,6 +100,11 @@ def _analyse(config: Path, mu_max: float) -> tuple[Any, Any, Any, Any, int | Non
         contact = machine_file.contact()
         if machine_file.has_structure:
             values = collect_inputs({}, config, normal_coupling=True)
+            if values["mu_s"] == values["mu_k"] and machine_file.friction_table is None:
+                raise BadInput(f"{machine_file.label}: mu_s = mu_k = {values['mu_k']:g}: the model "
+                               "needs static friction above kinetic friction; the eigenvalues of "
+                               "steady sliding depend on mu_k alone (a Coulomb law), so any mu_s "
+                               "above it gives the same analysis")
             machine, reduction = machine_from_file(machine_file, values, normal_coupling=True)
         else:
             system = config_system(config, normal_coupling=True)
