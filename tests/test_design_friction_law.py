@@ -322,3 +322,36 @@ def test_design_of_a_structure_with_a_stribeck_law_gives_its_stability_and_bound
     assert code == 0, err
     assert "steady sliding with the friction law (stribeck): UNSTABLE, growth rate 17.07 1/s" in out
     assert "unstable at belt speeds below 0.1498 m/s and down to at least" in out
+
+
+def test_the_stability_optimum_as_printed_is_checked() -> None:
+    # An independent audit (eigenvalues of the linearised 2-DOF steady sliding, slider damping
+    # 2 (zeta - delta)): for this machine the stability-optimal foundation's delta_crit is
+    # 0.5312 to full precision, but the foundation built from design's printed m_a, k_a, c_a
+    # (4 digits) is unstable for delta in 0.486-0.496: the optimum sits on the edge of a window
+    # of instability. design must give the printed foundation's own limit and say so.
+    from stickslip.analysis.design import stability_optimum
+    from stickslip.analysis.stability import slip_matrix
+    from stickslip.model.parameters import Foundation
+
+    system = PhysicalSystem(mass=2.0, stiffness=5e4, damping=20.0, mu_s=0.5, mu_k=0.3, load=500.0,
+                            speed=0.05)
+    best = stability_optimum(system)
+    assert best["delta_crit"] == pytest.approx(0.5312, abs=1e-4)
+    assert best["delta_crit_as_printed"] == pytest.approx(0.486, abs=1e-3)
+    m, k = system.mass, system.stiffness
+    printed = [float(f"{best[key]:.4g}") for key in ("m_a", "k_a", "c_a")]
+    built = Foundation(printed[0] / m, math.sqrt(printed[1] / k), printed[2] / (2 * math.sqrt(m * k)))
+    exact = Foundation(best["M"], best["K"], best["zeta_a"])
+    delta = 0.49  # inside the audit's window: the printed foundation grows, the optimum does not
+
+    def growth(foundation: Foundation) -> float:
+        return float(np.max(np.linalg.eigvals(
+            slip_matrix(elastic_foundation(system.zeta, foundation), -2.0 * delta)).real))
+
+    assert growth(built) > 0.0 > growth(exact)
+    payload = design_foundation(system).to_dict()
+    payload["stability_optimal_foundation"] = best  # as design --config gives it for such a law
+    report = format_report(payload)
+    assert "the optimum sits on the edge of a window of instability" in report
+    assert "delta_crit=0.486" in report

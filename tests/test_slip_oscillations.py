@@ -193,3 +193,43 @@ def test_a_slip_oscillations_amplitude_is_its_own_cycles_after_a_larger_transien
     assert found.stable and found.period == pytest.approx(run.period, rel=1e-9)
     assert found.amplitude == pytest.approx(0.856271, abs=1e-6)
     assert find_slip_oscillations(structure, Slider(0.5, friction=LinearFriction(-0.2))) == ()
+
+
+def test_small_cycles_near_the_hopf_point_are_found_two_to_a_cell() -> None:
+    # Near the Hopf point (lambda_H about 0.67 here) the same law has three slip oscillations
+    # at lambda = 0.668, all of amplitude below 0.05: the first below the old scan's first grid
+    # point (0.02475) and the other two inside one of its cells (0.02475-0.0495), where their
+    # sign changes cancelled: `cycles` listed none (independent audit; `continue` of the same
+    # law traces them through folds at lambda 0.6665-0.6698). Each found cycle is checked here
+    # as a fixed point of the engine's own section map, independently of the scan's seeds,
+    # and their stabilities alternate as fixed points of an increasing map of the line must.
+    from stickslip.analysis.simulation import EngineOptions
+    from stickslip.analysis.slip_oscillations import slip_section
+
+    slider = Slider(0.668, gamma=GAMMA, friction=StribeckFriction(US))
+    found = find_slip_oscillations(rigid_base(ZETA), slider)
+    assert len(found) == 3
+    amplitudes = [osc.amplitude for osc in found]
+    assert amplitudes == sorted(amplitudes) and amplitudes[-1] < 0.05
+    assert amplitudes[0] < 0.02475 and 0.02475 < amplitudes[1] < amplitudes[2] < 0.0495
+    assert [osc.stable for osc in found] == [False, True, False]
+    section = slip_section(rigid_base(ZETA), slider, EngineOptions())
+    for osc in found:
+        y = np.array([osc.peak_velocity])
+        back = section.step(y)
+        assert back is not None and abs(float(back[0]) - osc.peak_velocity) < 1e-9
+        assert osc.period == pytest.approx(2.0 * math.pi, rel=1e-4)  # small: the linear period
+
+
+@pytest.mark.slow
+def test_the_cycle_near_the_hopf_point_matches_smooth_law_shooting() -> None:
+    # An independent audit's Newton shooting of the smooth law (solve_ivp, rtol 1e-12) at
+    # lambda = 0.668: the outer unstable cycle has amplitude 0.046860 and multiplier 1.00155;
+    # the law interpolated to 1e-6 lambda must give it to the interpolant's effect (1e-3 here,
+    # the cycle's amplitude being set by the law's weak cubic term near the Hopf point).
+    slider = Slider(0.668, gamma=GAMMA, friction=StribeckFriction(US, tolerance=1e-6))
+    found = find_slip_oscillations(rigid_base(ZETA), slider)
+    outer = max(found, key=lambda osc: osc.amplitude)
+    assert not outer.stable
+    assert outer.amplitude == pytest.approx(0.046860, rel=1e-3)
+    assert outer.multiplier == pytest.approx(1.00155, abs=2e-4)

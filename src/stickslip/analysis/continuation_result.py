@@ -134,11 +134,14 @@ class ContinuationResult:
                     time_s, length_m = self.si_scales(point[name])
                     point["period_s"] = point["period"] * time_s
                     point["amplitude_m"] = point["amplitude"] * length_m
+        system = self.system.to_dict()
+        if name in system:  # the continued parameter takes the range's values, not this one
+            system[name] = None
         return {
             "param": name,
             "param_units": units,
             "range": list(self.param_range),
-            "system": self.system.to_dict(),
+            "system": system,
             "branches": branches,
             "steady": [{name: float(p), "growth_rate": float(g), "stable": bool(g < 0.0)}
                        for p, g in zip(self.steady_param, self.steady_growth, strict=True)],

@@ -63,7 +63,8 @@ class Cycle:
     period, amplitude, stick_ratio : float
         Of the certified cycle (as :func:`stickslip.simulate` reports them).
     multipliers : ndarray of complex
-        Floquet multipliers of the return map ``P^k`` (empty for the rigid base).
+        Floquet multipliers of the return map ``P^k``, largest modulus first (empty for the
+        rigid base).
     stable : bool
         Every multiplier inside the unit circle.
     """
@@ -292,6 +293,7 @@ def _candidate_cycle(pm: ReturnMap, full: FloatArray, k: int, jac: FloatArray, r
     (it repeats it: its period, amplitude and stick ratio)."""
     multipliers = (np.asarray(np.linalg.eigvals(jac), dtype=np.complex128) if jac.size
                    else np.zeros(0, dtype=np.complex128))
+    multipliers = multipliers[np.argsort(-np.abs(multipliers), kind="stable")]  # largest first
     return Cycle(full, k, float(run.period), float(run.amplitude), float(run.stick_ratio),
                  multipliers, bool(np.all(np.abs(multipliers) < 1.0)), name, radius,
                  orbit=tuple(pm.next_breakaways(full, k)) if full.size > 2 else (),

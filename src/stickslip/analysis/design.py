@@ -407,6 +407,10 @@ def design_foundation(system: PhysicalSystem, *, lam_max: float = 200.0,
                         stable_best, status, opts)
 
 
+#: Significant digits of the foundation ``design`` prints (its as-printed stability is checked).
+PRINTED_DIGITS = 4
+
+
 def stability_optimum(system: PhysicalSystem, max_foundation_deflection: float | None = None
                       ) -> dict[str, Any]:
     """The foundation that lets steady sliding tolerate the steepest friction weakening, in SI.
@@ -429,8 +433,12 @@ def stability_optimum(system: PhysicalSystem, max_foundation_deflection: float |
     dict
         ``m_a`` kg, ``k_a`` N/m, ``c_a`` N s/m, ``M``, ``K``, ``zeta_a``, ``delta_crit`` and the
         friction slope it tolerates ``sigma_crit`` (s/m), ``foundation_deflection`` (m, under
-        ``mu_k W``) and the bound ``max_foundation_deflection`` (m).
+        ``mu_k W``) and the bound ``max_foundation_deflection`` (m); ``delta_crit_as_printed``
+        and ``sigma_crit_as_printed``: the same for the foundation built from ``m_a``, ``k_a``,
+        ``c_a`` rounded to :data:`PRINTED_DIGITS` significant digits (the optimum can sit on the
+        edge of a window of instability, which the rounded foundation may cross).
     """
+    from stickslip.analysis.stability import critical_weakening
     from stickslip.analysis.stability_tuning import (
         MAX_FOUNDATION_DEFLECTION_RATIO,
         optimal_foundation_stability,
@@ -449,6 +457,11 @@ def stability_optimum(system: PhysicalSystem, max_foundation_deflection: float |
     result = optimal_foundation_stability(system.zeta, max_deflection_ratio=d_max / own)
     phys = foundation_to_physical(result.foundation, system.mass, system.stiffness)
     per_slope = 2.0 * math.sqrt(system.mass * system.stiffness) / system.load
+    # the optimum can sit on the edge of a window of instability: the foundation built from
+    # the printed values (m_a, k_a, c_a to PRINTED_DIGITS) may lose stability earlier
+    printed = PhysicalFoundation(*(float(f"{x:.{PRINTED_DIGITS}g}") for x in (phys.m_a, phys.k_a, phys.c_a)))
+    printed_delta = critical_weakening(elastic_foundation(
+        system.zeta, foundation_to_dimensionless(printed, system.mass, system.stiffness)))
     return {
         "m_a": phys.m_a, "k_a": phys.k_a, "c_a": phys.c_a,
         "M": result.foundation.mass_ratio, "K": result.foundation.stiffness_ratio,
@@ -458,6 +471,8 @@ def stability_optimum(system: PhysicalSystem, max_foundation_deflection: float |
         "foundation_deflection": system.mu_k * system.load / phys.k_a,
         "max_foundation_deflection": d_max,
         "source": "largest exact delta_crit, M <= M_opt of Eq. (28), foundation deflection <= bound",
+        "delta_crit_as_printed": printed_delta,
+        "sigma_crit_as_printed": printed_delta * per_slope,
     }
 
 

@@ -18,7 +18,9 @@ decides *which* cycles are looked at, never what is reported):
   increasing on the one-dimensional section, so every cycle is a sign change of
   ``P(y) - y`` along the peak velocity ``y`` in ``(0, 1)``; a run that reaches the belt
   speed counts as ``P(y) > y`` (it grew out of every slip oscillation). The sign changes are
-  bracketed on a grid and each is followed by **backward-time iteration** of the map,
+  bracketed on a grid (even and geometric, with the deepest dips of ``|P(y) - y| / y``
+  searched for a pair of cycles in one cell: :func:`_section_scan`) and each is followed by
+  **backward-time iteration** of the map,
   ``y <- P^-1(y)`` (``P`` inverted by bisection: the backward-time run on the section,
   evaluated with the forward engine), which converges to an unstable cycle as a forward run
   converges to a stable one;
@@ -36,6 +38,7 @@ All quantities are dimensionless (``tau``, ``V/omega_n``, belt speed 1).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -54,8 +57,17 @@ from stickslip.model.structure import Structure, to_user_order
 
 FloatArray = NDArray[np.float64]
 
-#: Peak velocities of the section scan (one DOF): the grid on which ``P(y) - y`` is bracketed.
+#: Peak velocities of the section scan (one DOF): the grid on which ``P(y) - y`` is bracketed,
+#: evenly spaced in ``(0, 0.99]`` and, for the small cycles near a Hopf point, geometrically
+#: from ``SCAN_SMALLEST`` (:data:`SCAN_GEOMETRIC` points, ratio about 1.27).
 SCAN_POINTS = 40
+SCAN_GEOMETRIC = 40
+SCAN_SMALLEST = 1e-4
+#: Local minima of ``|P(y) - y| / y`` searched for a dip through zero (two cycles in one
+#: cell of the grid give no sign change there), the deepest first, and the map's evaluations
+#: per search.
+SCAN_DIPS = 3
+SCAN_DIP_EVALUATIONS = 16
 #: Backward iterations of the map per bracket (each one a bisection of ``P``).
 BACKWARD_STEPS = 4
 #: Peak velocities along the least-damped mode screened for a sign change (more than one DOF).
@@ -220,6 +232,12 @@ def _gap_sign(section: SlipSection, y: FloatArray) -> float:
     return 1.0 if py is None else float(np.sign(py[0] - y[0]))
 
 
+def _gap(section: SlipSection, y: float) -> float:
+    """``P(y)_0 - y_0`` (one DOF); a run that reaches the belt speed grew: ``+inf``."""
+    py = section.step(np.array([y]))
+    return math.inf if py is None else float(py[0] - y)
+
+
 def _inverse(section: SlipSection, target: float, lo: float, hi: float) -> float | None:
     """``P^-1(target)`` on ``[lo, hi]`` (one DOF, ``P`` increasing): Brent's method once the
     upper end is a run that does not reach the belt speed; None when ``target`` is not in
@@ -247,15 +265,46 @@ def _inverse(section: SlipSection, target: float, lo: float, hi: float) -> float
 
 
 def _section_scan(section: SlipSection) -> list[FloatArray]:
-    """One DOF: seeds at every sign change of ``P(y) - y``, each pulled in by backward
-    iteration of the map where the cycle repels (the unstable ones)."""
-    grid = np.linspace(0.0, 0.99, SCAN_POINTS + 1)[1:]
-    signs = [_gap_sign(section, np.array([y])) for y in grid]
+    """One DOF: seeds at every sign change of ``P(y) - y`` on the scan's grid, each pulled in
+    by backward iteration of the map where the cycle repels (the unstable ones).
+
+    The grid has :data:`SCAN_POINTS` even and :data:`SCAN_GEOMETRIC` geometric points. Two
+    cycles in one cell give no sign change: at the deepest local minima of ``|P(y) - y| / y``
+    on the grid (:data:`SCAN_DIPS`; the map nearest the identity, as between two cycles born
+    in a fold) the relative gap is minimised over the two cells beside it, and a minimum of
+    the other sign adds the point between the pair. A sign change is a cycle; the scan finds those it
+    brackets, which is no proof that there are no others.
+    """
+    from scipy.optimize import minimize_scalar
+
+    grid = np.union1d(np.linspace(0.0, 0.99, SCAN_POINTS + 1)[1:],
+                      np.geomspace(SCAN_SMALLEST, 0.99, SCAN_GEOMETRIC))
+    gaps = {float(y): _gap(section, float(y)) for y in grid}
+    ys = sorted(gaps)
+    dips = []
+    for i in range(1, len(ys) - 1):
+        lo, mid, hi = ys[i - 1], ys[i], ys[i + 1]
+        side = np.sign(gaps[mid])
+        if not (side == np.sign(gaps[lo]) == np.sign(gaps[hi]) != 0.0 and math.isfinite(gaps[mid])):
+            continue
+        if abs(gaps[mid]) / mid < min(abs(gaps[lo]) / lo, abs(gaps[hi]) / hi):
+            dips.append((abs(gaps[mid]) / mid, lo, mid, hi, float(side)))
+    for _depth, lo, mid, hi, side in sorted(dips)[:SCAN_DIPS]:
+
+        def relative(y: float, side: float = side) -> float:
+            gap = _gap(section, y)
+            gaps[y] = gap
+            return side * gap / y if math.isfinite(gap) else math.inf
+
+        minimize_scalar(relative, bounds=(lo, hi), method="bounded",
+                        options={"maxiter": SCAN_DIP_EVALUATIONS, "xatol": 1e-6 * mid})
+    ys = sorted(gaps)
+    signs = [float(np.sign(gaps[y])) for y in ys]
     seeds: list[FloatArray] = []
-    for i in range(grid.size - 1):
+    for i in range(len(ys) - 1):
         if signs[i] == signs[i + 1] or signs[i] == 0.0:
             continue
-        lo, hi = float(grid[i]), float(grid[i + 1])
+        lo, hi = ys[i], ys[i + 1]
         y = 0.5 * (lo + hi)
         if signs[i] < 0.0 < signs[i + 1]:  # repelling: backward-time iteration converges to it
             for _ in range(BACKWARD_STEPS):
@@ -369,7 +418,7 @@ def find_slip_oscillations(
         trap = _trap_certificate_seed(structure, slider, section)
         if trap is not None:
             candidates.append(("trap certificate", trap))
-    else:  # the scan is complete in the plane; with more DOFs, start Newton from the mode
+    else:  # with more DOFs, start Newton from the least-damped mode
         candidates += [("modal start", y) for y in _modal_seeds(structure, section, MODAL_STARTS)]
     found: list[SlipOscillation] = []
     for origin, y0 in candidates:

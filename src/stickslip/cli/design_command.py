@@ -351,7 +351,8 @@ def format_report(p: dict[str, Any]) -> str:
         "theory", "exact Eq. 36", "simulation")
     lines = [
         f"dimensionless groups  lambda={g(p['lambda'])}  zeta={g(p['zeta'])}  gamma={g(p['gamma'])}"
-        f"  zeta_eq={g(p['zeta_eq'])} ({p['zeta_eq_source']})",
+        f"  zeta_eq={g(p['zeta_eq'])} ({p['zeta_eq_source']}"
+        f"{'; the Coulomb procedure' if own_law else ''})",
     ]
     if p["system"]["c"] == 0.0:
         lines.append("slider damping c = 0 (undamped, zeta = 0)"
@@ -385,7 +386,8 @@ def format_report(p: dict[str, Any]) -> str:
     dimensionless = f"(M={g(f['M'])}, K={g(f['K'])}, zeta_a={g(f['zeta_a'])})"
     lines.append("")
     if f["source"].startswith("recommended"):
-        lines.append(f"foundation assessed: the recommended one (Fig. 16 procedure, Eqs. 28-30): "
+        procedure = "the paper's Coulomb procedure, Fig. 16" if own_law else "Fig. 16 procedure"
+        lines.append(f"foundation assessed: the recommended one ({procedure}, Eqs. 28-30): "
                      f"{recommended}  {dimensionless}")
     else:
         assessed = f"m_a={g(f['m_a'], 'kg')}, k_a={g(f['k_a'], 'N/m')}, c_a={g(f['c_a'], 'N s/m')}"
@@ -422,6 +424,18 @@ def format_report(p: dict[str, Any]) -> str:
             f"{g(stable_best['foundation_deflection'], 'm')} "
             f"(bound {g(stable_best['max_foundation_deflection'], 'm')})"
         )
+        if stable_best["delta_crit_as_printed"] < stable_best["delta_crit"] * (1.0 - 1e-6):
+            lines.append(
+                "  note: the optimum sits on the edge of a window of instability: built from the "
+                f"values above, it tolerates only {_slope_text(stable_best['sigma_crit_as_printed'])} "
+                f"(delta_crit={g(stable_best['delta_crit_as_printed'])}); --json gives it to full "
+                "precision")
+        weakening = (p.get("stability") or {}).get("rigid", {}).get("delta_local")
+        if weakening is not None and weakening >= stable_best["delta_crit"]:
+            lines.append(
+                f"  note: the friction law's own weakening at V (delta={g(weakening)}) is beyond "
+                "what it tolerates: this foundation does not keep steady sliding linearly stable "
+                "at this operating point")
     stab = p.get("stability")
     if stab:
         lines += ["", f"steady sliding with the friction law ({p['friction']}):"]
