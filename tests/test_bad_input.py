@@ -438,6 +438,10 @@ def test_initial_states_with_a_state_column_the_structure_lacks(here: Path,
       "--samples", "5"], "--samples and --seed draw the states"),
     (["continue", "--param", "lam", "--range", "0.5:5", "--lam", "3"],
      "--lam is the continued parameter"),
+    # an independent audit: these named the wrong fault
+    (["continue", "--param", "lam", "--range", "0.5:nan"], "both ends must be finite numbers"),
+    (["continue", "--param", "speed", "--range", "1:2"],
+     "speed is a machine file's parameter: give --config"),
 ])
 def test_an_option_the_others_make_idle_is_refused(args: list[str], message: str, here: Path,
                                                    capsys: pytest.CaptureFixture[str]) -> None:
@@ -467,3 +471,11 @@ def test_plot_from_values(value: str, here: Path, capsys: pytest.CaptureFixture[
     out = _check(["simulate", "--lam", "3", "--zeta", "0.1", "--plot-from", value, "--plot",
                   "p.png"], False, capsys, here)
     assert out == ""
+
+
+def test_a_tolerance_below_double_precision_is_refused(capsys: pytest.CaptureFixture[str]) -> None:
+    # an independent audit: --rtol 1e-300 reported "converged" for a bracket one
+    # floating-point step wide, which that tolerance cannot describe
+    code, out, err = run_cli(["boundary", "--zeta", "0.1", "--rtol", "1e-300", "--json"], capsys)
+    assert code == 2 and out == "" and err.count("\n") == 1
+    assert "rtol=1e-300 must lie in [1e-14, 1)" in err

@@ -480,3 +480,20 @@ def test_a_speed_schedule_beyond_its_bound_is_refused_before_its_rows_are_read(
     n = MAX_SCHEDULE_STEPS + 1
     with pytest.raises(ValueError, match=f"has {n} steps, more than the {MAX_SCHEDULE_STEPS}"):
         SpeedSchedule(tuple(float(i) for i in range(n)), (1e-3,) * n)
+
+
+@pytest.mark.parametrize("rows, why", [
+    ("0,0.3\n0.02,0.25\n0.01,0.2\n", "friction table speeds must increase strictly, got 0.02 m/s "
+                                     "then 0.01 m/s"),
+    ("0,0.3\n0.02,-0.25\n", "friction coefficient mu=-0.25 is negative"),
+])
+def test_a_bad_friction_table_is_blamed_not_the_operating_point(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str], rows: str, why: str) -> None:
+    # an independent audit: the table's own fault ended "the speed or the load is far outside
+    # the machine's scales", which sent the user to the wrong input
+    (tmp_path / "curve.csv").write_text("v,mu\n" + rows)
+    machine = tmp_path / "m.toml"
+    machine.write_text(SLIDER + '[friction]\nlaw = "table"\ntable = "curve.csv"\n')
+    for command in ("design", "simulate"):
+        line = _one_error([command, "--config", str(machine)], capsys)
+        assert why in line and "outside the machine's scales" not in line, line

@@ -145,3 +145,17 @@ def test_an_undamped_resonance_is_said_unbounded(app: typer.Typer) -> None:
     code, out = _invoke(app, ["frf", "--zeta", "0", "--dva", "none"])
     assert code == 0, out
     assert "H_max       unbounded (undamped resonance) at Omega = 1" in out and " inf" not in out
+
+
+def test_every_undamped_resonance_is_listed(app: typer.Typer) -> None:
+    # an independent audit: the undamped slider on an undamped foundation (M = 0.1, K = 1) has
+    # two infinite peaks and only one was listed. Closed form: det([[1 - w^2, -1], [-1,
+    # 1 + K^2 - M w^2]]) = 0, i.e. 0.1 w^4 - 2.1 w^2 + 1 = 0, w^2 = (2.1 -+ sqrt(4.01)) / 0.2
+    lows = [math.sqrt((2.1 - sign * math.sqrt(4.01)) / 0.2) for sign in (1.0, -1.0)]
+    code, out = _invoke(app, ["frf", "--zeta", "0", "--dva", "0.1,1,0", "--json"])
+    assert code == 0, out
+    payload = json.loads(out)
+    assert payload["H_max"] is None and "unbounded" in payload["H_max_note"]
+    omegas = [peak["Omega"] for peak in payload["local_maxima"]]
+    assert omegas == pytest.approx(lows, rel=1e-9)
+    assert payload["Omega_peak"] == pytest.approx(lows[0], rel=1e-9)

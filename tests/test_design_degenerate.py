@@ -130,3 +130,22 @@ def test_machine_file_undetermined_verdict_says_why(tmp_path: Path,
     assert "run(s) undetermined" in out and "V_c=0 m/s" not in out
     d = json.loads(run_cli(["design", "--config", str(machine), "--t-max", "1", "--json"], capsys)[1])
     assert d["status"] == "t-max" and d["t_max"] == 1.0
+
+
+def test_flags_that_replace_file_values_are_named(tmp_path: Path,
+                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    # an independent audit: the flags of one machine and the file of another were merged key
+    # by key without a word (m, k from the flags, c from the file: a damping ratio of neither)
+    machine = tmp_path / "base.toml"
+    machine.write_text('mu_s = 0.3\nmu_k = 0.2\nload = "1 N"\nspeed = "5 cm/s"\nm = "1 kg"\n'
+                       'k = "1 N/m"\nc = "0.2 N*s/m"\n')
+    code, out, err = run_cli(["design", "--m", "2 kg", "--k", "50 kN/m", "--config", str(machine),
+                              "--no-stick-slip-optimum", "--json"], capsys)
+    assert code == 0, err
+    warnings = json.loads(out)["warnings"]
+    assert any(w.startswith("--m, --k replace the values of --config") and "c, " in w
+               for w in warnings), warnings
+    code, out, err = run_cli(["design", "--config", str(machine), "--no-stick-slip-optimum",
+                              "--json"], capsys)
+    assert code == 0, err
+    assert not any("replace the values" in w for w in json.loads(out)["warnings"])

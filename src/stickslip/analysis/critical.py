@@ -115,6 +115,32 @@ def scan_brackets(lams: FloatArray, codes: CodeArray) -> list[tuple[float, float
     return [(lo, hi, v_lo) for (lo, v_lo), (hi, v_hi) in itertools.pairwise(known) if v_lo != v_hi]
 
 
+
+#: Smallest relative tolerance of a bisection: below it the bracket's ends are neighbouring
+#: floating-point numbers, and "converged" would be claimed of a bracket it cannot resolve.
+MIN_RTOL = 1e-14
+
+
+def checked_rtol(rtol: float) -> float:
+    """``rtol`` of a bisection, checked: positive, at least :data:`MIN_RTOL`, below 1.
+
+    Parameters
+    ----------
+    rtol : float
+        Relative tolerance of a crossing.
+
+    Returns
+    -------
+    float
+        ``rtol``.
+    """
+    rtol = positive("rtol", rtol)
+    if not MIN_RTOL <= rtol < 1.0:
+        raise ValueError(f"rtol={rtol!r} must lie in [{MIN_RTOL:g}, 1): below {MIN_RTOL:g} "
+                         "double precision cannot resolve the crossing")
+    return rtol
+
+
 def bisect_crossings(
     classify: Classifier,
     brackets: Sequence[tuple[int, float, float, int]],
@@ -140,9 +166,7 @@ def bisect_crossings(
     list of (int, Crossing), int
         The ``(group, Crossing)`` pairs in the order of ``brackets`` and the number of runs.
     """
-    rtol = positive("rtol", rtol)
-    if rtol >= 1.0:
-        raise ValueError(f"rtol={rtol!r} must be below 1")
+    rtol = checked_rtol(rtol)
     state = [[j, lo, hi, v_lo, True] for j, lo, hi, v_lo in brackets]
     active = [b for b in state if not _narrow(b[1], b[2], rtol)]
     n_runs = 0

@@ -155,12 +155,15 @@ class ResponsePeak:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary with the command-line keys ``H_max`` and ``Omega_peak``."""
-        return {
+        out = {
             "H_max": self.h_max,
             "Omega_peak": self.omega_peak,
             "zeta_eq": self.equivalent_damping,
             "local_maxima": [{"Omega": w, "H": h} for w, h in self.local_maxima],
         }
+        if math.isinf(self.h_max):  # JSON has no infinity: it prints null, said here
+            out["H_max_note"] = "unbounded: an undamped resonance at each local maximum"
+        return out
 
 
 def _bracketing_grid(
@@ -195,7 +198,7 @@ class _Stationary:
     poles: NDArray[np.complex128]
     zeros: NDArray[np.complex128]
     candidates: FloatArray
-    undamped: float | None  # frequency of an uncancelled undamped resonance, if any
+    undamped: tuple[float, ...]  # frequencies of the uncancelled undamped resonances, ascending
 
 
 def _stationary(structure: Structure) -> _Stationary:
@@ -213,11 +216,11 @@ def _stationary(structure: Structure) -> _Stationary:
     zeros = _state_eigenvalues(
         structure.mass[1:, 1:], structure.damping[1:, 1:], structure.stiffness[1:, 1:]
     )
-    for p in poles:
-        if p.imag > 0.0 and abs(p.real) <= _UNDAMPED * abs(p):
-            cancelled = zeros.size > 0 and np.min(np.abs(zeros - p)) <= 1e-8 * abs(p)
-            if not cancelled:
-                return _Stationary(poles, zeros, np.zeros(0), float(p.imag))
+    undamped = sorted(float(p.imag) for p in poles
+                      if p.imag > 0.0 and abs(p.real) <= _UNDAMPED * abs(p)
+                      and not (zeros.size > 0 and np.min(np.abs(zeros - p)) <= 1e-8 * abs(p)))
+    if undamped:  # every one of them an infinite peak
+        return _Stationary(poles, zeros, np.zeros(0), tuple(undamped))
     numerator = _abs2_polynomial(zeros)
     denominator = _abs2_polynomial(poles)
     critical = P.polysub(
@@ -227,7 +230,7 @@ def _stationary(structure: Structure) -> _Stationary:
     scale = float(np.abs(poles).max())
     # near-double roots (merging peaks) split into pairs with a small imaginary part
     keep = (roots.real > 1e-6 * scale) & (np.abs(roots.imag) <= 1e-3 * np.abs(roots))
-    return _Stationary(poles, zeros, np.sort(roots.real[keep]), None)
+    return _Stationary(poles, zeros, np.sort(roots.real[keep]), ())
 
 
 def local_maxima_estimate(structure: Structure) -> tuple[FloatArray, FloatArray]:
@@ -248,8 +251,8 @@ def local_maxima_estimate(structure: Structure) -> tuple[FloatArray, FloatArray]
         Frequency ratios and heights of the local maxima of ``H(Omega)``.
     """
     st = _stationary(structure)
-    if st.undamped is not None:
-        return np.array([st.undamped]), np.array([math.inf])
+    if st.undamped:
+        return np.array(st.undamped), np.full(len(st.undamped), math.inf)
     om = np.concatenate([[0.0], st.candidates])
     h = frequency_response(structure, om)
     left = np.concatenate([[-math.inf], h[:-1]])
@@ -301,8 +304,8 @@ def response_peak(structure: Structure) -> ResponsePeak:
         ``Omega_peak = 0``, ``H_max = 1``.
     """
     st = _stationary(structure)
-    if st.undamped is not None:
-        return ResponsePeak(math.inf, st.undamped, ((st.undamped, math.inf),))
+    if st.undamped:  # Omega_peak: the lowest of the infinite peaks
+        return ResponsePeak(math.inf, st.undamped[0], tuple((w, math.inf) for w in st.undamped))
     grid = _bracketing_grid(st.poles, st.zeros, st.candidates)
     slope = _squared_slope(structure, grid)
 

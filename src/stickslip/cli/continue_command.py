@@ -93,8 +93,11 @@ def continue_branches(
         raise BadInput(POINTS_REFUSED)
     allowed = PARAMETERS if config is None else tuple(MACHINE_PARAMETERS)
     if param not in allowed:
+        machine_only = config is None and param in MACHINE_PARAMETERS
         raise BadInput(f"--param {param!r} is not one of {', '.join(allowed)}"
-                       + ("" if config is None else " (a machine file's parameters)"))
+                       + ("" if config is None else " (a machine file's parameters)")
+                       + (f" ({param} is a machine file's parameter: give --config)"
+                          if machine_only else ""))
     if config is None and param in ("lam", "zeta", "gamma") and typed_options(ctx, (param,)):
         raise BadInput(f"--{param} is the continued parameter (--param {param}): its values come "
                        f"from --range; leave --{param} out")

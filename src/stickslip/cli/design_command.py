@@ -131,7 +131,8 @@ def design(
     config: Annotated[
         Path | None, typer.Option("--config", help="machine TOML file: the same keys (m, k, ..., flat or "
                                            "in a [system] table) or a [structure] table; optional "
-                                           "[friction] and [absorber] tables")
+                                           "[friction] and [absorber] tables; a flag given too "
+                                           "replaces the file's value of its key (with a warning)")
     ] = None,
     stick_slip_optimum: Annotated[
         bool,
@@ -223,6 +224,9 @@ def design(
                                    max_foundation_deflection=deflection, options=options, progress=bar)
     payload = report.to_dict()
     payload["damping_given"] = _damping_given(c, config)
+    overridden = _overridden(flags, config)
+    if overridden:
+        payload["warnings"] = [*payload.get("warnings", []), overridden]
     if json:
         print_json(payload)
         return
@@ -286,6 +290,22 @@ def _engine_options(t_max: float | None) -> EngineOptions:
         return EngineOptions(t_max=t_max)
     except ValueError as exc:
         raise BadInput(f"--t-max {t_max!r}: {exc}") from None
+
+
+def _overridden(flags: dict[str, Any], config: Path | None) -> str:
+    """The warning that flags replaced values of the machine file (flags win, key by key), or ""."""
+    if config is None:
+        return ""
+    raw = read_config(config)
+    given = [key for key, value in flags.items() if value is not None]
+    replaced = [key for key in given if key in raw]
+    if not replaced:
+        return ""
+    kept = [key for key in flags if key in raw and key not in given]
+    names = ", ".join(f"--{key.replace('_', '-')}" for key in replaced)
+    rest = f"; {', '.join(kept)} from the file" if kept else ""
+    return (f"{names} replace the values of --config {str(config)!r} (the flags win, key by "
+            f"key{rest}): check that the mix is one machine")
 
 
 def _damping_given(c: str | None, config: Path | None) -> bool:

@@ -275,8 +275,13 @@ def out_of_scale(speed: float, load: float, exc: Exception) -> str:
     Returns
     -------
     str
-        One line: the operating point, the refusal, and what it means.
+        One line: the operating point, the refusal, and what it means (a friction table's
+        own fault, :class:`~stickslip.model.friction.TableInputError`, is said alone).
     """
+    from stickslip.model.friction import TableInputError
+
+    if isinstance(exc, TableInputError):  # the table's own fault, at any operating point
+        return str(exc)
     return (f"at the belt speed {speed:g} m/s and load {load:g} N, {exc}; the speed or the "
             "load is far outside the machine's scales")
 

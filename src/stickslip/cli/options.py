@@ -29,7 +29,10 @@ FRICTION = Annotated[
         help="friction law while sliding (dimensionless): coulomb (the paper's), linear:DELTA, "
         "table:FILE.csv (columns v = v_r/V and f = (mu - mu_k)/(mu_s - mu_k)), or "
         "stribeck:vs=V_S/V, optionally followed by ,n=N ,viscous=D_V ,mu0=R0 ,tol=TOL "
-        "(e.g. stribeck:vs=0.2,viscous=0.01)",
+        "(e.g. stribeck:vs=0.2,viscous=0.01); on simulate also the laws with memory "
+        "rate-state:a=..,b=..,dc=..,mu_ref=..,vref=..[,evolution=slip] and "
+        "lugre:sigma0=..,sigma1=..,sigma2=..,mu_c=..,mu_s=..,vs=.. (dimensionless; "
+        "docs/friction_memory.md)",
     ),
 ]
 #: The backend options of resumable runs (``map``, ``basin``): same names, same help.
@@ -64,6 +67,8 @@ def parse_range(text: str, quantity: str | None, *, positive: bool = False) -> t
     except ValueError as exc:
         detail = "two numbers" if quantity is None else f"two values of {quantity} ({exc})"
         raise BadInput(f"--range {text!r} must be A:B with {detail}") from None
+    if sep and ":" not in hi_text and not (math.isfinite(lo) and math.isfinite(hi)):
+        raise BadInput(f"--range {text!r}: both ends must be finite numbers")
     if not sep or ":" in hi_text or not lo < hi:
         raise BadInput(f"--range {text!r} must be A:B with A < B")
     if positive and not (math.isfinite(lo) and math.isfinite(hi) and lo > 0.0):

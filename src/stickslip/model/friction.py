@@ -41,6 +41,11 @@ from stickslip.model._validate import (
 )
 
 FloatArray = NDArray[np.float64]
+
+
+class TableInputError(ValueError):
+    """A friction table refused for what it says (its speeds or coefficients), whatever the
+    operating point: messages about it name the table, not the speed and load."""
 BandTable = tuple[FloatArray, FloatArray, FloatArray]
 
 #: Most bands a law may produce (the engine has two modes per band).
@@ -257,17 +262,17 @@ class TableFriction:
         mus = [finite("mu", x) for x in mu]
         for x in mus:
             if x < 0.0:
-                raise ValueError(f"friction coefficient mu={x!r} is negative")
+                raise TableInputError(f"friction coefficient mu={x!r} is negative")
         v = [finite("v", x) for x in v_m_per_s]
         # said in the table's own units (m/s), before the division by V of the engine's u
         if v and v[0] < 0.0:
-            raise ValueError(f"friction table speed v = {v[0]!r} m/s must not be negative")
+            raise TableInputError(f"friction table speed v = {v[0]!r} m/s must not be negative")
         for a, b in itertools.pairwise(v):
             if not b > a:
-                raise ValueError(f"friction table speeds must increase strictly, got {a!r} m/s "
+                raise TableInputError(f"friction table speeds must increase strictly, got {a!r} m/s "
                                  f"then {b!r} m/s")
         if mus and mus[0] > mu_s:
-            raise ValueError(f"friction table mu(0+) = {mus[0]!r} exceeds mu_s = {mu_s!r}: "
+            raise TableInputError(f"friction table mu(0+) = {mus[0]!r} exceeds mu_s = {mu_s!r}: "
                              "sliding would hold more than sticking")
         u = [x / speed for x in v]
         return cls(tuple(u), tuple((x - mu_k) / (mu_s - mu_k) for x in mus))

@@ -29,7 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from stickslip.analysis.analytic_boundary import analytic_boundaries
-from stickslip.analysis.critical import Crossing, bisect_crossings, scan_brackets
+from stickslip.analysis.critical import Crossing, bisect_crossings, checked_rtol, scan_brackets
 from stickslip.analysis.simulation import EngineOptions
 from stickslip.analysis.theory import critical_lambda_linear
 from stickslip.analysis.verdict import Verdict, verdict_codes, verdict_flag_attributes
@@ -303,10 +303,7 @@ def _checked_scan(lam_min: float, lam_max: float, n_scan: int, rtol: float,
             f"n_scan={n_scan!r} at {n_zeta} zeta values is {n_scan * n_zeta:,} scan runs, "
             f"above the limit of {MAX_SCAN_RUNS:,} (their results are held in memory at once)"
         )
-    rtol = positive("rtol", rtol)
-    if rtol >= 1.0:
-        raise ValueError(f"rtol={rtol!r} must be below 1")
-    return lam_min, lam_max, rtol
+    return lam_min, lam_max, checked_rtol(rtol)
 
 
 def stick_slip_boundary(
