@@ -82,6 +82,31 @@ def test_cycles_command_json(capsys: pytest.CaptureFixture[str]) -> None:
     # Nakano's breakaway state on the rigid base: xi = lambda - 2 zeta, xi' = 1 (Eq. 20)
     assert cycle["breakaway_state"] == pytest.approx([3.0 - 0.2, 1.0])
     assert cycle["period"] == pytest.approx(simulate(rigid_base(0.1), Slider(3.0)).period, rel=1e-9)
+    assert payload["n_runs_unsettled"] == 0  # every run settles on the one cycle
+
+
+@pytest.mark.slow
+def test_runs_that_settle_on_no_listed_cycle_are_counted(
+        tmp_path: Any, capsys: pytest.CaptureFixture[str]) -> None:
+    # An independent audit's 3-DOF chain (B3): `cycles` lists two 1-stick-phase cycles and one
+    # of 2 (--max-period 2), but start-up settles on a stable cycle of 5 stick phases (the
+    # audit's own Newton shooting: period 91.85175832, |multipliers| 0.86499, 0.53887; simulate
+    # proves it with --t-max 40000). The output said only "search 25 starts".
+    for name, rows in (("M.csv", "1,0,0\n0,0.5,0\n0,0,2\n"),
+                       ("K.csv", "3000,-1000,0\n-1000,4000,-3000\n0,-3000,3000\n"),
+                       ("C.csv", "6.5,-2,0\n-2,8.25,-6\n0,-6,7\n")):
+        (tmp_path / name).write_text(rows)
+    machine = tmp_path / "machine.toml"
+    machine.write_text('mu_s = 0.5\nmu_k = 0.3\nload = "100.0 N"\nspeed = "0.05 m/s"\n'
+                       '[structure]\nname = "B3"\nmass = "M.csv"\nstiffness = "K.csv"\n'
+                       'damping = "C.csv"\ncontact_dof = 0\n')
+    code, out, err = run_cli(["cycles", "--config", str(machine), "--json"], capsys)
+    assert code == 0, err
+    payload = json.loads(out)
+    assert max(c["stick_phases"] for c in payload["cycles"]) <= 2
+    assert payload["n_runs_unsettled"] >= payload["n_seeds"] // 2
+    code, out, err = run_cli(["cycles", "--config", str(machine)], capsys)
+    assert code == 0 and "on none of these cycles" in out, err
 
 
 def test_a_cycle_slower_than_the_horizon_is_said_and_found_with_a_longer_one(

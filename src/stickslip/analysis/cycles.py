@@ -126,6 +126,10 @@ class CycleSearch:
     #: stable cycle whose slip phase amplifies deviations enormously before its stick phase
     #: removes them is one (its proof's bound on the Jacobian's variation does not close)
     candidates: tuple[Cycle, ...] = ()
+    #: seeding runs still sticking after :data:`SEED_BREAKAWAYS` stick phases whose last
+    #: breakaway state is on none of the cycles or candidates: they settle on a cycle of more
+    #: than ``max_period`` stick phases, approach one slowly, or wander (an observation)
+    n_unsettled: int = 0
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready: ``cycles``, ``candidates`` and ``slip_oscillations`` (lists) and the
@@ -143,6 +147,7 @@ class CycleSearch:
             "n_seeds": self.n_seeds,
             "n_map_evaluations": self.n_map_evaluations,
             "n_runs_cut_short": self.n_cut_short,
+            "n_runs_unsettled": self.n_unsettled,
             "t_max": self.t_max,
         }
 
@@ -207,8 +212,8 @@ def find_cycles(
     opts = options or EngineOptions()
     n = structure.n_dof
     pmaps = {d: ReturnMap(structure, slider, opts, d) for d in (SLIP_I, SLIP_II)}
-    starts, breakaways = _seed_breakaways(pmaps[SLIP_I], structure, slider, seeds, box, max_period,
-                                          seed)
+    starts, breakaways, ends = _seed_breakaways(pmaps[SLIP_I], structure, slider, seeds, box,
+                                                max_period, seed)
     cycles: list[Cycle] = []
     candidates: list[Cycle] = []
     # the section's two pieces: breakaways onto slip-I first (the paper's), then onto slip-II
@@ -259,12 +264,33 @@ def find_cycles(
     return CycleSearch(structure, slider, tuple(cycles), len(starts),
                        sum(m.evaluations for m in pmaps.values()),
                        n_cut_short=sum(m.cut_short for m in pmaps.values()), t_max=opts.t_max,
-                       candidates=tuple(candidates))
+                       candidates=tuple(candidates),
+                       n_unsettled=_unsettled(ends, (*cycles, *candidates)))
+
+
+#: A seeding run's last breakaway state is on a listed cycle when within this of one of its
+#: breakaway states (max norm, relative to the state's scale).
+SETTLED = 1e-3
+
+
+def _unsettled(ends: list[FloatArray], found: tuple[Cycle, ...]) -> int:
+    """How many seeding runs' last breakaway states are on none of the ``found`` cycles
+    (within :data:`SETTLED`): runs that settle on a longer cycle, approach one slowly, or
+    wander. An observation of the runs, not a proof."""
+    count = 0
+    for end in ends:
+        scale = max(1.0, float(np.max(np.abs(end))))
+        if not any(np.max(np.abs(end - z)) <= SETTLED * scale
+                   for c in found for z in (c.breakaway_state, *c.orbit)):
+            count += 1
+    return count
 
 
 def _seed_breakaways(pmap: ReturnMap, structure: Structure, slider: Slider, seeds: int, box: float,
-                     max_period: int, seed: int) -> tuple[list[FloatArray], list[FloatArray]]:
-    """The seeding runs' starts (start-up and random) and the breakaway states seeding Newton."""
+                     max_period: int, seed: int
+                     ) -> tuple[list[FloatArray], list[FloatArray], list[FloatArray]]:
+    """The seeding runs' starts (start-up and random), the breakaway states seeding Newton and
+    the last breakaway state of each run that went on for :data:`SEED_BREAKAWAYS`."""
     n = structure.n_dof
     rng = np.random.default_rng(random_seed(seed))
     starts = [np.concatenate([structure.kinetic_equilibrium_offset() * -slider.gamma * slider.lam,
@@ -274,6 +300,7 @@ def _seed_breakaways(pmap: ReturnMap, structure: Structure, slider: Slider, seed
     breakaways: list[FloatArray] = []
     early = 2 * int(max_period) + 1
     late: list[FloatArray] = []  # tried after every early state, so those keep their order
+    ends: list[FloatArray] = []  # each run's last breakaway state
     for start in starts:
         # the states after a short transient (near unstable cycles the run passes) and, from
         # the same run, after a long one: a cycle the runs approach slowly (multipliers near
@@ -283,7 +310,9 @@ def _seed_breakaways(pmap: ReturnMap, structure: Structure, slider: Slider, seed
             found = pmap.next_breakaways(start, early)  # fewer breakaways: steady sliding later
         breakaways += found[early - int(max_period):early]
         late += found[early:][-int(max_period):]
-    return starts, breakaways + late
+        if len(found) >= SEED_BREAKAWAYS:
+            ends.append(found[-1])
+    return starts, breakaways + late, ends
 
 
 def _candidate_cycle(pm: ReturnMap, full: FloatArray, k: int, jac: FloatArray, run: Any,

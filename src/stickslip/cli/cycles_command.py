@@ -165,6 +165,13 @@ def _print(p: dict[str, Any]) -> None:
         lines.append(f"horizon     {p['n_runs_cut_short']} of them ended at tau = {p['t_max']:g} "
                      "(or an event budget) before their next breakaway: a cycle slower than that "
                      "is not searched; raise --t-max")
+    if p.get("n_runs_unsettled"):
+        from stickslip.analysis.cycles import SEED_BREAKAWAYS
+
+        lines.append(f"unsettled   {p['n_runs_unsettled']} of the starts' runs, still sticking after "
+                     f"{SEED_BREAKAWAYS} stick phases, are on none of these cycles: they settle on "
+                     "a cycle of more stick phases than --max-period, approach one slowly, or "
+                     "wander (simulate from such a start says which)")
     typer.echo("\n".join(lines))
 
 
