@@ -38,3 +38,17 @@ def test_a_short_run_or_no_hint_is_quiet(monkeypatch: pytest.MonkeyPatch,
     _run(monkeypatch, [0.0, 20.0, 40.0], [(0, 100), (90, 100), (100, 100)])  # 2.2 s left
     _run(monkeypatch, [0.0, 20.0], [(0, 100), (1, 100)], shorten=None)
     assert capsys.readouterr().err == ""
+
+
+def test_every_bar_notes_a_long_run_by_default(monkeypatch: pytest.MonkeyPatch,
+                                               capsys: pytest.CaptureFixture[str]) -> None:
+    # an independent audit: a contact map of 10,000 runs (14-55 h) and a basin-map of 1e8 runs
+    # ran silent in a pipe: a bar made without a hint of its own notes with the default one
+    clock = iter([0.0, 20.0, 40.0])
+    monkeypatch.setattr(progress.time, "perf_counter", lambda: next(clock))
+    with ProgressBar(False, "contact map 100x100 (V, W)", "runs") as bar:
+        for done in (0, 1, 2):
+            bar(done, 10_000)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("stickslip: note: contact map 100x100 (V, W): about")
+    assert err[0].endswith(progress.DEFAULT_SHORTEN)

@@ -9,17 +9,20 @@ from typing import Any
 #: this (s) after :data:`NOTE_AFTER` s says so once on stderr, with how to shorten it.
 LONG_RUN = 600.0
 NOTE_AFTER = 15.0
+#: What a long run's note suggests when its command names nothing more precise.
+DEFAULT_SHORTEN = "a smaller grid, fewer points or fewer samples run shorter (Ctrl-C stops it)"
 
 
 class ProgressBar:
     """A rich progress bar on stderr with cells per second and time left.
 
-    Without a bar, ``shorten`` (what makes the run shorter, e.g. ``"--samples sets fewer"``)
-    asks for one note on stderr when the run is projected to last beyond :data:`LONG_RUN`.
+    Without a bar, ``shorten`` (what makes the run shorter, e.g. ``"--samples sets fewer"``;
+    :data:`DEFAULT_SHORTEN` unless given, None for no note) asks for one note on stderr when
+    the run is projected to last beyond :data:`LONG_RUN`.
     """
 
     def __init__(self, enabled: bool, label: str, unit: str = "cells",
-                 shorten: str | None = None) -> None:
+                 shorten: str | None = DEFAULT_SHORTEN) -> None:
         self._shorten = shorten
         self._note_from: tuple[int, float] | None = None
         self._unit = unit

@@ -17,7 +17,9 @@ def reproduce(
     out: Annotated[Path, typer.Option("--out", help="folder for figures, data and the report")] = Path(
         "results"),
     quality: Annotated[
-        str, typer.Option("--quality", help="tiny (seconds), default (< 3 min) or high (dense maps)")
+        str, typer.Option("--quality", help="tiny (coarse maps: about a minute with the "
+                          "compiled cache, several on a loaded machine), default (a few "
+                          "minutes) or high (dense maps)")
     ] = "default",
     json: Annotated[bool, typer.Option("--json", help="print one JSON object and nothing else")] = False,
     overwrite: Annotated[bool, typer.Option(

@@ -31,11 +31,13 @@ def refuse_options(ctx: typer.Context, names: tuple[str, ...], command: str) -> 
 
 
 def progress_bar(json: bool, label: str, unit: str = "runs", shorten: str | None = None) -> Any:
-    """The progress bar on a terminal (not with --json); without one, ``shorten`` asks for a
-    note on stderr when the run is projected to be long (:class:`ProgressBar`)."""
-    from stickslip.cli.progress import ProgressBar
+    """The progress bar on a terminal (not with --json); without one, ``shorten`` (or the
+    default hint) goes into a note on stderr when the run is projected to be long
+    (:class:`ProgressBar`)."""
+    from stickslip.cli.progress import DEFAULT_SHORTEN, ProgressBar
 
-    return ProgressBar(not json and sys.stderr.isatty(), label, unit=unit, shorten=shorten)
+    return ProgressBar(not json and sys.stderr.isatty(), label, unit=unit,
+                       shorten=DEFAULT_SHORTEN if shorten is None else shorten)
 
 
 def contact_cycles_command(ctx: typer.Context, config: Path, machine_file: Any, *,
