@@ -83,6 +83,8 @@ def test_cycles_command_json(capsys: pytest.CaptureFixture[str]) -> None:
     assert cycle["breakaway_state"] == pytest.approx([3.0 - 0.2, 1.0])
     assert cycle["period"] == pytest.approx(simulate(rigid_base(0.1), Slider(3.0)).period, rel=1e-9)
     assert payload["n_runs_unsettled"] == 0  # every run settles on the one cycle
+    # no ball on the rigid base (the audit read proof_radius 0 as an empty proof): said why
+    assert cycle["multipliers"] == [] and cycle["proof"].startswith("exact: with one DOF")
 
 
 @pytest.mark.slow

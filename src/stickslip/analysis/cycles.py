@@ -90,6 +90,10 @@ class Cycle:
         """JSON-ready, with the keys of ``stickslip cycles --json``."""
         if self.not_proven:
             return {**self._fields(), "proof_radius": None, "not_proven": self.not_proven}
+        if self.breakaway_state.size == 2:  # one DOF: no ball, the repeat itself is exact
+            return {**self._fields(), "proof_radius": float(self.proof_radius),
+                    "proof": "exact: with one DOF every stick phase ends at the same breakaway "
+                             "state (Eq. 20), so the return map has no free coordinate"}
         return {**self._fields(), "proof_radius": float(self.proof_radius)}
 
     def _fields(self) -> dict[str, Any]:
