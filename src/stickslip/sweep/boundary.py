@@ -347,9 +347,9 @@ def stick_slip_boundary(
         Friction law of every run (the paper's Coulomb law by default).
     criterion : {"startup", "existence"}
         ``startup``: the verdict of the run from the startup state (the paper's question).
-        ``existence``: whether a stick-slip cycle exists at all, whatever the start
+        ``existence``: whether the cycle search finds a stick-slip cycle, whatever the start
         (:func:`stickslip.analysis.cycles.find_cycles`, seeded from ``existence_seeds`` random
-        starts): the boundary ``lambda_exist(zeta)`` above which a disturbance can lead to
+        starts: a search, not a proof of absence): the boundary ``lambda_exist(zeta)`` above which a disturbance can lead to
         lasting stick-slip. Runs one cycle search per point, serially (seconds each with a
         foundation).
     existence_seeds : int
