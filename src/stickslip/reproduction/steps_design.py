@@ -76,10 +76,11 @@ def disturbed_starts_claim(optimum: Claim, lams: tuple[float, ...] = (10.0, 30.0
     """Issue 13, point 5: does "no stick-slip up to lambda = 100" hold for disturbed starts too?
 
     The stick-slip-optimal foundation of :func:`stick_slip_optimum_claim` was judged from the
-    start-up state. Here, at each ``lambda`` of ``lams``, every stick-slip cycle that exists
-    whatever the start is searched (:func:`stickslip.analysis.cycles.find_cycles`, the
-    breakaway return map seeded from ``seeds`` random starts): none means no disturbance can
-    lead to a lasting stick-slip cycle of the periods searched; one means a knock can.
+    start-up state. Here, at each ``lambda`` of ``lams``, stick-slip cycles are searched
+    whatever the start (:func:`stickslip.analysis.cycles.find_cycles`, the breakaway return
+    map seeded from ``seeds`` random starts): none found means the search, from its seeds and
+    up to its period, met no cycle a disturbance could lead to (a search, not a proof); one
+    found means a knock can.
     """
     from stickslip.analysis.cycles import find_cycles
     from stickslip.model.parameters import Foundation, Slider
