@@ -59,15 +59,16 @@ FloatArray = NDArray[np.float64]
 
 #: Peak velocities of the section scan (one DOF): the grid on which ``P(y) - y`` is bracketed,
 #: evenly spaced in ``(0, 0.99]`` and, for the small cycles near a Hopf point, geometrically
-#: from ``SCAN_SMALLEST`` (:data:`SCAN_GEOMETRIC` points, ratio about 1.27).
+#: from ``SCAN_SMALLEST`` up to the even grid's second point (:data:`SCAN_GEOMETRIC` points,
+#: ratio about 1.3; above it the even grid is the finer).
 SCAN_POINTS = 40
-SCAN_GEOMETRIC = 40
+SCAN_GEOMETRIC = 24
 SCAN_SMALLEST = 1e-4
 #: Local minima of ``|P(y) - y| / y`` searched for a dip through zero (two cycles in one
 #: cell of the grid give no sign change there), the deepest first, and the map's evaluations
 #: per search.
-SCAN_DIPS = 3
-SCAN_DIP_EVALUATIONS = 16
+SCAN_DIPS = 2
+SCAN_DIP_EVALUATIONS = 12
 #: Backward iterations of the map per bracket (each one a bisection of ``P``).
 BACKWARD_STEPS = 4
 #: Peak velocities along the least-damped mode screened for a sign change (more than one DOF).
@@ -277,8 +278,8 @@ def _section_scan(section: SlipSection) -> list[FloatArray]:
     """
     from scipy.optimize import minimize_scalar
 
-    grid = np.union1d(np.linspace(0.0, 0.99, SCAN_POINTS + 1)[1:],
-                      np.geomspace(SCAN_SMALLEST, 0.99, SCAN_GEOMETRIC))
+    even = np.linspace(0.0, 0.99, SCAN_POINTS + 1)[1:]
+    grid = np.union1d(even, np.geomspace(SCAN_SMALLEST, even[1], SCAN_GEOMETRIC))
     gaps = {float(y): _gap(section, float(y)) for y in grid}
     ys = sorted(gaps)
     dips = []

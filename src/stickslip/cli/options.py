@@ -30,9 +30,8 @@ FRICTION = Annotated[
         "table:FILE.csv (columns v = v_r/V and f = (mu - mu_k)/(mu_s - mu_k)), or "
         "stribeck:vs=V_S/V, optionally followed by ,n=N ,viscous=D_V ,mu0=R0 ,tol=TOL "
         "(e.g. stribeck:vs=0.2,viscous=0.01); on simulate also the laws with memory "
-        "rate-state:a=..,b=..,dc=..,mu_ref=..,vref=..[,evolution=slip] and "
-        "lugre:sigma0=..,sigma1=..,sigma2=..,mu_c=..,mu_s=..,vs=.. (dimensionless; "
-        "docs/friction_memory.md)",
+        "rate-state: (keys a, b, dc, mu_ref, vref, optionally evolution=slip) and lugre: (keys "
+        "sigma0, sigma1, sigma2, mu_c, mu_s, vs), dimensionless, see docs/friction_memory.md",
     ),
 ]
 #: The backend options of resumable runs (``map``, ``basin``): same names, same help.
