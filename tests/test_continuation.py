@@ -648,8 +648,8 @@ def test_both_hopf_methods_agree_where_the_polynomial_is_used(n: int) -> None:
     np.testing.assert_allclose(from_zeros, hopf_weakenings(structure), rtol=1e-9)
 
 
-@pytest.mark.parametrize(("tolerance", "warned"), [
-    (1e-4, True), pytest.param(1e-6, False, marks=pytest.mark.slow)])  # 35 s and 75 s
+@pytest.mark.slow  # 180 s at 1e-4 (three slip-oscillation branches near the Hopf point), more at 1e-6
+@pytest.mark.parametrize(("tolerance", "warned"), [(1e-4, True), (1e-6, False)])
 def test_folds_of_the_interpolant_near_the_hopf_point_are_said(tolerance: float, warned: bool) -> None:
     # the published bistable case next to its Hopf point (lam_H = 0.66965): the smooth law's
     # Hopf is subcritical, one branch of unstable slip oscillations without folds (an
@@ -673,6 +673,7 @@ def test_folds_of_the_interpolant_near_the_hopf_point_are_said(tolerance: float,
         assert first.amplitude == pytest.approx(0.11374, abs=1e-5)
 
 
+@pytest.mark.slow  # 20-40 s: kept out of the default run (under 10 minutes)
 def test_a_branch_seeded_from_an_unproven_candidate_is_traced_and_said(
         monkeypatch: pytest.MonkeyPatch) -> None:
     # a light, soft foundation (M = 0.0934, K = 0.0378, zeta_a = 0.715, lambda = 1.36, zeta =

@@ -110,6 +110,7 @@ def test_coulomb_tuning_note_only_for_another_law() -> None:
     assert note is not None and note.startswith("assumes Coulomb friction") and "stribeck" in note
 
 
+@pytest.mark.slow  # 20-40 s: kept out of the default run (under 10 minutes)
 def test_stick_slip_optimum_of_a_stribeck_machine_says_it_assumes_coulomb(
         capsys: pytest.CaptureFixture[str]) -> None:
     from stickslip.analysis.design import design_foundation

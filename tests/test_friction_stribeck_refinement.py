@@ -47,6 +47,7 @@ def test_interpolant_meets_its_tolerance(tol, us, n, dv, r0) -> None:
     assert table[0][0] == 0.0 and table[0][-1] == np.inf
 
 
+@pytest.mark.slow  # 20-40 s: kept out of the default run (under 10 minutes)
 def test_refinement_converges_to_the_oracle() -> None:
     structure = elastic_foundation(0.1, Foundation(1.5, 1.0, 0.5))
     results = [simulate(structure, Slider(3.0, friction=_law(tol))) for tol in TOLERANCES]

@@ -223,6 +223,7 @@ def test_a_massive_point_is_one_more_dof_with_a_rigid_contact(ct: float, slope: 
             assert rigid.normal_force(mu) == pytest.approx(system.normal_force(mu), rel=1e-12)
 
 
+@pytest.mark.slow  # 20-40 s: kept out of the default run (under 10 minutes)
 def test_undamped_critical_mu_of_a_massive_point_is_exact() -> None:
     # the undamped spectrum is marginal until two modes coalesce: the oracle is a 4,001-point
     # numpy scan of the Jenkins state matrix's eigenvalues (unstable where a real part exceeds

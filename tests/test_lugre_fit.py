@@ -94,6 +94,7 @@ def test_cli(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     assert code == 2 and out == "" and "not used by --law lugre" in err
 
 
+@pytest.mark.slow  # 20-40 s: kept out of the default run (under 10 minutes)
 def test_the_first_samples_noise_does_not_steer_the_fit() -> None:
     # an independent audit: the bristle state was fixed from the first force sample, so its
     # noise alone put sigma1, F_s and v_s 5-8 standard errors off on a 2 % ramp record. The
@@ -108,6 +109,7 @@ def test_the_first_samples_noise_does_not_steer_the_fit() -> None:
         assert abs(other.values[name] - base.values[name]) <= 0.5 * base.errors[name], name
 
 
+@pytest.mark.slow  # 20-40 s: kept out of the default run (under 10 minutes)
 def test_a_reversal_sampled_at_zero_velocity_counts() -> None:
     # an audit: a triangle velocity sampled exactly at v = 0 at its reversals had sigma0 and
     # sigma1 reported undetermined (a reversal was a strict sign change between neighbours)

@@ -125,6 +125,7 @@ def test_the_stick_slip_absorber_of_a_non_coulomb_machine_says_it_assumes_coulom
         assert "assumption" not in entries[0] and entries[1]["assumption"].startswith("assumes Coulomb")
 
 
+@pytest.mark.slow  # 20-40 s: kept out of the default run (under 10 minutes)
 def test_tuned_slideway_critical_speed_is_where_steady_sliding_stops_being_proven() -> None:
     # Source: direct runs from the start-up state (simulate) on the tuned slideway of the
     # gallery example (examples/plot_10_slideway.py). The search once counted undetermined runs
