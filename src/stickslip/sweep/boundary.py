@@ -349,9 +349,9 @@ def stick_slip_boundary(
         ``startup``: the verdict of the run from the startup state (the paper's question).
         ``existence``: whether the cycle search finds a stick-slip cycle, whatever the start
         (:func:`stickslip.analysis.cycles.find_cycles`, seeded from ``existence_seeds`` random
-        starts: a search, not a proof of absence): the boundary ``lambda_exist(zeta)`` above which a disturbance can lead to
-        lasting stick-slip. Runs one cycle search per point, serially (seconds each with a
-        foundation).
+        starts: a search, not a proof of absence): the boundary ``lambda_exist(zeta)`` above
+        which a disturbance can lead to lasting stick-slip. Runs one cycle search per point,
+        serially (seconds each with a foundation).
     existence_seeds : int
         Random starts of each cycle search (``existence`` only).
     execution : ExecutionOptions, optional
