@@ -442,6 +442,8 @@ def test_initial_states_with_a_state_column_the_structure_lacks(here: Path,
     (["continue", "--param", "lam", "--range", "0.5:nan"], "both ends must be finite numbers"),
     (["continue", "--param", "speed", "--range", "1:2"],
      "speed is a machine file's parameter: give --config"),
+    (["design", "--m", "2 kg", "--k", "50 kN/m", "--c", "1 N*s/m", "--mu-s", "0.5", "--mu-k", "0.3",
+      "--load", "500 N", "--speed", ""], "--speed '' is empty"),
 ])
 def test_an_option_the_others_make_idle_is_refused(args: list[str], message: str, here: Path,
                                                    capsys: pytest.CaptureFixture[str]) -> None:

@@ -139,6 +139,11 @@ def collect_inputs(flags: Mapping[str, Any], config: Path | None, *,
     if machine_file is not None:
         refuse_memory_law(machine_file)
     merged: dict[str, Any] = dict(machine_file.raw) if machine_file is not None else {}
+    blank = [key for key, value in flags.items() if isinstance(value, str) and not value.strip()]
+    if blank:  # typed, but with nothing in it: not the same as leaving the flag out
+        name = f"--{blank[0].replace('_', '-')}"
+        raise BadInput(f"{name} {flags[blank[0]]!r} is empty: give a value (units allowed) or "
+                       f"leave {name} out")
     given_flags = {key: value for key, value in flags.items() if is_given(value)}
     from_file = set(merged) - set(given_flags)
     has_structure = machine_file is not None and machine_file.has_structure
