@@ -242,3 +242,16 @@ def test_optimal_exact_is_tuned_once_per_zeta_before_the_map(tmp_path: Path,
     assert code == 0, err
     info = _tune_cached.cache_info()
     assert info.misses == 2 and info.hits >= 2  # each zeta tuned once, then reused
+
+
+def test_eq37_of_a_foundation_not_optimally_tuned_is_said_to_be_an_estimate(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    # an independent audit: the Eq. (37) column was printed for any foundation, while the
+    # paper derives it for the optimally tuned one (Section 3)
+    code, out, err = _run(["boundary", "--zeta", "0.1", "--dva", "1,0.7,0.02", "--scan", "12"],
+                             capsys)
+    assert code == 0, err
+    assert "Eq. (37) is the paper's criterion for the optimally tuned foundation" in out
+    code, out, err = _run(["boundary", "--zeta", "0.1", "--dva", "optimal", "--scan", "12"], capsys)
+    assert code == 0, err
+    assert "Eq. (37) is the paper's criterion" not in out

@@ -31,11 +31,14 @@ from stickslip.cli.options import (
 )
 from stickslip.model.user_file import csv_rows, read_user_text
 
-BOX_HELP = ("sampling box, e.g. 'xi=-4:4,v=-3:1.5' (dimensionless, shifted: xi, v, xi_a, v_a) or, "
-            "with --config, 'x=-0.001:0.001,v=-0.02:0.02' (SI: m, m/s; x from where the spring is "
-            "relaxed, ground frame); unnamed columns keep their steady-sliding value. Default: "
-            "xi=-2:2,v=-2:1.5, dimensionless about steady sliding, with --config too (in the "
-            "machine's scales V/omega_n and V)")
+BOX_HELP = ("sampling box, e.g. 'xi=-4:4,v=-3:1.5' (dimensionless, in the shifted coordinates of "
+            "Eqs. 15-16: xi, v, xi_a, v_a; their origin is steady sliding under the Coulomb law, "
+            "not under a law that varies with speed, whose steady sliding sits at its own xi; "
+            "basin-map's box is about each cell's steady sliding) or, with --config, "
+            "'x=-0.001:0.001,v=-0.02:0.02' (SI: m, m/s; x from where the spring is relaxed, "
+            "ground frame); unnamed columns keep their steady-sliding value. Default: "
+            "xi=-2:2,v=-2:1.5, dimensionless, with --config too (in the machine's scales "
+            "V/omega_n and V)")
 
 
 def parse_box(text: str) -> dict[str, tuple[float, float]]:

@@ -463,6 +463,9 @@ def _print_boundary_table(p: dict[str, Any]) -> None:
         if row["note"]:
             line += f"  [{row['note']}]"
         lines.append(line)
+    if "eq37" in analytic and not str(p["dva"]).startswith("optimal"):
+        lines.append("note        Eq. (37) is the paper's criterion for the optimally tuned "
+                     "foundation; for this one it only carries its equivalent damping (Eq. 33)")
     lines.append(f"runs        {p['n_runs']} simulations in {p['elapsed_s']:.2f} s")
     if p.get("out"):
         lines.append(f"output      {p['out']}")

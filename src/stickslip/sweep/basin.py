@@ -99,9 +99,11 @@ def equilibrium_state(structure: Structure, slider: Slider) -> FloatArray:
 
 def sample_box(structure: Structure, slider: Slider, n: int, box: Mapping[str, tuple[float, float]],
                seed: int = 0) -> FloatArray:
-    """``n`` states uniform in a box around steady sliding (dimensionless, shifted).
+    """``n`` states uniform in a box (dimensionless, the shifted coordinates of Eqs. 15-16).
 
-    ``box`` maps column names of :func:`state_names` to ``(lo, hi)`` intervals; columns not
+    ``box`` maps column names of :func:`state_names` to ``(lo, hi)`` intervals of those
+    coordinates, whose origin is steady sliding under the Coulomb law (under a law that varies
+    with speed, steady sliding sits at its own ``xi``: :func:`equilibrium_state`); columns not
     named keep their steady-sliding value. Reproducible for a given ``seed``.
     """
     names = state_names(structure.n_dof)
