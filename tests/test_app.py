@@ -75,6 +75,7 @@ def _verdicts(at: AppTest) -> tuple[str, str]:
     return _metric(at, "Verdict on the rigid base"), _metric(at, "Verdict with foundation")
 
 
+@pytest.mark.slow  # 14 s: out of the default run (kept under ten minutes)
 def test_default_inputs_render_and_show_the_verdicts() -> None:
     at = _started()
     assert not at.exception
@@ -551,6 +552,7 @@ def test_linear_law_shows_the_stability_table_of_the_design_report() -> None:
                     for row, key in (("Rigid base", "rigid"), ("With foundation", "foundation"))]
 
 
+@pytest.mark.slow  # 14 s: out of the default run (kept under ten minutes)
 def test_linear_law_shows_the_design_commands_warning_and_stability_optimal_foundation(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """Issue 31: what 'stickslip design' prints for a non-Coulomb law, on the page too.

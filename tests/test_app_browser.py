@@ -150,6 +150,7 @@ def page(browser: Any) -> Iterator[Any]:
         tab.close()
 
 
+@pytest.mark.slow  # 16 s: out of the default run (kept under ten minutes)
 def test_page_loads_and_the_verdict_follows_the_speed(server: str, page: Any) -> None:
     expect = _playwright().expect
     page.goto(server, wait_until="domcontentloaded", timeout=PAGE_TIMEOUT_MS)
@@ -290,6 +291,7 @@ def test_user_text_is_shown_literally(server: str, page: Any) -> None:
     assert alert.locator("strong, em, b, .katex, img").count() == 0
 
 
+@pytest.mark.slow  # 9 s: out of the default run (kept under ten minutes)
 def test_the_largest_model_is_stated_and_enforced(server: str, page: Any) -> None:
     n = UPLOAD_MAX_DOF + 1
     buffer = io.BytesIO()
@@ -335,6 +337,7 @@ def _screenshot(page: Any, name: str) -> None:
         page.set_viewport_size({"width": 1400, "height": 1000})
 
 
+@pytest.mark.slow  # 9 s: out of the default run (kept under ten minutes)
 def test_the_slider_page_in_si(server: str, page: Any) -> None:
     expect = _playwright().expect
     page.goto(server, wait_until="domcontentloaded", timeout=PAGE_TIMEOUT_MS)
@@ -354,6 +357,7 @@ def test_the_slider_page_in_si(server: str, page: Any) -> None:
     _screenshot(page, "app.png")
 
 
+@pytest.mark.slow  # 9 s: out of the default run (kept under ten minutes)
 def test_the_downloads_are_written_when_clicked(server: str, page: Any) -> None:
     """The slider page's downloads are made on the click (not at every rerun): the CSV's
     header and both structures, the JSON's verdicts."""
@@ -373,6 +377,7 @@ def test_the_downloads_are_written_when_clicked(server: str, page: Any) -> None:
     assert report["design"]["verdict"]["foundation"]["simulation"] == "stick-slip"
 
 
+@pytest.mark.slow  # 9 s: out of the default run (kept under ten minutes)
 def test_the_machine_page_with_typed_modes(server: str, page: Any) -> None:
     expect = _playwright().expect
     page.goto(server, wait_until="domcontentloaded", timeout=PAGE_TIMEOUT_MS)
@@ -424,6 +429,7 @@ def test_the_app_benchmark_runs_in_the_browser() -> None:
     assert times["cached"] < times["new point"], out
 
 
+@pytest.mark.slow  # 17 s: out of the default run (kept under ten minutes)
 def test_the_tuning_page(server: str, page: Any) -> None:
     expect = _playwright().expect
     page.goto(server, wait_until="domcontentloaded", timeout=PAGE_TIMEOUT_MS)

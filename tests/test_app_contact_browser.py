@@ -15,6 +15,8 @@ import time
 from pathlib import Path
 from typing import Any
 
+import pytest
+
 from tests.test_app_browser import (  # noqa: F401  (the fixtures are used by name)
     PAGE_TIMEOUT_MS,
     _playwright,
@@ -39,6 +41,7 @@ def _metric(tab: Any, label: str) -> Any:
             .locator('[data-testid="stMetricValue"]'))
 
 
+@pytest.mark.slow  # 27 s: out of the default run (kept under ten minutes)
 def test_the_machine_page_with_the_brake_pad(server: str, page: Any) -> None:  # noqa: F811
     expect = _playwright().expect
     files = {p.name: p.read_bytes() for p in BRAKE_PAD.iterdir()
@@ -70,6 +73,7 @@ def test_the_machine_page_with_the_brake_pad(server: str, page: Any) -> None:  #
     _screenshot(page, "app-contact.png")
 
 
+@pytest.mark.slow  # 16 s: out of the default run (kept under ten minutes)
 def test_a_jenkins_machine_gets_its_analysis_and_run(server: str, page: Any) -> None:  # noqa: F811
     expect = _playwright().expect
     # a file name Markdown would make bold: the page must not break on it (app/messages.py)

@@ -22,6 +22,7 @@ def _machine_page() -> AppTest:
     return at
 
 
+@pytest.mark.slow  # 16 s: out of the default run (kept under ten minutes)
 def test_the_diagram_is_the_command_lines() -> None:
     from stickslip.analysis.continuation import MachineSystem, continue_cycles
     from stickslip.app.machine_bifurcation import MAX_PERIOD, MAX_STEPS, SEEDS

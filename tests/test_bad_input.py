@@ -206,6 +206,7 @@ def test_map_numbers(option: str, render: Callable[[float], str], valid: Callabl
 
 @FAST
 @given(n=COUNTS)
+@pytest.mark.slow  # 10 s: out of the default run (kept under ten minutes)
 def test_map_chunk_size_and_workers(n: int, here: Path, capsys: pytest.CaptureFixture[str]) -> None:
     _check([*MAP, "--chunk-size", str(n)], n >= 1, capsys, here, written=("m.nc",))
     _check([*MAP, "--workers", str(n)], n >= 1, capsys, here, written=("m.nc",))

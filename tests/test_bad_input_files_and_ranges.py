@@ -233,6 +233,7 @@ def test_friction_errors_of_a_structure_file_name_the_file_once(
 
 # --- round 2: outputs over inputs, refusals by the user's names ------------------------------
 
+@pytest.mark.slow  # 19 s: out of the default run (kept under ten minutes)
 def test_an_output_never_replaces_an_input_of_the_same_command(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     # before: `--csv machine.toml --overwrite` turned the machine file into a CSV table, and

@@ -82,6 +82,7 @@ def test_completion_completes(words: str, expected: str, monkeypatch: pytest.Mon
     assert expected in out.split()
 
 
+@pytest.mark.slow  # 24 s: out of the default run (kept under ten minutes)
 def test_compile_runs_every_warm_up_case(tmp_path: Path) -> None:
     # stickslip compile (cli/compile_command.py): each warm-up case is a valid command line
     # (it exits 0 with the cache warm, as after `make`), so none of them silently compiles nothing

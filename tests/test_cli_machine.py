@@ -247,6 +247,7 @@ def test_tune_config_needs_an_absorber(tmp_path: Path, capsys: pytest.CaptureFix
     assert code == 2 and out == "" and "[absorber]" in err and len(err.strip().splitlines()) == 1
 
 
+@pytest.mark.slow  # 22 s: out of the default run (kept under ten minutes)
 def test_tune_config_slideway_hinf(capsys: pytest.CaptureFixture[str]) -> None:
     p = cli_json(["tune", "--config", str(SLIDEWAY / "machine.toml")], capsys)
     assert [a["objective"] for a in p["absorbers"]] == ["hinf"]

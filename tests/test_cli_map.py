@@ -230,6 +230,7 @@ def test_bad_boundary_input(args: list[str], needle: str, capsys: pytest.Capture
     assert len(err.strip().splitlines()) == 1
 
 
+@pytest.mark.slow  # 9 s: out of the default run (kept under ten minutes)
 def test_optimal_exact_is_tuned_once_per_zeta_before_the_map(tmp_path: Path,
                                                               capsys: pytest.CaptureFixture[str]) -> None:
     # an independent audit: 40 zeta values were 74 s of silence; the command now tunes them

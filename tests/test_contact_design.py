@@ -26,6 +26,7 @@ def _design(path: Path, capsys: pytest.CaptureFixture[str]) -> dict[str, object]
     return dict(json.loads(out))
 
 
+@pytest.mark.slow  # 11 s: out of the default run (kept under ten minutes)
 def test_jenkins_slider_design_against_eq36_and_the_rigid_design(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     rigid_file = tmp_path / "rigid.toml"

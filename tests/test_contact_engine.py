@@ -209,6 +209,7 @@ def brake_pad(speed: float, mu_s: float, mu_k: float) -> ContactSystem:
 @pytest.mark.parametrize(("system", "lifts"), [(brake_pad(0.02, 0.5, 0.4), True),
                                                (two_dof(-0.4, 1.0, 0.05), False)],
                          ids=["brake pad, lift-off", "2 DOF, no lift-off"])
+@pytest.mark.slow  # 10 s: out of the default run (kept under ten minutes)
 def test_engine_agrees_with_an_event_driven_solve_ivp_oracle(system: ContactSystem,
                                                               lifts: bool) -> None:
     run = simulate_contact(system)

@@ -402,6 +402,7 @@ def test_return_map_on_the_slip_ii_piece_has_its_exact_jacobian() -> None:
     assert checked >= 3
 
 
+@pytest.mark.slow  # 9 s: out of the default run (kept under ten minutes)
 def test_docs_worked_example_states_the_documented_numbers(tmp_path: Path) -> None:
     # docs/continuation.md quotes these numbers; Eq. (36) is the source of the rigid base's
     import subprocess

@@ -378,6 +378,7 @@ def test_two_norm_bounds_bound_the_singular_values() -> None:
     assert bounds[3] == pytest.approx(40.0, rel=1e-12)
 
 
+@pytest.mark.slow  # 16 s: out of the default run (kept under ten minutes)
 def test_profile_cycle_ball_prints_the_ladder() -> None:
     # benchmarks/profile_cycle_ball.py (bench_basin's foundation case): the proven radius holds
     # with theta < 1 (the proof's own acceptance), the larger radii name the failing phase
@@ -403,6 +404,7 @@ def test_profile_cycle_ball_prints_the_ladder() -> None:
     assert all(a >= b for a, b in itertools.pairwise(stops))
 
 
+@pytest.mark.slow  # 11 s: out of the default run (kept under ten minutes)
 def test_a_sixty_dof_cycle_is_proven_with_factored_propagators(monkeypatch: pytest.MonkeyPatch
                                                                ) -> None:
     # tests/machines.grounded_chain_machine(60): its phases are beyond _phase_flow.DENSE_WORK,

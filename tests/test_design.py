@@ -101,6 +101,7 @@ def test_design_cli_json_keys(capsys: pytest.CaptureFixture[str]) -> None:
     assert best["m_a"] <= d["recommended_foundation"]["m_a"] * (1 + 1e-12)
 
 
+@pytest.mark.slow  # 15 s: out of the default run (kept under ten minutes)
 def test_design_cli_reads_toml(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     cfg = tmp_path / "machine.toml"
     cfg.write_text('m = "2 kg"\nk = "50 kN/m"\nc = 20\nmu_s = 0.5\nmu_k = 0.3\n'

@@ -15,6 +15,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 
 
+@pytest.mark.slow  # 18 s: out of the default run (kept under ten minutes)
 def test_friction_worked_example_runs_and_states_the_documented_verdicts(tmp_path: Path) -> None:
     proc = subprocess.run(
         [sys.executable, str(ROOT / "docs" / "friction_example.py"), "--out", str(tmp_path), "--quick"],
@@ -30,6 +31,7 @@ def test_friction_worked_example_runs_and_states_the_documented_verdicts(tmp_pat
         assert (tmp_path / name).stat().st_size > 10_000
 
 
+@pytest.mark.slow  # 9 s: out of the default run (kept under ten minutes)
 def test_disturbance_worked_example_states_the_documented_numbers(tmp_path: Path) -> None:
     proc = subprocess.run(
         [sys.executable, str(ROOT / "docs" / "disturbances_example.py"), "--out", str(tmp_path),

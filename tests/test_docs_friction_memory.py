@@ -7,6 +7,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 
 QUOTED = [
@@ -23,6 +25,7 @@ QUOTED = [
 ]
 
 
+@pytest.mark.slow  # 8 s: out of the default run (kept under ten minutes)
 def test_example_prints_the_numbers_the_page_quotes(tmp_path: Path) -> None:
     done = subprocess.run([sys.executable, str(ROOT / "docs" / "friction_memory_example.py"),
                            "--out", str(tmp_path)], capture_output=True, text=True, timeout=600,

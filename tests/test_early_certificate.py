@@ -177,6 +177,7 @@ def test_certified_states_slide_for_ever_in_long_direct_runs(weak_runs: dict[str
         assert isum[engine.I_N_STICK] == 0
 
 
+@pytest.mark.slow  # 11 s: out of the default run (kept under ten minutes)
 def test_the_oracle_never_sticks_from_the_region_boundary() -> None:
     # independent check with the exact law: states at 98 % of the region's radius
     structure, slider = _weak_case()

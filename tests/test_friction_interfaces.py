@@ -157,6 +157,7 @@ def test_physical_friction_converts_with_the_design_definitions(tmp_path: Path) 
         physical_friction_from_config({"law": "linear", "slope": "2 kg"})
 
 
+@pytest.mark.slow  # 12 s: out of the default run (kept under ten minutes)
 def test_design_reports_the_stability_margin(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     config = tmp_path / "machine.toml"
     config.write_text(

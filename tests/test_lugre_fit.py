@@ -52,6 +52,7 @@ def _sine(t):  # type: ignore[no-untyped-def]
     return 0.01 * np.sin(2.0 * np.pi * t / 2.0)
 
 
+@pytest.mark.slow  # 19 s: out of the default run (kept under ten minutes)
 def test_fit_recovers_the_paper_parameters_within_its_errors() -> None:
     t, v, force = _record(_sine, 4.0)
     fit = fit_lugre(t, v, force, load=1.0)
@@ -63,6 +64,7 @@ def test_fit_recovers_the_paper_parameters_within_its_errors() -> None:
     assert table["law"] == "lugre" and table["mu_s"] == pytest.approx(1.5, rel=0.01)
 
 
+@pytest.mark.slow  # 8 s: out of the default run (kept under ten minutes)
 def test_no_reversal_leaves_the_bristles_undetermined() -> None:
     t, v, force = _record(lambda t: 0.002 + 0.008 * (1.0 + np.sin(2.0 * np.pi * t / 2.0)), 2.0)
     fit = fit_lugre(t, v, force, load=1.0)

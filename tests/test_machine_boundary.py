@@ -78,6 +78,7 @@ def test_every_bracket_end_has_the_verdict_it_claims(crossings: dict) -> None:
             assert run.verdict.value == verdict, (speed, verdict, run.certificate)
 
 
+@pytest.mark.slow  # 28 s: out of the default run (kept under ten minutes)
 def test_design_says_what_its_onset_is_and_lists_every_change(
         crossings: dict, capsys: pytest.CaptureFixture[str]) -> None:
     assert "25 % steps" in ONSET_NOTE and "stickslip boundary --config" in ONSET_NOTE

@@ -203,6 +203,7 @@ def test_units_in_the_header_are_read(tmp_path: Path, capsys: pytest.CaptureFixt
     assert code == 2 and "takes no unit" in err and len(err.strip().splitlines()) == 1
 
 
+@pytest.mark.slow  # 9 s: out of the default run (kept under ten minutes)
 def test_the_shipped_example_records_give_their_truth(capsys: pytest.CaptureFixture[str]) -> None:
     # the records of examples/friction_memory (made by make_records.py there, whose docstring
     # gives the truth) are what `identify --help` and docs/friction_memory.md run: each

@@ -80,6 +80,7 @@ def test_both_sides_of_the_backward_run_reach_the_same_cycle() -> None:
     assert inside == pytest.approx(outside, abs=1e-9)
 
 
+@pytest.mark.slow  # 15 s: out of the default run (kept under ten minutes)
 def test_cycles_lists_the_stick_slip_cycle_and_the_unstable_slip_oscillation(
         capsys: pytest.CaptureFixture[str]) -> None:
     code, text, _ = run_cli(["cycles", "--lam", repr(LAM), "--zeta", "0.05", "--gamma", "1", "--dva", "none",

@@ -41,6 +41,7 @@ def chain(n: int, seed: int = 0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 @pytest.mark.parametrize("n", [4, 6, 20])
+@pytest.mark.slow  # 9 s: out of the default run (kept under ten minutes)
 def test_sign_function_lyapunov_matches_scipy(n: int) -> None:
     mass, damping, k = chain(n, seed=n)
     ahat, _ = mode_matrices(mass, damping, k, 5.0, 2.0, np.array([10.0]), np.array([0.0]))
@@ -70,6 +71,7 @@ def test_inverse_lu_matches_numpy() -> None:
 
 
 @pytest.mark.parametrize("n", [4, 6, 20])
+@pytest.mark.slow  # 17 s: out of the default run (kept under ten minutes)
 def test_balanced_step_is_short_against_the_fastest_period_and_longer_than_the_plain_one(n: int) -> None:
     # the event search assumes h * omega_max <= 1/2 (> 12 steps per fastest period)
     mass, damping, k = chain(n, seed=n)

@@ -98,7 +98,7 @@ def test_edge_cases_are_explained() -> None:
         ({"lam_min": 2.0, "lam_max": 1.0}, "must exceed"),
         ({"n_scan": 1}, "n_scan=1"),
         ({"rtol": 0.0}, "rtol=0.0 must be positive"),
-        ({"rtol": 1.5}, "rtol=1.5 must be below 1"),
+        ({"rtol": 1.5}, "rtol=1.5 must lie in "),
         ({"zetas": [-0.1]}, "zeta=-0.1 must not be negative"),
     ],
 )

@@ -61,8 +61,6 @@ def continue_branches(
     --param speed --range '1 cm/s:10 cm/s' --points 25 --out branches.csv --plot branches.png
     """
     from stickslip.analysis.continuation import (
-        MACHINE_PARAMETERS,
-        PARAMETERS,
         AnySystem,
         ContinuationSystem,
         MachineSystem,
@@ -91,13 +89,7 @@ def continue_branches(
             return
     if points is not None:
         raise BadInput(POINTS_REFUSED)
-    allowed = PARAMETERS if config is None else tuple(MACHINE_PARAMETERS)
-    if param not in allowed:
-        machine_only = config is None and param in MACHINE_PARAMETERS
-        raise BadInput(f"--param {param!r} is not one of {', '.join(allowed)}"
-                       + ("" if config is None else " (a machine file's parameters)")
-                       + (f" ({param} is a machine file's parameter: give --config)"
-                          if machine_only else ""))
+    _check_param(param, config)
     if config is None and param in ("lam", "zeta", "gamma") and typed_options(ctx, (param,)):
         raise BadInput(f"--{param} is the continued parameter (--param {param}): its values come "
                        f"from --range; leave --{param} out")
@@ -253,3 +245,16 @@ def _print(summary: str, payload: dict[str, Any]) -> None:
 def register(app: typer.Typer) -> None:
     """Add the ``continue`` command to ``app``."""
     app.command("continue")(continue_branches)
+
+
+def _check_param(param: str, config: Path | None) -> None:
+    """One line when ``--param`` is not a parameter of the system continued."""
+    from stickslip.analysis.continuation import MACHINE_PARAMETERS, PARAMETERS
+
+    allowed = PARAMETERS if config is None else tuple(MACHINE_PARAMETERS)
+    if param not in allowed:
+        machine_only = config is None and param in MACHINE_PARAMETERS
+        raise BadInput(f"--param {param!r} is not one of {', '.join(allowed)}"
+                       + ("" if config is None else " (a machine file's parameters)")
+                       + (f" ({param} is a machine file's parameter: give --config)"
+                          if machine_only else ""))
