@@ -224,7 +224,7 @@ def _direction(system: MemorySystem, start: OrbitPoint, lo: float, hi: float, si
         if nxt is None:
             step *= 0.5
             if step < MIN_STEP * span:
-                return points, (f"the orbit ceases to exist near {at.speed:.8g} m/s (it shrinks "
+                return points, (f"the orbit ceases to exist near {at.speed:.6g} m/s (it shrinks "
                                 "into a Hopf point, or turns sharper than the smallest step "
                                 "follows)"), folds
             continue
