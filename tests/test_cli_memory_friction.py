@@ -270,3 +270,30 @@ def test_history_times_beyond_the_run_are_said(capsys: pytest.CaptureFixture[str
     assert beyond and min(beyond) > payload["t_end_s"]
     [line] = err.strip().splitlines()
     assert line.startswith("stickslip: warning:") and f"{len(beyond)} of its 5 times" in line
+
+
+@pytest.mark.parametrize("horizon", ["60 s", "100 s"])
+def test_a_history_sample_at_t_max_is_inside_the_run(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                                     horizon: str) -> None:
+    # an independent audit: --t-max "60 s" went through tau and back (60 / sqrt(m/k) * sqrt(m/k)
+    # = 59.99999999999999 s for the LuGre slider, m = 1 kg, k = 2 N/m), so the run ended an ulp
+    # short of 60 s and the history at 60 s was null, with a warning
+    path = _file(tmp_path, LUGRE)
+    end = horizon.split()[0]
+    code, out, err = _run(["simulate", "--config", str(path), "--t-max", horizon, "--initial-kick",
+                           "-1", "--history-times", f"0:{end}:5", "--json"], capsys)
+    assert code == 0, err
+    payload = json.loads(out)
+    assert payload["t_end_s"] == float(end)
+    assert all(x is not None for x in payload["history"]["x_m"])
+    assert "beyond" not in err
+
+
+def test_a_zero_load_number_names_lam(capsys: pytest.CaptureFixture[str]) -> None:
+    # an independent audit: --lam 0 said "load=0.0 must be positive", a name the command line
+    # does not have
+    code, out, err = _run(["simulate", "--lam", "0", "--zeta", "0", "--friction",
+                           "rate-state:a=0.01,b=0.015,dc=0.01,mu_ref=0.6,vref=1"], capsys)
+    assert code == 2 and out == ""
+    [line] = err.strip().splitlines()
+    assert "--lam 0.0 must be positive" in line

@@ -112,7 +112,7 @@ def test_orbits_beside_the_hopf_point_are_not_called_unstable(
     # stable (its shooting in deviation variables: |mu| = 0.99997 at 7.7460178e-4 m/s); the
     # monodromy at the default tolerance gave |mu| = 1.0000044-1.0000055 for the three orbits
     # nearest it. Such points are unresolved, never unstable.
-    from stickslip.analysis.memory.continuation import MULTIPLIER_RESOLUTION
+    from stickslip.analysis.memory.cycles import MULTIPLIER_RESOLUTION
 
     config = ROOT / "examples" / "friction_memory" / "rate_state.toml"
     code, out, err = run_cli(["continue", "--config", str(config), "--param", "speed", "--range",

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
 
@@ -19,7 +20,7 @@ from stickslip.cli.console import (
     warn_fitted_range,
 )
 from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE, OVERWRITE
-from stickslip.cli.time_options import parse_history_times, parse_t_max
+from stickslip.cli.time_options import parse_history_times, parse_t_max, parse_t_max_seconds
 
 if TYPE_CHECKING:
     from stickslip.cli.machine_config import ConfiguredMachine
@@ -42,7 +43,8 @@ HISTORY_TIMES = Annotated[str | None, typer.Option(
     "to B seconds (--config with a friction law with memory or a [contact] machine)")]
 INITIAL_KICK = Annotated[float | None, typer.Option(
     "--initial-kick", help="F: start with the slip speed at (1 + F) V, the contact moving at -F V, "
-    "positions and state of steady sliding (--config with a friction law with memory)")]
+    "positions and state of steady sliding (a friction law with memory: --config, or "
+    "--friction rate-state:...|lugre:...)")]
 
 def parse_initial(text: str, n_dof: int) -> InitialState | None:
     """``startup`` or ``2 n`` comma-separated numbers: positions then velocities."""
@@ -241,6 +243,9 @@ def _simulate_memory_dimensionless(ctx: typer.Context, *, lam: float, zeta: floa
         raise BadInput(f"--friction: {exc}") from None
     foundation = parse_dva(dva, zeta, k_scale)
     structure = chain_structure(zeta, () if foundation is None else (foundation,))
+    if not (math.isfinite(lam) and lam > 0.0):
+        raise BadInput(f"--lam {lam!r} must be positive and finite: with a friction law with "
+                       "memory it is the load number W / (V sqrt(m k))")
     try:
         system = MemorySystem(structure.mass, structure.damping, structure.stiffness,
                               structure.contact_dof, lam, law, SpeedSchedule.constant(1.0))
@@ -274,7 +279,6 @@ def _simulate_memory(ctx: typer.Context, machine_file: Any, *, t_max: str | None
                      history_times: str | None, initial_kick: float | None, plot: Path | None,
                      json: bool) -> None:
     """``simulate --config`` with a friction law with memory: the smooth stiff engine, in SI."""
-    import math
 
     import numpy as np
 
@@ -297,10 +301,7 @@ def _simulate_memory(ctx: typer.Context, machine_file: Any, *, t_max: str | None
         else:
             raise BadInput(f"--t-max {t_max!r}: the quasi-static slider (m = 0) has no natural "
                            "time; give a time with units, e.g. --t-max \"40 s\"")
-    horizon_tau = parse_t_max(t_max, time_scale if time_scale is not None else 1.0)
-    horizon = None
-    if horizon_tau is not None:
-        horizon = horizon_tau * (1.0 if time_scale is None else time_scale)
+    horizon = parse_t_max_seconds(t_max, 1.0 if time_scale is None else time_scale)
     times = None if history_times is None else parse_history_times(history_times)
     try:
         result = simulate_memory(system, t_max=horizon, kick=initial_kick or 0.0,

@@ -38,12 +38,33 @@ def parse_t_max(text: str | None, time_scale: float | None) -> float | None:
     into tau with ``time_scale`` (s per unit tau; None: no machine file, refused)."""
     if text is None:
         return None
+    seconds = _seconds(text)
+    if seconds is None:  # a bare number: checked by the engine's options, with their messages
+        return float(text)
+    if time_scale is None:
+        raise BadInput(f"--t-max {text!r}: a time with units needs --config (the machine's time "
+                       "scale); without it give dimensionless tau, e.g. --t-max 5000")
+    return seconds / time_scale
+
+
+def parse_t_max_seconds(text: str | None, time_scale: float) -> float | None:
+    """``--t-max`` in seconds: a time with units as given (no round trip through tau, which
+    put ``"60 s"`` at 59.99999999999999 s and a history sample at 60 s outside the run), a bare
+    number in units of ``time_scale`` (s per unit tau)."""
+    if text is None:
+        return None
+    seconds = _seconds(text)
+    return float(text) * time_scale if seconds is None else seconds
+
+
+def _seconds(text: str) -> float | None:
+    """A time with units in seconds (positive; BadInput otherwise), None for a bare number."""
     try:
-        value = float(text)
+        float(text)
     except ValueError:
-        value = None
-    if value is not None:  # checked by the engine's options, with their messages
-        return value
+        pass
+    else:
+        return None
     from stickslip.model.units import to_si
 
     try:
@@ -52,7 +73,4 @@ def parse_t_max(text: str | None, time_scale: float | None) -> float | None:
         raise BadInput(str(exc)) from None
     if not seconds > 0.0:
         raise BadInput(f"--t-max {text!r} must be positive")
-    if time_scale is None:
-        raise BadInput(f"--t-max {text!r}: a time with units needs --config (the machine's time "
-                       "scale); without it give dimensionless tau, e.g. --t-max 5000")
-    return seconds / time_scale
+    return seconds

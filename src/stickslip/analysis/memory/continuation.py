@@ -45,7 +45,7 @@ from stickslip.analysis.memory.arclength import (
     tangent_at,
 )
 from stickslip.analysis.memory.cycle_search import find_memory_cycles
-from stickslip.analysis.memory.cycles import PeriodicOrbit, shoot_cycle
+from stickslip.analysis.memory.cycles import MULTIPLIER_RESOLUTION, PeriodicOrbit, shoot_cycle
 from stickslip.analysis.memory.friction import (
     integrate_run,
     observables,
@@ -80,14 +80,6 @@ AMPLITUDE_SAMPLES = 401
 STEADY_POINTS = 101
 
 
-#: Floquet multipliers closer than this to the unit circle do not decide a point's stability.
-#: Beside a Hopf point the return map is within about 1e-5 of the identity, and the monodromy
-#: matrix integrated at the default tolerance is wrong by about as much: an independent audit
-#: (shooting in deviation variables, and the normal form of the supercritical Hopf point of
-#: ``examples/friction_memory/rate_state.toml``, first Lyapunov coefficient -915) found the
-#: three orbits nearest the Hopf point at |mu| = 1.0000044-1.0000055, where the truth is 0.99997
-#: (stable), and |mu| = 0.999943 against 0.999925 a little further out.
-MULTIPLIER_RESOLUTION = 1e-4
 
 
 @dataclass(frozen=True)
@@ -108,10 +100,10 @@ class OrbitPoint:
 
     @property
     def stability_resolved(self) -> bool:
-        """The largest multiplier's modulus is more than :data:`MULTIPLIER_RESOLUTION` from 1,
+        """The largest multiplier's modulus is more than
+        :data:`~stickslip.analysis.memory.cycles.MULTIPLIER_RESOLUTION` from 1,
         so :attr:`stable` is not decided by the monodromy's own error."""
-        moduli = np.abs(self.multipliers)
-        return bool(moduli.size == 0 or abs(float(moduli.max()) - 1.0) > MULTIPLIER_RESOLUTION)
+        return self.orbit.stability_resolved
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready."""

@@ -35,6 +35,23 @@ SHOOTING_TOLERANCE = 1e-7
 MIN_ORBIT_SIZE = 1e-6
 #: Newton iterations of shooting.
 MAX_NEWTON = 25
+#: Largest scaled Newton step at an accepted orbit, as a fraction of the orbit's size (its
+#: largest scaled distance from steady sliding on the section). A small residual alone is no
+#: fixed point: next to a Hopf point on its stable side the return map is nearly the identity
+#: (a multiplier pair at 0.99999 +- 0.0026i), so a slowly decaying spiral about steady sliding
+#: returns within the tolerance while the fixed point that Newton's step points to, steady
+#: sliding itself, lies as far away as the state is from it (an independent audit: "stable
+#: orbits" of amplitude 1e-10 m at 1.00001 times the Rice-Ruina critical stiffness, where no
+#: cycle exists; Newton's step was 1.0 and 0.33 of the orbit's size there, 2e-7 or less on
+#: every genuine orbit it checked).
+STEP_RESOLUTION = 1e-3
+#: A nontrivial multiplier whose modulus is within this of 1 leaves the stability undecided:
+#: the monodromy matrix integrated at the default tolerance is wrong by about as much (an
+#: independent audit, shooting in deviation variables and the normal form of the supercritical
+#: Hopf point of ``examples/friction_memory/rate_state.toml``, first Lyapunov coefficient
+#: -915, found the three orbits nearest the Hopf point at |mu| = 1.0000044-1.0000055, where the
+#: truth is 0.99997 (stable), and |mu| = 0.999943 against 0.999925 a little further out).
+MULTIPLIER_RESOLUTION = 1e-4
 
 
 @dataclass(frozen=True)
@@ -67,8 +84,17 @@ class PeriodicOrbit:
 
     @property
     def stable(self) -> bool:
-        """True when every nontrivial multiplier lies inside the unit circle."""
+        """True when every nontrivial multiplier lies inside the unit circle (see
+        :attr:`stability_resolved`)."""
         return bool(np.all(np.abs(self.multipliers) < 1.0))
+
+    @property
+    def stability_resolved(self) -> bool:
+        """The largest nontrivial multiplier's modulus is more than
+        :data:`MULTIPLIER_RESOLUTION` from 1, so :attr:`stable` is not decided by the
+        monodromy's own error."""
+        moduli = np.abs(self.multipliers)
+        return bool(moduli.size == 0 or abs(float(moduli.max()) - 1.0) > MULTIPLIER_RESOLUTION)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready."""
@@ -77,6 +103,7 @@ class PeriodicOrbit:
                 "trivial_multiplier": [float(self.trivial_multiplier.real),
                                        float(self.trivial_multiplier.imag)],
                 "newton_iterations": self.iterations, "stable": self.stable,
+                "stability_resolved": self.stability_resolved,
                 "section": "contact velocity q_c' = 0, crossed upwards"}
 
 
@@ -176,8 +203,11 @@ def shoot_cycle(system: MemorySystem, y_start: FloatArray, period_guess: float, 
     condition, solved in the least-squares sense each step (``N + 1`` equations, ``N``
     unknowns, scaled by :func:`state_scales`) with the Jacobian ``Phi(T) - I`` corrected by the
     change of return time, ``(I - f g^T / (g . f)) Phi(T) - I`` (``g``: the section's
-    gradient, ``f``: the flow at the return). Returns None when Newton does not converge
-    within :data:`MAX_NEWTON` iterations to ``tolerance``.
+    gradient, ``f``: the flow at the return). An orbit is accepted when the residual is below
+    ``tolerance`` and Newton's next step below :data:`STEP_RESOLUTION` of the orbit's size
+    (a small residual alone also holds on a slowly decaying spiral next to a Hopf point, whose
+    fixed point is steady sliding). Returns None when Newton does not converge within
+    :data:`MAX_NEWTON` iterations, or converges onto steady sliding.
 
     Parameters
     ----------
@@ -207,6 +237,7 @@ def shoot_cycle(system: MemorySystem, y_start: FloatArray, period_guess: float, 
     scale = state_scales(system, v)
     y = np.asarray(y_start, dtype=np.float64).copy()
     period = period_guess
+    size = math.inf
     for it in range(1, MAX_NEWTON + 1):
         ret = return_map(system, y, v, min_time=min_fraction * period, t_limit=5.0 * period,
                          rtol=rtol)
@@ -216,23 +247,17 @@ def shoot_cycle(system: MemorySystem, y_start: FloatArray, period_guess: float, 
         r = y1 - y
         residual = float(np.max(np.abs(r) / scale))
         if residual < tolerance:
-            if float(np.max(np.abs(y - steady_state(system, v)) / scale)) < MIN_ORBIT_SIZE:
+            size = float(np.max(np.abs(y - steady_state(system, v)) / scale))
+            if size < MIN_ORBIT_SIZE:
                 return None  # steady sliding itself (an equilibrium on the section), no cycle
+        step = _newton_step(system, y, y1, phi, r, scale, v)
+        if residual < tolerance and float(np.max(np.abs(step))) <= STEP_RESOLUTION * size:
             mult = np.linalg.eigvals(phi)
             k = int(np.argmin(np.abs(mult - 1.0)))
             trivial = complex(mult[k])
             others = np.delete(mult, k)
             others = others[np.argsort(-np.abs(others))]
             return PeriodicOrbit(y, period, residual, others, trivial, it)
-        f1 = flow(system, y1, v)
-        g = _section_gradient(system, y1, v)
-        proj = np.eye(y.size) - np.outer(f1, g) / float(g @ f1)
-        dp = proj @ phi
-        g0 = _section_gradient(system, y, v)
-        jac = np.vstack([(dp - np.eye(y.size)) / scale[:, None] * scale[None, :],
-                         (g0 * scale)[None, :] / max(float(np.max(np.abs(g0 * scale))), 1e-300)])
-        rhs_vec = np.concatenate([-r / scale, [0.0]])
-        step, *_ = np.linalg.lstsq(jac, rhs_vec, rcond=None)
         y = y + step * scale
         if system.quasi_static:
             continue
@@ -240,6 +265,20 @@ def shoot_cycle(system: MemorySystem, y_start: FloatArray, period_guess: float, 
     return None
 
 
+def _newton_step(system: MemorySystem, y: FloatArray, y1: FloatArray, phi: FloatArray,
+                 r: FloatArray, scale: FloatArray, v: float) -> FloatArray:
+    """Newton's scaled step from ``y`` (see :func:`shoot_cycle`): the least-squares solution
+    of ``((I - f g^T / (g . f)) Phi(T) - I) dy = -r`` with the section condition."""
+    f1 = flow(system, y1, v)
+    g = _section_gradient(system, y1, v)
+    proj = np.eye(y.size) - np.outer(f1, g) / float(g @ f1)
+    dp = proj @ phi
+    g0 = _section_gradient(system, y, v)
+    jac = np.vstack([(dp - np.eye(y.size)) / scale[:, None] * scale[None, :],
+                     (g0 * scale)[None, :] / max(float(np.max(np.abs(g0 * scale))), 1e-300)])
+    rhs_vec = np.concatenate([-r / scale, [0.0]])
+    step, *_ = np.linalg.lstsq(jac, rhs_vec, rcond=None)
+    return np.asarray(step, dtype=np.float64)
 
 
 __all__ = ["PeriodicOrbit", "flow", "return_map", "shoot_cycle"]

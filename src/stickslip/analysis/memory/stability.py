@@ -400,8 +400,11 @@ class MemoryStability:
             lines.append("            an eigenvalue lies within its round-off bound of the "
                          "imaginary axis: the linearisation decides nothing")
         elif self.verdict == "stable":
+            how = ("a speed schedule that steps the drive speed disturbs the quasi-static "
+                   "slider" if self.system.quasi_static
+                   else "simulate --initial-kick -1 starts stuck to the drive")
             lines.append("            a local verdict: a large disturbance may still end in "
-                         "stick-slip (simulate --initial-kick -1 starts stuck to the drive)")
+                         f"stick-slip ({how})")
         values = self.eigenvalues
         lines.append("eigenvalues " + ", ".join(f"{z.real:.6g}{z.imag:+.6g}j" for z in values[:8])
                      + (f" (+{values.size - 8}, listed by --json)" if values.size > 8 else "")

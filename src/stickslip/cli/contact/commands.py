@@ -46,13 +46,12 @@ def contact_cycles_command(ctx: typer.Context, config: Path, machine_file: Any, 
     of each start's run (``--t-max``: seconds with a unit, or natural times)."""
     from stickslip.analysis.contact.cycles import find_contact_cycles
     from stickslip.cli.contact.simulation import contact_run_system
-    from stickslip.cli.time_options import parse_t_max
+    from stickslip.cli.time_options import parse_t_max_seconds
 
     refuse_options(ctx, ("seeds", "max_period", "seed"), "cycles")
     system, machine = contact_run_system(config, machine_file)
     time_scale = 1.0 / system.omega_ref
-    tau = parse_t_max(t_max, time_scale)
-    horizon = None if tau is None else tau * time_scale
+    horizon = parse_t_max_seconds(t_max, time_scale)
     if horizon is not None and not (math.isfinite(horizon) and horizon > 0.0):
         raise BadInput(f"--t-max {t_max!r} must be positive")
     try:

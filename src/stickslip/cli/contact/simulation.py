@@ -61,7 +61,7 @@ def simulate_contact_command(ctx: typer.Context, config: Path, machine_file: Any
     from stickslip.analysis.contact.eigenvalues import self_locking_note
     from stickslip.analysis.contact.engine import simulate_contact
     from stickslip.analysis.verdict import Verdict
-    from stickslip.cli.time_options import parse_history_times, parse_t_max
+    from stickslip.cli.time_options import parse_history_times, parse_t_max_seconds
 
     typed = [flag for name, flag in REFUSED.items()
              if getattr(ctx.get_parameter_source(name), "name", None) == "COMMANDLINE"]
@@ -74,8 +74,7 @@ def simulate_contact_command(ctx: typer.Context, config: Path, machine_file: Any
         raise BadInput(f"--max-events {max_events} must be at least 1")
     system, machine = contact_run_system(config, machine_file)
     time_scale = 1.0 / system.omega_ref
-    tau = parse_t_max(t_max, time_scale)
-    horizon = None if tau is None else tau * time_scale
+    horizon = parse_t_max_seconds(t_max, time_scale)
     if horizon is not None and not (math.isfinite(horizon) and horizon > 0.0):
         raise BadInput(f"--t-max {t_max!r} must be positive")
     times = None if history_times is None else parse_history_times(history_times)
