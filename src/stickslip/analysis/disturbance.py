@@ -37,6 +37,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from stickslip.analysis.interpolant_margin import interpolant_steady_mismatch
 from stickslip.analysis.stability import linearised_damping, slip_matrix
 from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
@@ -163,6 +164,10 @@ def safe_disturbance(structure: Structure, slider: Slider) -> SafeDisturbance:
     v_lim, slope = _band_at_belt_speed(slider)
     if not v_lim > 0.0:
         return SafeDisturbance(0.0, 0.0, 0.0, 0.0, "steady sliding lies on a band edge of the law")
+    mismatch = interpolant_steady_mismatch(structure, slider)
+    if mismatch is not None:
+        return SafeDisturbance(0.0, 0.0, 0.0, v_lim, "the law's steady sliding is not linearly "
+                               "stable, only its interpolant's")
     candidates = _lyapunov_matrices(structure, slope)
     if not candidates:
         return SafeDisturbance(0.0, 0.0, 0.0, v_lim, "steady sliding is not stable")

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from stickslip.analysis.interpolant_margin import interpolant_steady_mismatch
 from stickslip.analysis.stability import steady_sliding_stability
 from stickslip.analysis.verdict import Mode, RunStatus, Verdict
 from stickslip.kernel import dense_output, engine
@@ -455,8 +456,13 @@ def run_engine(structure: Structure, slider: Slider, initial: InitialState | Non
     n_bands = bands[1].size
     description = slider.friction.describe() + (f" ({n_bands} bands)" if n_bands > 1 else "")
     stability = steady_sliding_stability(structure, slider)
-    verdict = status.verdict
     certificate = _certificate_text(status, n_bands, fsum, isum)
+    if status is RunStatus.CERTIFIED_STEADY:
+        mismatch = interpolant_steady_mismatch(structure, slider)
+        if mismatch is not None:
+            status = RunStatus.INTERPOLANT_STEADY
+            certificate = f"undetermined ({mismatch}); the interpolant's: {certificate}"
+    verdict = status.verdict
     return SimulationResult(
         structure=structure,
         slider=slider,

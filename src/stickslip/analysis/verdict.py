@@ -75,6 +75,12 @@ class RunStatus(Enum):
         "a breakaway state repeated but no divisor of its period could be proven a contracting "
         "fixed point of the return map; increase t_max to run on",
     )
+    INTERPOLANT_STEADY = (
+        9,
+        "steady sliding certified for the friction law's piecewise-linear interpolant only: the "
+        "law's own steady sliding is not linearly stable (near its stability limit the band's "
+        "secant slope and the law's tangent fall on either side); lower the law's tolerance",
+    )
 
     def __init__(self, code: int, message: str) -> None:
         self.code = code

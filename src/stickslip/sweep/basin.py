@@ -27,8 +27,15 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from stickslip.analysis.interpolant_margin import interpolant_steady_mismatch
 from stickslip.analysis.simulation import EngineOptions
-from stickslip.analysis.verdict import VERDICTS, Verdict, verdict_codes, verdict_flag_attributes
+from stickslip.analysis.verdict import (
+    VERDICTS,
+    RunStatus,
+    Verdict,
+    verdict_codes,
+    verdict_flag_attributes,
+)
 from stickslip.io.provenance import provenance_attributes
 from stickslip.kernel import engine
 from stickslip.kernel.interrupt import deferred_sigint
@@ -443,6 +450,10 @@ def basin_stability(
     sigint.raise_if_caught()  # every chunk was stored already
     if chunk_store is not None:
         chunk_store.record_run(len(chunks) - len(missing), len(missing), backend)
+    if interpolant_steady_mismatch(structure, slider) is not None:
+        # the kernel's steady sliding is the interpolant's; the law's is not stable
+        isum[isum[:, engine.I_STATUS] == engine.STATUS_STEADY, engine.I_STATUS] = \
+            RunStatus.INTERPOLANT_STEADY.code
     return BasinResult(structure, slider, opts, z0s, verdict_codes(isum[:, engine.I_STATUS]), fsum,
                        isum, time.perf_counter() - started, backend, len(chunks),
                        len(chunks) - len(missing))

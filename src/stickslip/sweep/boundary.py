@@ -39,6 +39,7 @@ from stickslip.model._validate import at_most, non_negative, positive
 from stickslip.model.dva import DvaSpec
 from stickslip.model.friction import CoulombFriction, FrictionLaw, LinearFriction
 from stickslip.model.parameters import Foundation
+from stickslip.sweep.cycle_check import withhold_interpolant_steady
 from stickslip.sweep.execution import ExecutionOptions, execution_from_keywords
 from stickslip.sweep.executors import CellBatch, StructureSet, run_batch
 from stickslip.sweep.grid import Axis, as_axis
@@ -387,7 +388,9 @@ def stick_slip_boundary(
             return np.zeros(0, dtype=np.int8)
         if criterion == "existence":
             return _cycle_codes(structures, index, lams, gamma, law, engine_options, existence_seeds)
-        _, int_summary = run_batch(structures, CellBatch(index, lams, gamma, law), engine_options, workers)
+        batch = CellBatch(index, lams, gamma, law)
+        _, int_summary = run_batch(structures, batch, engine_options, workers)
+        withhold_interpolant_steady(structures, batch, int_summary)
         return verdict_codes(int_summary[:, engine.I_STATUS])
 
     scan = np.geomspace(lam_min, lam_max, int(n_scan))

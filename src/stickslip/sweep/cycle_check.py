@@ -1,4 +1,5 @@
-"""The map's cells get the same minimal, proven cycle as :func:`stickslip.simulate`.
+"""The map's cells get the answers :func:`stickslip.simulate` gives: the same minimal, proven
+cycle, and no steady sliding certified for a smooth law's interpolant only.
 
 The map kernel certifies a stick-slip candidate when a breakaway state repeats to
 ``cycle_tol`` after ``k`` stick phases. With one stick phase (``k = 1``) that is the minimal
@@ -19,7 +20,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from stickslip.analysis.simulation import EngineOptions, simulate
+from stickslip.analysis.stability import slip_matrix
+from stickslip.analysis.verdict import RunStatus
 from stickslip.kernel import engine
+from stickslip.model.friction import FrictionLaw
 from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
 from stickslip.sweep.executors import CellBatch, StructureSet
@@ -77,3 +81,69 @@ def prove_map_cycles(structures: StructureSet, batch: CellBatch,
         if progress is not None:
             progress(done + 1, cells.size)
     return int(cells.size)
+
+
+def withhold_interpolant_steady(structures: StructureSet, batch: CellBatch,
+                                int_summary: NDArray[np.int64]) -> int:
+    """Withhold, in place, the steady-sliding certificates that hold for a law's interpolant only.
+
+    The cells' form of
+    :func:`~stickslip.analysis.interpolant_margin.interpolant_steady_mismatch`: a
+    cell certified steady by the kernel (the Lyapunov bound of the piecewise-linear
+    interpolant of a smooth law) whose law's own steady sliding is not linearly stable (its
+    growth rate with the law's exact slope at the belt speed, within ``1000 eps ||A||_F`` of
+    zero or above) while the interpolant's is, gets the status
+    :attr:`~stickslip.analysis.verdict.RunStatus.INTERPOLANT_STEADY` (``undetermined``).
+    Exact laws (Coulomb, linear, tables) are not touched: the engine runs the law itself.
+
+    Parameters
+    ----------
+    structures : StructureSet
+        The cells' structures (contact first).
+    batch : CellBatch
+        Every cell (``structure_index``, ``lams``, ``gamma``, the law or laws).
+    int_summary : ndarray
+        The kernel's per-cell summaries, changed in place.
+
+    Returns
+    -------
+    int
+        The number of certificates withheld.
+    """
+    steady = np.flatnonzero(int_summary[:, engine.I_STATUS] == engine.STATUS_STEADY)
+    laws = batch.laws if batch.laws is not None else (batch.friction,)
+    if steady.size == 0 or all(law.exact for law in laws):
+        return 0
+    slopes: dict[tuple[float, FrictionLaw], tuple[float, float]] = {}
+    exact_stack, band_stack = [], []
+    for c in steady.tolist():
+        law = batch.laws[c] if batch.laws is not None else batch.friction
+        lam = float(batch.lams[c])
+        if (lam, law) not in slopes:
+            slopes[(lam, law)] = _exact_and_band_slope(law, lam, float(batch.gamma))
+        s_exact, s_band = slopes[(lam, law)]
+        j = int(batch.structure_index[c])
+        structure = Structure(structures.masses[j], structures.dampings[j],
+                              structures.stiffnesses[j], name="map cell")
+        exact_stack.append(slip_matrix(structure, s_exact))
+        band_stack.append(slip_matrix(structure, s_band))
+    exact = np.asarray(exact_stack)
+    g_exact = np.max(np.linalg.eigvals(exact).real, axis=1)
+    g_band = np.max(np.linalg.eigvals(np.asarray(band_stack)).real, axis=1)
+    round_off = 1000.0 * np.finfo(float).eps * np.linalg.norm(exact, axis=(1, 2))
+    withheld = steady[(g_exact >= -round_off) & (g_band < 0.0)]
+    int_summary[withheld, engine.I_STATUS] = RunStatus.INTERPOLANT_STEADY.code
+    return int(withheld.size)
+
+
+def _exact_and_band_slope(law: FrictionLaw, lam: float, gamma: float) -> tuple[float, float]:
+    """The law's slope at ``u = 1`` and its interpolant's there (the band's; the steeper side
+    when ``u = 1`` is a node, as :func:`~stickslip.analysis.stability.one_sided_slopes`)."""
+    if law.exact:
+        return 0.0, 0.0  # not used: exact laws are skipped
+    edges, _, slopes = law.bands(lam, gamma)
+    b = int(np.searchsorted(edges, 1.0, side="right") - 1)
+    band = float(slopes[b])
+    if b > 0 and edges[b] == 1.0:
+        band = min(band, float(slopes[b - 1]))
+    return float(law.slope_at(1.0, lam, gamma)), band

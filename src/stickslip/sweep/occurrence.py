@@ -37,7 +37,7 @@ from stickslip.analysis.verdict import (
 from stickslip.kernel import engine
 from stickslip.model.dva import DvaSpec
 from stickslip.model.friction import CoulombFriction, FrictionLaw
-from stickslip.sweep.cycle_check import prove_map_cycles
+from stickslip.sweep.cycle_check import prove_map_cycles, withhold_interpolant_steady
 from stickslip.sweep.execution import ExecutionOptions, execution_from_keywords
 from stickslip.sweep.executors import (
     CellBatch,
@@ -344,6 +344,7 @@ def occurrence_map(
     # multi-phase candidates of N-DOF cells: the minimal, proven cycle (none in the paper's maps)
     prove_map_cycles(config.structures, config.batch(Chunk(0, 0, n_cells)), float_summary,
                      int_summary, config.options)
+    withhold_interpolant_steady(config.structures, config.batch(Chunk(0, 0, n_cells)), int_summary)
     elapsed = time.perf_counter() - started
     if chunk_store is not None:
         chunk_store.record_run(len(chunks) - len(missing), len(missing), backend)

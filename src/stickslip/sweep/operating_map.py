@@ -47,7 +47,7 @@ from stickslip.kernel import engine
 from stickslip.model._validate import friction_range
 from stickslip.model.friction import CoulombFriction, FrictionLaw
 from stickslip.model.initial import STARTUP_DESCRIPTION
-from stickslip.sweep.cycle_check import prove_map_cycles
+from stickslip.sweep.cycle_check import prove_map_cycles, withhold_interpolant_steady
 from stickslip.sweep.execution import ExecutionOptions
 from stickslip.sweep.executors import (
     CellBatch,
@@ -440,6 +440,7 @@ def operating_map(machine: Machine, speeds: Axis, loads: Axis, *,
         chunk_store.record_run(len(chunks) - len(missing), len(missing), run.backend)
     # multi-phase candidates: the minimal, proven cycle that simulate reports
     prove_map_cycles(cells.structures, cells.batch(Chunk(0, 0, n_cells)), fsum, isum, opts)
+    withhold_interpolant_steady(cells.structures, cells.batch(Chunk(0, 0, n_cells)), isum)
     verdicts = {code: RunStatus.from_code(int(code)).verdict.value
                 for code in np.unique(isum[:, engine.I_STATUS])}
     shape = (v.size, w.size)
