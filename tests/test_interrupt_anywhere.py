@@ -177,7 +177,7 @@ def test_ctrl_c_during_identify_bootstrap(tmp_path: Path) -> None:
 def started(original, n, *args, **kwargs):
     open({str(marker)!r}, "w").close()
     return original(*args, **kwargs)
-patch("stickslip.analysis.identification.record_fit", "_bootstrap", started)
+patch("stickslip.analysis.identification.record_fit", "bootstrap_intervals", started)
 """
     process = _start(["identify", str(RECORD), "--mass", "1 kg", "--load", "100 N", "--speed",
                       "5 cm/s", "--bootstrap", "2000", "--plot", "fit.png"], tmp_path, mark)
