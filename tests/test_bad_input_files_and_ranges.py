@@ -466,6 +466,18 @@ def test_a_modal_tables_bad_entry_is_named_once(
     assert line.count("[structure]") == 1
 
 
+def test_a_modal_tables_lengths_are_named_once(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # an audit: "[structure] modes: modes: 2 frequencies, 1 damping ratios ..." said "modes" twice
+    config = tmp_path / "machine.toml"
+    config.write_text('mu_s = 0.5\nmu_k = 0.3\nload = "100 N"\nspeed = "1 cm/s"\n[structure]\n'
+                      'modes = { frequencies = ["10 Hz", "30 Hz"], damping_ratios = [0.02],'
+                      ' shapes = [1.0, 1.0] }\n')
+    line = _one_error(["simulate", "--config", str(config)], capsys)
+    assert "[structure] modes: 2 frequencies, 1 damping ratios and 2 mode shape values" in line
+    assert line.count("modes:") == 1
+
+
 def test_a_speed_schedule_beyond_its_bound_is_refused_before_its_rows_are_read(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     # an audit: a 40,000-row schedule (0.8 MB of TOML) took 15 s to parse and six minutes of

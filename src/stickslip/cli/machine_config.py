@@ -26,7 +26,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from stickslip.cli.console import BadInput
+from stickslip.cli.console import BadInput, warn
 
 if TYPE_CHECKING:
     import typer
@@ -224,7 +224,16 @@ def config_machine(config: Path, flags: Mapping[str, Any] | None = None,
         machine, reduction = machine_from_file(machine_file, values)
     except ValueError as exc:
         raise BadInput(str(exc)) from None
+    warn_truncated(reduction)
     return machine, reduction
+
+
+def warn_truncated(reduction: ReducedStructure | None) -> None:
+    """One warning line on stderr when a reduction kept fewer modes than lie below its cut-off
+    (:meth:`~stickslip.analysis.reduction.ReducedStructure.truncation_warning`)."""
+    text = None if reduction is None else reduction.truncation_warning()
+    if text is not None:
+        warn(text)
 
 
 @dataclass(frozen=True)

@@ -91,7 +91,7 @@ def _analyse(config: Path, mu_max: float) -> tuple[Any, Any, Any, Any, int | Non
     """The analysis of ``config``: result, operating ranges, machine, contact, normal DOF index."""
     from stickslip.analysis.contact.eigenvalue_maps import operating_ranges
     from stickslip.analysis.contact.eigenvalues import complex_eigenvalue_analysis
-    from stickslip.cli.machine_config import collect_inputs, config_system, load_machine_file
+    from stickslip.cli.machine_config import collect_inputs, config_system, load_machine_file, warn_truncated
     from stickslip.io.machine_file import machine_from_file
     from stickslip.model.machine import machine_from_physical_system
 
@@ -106,6 +106,7 @@ def _analyse(config: Path, mu_max: float) -> tuple[Any, Any, Any, Any, int | Non
                                "steady sliding depend on mu_k alone (a Coulomb law), so any mu_s "
                                "above it gives the same analysis")
             machine, reduction = machine_from_file(machine_file, values, normal_coupling=True)
+            warn_truncated(reduction)
         else:
             system = config_system(config, normal_coupling=True)
             machine, reduction = machine_from_physical_system(system), None

@@ -390,7 +390,7 @@ def _modal_table(table: dict[str, Any], source: str) -> tuple[Any, Any, Any]:
                          f"{modes['shapes']!r} give matrices beyond the range of floating-point "
                          "numbers (check their units)") from None
     except ValueError as exc:
-        raise ValueError(f"{source} modes: {exc}") from None
+        raise ValueError(f"{source} {exc}") from None
     return m, c, k
 
 

@@ -29,7 +29,7 @@ def contact_run_system(config: Path, machine_file: Any) -> tuple[Any, Any]:
         One line naming the file when a value is wrong or the machine is not supported.
     """
     from stickslip.analysis.contact.engine import contact_system
-    from stickslip.cli.machine_config import collect_inputs, config_system
+    from stickslip.cli.machine_config import collect_inputs, config_system, warn_truncated
     from stickslip.io.machine_file import machine_from_file
     from stickslip.model.machine import machine_from_physical_system
 
@@ -38,6 +38,7 @@ def contact_run_system(config: Path, machine_file: Any) -> tuple[Any, Any]:
         if machine_file.has_structure:
             values = collect_inputs({}, config, normal_coupling=True)
             machine, reduction = machine_from_file(machine_file, values, normal_coupling=True)
+            warn_truncated(reduction)
         else:
             system = config_system(config, normal_coupling=True)
             machine, reduction = machine_from_physical_system(system), None
