@@ -177,3 +177,26 @@ def test_a_truncated_reduction_says_so_on_stderr(capsys: pytest.CaptureFixture[s
     assert not small.truncated and small.truncation_warning() is None
     warn_truncated(small)
     assert capsys.readouterr().err == ""
+
+
+def test_a_cutoff_below_the_operating_points_default_is_said() -> None:
+    # an independent audit's 120-DOF chain at a 150 Hz cut-off (the default 1,584 Hz at
+    # V = 1 cm/s, W = 1000 N, mu 0.5/0.3): the reduced model called steady sliding unstable
+    # (+10.1 1/s under a weakening law) where the full model's is stable (-5.65 1/s)
+    from stickslip.analysis.reduction import reduce_at_operating_point
+
+    n = 120
+    mass = np.full(n, 2.0)
+    mass[60] = 1.0
+    stiffness = sp.diags([np.full(n, 2 * 5e6 + 1e6), np.full(n - 1, -5e6), np.full(n - 1, -5e6)],
+                         [0, 1, -1]).tocsc()
+    point = (0.01, 1000.0, 0.5, 0.3)
+    low = reduce_at_operating_point(sp.diags(mass).tocsc(), stiffness, [60], cutoff_hz=150.0,
+                                    operating_point=point)
+    assert low.default_cutoff_hz == pytest.approx(
+        default_cutoff_hz(sp.diags(mass).tocsc(), stiffness, 60, speed=0.01, load=1000.0,
+                          mu_s=0.5, mu_k=0.3))
+    assert low.cutoff_warning() is not None and "below the default" in low.cutoff_warning()
+    default = reduce_at_operating_point(sp.diags(mass).tocsc(), stiffness, [60], cutoff_hz=None,
+                                        operating_point=point)
+    assert default.cutoff_warning() is None and default.cutoff_hz == low.default_cutoff_hz

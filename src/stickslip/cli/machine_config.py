@@ -229,11 +229,15 @@ def config_machine(config: Path, flags: Mapping[str, Any] | None = None,
 
 
 def warn_truncated(reduction: ReducedStructure | None) -> None:
-    """One warning line on stderr when a reduction kept fewer modes than lie below its cut-off
-    (:meth:`~stickslip.analysis.reduction.ReducedStructure.truncation_warning`)."""
-    text = None if reduction is None else reduction.truncation_warning()
-    if text is not None:
-        warn(text)
+    """A warning line on stderr when a reduction kept fewer modes than lie below its cut-off
+    (:meth:`~stickslip.analysis.reduction.ReducedStructure.truncation_warning`), and one when
+    the file's cut-off lies below the operating point's default
+    (:meth:`~stickslip.analysis.reduction.ReducedStructure.cutoff_warning`)."""
+    if reduction is None:
+        return
+    for text in (reduction.cutoff_warning(), reduction.truncation_warning()):
+        if text is not None:
+            warn(text)
 
 
 @dataclass(frozen=True)

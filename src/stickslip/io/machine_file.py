@@ -535,22 +535,17 @@ def build_structure(table: dict[str, Any], *, base_dir: Path | None, source: str
         given_cutoff = check_cutoff(to_si("frequency", table["cutoff"], source=f"{source} cutoff ="),
                                     source=f"{source} cutoff = {table['cutoff']!r}")
     if n > MAX_DIRECT_DOF:
-        from stickslip.analysis.reduction import default_cutoff_hz, reduce_structure
+        from stickslip.analysis.reduction import reduce_at_operating_point
         from stickslip.model.structure import check_large_matrices
 
         check_large_matrices(mats["mass"], mats.get("damping"), mats["stiffness"], names=names)
         kept = [contact] + ([absorber.attach_dof] if absorber is not None
                             and absorber.attach_dof is not None else [])
         kept += [normal] if normal is not None and normal not in kept else []
-        if given_cutoff is not None:
-            cutoff = given_cutoff
-        elif operating_point is None:
+        if given_cutoff is None and operating_point is None:
             raise ValueError(f"{source}: a {n}-DOF model needs cutoff (or the operating point)")
-        else:
-            speed, load, mu_s, mu_k = operating_point
-            cutoff = default_cutoff_hz(mats["mass"], mats["stiffness"], contact, speed=speed,
-                                       load=load, mu_s=mu_s, mu_k=mu_k)
-        reduction = reduce_structure(mats["mass"], mats["stiffness"], kept, cutoff_hz=cutoff)
+        reduction = reduce_at_operating_point(mats["mass"], mats["stiffness"], kept,
+                                              cutoff_hz=given_cutoff, operating_point=operating_point)
         m, k = reduction.mass, reduction.stiffness
         c = reduction.project(mats["damping"]) if "damping" in mats else None
         contact = 0
