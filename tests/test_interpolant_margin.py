@@ -21,7 +21,7 @@ import pytest
 from stickslip import InitialState, Slider, rigid_base, simulate
 from stickslip.analysis.disturbance import safe_disturbance
 from stickslip.analysis.engine_run import EngineOptions
-from stickslip.analysis.interpolant_margin import interpolant_steady_mismatch
+from stickslip.analysis.interpolant_margin import interpolant_mismatch, interpolant_steady_mismatch
 from stickslip.analysis.stability import steady_sliding_stability
 from stickslip.analysis.verdict import RunStatus, Verdict
 from stickslip.kernel import engine
@@ -87,3 +87,33 @@ def test_map_cells_are_withheld_only_where_the_two_disagree() -> None:
     coulomb = CellBatch(np.arange(3, dtype=np.int64), np.full(3, LAM), 2.0, CoulombFriction())
     isum[:, engine.I_STATUS] = engine.STATUS_STEADY
     assert withhold_interpolant_steady(structures, coulomb, isum) == 0
+
+
+def test_the_interpolants_own_slip_oscillation_is_withheld_where_the_law_settles() -> None:
+    # the other side: stribeck:vs=0.3,n=1 has its band about u = 1 steeper than the tangent
+    # (-0.121274 against -0.118913 at lambda = 1), so between the zeros of the two net dampings,
+    # zeta = 0.05945 and 0.06065, the law's steady sliding is stable and the interpolant's not:
+    # at zeta = 0.06 the tolerance-1e-4 run certified a slip oscillation of amplitude 0.0145,
+    # the tolerance-1e-6 run (whose band agrees with the law) steady sliding
+    structure = rigid_base(0.06)
+    slider = Slider(1.0, friction=StribeckFriction(0.3, tolerance=1e-4))
+    exact = steady_sliding_stability(structure, slider)
+    assert exact.stable and -0.5 * exact.slope < 0.06
+    found = interpolant_mismatch(structure, slider)
+    assert found is not None and found[0] == "oscillation"
+    assert interpolant_steady_mismatch(structure, slider) is None
+    start = InitialState(np.array([0.0]), np.array([-0.01]))
+    run = simulate(structure, slider, initial=start, options=EngineOptions(t_max=20000.0))
+    assert run.status is RunStatus.INTERPOLANT_OSCILLATION
+    assert run.verdict is Verdict.UNDETERMINED
+    fine = Slider(1.0, friction=StribeckFriction(0.3, tolerance=1e-6))
+    assert simulate(structure, fine, initial=start,
+                    options=EngineOptions(t_max=20000.0)).verdict is Verdict.STEADY_SLIDING
+    structures = StructureSet.resolve(DvaSpec("none"), np.array([0.06]))
+    batch = CellBatch(np.zeros(1, dtype=np.int64), np.ones(1), 2.0,
+                      StribeckFriction(0.3, tolerance=1e-4))
+    isum = np.zeros((1, engine.I_N_STEPS + 1), dtype=np.int64)
+    isum[0, engine.I_STATUS] = engine.STATUS_OSCILLATION
+    assert withhold_interpolant_steady(structures, batch, isum) == 1
+    assert isum[0, engine.I_STATUS] == RunStatus.INTERPOLANT_OSCILLATION.code
+

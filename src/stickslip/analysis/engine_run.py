@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.interpolant_margin import interpolant_steady_mismatch
+from stickslip.analysis.interpolant_margin import interpolant_mismatch
 from stickslip.analysis.stability import steady_sliding_stability
 from stickslip.analysis.verdict import Mode, RunStatus, Verdict
 from stickslip.kernel import dense_output, engine
@@ -457,11 +457,14 @@ def run_engine(structure: Structure, slider: Slider, initial: InitialState | Non
     description = slider.friction.describe() + (f" ({n_bands} bands)" if n_bands > 1 else "")
     stability = steady_sliding_stability(structure, slider)
     certificate = _certificate_text(status, n_bands, fsum, isum)
-    if status is RunStatus.CERTIFIED_STEADY:
-        mismatch = interpolant_steady_mismatch(structure, slider)
-        if mismatch is not None:
-            status = RunStatus.INTERPOLANT_STEADY
-            certificate = f"undetermined ({mismatch}); the interpolant's: {certificate}"
+    if status in (RunStatus.CERTIFIED_STEADY, RunStatus.CERTIFIED_OSCILLATION):
+        mismatch = interpolant_mismatch(structure, slider)
+        withheld = {"steady": RunStatus.CERTIFIED_STEADY,
+                    "oscillation": RunStatus.CERTIFIED_OSCILLATION}
+        if mismatch is not None and withheld[mismatch[0]] is status:
+            status = (RunStatus.INTERPOLANT_STEADY if mismatch[0] == "steady"
+                      else RunStatus.INTERPOLANT_OSCILLATION)
+            certificate = f"undetermined ({mismatch[1]}); the interpolant's: {certificate}"
     verdict = status.verdict
     return SimulationResult(
         structure=structure,

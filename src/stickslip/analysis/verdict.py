@@ -75,6 +75,13 @@ class RunStatus(Enum):
         "a breakaway state repeated but no divisor of its period could be proven a contracting "
         "fixed point of the return map; increase t_max to run on",
     )
+    INTERPOLANT_OSCILLATION = (
+        10,
+        "slip oscillation certified for the friction law's piecewise-linear interpolant only: "
+        "the law's own steady sliding is linearly stable and the interpolant's is not (near "
+        "its stability limit the band's secant slope and the law's tangent fall on either "
+        "side), so the oscillation may be the interpolant's; lower the law's tolerance",
+    )
     INTERPOLANT_STEADY = (
         9,
         "steady sliding certified for the friction law's piecewise-linear interpolant only: the "

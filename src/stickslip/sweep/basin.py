@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from stickslip.analysis.interpolant_margin import interpolant_steady_mismatch
+from stickslip.analysis.interpolant_margin import interpolant_mismatch
 from stickslip.analysis.simulation import EngineOptions
 from stickslip.analysis.verdict import (
     VERDICTS,
@@ -450,10 +450,12 @@ def basin_stability(
     sigint.raise_if_caught()  # every chunk was stored already
     if chunk_store is not None:
         chunk_store.record_run(len(chunks) - len(missing), len(missing), backend)
-    if interpolant_steady_mismatch(structure, slider) is not None:
-        # the kernel's steady sliding is the interpolant's; the law's is not stable
-        isum[isum[:, engine.I_STATUS] == engine.STATUS_STEADY, engine.I_STATUS] = \
-            RunStatus.INTERPOLANT_STEADY.code
+    mismatch = interpolant_mismatch(structure, slider)
+    if mismatch is not None:  # a certificate of the interpolant that does not hold for the law
+        kernel, withheld = ((engine.STATUS_STEADY, RunStatus.INTERPOLANT_STEADY)
+                            if mismatch[0] == "steady"
+                            else (engine.STATUS_OSCILLATION, RunStatus.INTERPOLANT_OSCILLATION))
+        isum[isum[:, engine.I_STATUS] == kernel, engine.I_STATUS] = withheld.code
     return BasinResult(structure, slider, opts, z0s, verdict_codes(isum[:, engine.I_STATUS]), fsum,
                        isum, time.perf_counter() - started, backend, len(chunks),
                        len(chunks) - len(missing))

@@ -85,16 +85,18 @@ def prove_map_cycles(structures: StructureSet, batch: CellBatch,
 
 def withhold_interpolant_steady(structures: StructureSet, batch: CellBatch,
                                 int_summary: NDArray[np.int64]) -> int:
-    """Withhold, in place, the steady-sliding certificates that hold for a law's interpolant only.
+    """Withhold, in place, the certificates that hold for a law's interpolant only.
 
     The cells' form of
-    :func:`~stickslip.analysis.interpolant_margin.interpolant_steady_mismatch`: a
-    cell certified steady by the kernel (the Lyapunov bound of the piecewise-linear
-    interpolant of a smooth law) whose law's own steady sliding is not linearly stable (its
-    growth rate with the law's exact slope at the belt speed, within ``1000 eps ||A||_F`` of
-    zero or above) while the interpolant's is, gets the status
-    :attr:`~stickslip.analysis.verdict.RunStatus.INTERPOLANT_STEADY` (``undetermined``).
-    Exact laws (Coulomb, linear, tables) are not touched: the engine runs the law itself.
+    :func:`~stickslip.analysis.interpolant_margin.interpolant_mismatch`: with the law's growth
+    rate at steady sliding (its exact slope at the belt speed; "stable" beyond ``1000 eps
+    ||A||_F``) and the interpolant's (its band's slope), a cell certified steady where the
+    law's is not stable and the interpolant's is gets
+    :attr:`~stickslip.analysis.verdict.RunStatus.INTERPOLANT_STEADY`, and a cell certified a
+    slip oscillation where the law's is stable and the interpolant's is not gets
+    :attr:`~stickslip.analysis.verdict.RunStatus.INTERPOLANT_OSCILLATION` (both
+    ``undetermined``). Exact laws (Coulomb, linear, tables) are not touched: the engine runs
+    the law itself.
 
     Parameters
     ----------
@@ -110,13 +112,14 @@ def withhold_interpolant_steady(structures: StructureSet, batch: CellBatch,
     int
         The number of certificates withheld.
     """
-    steady = np.flatnonzero(int_summary[:, engine.I_STATUS] == engine.STATUS_STEADY)
+    status = int_summary[:, engine.I_STATUS]
+    cells = np.flatnonzero((status == engine.STATUS_STEADY) | (status == engine.STATUS_OSCILLATION))
     laws = batch.laws if batch.laws is not None else (batch.friction,)
-    if steady.size == 0 or all(law.exact for law in laws):
+    if cells.size == 0 or all(law.exact for law in laws):
         return 0
     slopes: dict[tuple[float, FrictionLaw], tuple[float, float]] = {}
     exact_stack, band_stack = [], []
-    for c in steady.tolist():
+    for c in cells.tolist():
         law = batch.laws[c] if batch.laws is not None else batch.friction
         lam = float(batch.lams[c])
         if (lam, law) not in slopes:
@@ -130,10 +133,15 @@ def withhold_interpolant_steady(structures: StructureSet, batch: CellBatch,
     exact = np.asarray(exact_stack)
     g_exact = np.max(np.linalg.eigvals(exact).real, axis=1)
     g_band = np.max(np.linalg.eigvals(np.asarray(band_stack)).real, axis=1)
-    round_off = 1000.0 * np.finfo(float).eps * np.linalg.norm(exact, axis=(1, 2))
-    withheld = steady[(g_exact >= -round_off) & (g_band < 0.0)]
-    int_summary[withheld, engine.I_STATUS] = RunStatus.INTERPOLANT_STEADY.code
-    return int(withheld.size)
+    law_stable = g_exact < -1000.0 * np.finfo(float).eps * np.linalg.norm(exact, axis=(1, 2))
+    exact_law = np.array([(batch.laws[c] if batch.laws is not None else batch.friction).exact
+                          for c in cells.tolist()], dtype=bool)
+    steady = (status[cells] == engine.STATUS_STEADY) & ~law_stable & (g_band < 0.0) & ~exact_law
+    oscillation = ((status[cells] == engine.STATUS_OSCILLATION) & law_stable & (g_band >= 0.0)
+                   & ~exact_law)
+    int_summary[cells[steady], engine.I_STATUS] = RunStatus.INTERPOLANT_STEADY.code
+    int_summary[cells[oscillation], engine.I_STATUS] = RunStatus.INTERPOLANT_OSCILLATION.code
+    return int(steady.sum() + oscillation.sum())
 
 
 def _exact_and_band_slope(law: FrictionLaw, lam: float, gamma: float) -> tuple[float, float]:
