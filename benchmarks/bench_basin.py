@@ -59,7 +59,7 @@ from stickslip import (
 from stickslip.analysis.simulation import EngineOptions
 from stickslip.analysis.verdict import verdict_codes
 from stickslip.kernel.batch import prepare_states, run_prepared_states
-from stickslip.kernel.engine import I_N_STEPS, I_N_STICK, I_STATUS
+from stickslip.kernel.engine import I_N_SEGMENTS, I_N_STEPS, I_N_STICK, I_STATUS
 from stickslip.kernel.outer_certificate import ESCAPE_F_LO
 from stickslip.model.friction import CoulombFriction, StribeckFriction
 from stickslip.sweep.basin import BasinSystem, basin_stability, run_state_batch, sample_box
@@ -158,13 +158,15 @@ def work_by_verdict(result) -> str:  # type: ignore[no-untyped-def]
     structure, so every state runs to its own certified verdict (no shortcut, no trap region).
     """
     steps = result.int_summary[:, I_N_STEPS]
+    events = result.int_summary[:, I_N_SEGMENTS]  # phases: one per event (band edges mostly)
     parts = []
     for verdict in (Verdict.STEADY_SLIDING, Verdict.STICK_SLIP):
         mask = result.verdict == verdict.code
         if mask.any():
             parts.append(f"{verdict.value} {int(mask.sum())} states, "
                          f"{result.int_summary[mask, I_N_STICK].mean():.1f} stick phases and "
-                         f"{steps[mask].mean():,.0f} steps each, {steps[mask].sum() / steps.sum():.0%} "
+                         f"{steps[mask].mean():,.0f} steps each ({events[mask].mean():,.0f} of "
+                         f"them ending in an event), {steps[mask].sum() / steps.sum():.0%} "
                          "of the steps")
     return "; ".join(parts)
 
