@@ -454,28 +454,22 @@ def test_design_flags_name_the_operating_point_of_a_lambda_beyond_the_range(
     assert "beyond the supported range" in line
 
 
-def test_a_modal_tables_bad_entry_is_named_once(
-        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+@pytest.mark.parametrize(("table", "said", "prefix"), [
     # an audit: "[structure] modes: [structure] modes.shapes = ..." repeated its prefix
-    config = tmp_path / "machine.toml"
-    config.write_text('mu_s = 0.5\nmu_k = 0.3\nload = "100 N"\nspeed = "1 cm/s"\n[structure]\n'
-                      'modes = { frequencies = ["10 Hz", "30 Hz"], damping_ratios = [0.02, 0.02],'
-                      ' shapes = ["a", 1.0] }\n')
-    line = _one_error(["simulate", "--config", str(config)], capsys)
-    assert "modes.shapes = ['a', 1.0] must be a number or a list of numbers" in line
-    assert line.count("[structure]") == 1
-
-
-def test_a_modal_tables_lengths_are_named_once(
-        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    ('damping_ratios = [0.02, 0.02], shapes = ["a", 1.0]',
+     "modes.shapes = ['a', 1.0] must be a number or a list of numbers", "[structure]"),
     # an audit: "[structure] modes: modes: 2 frequencies, 1 damping ratios ..." said "modes" twice
+    ("damping_ratios = [0.02], shapes = [1.0, 1.0]",
+     "[structure] modes: 2 frequencies, 1 damping ratios and 2 mode shape values", "modes:"),
+])
+def test_a_modal_tables_fault_is_named_once(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                            table: str, said: str, prefix: str) -> None:
     config = tmp_path / "machine.toml"
     config.write_text('mu_s = 0.5\nmu_k = 0.3\nload = "100 N"\nspeed = "1 cm/s"\n[structure]\n'
-                      'modes = { frequencies = ["10 Hz", "30 Hz"], damping_ratios = [0.02],'
-                      ' shapes = [1.0, 1.0] }\n')
+                      f'modes = {{ frequencies = ["10 Hz", "30 Hz"], {table} }}\n')
     line = _one_error(["simulate", "--config", str(config)], capsys)
-    assert "[structure] modes: 2 frequencies, 1 damping ratios and 2 mode shape values" in line
-    assert line.count("modes:") == 1
+    assert said in line
+    assert line.count(prefix) == 1
 
 
 def test_a_speed_schedule_beyond_its_bound_is_refused_before_its_rows_are_read(

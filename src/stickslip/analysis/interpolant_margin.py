@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from stickslip.analysis.stability import slip_matrix, steady_sliding_stability
+from stickslip.model.friction import FrictionLaw
 from stickslip.model.parameters import Slider
 from stickslip.model.structure import Structure
 
@@ -56,9 +57,7 @@ def interpolant_mismatch(structure: Structure, slider: Slider) -> tuple[str, str
     if law.exact:
         return None
     exact = steady_sliding_stability(structure, slider)
-    edges, _, slopes = law.bands(slider.lam, slider.gamma)
-    b = int(np.searchsorted(edges, 1.0, side="right") - 1)
-    sides = [float(slopes[b])] + ([float(slopes[b - 1])] if b > 0 and edges[b] == 1.0 else [])
+    sides = band_slopes_at_belt_speed(law, slider.lam, slider.gamma)
     growth = max(float(np.max(np.linalg.eigvals(slip_matrix(structure, s)).real)) for s in sides)
     rates = (f"(growth rate {exact.growth_rate:.6g} per unit tau with its slope {exact.slope:.6g} "
              f"at the belt speed; the interpolant's {growth:.6g} with the band's slope "
@@ -93,3 +92,24 @@ def interpolant_steady_mismatch(structure: Structure, slider: Slider) -> str | N
     """
     found = interpolant_mismatch(structure, slider)
     return found[1] if found is not None and found[0] == "steady" else None
+
+
+def band_slopes_at_belt_speed(law: FrictionLaw, lam: float, gamma: float) -> list[float]:
+    """The interpolant's slope at ``u = 1``: its band's, and the band's below too when ``u = 1``
+    is a node (as :func:`~stickslip.analysis.stability.one_sided_slopes` reads them).
+
+    Parameters
+    ----------
+    law : FrictionLaw
+        The friction law (its band table).
+    lam, gamma : float
+        ``lambda`` and ``gamma`` of the contact.
+
+    Returns
+    -------
+    list of float
+        One slope, or two at a node (the band above first).
+    """
+    edges, _, slopes = law.bands(lam, gamma)
+    b = int(np.searchsorted(edges, 1.0, side="right") - 1)
+    return [float(slopes[b])] + ([float(slopes[b - 1])] if b > 0 and edges[b] == 1.0 else [])

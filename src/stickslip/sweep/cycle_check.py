@@ -19,6 +19,7 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import NDArray
 
+from stickslip.analysis.interpolant_margin import band_slopes_at_belt_speed
 from stickslip.analysis.simulation import EngineOptions, simulate
 from stickslip.analysis.stability import slip_matrix
 from stickslip.analysis.verdict import RunStatus
@@ -149,9 +150,5 @@ def _exact_and_band_slope(law: FrictionLaw, lam: float, gamma: float) -> tuple[f
     when ``u = 1`` is a node, as :func:`~stickslip.analysis.stability.one_sided_slopes`)."""
     if law.exact:
         return 0.0, 0.0  # not used: exact laws are skipped
-    edges, _, slopes = law.bands(lam, gamma)
-    b = int(np.searchsorted(edges, 1.0, side="right") - 1)
-    band = float(slopes[b])
-    if b > 0 and edges[b] == 1.0:
-        band = min(band, float(slopes[b - 1]))
+    band = min(band_slopes_at_belt_speed(law, lam, gamma))
     return float(law.slope_at(1.0, lam, gamma)), band
