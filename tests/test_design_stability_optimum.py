@@ -110,3 +110,40 @@ def test_tune_says_when_the_printed_optimum_is_on_the_edge_of_a_window(capsys) -
     assert payload["delta_crit_as_printed"] < 0.99 * payload["delta_crit"]
     code, out, _ = run_cli(["tune", "--zeta", "0.1", "--objective", "stability"], capsys)
     assert f"is stable only below delta = {payload['delta_crit_as_printed']:.6g}" in out
+
+
+@pytest.mark.parametrize("zeta, point", [
+    # an independent audit's points (Routh-Hurwitz of the quartic and a 100,001-point
+    # eigenvalue scan): inside the default bounds (K >= 0.5, M <= M_opt), delta_crit 0.5165
+    # and 0.5231, where the search returned 0.4385 and 0.4332 from the M = M_opt branch
+    (0.01, Foundation(1.2342, 0.5, 0.6605)),
+    (0.02, Foundation(1.2747, 0.5, 0.6657)),
+])
+def test_stability_optimum_is_not_beaten_by_a_point_within_its_bounds(zeta: float, point: Foundation) -> None:
+    from stickslip.analysis.stability_tuning import optimal_foundation_stability
+
+    best = optimal_foundation_stability(zeta)
+    lo, hi = best.mass_ratio_bounds
+    assert lo <= point.mass_ratio <= hi and best.stiffness_ratio_bounds[0] <= point.stiffness_ratio
+    # the point's own delta_crit, by the eigenvalue grid of this file (independent of the package)
+    grid = np.linspace(0.0, 1.0, 20001)
+    first = next(d for d in grid if _max_real_eigenvalue(zeta, point, float(d)) > 0.0)
+    assert first > 0.51
+    assert best.delta_crit >= first - 1e-4
+    # and the optimum's is the first crossing of the same check
+    f = best.foundation
+    assert _max_real_eigenvalue(zeta, f, best.delta_crit * (1.0 - 1e-6)) < 0.0
+
+
+def test_design_gives_bounds_when_the_stick_slip_optimum_finds_no_onset() -> None:
+    """No stick-slip onset up to lambda = 100 is lambda_c >= 100: V_c at most and W_c at least
+    their values at lambda = 100 (lambda = (mu_s - mu_k) W / (V sqrt(m k)), Eq. 18's scaling);
+    the critical speed was printed as 0.0 (an independent audit)."""
+    system = PhysicalSystem(**MACHINE)
+    best = design_foundation(system, stick_slip_optimum=True).to_dict()["stick_slip_optimal_foundation"]
+    assert best["lambda_crit"] is None  # the audit's machine: no onset up to lambda = 100
+    lam_max = best["lambda_crit_at_least"]
+    scale = (MACHINE["mu_s"] - MACHINE["mu_k"]) / np.sqrt(MACHINE["mass"] * MACHINE["stiffness"])
+    assert best["critical_speed"] is None and best["critical_load"] is None
+    assert best["critical_speed_at_most"] == pytest.approx(scale * MACHINE["load"] / lam_max, rel=1e-12)
+    assert best["critical_load_at_least"] == pytest.approx(lam_max * MACHINE["speed"] / scale, rel=1e-12)

@@ -562,14 +562,19 @@ def _stick_slip_optimum(system: PhysicalSystem, zeta: float, gamma: float, lam: 
     result = optimal_foundation_stick_slip(zeta, gamma, lam_max=max(100.0, 4.0 * lam))
     phys = foundation_to_physical(result.foundation, system.mass, system.stiffness)
     crit = _critical(system, result.lambda_crit)
+    # no onset up to lam_max: the critical values are bounds (lambda_c >= lam_max, so V_c is at
+    # most the speed and W_c at least the load of lam_max), not the 0 and inf of lambda = inf
+    bounded = math.isinf(result.lambda_crit)
     return {
         "m_a": phys.m_a, "k_a": phys.k_a, "c_a": phys.c_a,
         "M": result.foundation.mass_ratio, "K": result.foundation.stiffness_ratio,
         "zeta_a": result.foundation.damping_ratio,
         "lambda_crit": crit.to_dict()["lambda"],
         "lambda_crit_at_least": result.lam_max if math.isinf(result.lambda_crit) else None,
-        "critical_speed": crit.to_dict()["speed"],
-        "critical_load": crit.to_dict()["load"],
+        "critical_speed": None if bounded else crit.to_dict()["speed"],
+        "critical_load": None if bounded else crit.to_dict()["load"],
+        "critical_speed_at_most": system.speed_for_lambda(result.lam_max) if bounded else None,
+        "critical_load_at_least": system.load_for_lambda(result.lam_max) if bounded else None,
         "absorber_optimum_lambda_crit": result.reference_lambda_crit,
         "source": "maximum simulated stick-slip onset, M <= M_opt of Eq. (28)",
         "friction_law": COULOMB_LAW,

@@ -419,7 +419,9 @@ def format_report(p: dict[str, Any]) -> str:
                       f"recommended foundation (Eqs. 28-30): {recommended}"]
     best = p.get("stick_slip_optimal_foundation")
     if best:
-        onset = (f">= {best['lambda_crit_at_least']:g} (none found)" if best["lambda_crit"] is None
+        onset = (f">= {best['lambda_crit_at_least']:g} (none found: V_c <= "
+                 f"{g(best['critical_speed_at_most'], 'm/s')}, W_c >= "
+                 f"{g(best['critical_load_at_least'], 'N')})" if best["lambda_crit"] is None
                  else f"{best['lambda_crit']:.4g}, V_c={g(best['critical_speed'], 'm/s')}, "
                  f"W_c={g(best['critical_load'], 'N')}")
         lines.append(

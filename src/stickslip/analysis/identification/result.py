@@ -56,7 +56,9 @@ UNDETERMINED_RULE = (
     "which are also undetermined when the optimum rests on a limit of their search range "
     "(the record then does not bracket them); a table value is undetermined when the record's "
     "sliding speeds do not reach the midpoint between its knot and the one below; the force "
-    "offset and drift are nuisance parameters and are always reported with their standard errors"
+    "offset and drift are nuisance parameters and are always reported with their standard errors, "
+    "but for a fitted offset of a record without x: it is then exactly a common shift of the "
+    "friction levels, and the offset, mu_s, mu_k and the table values are undetermined"
 )
 
 
