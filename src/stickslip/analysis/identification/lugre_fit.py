@@ -102,7 +102,11 @@ class LuGreFit:
         def num(x: float) -> float | None:
             return float(x) if math.isfinite(x) else None
         out: dict[str, Any] = {
-            "law": "lugre", "parameters": {k: num(v) for k, v in self.values.items()},
+            "law": "lugre",
+            # an undetermined parameter is null, as in the main fit; the optimiser's numbers
+            # are kept under "estimates"
+            "parameters": {k: None if k in self.undetermined else num(v) for k, v in self.values.items()},
+            "estimates": {k: num(v) for k, v in self.values.items()},
             "standard_errors": {k: num(v) for k, v in self.errors.items()},
             "units": UNITS, "undetermined": self.undetermined, "rms_residual_N": self.rms,
             "n_samples": self.n, "load_N": self.load, "converged": self.converged,

@@ -214,7 +214,11 @@ class RateStateFit:
         def num(x: float) -> float | None:
             return float(x) if math.isfinite(x) else None
         return {"law": "rate-state", "evolution": self.evolution,
-                "parameters": {k: num(v) for k, v in self.values.items()},
+                # an undetermined parameter is null, as in the main fit; the optimiser's
+                # numbers are kept under "estimates"
+                "parameters": {k: None if k in self.undetermined else num(v)
+                               for k, v in self.values.items()},
+                "estimates": {k: num(v) for k, v in self.values.items()},
                 "standard_errors": {k: num(v) for k, v in self.errors.items()},
                 "undetermined": self.undetermined, "v_ref_m_per_s": self.schedule.first,
                 "rms_residual_mu": self.rms, "n_samples": self.n,
