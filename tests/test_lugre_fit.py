@@ -60,6 +60,11 @@ def test_fit_recovers_the_paper_parameters_within_its_errors() -> None:
     for name, truth in TRUTH.items():
         assert abs(fit.values[name] - truth) <= 4.0 * fit.errors[name], (name, fit.values, fit.errors)
     assert fit.rms == pytest.approx(0.01, rel=0.1)
+    assert fit.warnings == ()  # the residual is the record's noise
+    # the same force plus a 0.5 N square wave unrelated to the velocity: no LuGre motion of
+    # this velocity fits it, and the fit says so
+    wrong = fit_lugre(t, v, force + 0.5 * np.sign(np.sin(7.0 * t)), load=1.0)
+    assert wrong.warnings and "times the record's own noise" in wrong.warnings[0]
     table = fit.to_dict()["friction_table"]
     assert table["law"] == "lugre" and table["mu_s"] == pytest.approx(1.5, rel=0.01)
 

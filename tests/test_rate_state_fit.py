@@ -57,6 +57,18 @@ def test_fit_recovers_the_truth_within_its_errors(seed: int, evolution: str) -> 
         assert abs(fit.values[name] - truth) <= 4.0 * fit.errors[name], (name, fit.values, fit.errors)
         assert fit.errors[name] < 0.01 * abs(truth)  # and the record pins each one down
     assert fit.rms == pytest.approx(1e-4, rel=0.1)  # the residual is the noise
+    assert fit.warnings == ()
+
+
+def test_the_wrong_evolution_law_is_said() -> None:
+    """An aging-law record fitted with the slip law: residuals well beyond the record's noise
+    (an independent audit saw 31 times, without a word); the fit says so and names
+    --evolution, in the summary and the JSON."""
+    fit = fit_rate_state(T, X_LP, _record(0, "aging"), stiffness=K, load=LOAD, evolution="slip")
+    assert fit.rms > 3e-4  # the residual is not the 1e-4 noise
+    (warning,) = fit.warnings
+    assert "--evolution" in warning and "times the record's own noise" in warning
+    assert warning in fit.summary() and fit.to_dict()["warnings"] == [warning]
 
 
 def test_no_step_leaves_the_law_undetermined() -> None:

@@ -232,9 +232,17 @@ def _identify_rate_state(record: Path, *, load: str, stiffness: str | None, evol
                              evolution=evolution)
     except ValueError as exc:
         raise BadInput(f"record {str(record)!r}: {exc}") from None
+    _memory_fit_out(fit, record, json)
+
+
+def _memory_fit_out(fit: Any, record: Path, json: bool) -> None:
+    """A rate-and-state or LuGre fit on stdout (``--json``: its dict and the record), its
+    warnings on stderr when the summary (which holds them) is not printed."""
     payload = fit.to_dict()
     payload["record"] = str(record)
     if json:
+        for warning in fit.warnings:
+            typer.echo(f"stickslip: warning: {warning}", err=True)
         print_json(payload)
         return
     typer.echo(fit.summary())
@@ -322,12 +330,7 @@ def _identify_lugre(record: Path, *, load: str, given: dict[str, Any], bootstrap
         fit = fit_lugre(data[:, 0], data[:, 1], data[:, 2], load=normal)
     except ValueError as exc:
         raise BadInput(f"record {str(record)!r}: {exc}") from None
-    payload = fit.to_dict()
-    payload["record"] = str(record)
-    if json:
-        print_json(payload)
-        return
-    typer.echo(fit.summary())
+    _memory_fit_out(fit, record, json)
 
 
 def register(app: typer.Typer) -> None:

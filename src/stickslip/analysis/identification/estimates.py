@@ -153,6 +153,44 @@ class MeasuredRecord:
         return MeasuredRecord(self.t[index], source=self.source, **pick)
 
 
+#: The residuals are judged against the record's own noise (the weights are one over each
+#: channel's white-noise level, :func:`noise_level`), so a model that describes the record has
+#: a reduced chi-square near 1. Above this one (the residuals twice the noise) the result
+#: carries a warning that the model does not describe the record.
+MISMATCH_CHI2 = 4.0
+#: A record's noise counts as measurable above this fraction of its range; below it (a
+#: noise-free record) the residuals are judged against this fraction instead.
+NOISE_FLOOR = 1e-5
+
+
+def mismatch_warnings(measured: FloatArray, fitted: FloatArray, advice: str) -> tuple[str, ...]:
+    """A warning when a fit's residuals exceed ``sqrt(MISMATCH_CHI2)`` times the record's noise.
+
+    The yardstick is :func:`noise_level` of ``measured``, at least :data:`NOISE_FLOOR` of its
+    range (a noise-free record). Used by the fits of one measured signal (rate-and-state,
+    LuGre); the stick-slip fit judges its weighted chi-square by the same rule.
+
+    Parameters
+    ----------
+    measured, fitted : ndarray
+        The measured signal and the fitted model's, same unit.
+    advice : str
+        What to check, appended to the message.
+
+    Returns
+    -------
+    tuple of str
+        The warning, or nothing when the residuals are within the rule.
+    """
+    rms = float(np.sqrt(np.mean((fitted - measured) ** 2)))
+    noise = max(noise_level(measured), NOISE_FLOOR * float(np.ptp(measured)))
+    ratio = rms / noise if noise > 0.0 else math.inf
+    if ratio <= math.sqrt(MISMATCH_CHI2):
+        return ()
+    return (f"the model does not describe the record: its residuals are {ratio:.3g} times the "
+            f"record's own noise, above {math.sqrt(MISMATCH_CHI2):g} times: {advice}",)
+
+
 def noise_level(signal: FloatArray) -> float:
     """Standard deviation of white noise on a smooth signal, from its second differences.
 

@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from stickslip.analysis.identification.estimates import mismatch_warnings
 from stickslip.analysis.identification.fit_statistics import (
     NOT_CONVERGED,
     checked_record,
@@ -96,6 +97,9 @@ class LuGreFit:
     force_fit: FloatArray = field(default_factory=lambda: np.zeros(0), repr=False)
     #: False when the optimiser stopped at its budget (the values are where it stopped)
     converged: bool = True
+    #: Warnings on the fit (residuals beyond the record's noise:
+    #: :func:`~stickslip.analysis.identification.estimates.mismatch_warnings`)
+    warnings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready (SI); ``friction_table``: the machine file's ``[friction]`` with a load."""
@@ -110,6 +114,7 @@ class LuGreFit:
             "standard_errors": {k: num(v) for k, v in self.errors.items()},
             "units": UNITS, "undetermined": self.undetermined, "rms_residual_N": self.rms,
             "n_samples": self.n, "load_N": self.load, "converged": self.converged,
+            "warnings": list(self.warnings),
             "model": "LuGre driven by the record's sliding velocity (Canudas de Wit et al. 1995)"}
         if self.load is not None:
             out["friction_table"] = {
@@ -133,6 +138,7 @@ class LuGreFit:
         lines.append(f"residual    rms {self.rms:.3g} N")
         if not self.converged:
             lines.append(NOT_CONVERGED)
+        lines += [f"warning     {w}" for w in self.warnings]
         return "\n".join(lines)
 
 
@@ -215,7 +221,11 @@ def fit_lugre(t: FloatArray, v: FloatArray, force: FloatArray, *, load: float | 
     fitted = model_force(t, v, float(best.x[6]), _unpack(best.x[:6]))
     rms = float(np.sqrt(np.mean((fitted - force) ** 2)))
     return LuGreFit(values, errors, undetermined, rms, int(t.size), load, t, force, fitted,
-                    converged=best.status > 0)
+                    converged=best.status > 0,
+                    warnings=mismatch_warnings(force, fitted, "is it LuGre friction of the stated "
+                                                "sliding velocity, in its units?"))
+
+
 
 
 __all__ = ["LuGreFit", "fit_lugre", "model_force"]

@@ -41,6 +41,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from stickslip.analysis.identification.estimates import mismatch_warnings
 from stickslip.analysis.identification.fit_statistics import (
     NOT_CONVERGED,
     checked_record,
@@ -201,6 +202,9 @@ class RateStateFit:
     mu_fit: FloatArray = field(repr=False)
     #: False when the optimiser stopped at its budget (the values are where it stopped)
     converged: bool = True
+    #: Warnings on the fit (residuals beyond the record's noise:
+    #: :func:`~stickslip.analysis.identification.estimates.mismatch_warnings`)
+    warnings: tuple[str, ...] = ()
 
     @property
     def law(self) -> RateStateFriction:
@@ -225,7 +229,7 @@ class RateStateFit:
                 "steps": [[t, v] for t, v in zip(self.schedule.times, self.schedule.speeds,
                                                  strict=True)],
                 "stiffness_N_per_m": self.stiffness, "load_N": self.load,
-                "converged": self.converged,
+                "converged": self.converged, "warnings": list(self.warnings),
                 "model": "quasi-static spring-slider, regularised rate-and-state law"}
 
     def summary(self) -> str:
@@ -248,6 +252,7 @@ class RateStateFit:
                      "(the first step)")
         if not self.converged:
             lines.append(NOT_CONVERGED)
+        lines += [f"warning     {w}" for w in self.warnings]
         return "\n".join(lines)
 
 
@@ -329,7 +334,11 @@ def fit_rate_state(t: FloatArray, x_lp: FloatArray, mu: FloatArray, *, stiffness
     fitted = model_mu(t, schedule, stiffness, load, fitted_law)
     rms = float(np.sqrt(np.mean((fitted - mu) ** 2)))
     return RateStateFit(values, errors, undetermined, rms, schedule, evolution, stiffness, load,
-                        int(t.size), t, mu, fitted, converged=best.status > 0)
+                        int(t.size), t, mu, fitted, converged=best.status > 0,
+                        warnings=mismatch_warnings(mu, fitted, "check --evolution (aging or slip), "
+                                                    "the stiffness and the load"))
+
+
 
 
 __all__ = ["RateStateFit", "fit_rate_state", "load_point_steps", "model_mu"]

@@ -46,6 +46,8 @@ from numpy.typing import NDArray
 
 from stickslip.analysis.blas_threads import blas_limited
 from stickslip.analysis.identification.estimates import (
+    MISMATCH_CHI2,
+    NOISE_FLOOR,
     STICK_SPEED_NOTE,
     MeasuredRecord,
     RecordError,
@@ -111,18 +113,11 @@ MAX_FIT_PERIODS = 30
 #: are those of the samples used (larger than all samples would give, never smaller).
 MAX_FIT_SAMPLES = 20_000
 MIN_KEPT_PER_PERIOD = 200
-#: The residuals are judged against the record's own noise (the weights are one over each
-#: channel's white-noise level, :func:`~stickslip.analysis.identification.estimates.noise_level`),
-#: so a model that describes the record has a reduced chi-square near 1. Above this one (the
-#: residuals twice the noise) the result carries a warning that the model does not describe
-#: the record.
-MISMATCH_CHI2 = 4.0
 #: Above this reduced chi-square (residuals ten times the noise) the fit is refused: no motion
 #: of the law describes the record (no stick-slip, a wrong mass or drive speed). Only when the
 #: record's noise is measurable (above :data:`NOISE_FLOOR` of its range): a noise-free record
 #: has no yardstick.
 REFUSE_CHI2 = 100.0
-NOISE_FLOOR = 1e-5
 #: A stated mass beyond this factor of the mass the record's slip phases imply
 #: (``k / omega^2``, :class:`~stickslip.analysis.identification.estimates.RecordEstimates`) is
 #: flagged: the slip phases of a 1 kg slider last 1000**0.5 times less than those of 1000 kg.
