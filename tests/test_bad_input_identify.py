@@ -17,7 +17,8 @@ import numpy as np
 import pytest
 
 from stickslip.analysis.identification.estimates import MeasuredRecord
-from stickslip.analysis.identification.record_fit import REFUSE_CHI2, RecordError, identify
+from stickslip.analysis.identification.fit_judgement import REFUSE_CHI2
+from stickslip.analysis.identification.record_fit import RecordError, identify
 from stickslip.io.record import read_columns_toml, read_record
 from tests.cli_helpers import run_cli
 
@@ -135,21 +136,21 @@ def test_a_force_only_sine_is_refused_by_its_residuals(capsys: pytest.CaptureFix
 def test_residuals_above_twice_the_noise_and_a_mass_off_by_10_give_warnings() -> None:
     # the rule of MISMATCH_CHI2 and MASS_FACTOR, at chosen chi-squares; the implied mass of
     # the example record is 0.865 kg (k / omega^2 of its slip phases; the truth is 1 kg)
-    from stickslip.analysis.identification.estimates import estimate
-    from stickslip.analysis.identification.record_fit import MASS_FACTOR, MISMATCH_CHI2, _judge
+    from stickslip.analysis.identification.estimates import MISMATCH_CHI2, estimate
+    from stickslip.analysis.identification.fit_judgement import MASS_FACTOR, judge
 
     record = read_record(EXAMPLE)
     est = estimate(record, mass=1.0, load=100.0, speed=0.05)
     assert est.implied_mass == pytest.approx(0.865, rel=1e-3)
     dof = 4000
-    assert _judge(record, est, 1.1 * dof, dof, mass=1.0, speed=0.05) == ()
-    (warning,) = _judge(record, est, 1.01 * MISMATCH_CHI2 * dof, dof, mass=1.0, speed=0.05)
+    assert judge(record, est, 1.1 * dof, dof, mass=1.0, speed=0.05) == ()
+    (warning,) = judge(record, est, 1.01 * MISMATCH_CHI2 * dof, dof, mass=1.0, speed=0.05)
     assert warning.startswith("the model does not describe the record: its residuals are 2.01 times")
-    (warning,) = _judge(record, est, dof, dof, mass=1.01 * MASS_FACTOR * est.implied_mass,
+    (warning,) = judge(record, est, dof, dof, mass=1.01 * MASS_FACTOR * est.implied_mass,
                         speed=0.05)
     assert "times the 0.865 kg that the record's slip phases imply" in warning
     with pytest.raises(RecordError, match="beyond 10 times"):
-        _judge(record, est, 1.01 * REFUSE_CHI2 * dof, dof, mass=1.0, speed=0.05)
+        judge(record, est, 1.01 * REFUSE_CHI2 * dof, dof, mass=1.0, speed=0.05)
 
 
 @pytest.mark.parametrize(("speed", "ratio"), [(0.0525, "0.9516"), (0.049, "1.02")])
@@ -158,14 +159,14 @@ def test_a_drive_speed_the_stick_phases_contradict_is_flagged(speed: float, rati
     # its stick phases move at 0.04996 m/s (x's slope over each stick phase, spread 0.1 %).
     # Before: 5 % off gave k 2.2 % off at 33 standard errors, reduced chi-square 1.42, no word
     from stickslip.analysis.identification.estimates import estimate
-    from stickslip.analysis.identification.record_fit import _judge
+    from stickslip.analysis.identification.fit_judgement import judge
 
     record = read_record(EXAMPLE)
-    assert _judge(record, estimate(record, mass=1.0, load=100.0, speed=0.05), 4000.0, 4000,
+    assert judge(record, estimate(record, mass=1.0, load=100.0, speed=0.05), 4000.0, 4000,
                   mass=1.0, speed=0.05) == ()
     est = estimate(record, mass=1.0, load=100.0, speed=speed)
     assert est.stick_speed == pytest.approx(0.05, rel=2e-3)
-    (warning,) = _judge(record, est, 4000.0, 4000, mass=1.0, speed=speed)
+    (warning,) = judge(record, est, 4000.0, 4000, mass=1.0, speed=speed)
     assert warning.startswith(f"the record's stick phases move at 0.04996 m/s, {ratio} times the "
                               f"stated drive speed V = {speed:.4g} m/s")
     assert warning.endswith("check --speed")

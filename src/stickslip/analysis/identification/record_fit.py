@@ -46,15 +46,12 @@ from numpy.typing import NDArray
 
 from stickslip.analysis.blas_threads import blas_limited
 from stickslip.analysis.identification.estimates import (
-    MISMATCH_CHI2,
-    NOISE_FLOOR,
-    STICK_SPEED_NOTE,
     MeasuredRecord,
     RecordError,
     RecordEstimates,
     estimate,
-    uneven_steps_note,
 )
+from stickslip.analysis.identification.fit_judgement import judge, mass_note
 from stickslip.analysis.identification.problem import (
     LAW_PARAMETERS,
     FitProblem,
@@ -113,15 +110,6 @@ MAX_FIT_PERIODS = 30
 #: are those of the samples used (larger than all samples would give, never smaller).
 MAX_FIT_SAMPLES = 20_000
 MIN_KEPT_PER_PERIOD = 200
-#: Above this reduced chi-square (residuals ten times the noise) the fit is refused: no motion
-#: of the law describes the record (no stick-slip, a wrong mass or drive speed). Only when the
-#: record's noise is measurable (above :data:`NOISE_FLOOR` of its range): a noise-free record
-#: has no yardstick.
-REFUSE_CHI2 = 100.0
-#: A stated mass beyond this factor of the mass the record's slip phases imply
-#: (``k / omega^2``, :class:`~stickslip.analysis.identification.estimates.RecordEstimates`) is
-#: flagged: the slip phases of a 1 kg slider last 1000**0.5 times less than those of 1000 kg.
-MASS_FACTOR = 10.0
 #: A load-cell force beyond this many times the normal load is refused before any fit: the
 #: spring holds the slider against friction, ``|F| <= mu_s W`` in stick plus the slip's
 #: overshoot, so a friction coefficient of a thousand means wrong units (of F or --load).
@@ -456,7 +444,7 @@ def _identify(record: MeasuredRecord, known: Mapping[str, float], law: str, *, m
     except RecordError:
         raise
     except ValueError as exc:  # a parameter driven out of range: a wrong mass says so first
-        note = _mass_note(est, mass)
+        note = mass_note(est, mass)
         if note:
             raise RecordError(f"{note}: check --mass (the fit stopped at: {exc})") from None
         raise
@@ -575,7 +563,7 @@ def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tup
         params["mu_k"] = FitParameter("mu_k", knot.value, knot.stderr, "", free=knot.free,
                                       estimate=values[lowest], interval=knot.interval)
     criteria = {name: _criteria_report(p, r) for name, (p, r) in fits.items()}
-    warnings = _judge(record, est, chi2, res.fun.size - _n_params(problem), mass=mass,
+    warnings = judge(record, est, chi2, res.fun.size - _n_params(problem), mass=mass,
                       speed=speed)
     if not res.success:
         warnings += (f"the fit did not converge ({res.message}, {int(res.nfev)} evaluations): the "
@@ -598,42 +586,3 @@ def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tup
         covariance=cov, covariance_names=tuple(reported), bootstrap=bootstrap, table_visited=tuple(visited),
         warnings=warnings, window=window,
     )
-
-
-def _mass_note(est: RecordEstimates, mass: float) -> str:
-    """What is wrong with a stated mass beyond :data:`MASS_FACTOR` of the record's (else "")."""
-    ratio = mass / est.implied_mass if math.isfinite(est.implied_mass) and est.implied_mass > 0 else 1.0
-    if 1.0 / MASS_FACTOR <= ratio <= MASS_FACTOR:
-        return ""
-    return (f"the stated mass {mass:.4g} kg is {ratio:.3g} times the {est.implied_mass:.3g} kg "
-            "that the record's slip phases imply (k / omega^2)")
-
-
-def _judge(record: MeasuredRecord, est: RecordEstimates, chi2: float, dof: int, *,
-           mass: float, speed: float) -> tuple[str, ...]:
-    """Warnings on a fit (or a refusal): residuals against the record's noise, the mass, the
-    drive speed against the stick phases' (when x is recorded)."""
-    reduced = chi2 / max(dof, 1)
-    mass_note = _mass_note(est, mass)
-    noisy = all(est.noise[n] > NOISE_FLOOR * float(np.ptp(getattr(record, n))) for n in record.channels)
-    verdict = (f"the model does not describe the record: its residuals are {math.sqrt(reduced):.3g} "
-               f"times the record's own noise (reduced chi-square {reduced:.3g})")
-    if reduced > REFUSE_CHI2 and noisy:
-        why = mass_note or ("is it stick-slip, and are the mass, load and drive speed right?")
-        raise RecordError(f"{verdict}, beyond {math.sqrt(REFUSE_CHI2):g} times: no fit is reported; {why}")
-    out = []
-    if reduced > MISMATCH_CHI2:
-        out.append(f"{verdict}, above {math.sqrt(MISMATCH_CHI2):g} times: the values are those of the "
-                   "closest model, not of the record")
-    if mass_note:
-        out.append(mass_note + ": check --mass")
-    uneven = uneven_steps_note(record.t)
-    if uneven is not None:
-        out.append(uneven)
-    ratio_v = est.stick_speed / speed  # NaN without x: no note
-    if (abs(ratio_v - 1.0) > STICK_SPEED_NOTE
-            and abs(est.stick_speed - speed) > 5.0 * est.stick_speed_error):
-        out.append(f"the record's stick phases move at {est.stick_speed:.4g} m/s, {ratio_v:.4g} "
-                   f"times the stated drive speed V = {speed:.4g} m/s (a sticking slider moves "
-                   "with the belt); the fit takes V as stated: check --speed")
-    return tuple(out)
