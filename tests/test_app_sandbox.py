@@ -296,3 +296,25 @@ def test_messages_render_literally_in_markdown(text: str) -> None:
     assert body is not None, rendered
     assert "<a " not in body.group(1)
     assert html.unescape(body.group(1)).replace(WORD_JOINER, "") == " ".join(text.split())
+
+
+def test_a_message_echoing_a_huge_upload_is_shortened() -> None:
+    """An upload with 100,000 unknown tables was refused in a line of 800 kB (an independent
+    audit): the message keeps its start and its end, where the allowed keys are."""
+    from stickslip.app.messages import MAX_MESSAGE, sanitised
+
+    names = ", ".join(f"t{i}" for i in range(100_000))
+    text = sanitised(f"upload m.toml: unknown keys {names} (allowed: structure, system)")
+    assert len(text) <= MAX_MESSAGE + 40
+    assert text.startswith("upload m.toml: unknown keys t0, t1,")
+    assert text.endswith("t99999 (allowed: structure, system)") and "characters ...]" in text
+    assert sanitised("a short one") == "a short one"
+
+
+def test_a_dotted_key_bomb_upload_is_one_line_and_costs_nothing() -> None:
+    """A 200 kB dotted key took the server to 22 GB (an independent audit): refused unparsed."""
+    from stickslip.app.machine_page import uploaded_machine_file
+
+    bomb = ("a" + ".a" * 100_000 + " = 1\n").encode()
+    with pytest.raises(ValueError, match="dotted parts"):
+        uploaded_machine_file({"machine.toml": bomb})

@@ -39,6 +39,35 @@ _ABSOLUTE_PATH = re.compile(
 )
 
 
+#: Longest message shown, in characters: an upload's 100,000 unknown tables or 500,000 record
+#: columns made one-line refusals of up to 4.5 MB (an independent audit). A longer message
+#: keeps its start and its end (where the reason and the allowed values are) around a count.
+MAX_MESSAGE = 600
+#: Characters kept from the end of a shortened message.
+MESSAGE_TAIL = 200
+
+
+def shortened(text: str) -> str:
+    """``text`` if it has at most :data:`MAX_MESSAGE` characters, else its start and end
+    around ``[... N characters ...]``.
+
+    Parameters
+    ----------
+    text : str
+        A one-line message.
+
+    Returns
+    -------
+    str
+        At most about :data:`MAX_MESSAGE` characters.
+    """
+    if len(text) <= MAX_MESSAGE:
+        return text
+    head = MAX_MESSAGE - MESSAGE_TAIL
+    left = len(text) - head - MESSAGE_TAIL
+    return f"{text[:head]} [... {left:,} characters ...] {text[-MESSAGE_TAIL:]}"
+
+
 def sanitised(message: str) -> str:
     """``message`` on one line, with the server's temporary folder and absolute paths removed.
 
@@ -50,14 +79,15 @@ def sanitised(message: str) -> str:
     Returns
     -------
     str
-        The same words, every path replaced by :data:`PATH_PLACEHOLDER`.
+        The same words, every path replaced by :data:`PATH_PLACEHOLDER`, shortened to
+        :data:`MAX_MESSAGE` characters (:func:`shortened`).
     """
     text = " ".join(str(message).split())
     for folder in {tempfile.gettempdir(), "/tmp", "/var/tmp"}:
         text = text.replace(folder, PATH_PLACEHOLDER)
     text = _ABSOLUTE_PATH.sub(PATH_PLACEHOLDER, text)
     # "<path>/stickslip-abc/x.csv" -> "<path>"
-    return re.sub(re.escape(PATH_PLACEHOLDER) + r"[^\s'\"()\[\];,]*", PATH_PLACEHOLDER, text)
+    return shortened(re.sub(re.escape(PATH_PLACEHOLDER) + r"[^\s'\"()\[\];,]*", PATH_PLACEHOLDER, text))
 
 
 def literal_markdown(text: str) -> str:

@@ -23,13 +23,33 @@ DEFAULT_ADDRESS = "127.0.0.1"
 
 
 def is_loopback(address: str) -> bool:
-    """True when ``address`` reaches this computer only (127.0.0.0/8, ::1, ``localhost``)."""
-    if address.strip().lower() == "localhost":
+    """True when ``address`` reaches this computer only (127.0.0.0/8, ::1, ``localhost``).
+
+    Written forms that resolve to a loopback address count too (``127.1``, the IPv4-mapped
+    ``::ffff:127.0.0.1``): every address the name resolves to must be one. A name that does
+    not resolve is not loopback (the warning errs on the safe side).
+    """
+    import socket
+
+    host = served_address(address)
+    if host.lower() == "localhost":
         return True
     try:
-        return ipaddress.ip_address(address.strip().strip("[]")).is_loopback
-    except ValueError:  # a host name: it may resolve to any interface
+        infos = socket.getaddrinfo(host, 0, type=socket.SOCK_STREAM)
+    except (socket.gaierror, UnicodeError):
         return False
+    for info in infos:
+        ip = ipaddress.ip_address(str(info[4][0]).split("%", 1)[0])
+        mapped = getattr(ip, "ipv4_mapped", None)
+        if not (ip.is_loopback or (mapped is not None and mapped.is_loopback)):
+            return False
+    return bool(infos)
+
+
+def served_address(address: str) -> str:
+    """The address as the server takes it: without spaces and an IPv6 literal's brackets
+    (``[::1]``: Streamlit's own resolution failed with a traceback on the brackets)."""
+    return address.strip().strip("[]")
 
 
 def streamlit_command(port: int | None, headless: bool, address: str = DEFAULT_ADDRESS) -> list[str]:
@@ -84,7 +104,7 @@ def app(
     if not is_loopback(address):
         print(f"stickslip: warning: --address {address} opens the app to other computers; it has "
               "no login, and anyone who reaches it can run computations here", file=sys.stderr)
-    process = subprocess.Popen(streamlit_command(port, headless, address.strip()))
+    process = subprocess.Popen(streamlit_command(port, headless, served_address(address)))
     signal.signal(signal.SIGTERM, _interrupt)
     try:
         code = process.wait()
@@ -110,7 +130,7 @@ def check_can_serve(address: str, port: int | None) -> None:
     """
     import socket
 
-    host = address.strip("[]")
+    host = served_address(address)
     try:
         infos = socket.getaddrinfo(host, port or 0, type=socket.SOCK_STREAM)
     except socket.gaierror as exc:

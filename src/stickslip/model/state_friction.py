@@ -388,9 +388,9 @@ class MemorySystem:
                                  "LuGre slider needs its mass")
             if c[0, 0] != 0.0:
                 raise ValueError(f"m = 0 (the quasi-static slider) takes no damping, got "
-                                 f"c = {c[0, 0]!r} N s/m")
+                                 f"c = {float(c[0, 0])!r} N s/m")
             if not k[0, 0] > 0.0:
-                raise ValueError(f"the quasi-static slider's k={k[0, 0]!r} N/m must be positive")
+                raise ValueError(f"the quasi-static slider's k={float(k[0, 0])!r} N/m must be positive")
         else:
             if np.any(np.linalg.eigvalsh(0.5 * (m + m.T)) <= 0.0):
                 raise ValueError("the mass matrix must be positive definite (m = 0 is the "
