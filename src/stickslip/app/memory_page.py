@@ -28,15 +28,6 @@ HISTORY_SAMPLES = 1500
 PERIODS_SHOWN = 3
 
 
-@st.cache_data(max_entries=32, show_spinner=False)
-def memory_design_report(key: tuple[tuple[str, str], ...]) -> tuple[dict[str, Any], bytes]:
-    """The design report (JSON-ready) and the start-up run's figure (PNG) of the inputs ``key``."""
-    system, errors = parse_memory_inputs(dict(key))
-    if system is None:
-        raise ValueError("; ".join(errors))
-    return memory_report(system)
-
-
 def memory_report(system: MemorySystem) -> tuple[dict[str, Any], bytes]:
     """The design report (JSON-ready) and the start-up run's figure (PNG) of ``system``
     (module-level: the machine page runs it in its worker process)."""
@@ -67,8 +58,17 @@ def show_memory_results(raw: Mapping[str, str]) -> None:
             show_error(line)
         st.info("Nothing is computed until every input is valid.")
         return
-    with st.spinner("Linearisation, critical speeds and loads, two runs ..."):
-        p, image = memory_design_report(memory_key(raw))
+    from stickslip.app.messages import show_failure
+    from stickslip.app.workers import wait_for
+
+    # in a worker, as the machine page's: these runs take up to a minute, and the pool bounds
+    # how many wait (an independent audit found them in the page's own thread)
+    try:
+        p, image = wait_for(("memory-inputs", memory_key(raw)), memory_report, system,
+                            what="Linearisation, critical speeds and loads, two runs")
+    except Exception as exc:
+        show_failure(exc, "The design of these inputs")
+        return
     show_memory_report(p, image)
 
 
