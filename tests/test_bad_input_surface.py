@@ -350,3 +350,26 @@ def test_workers_and_chunk_size_are_whole_numbers(bad: object) -> None:
         check_backend("threads", bad, None)  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="whole number of at least 1"):
         check_chunk_size(bad)
+
+
+@pytest.mark.parametrize("args, needle", [
+    # an independent audit (2026-11-29): basin ran these with 60 % of its states undetermined,
+    # cycles printed an overflow warning and "initial state has NaN"; simulate refuses them
+    (["basin", "--lam", "1e308", "--zeta", "0.1", "--samples", "50", "--json"], "lambda=1e+308"),
+    (["basin", "--lam", "2.5", "--zeta", "0.1", "--gamma", "1e308", "--samples", "50", "--json"],
+     "gamma=1e+308"),
+    (["cycles", "--lam", "1e308", "--zeta", "0.1", "--seeds", "4", "--json"], "lambda=1e+308"),
+    (["cycles", "--lam", "3", "--gamma", "1e308", "--zeta", "0.1", "--seeds", "4"], "gamma=1e+308"),
+    # the foundation's fault was named --box
+    (["basin-map", "--lam", "1:3:2", "--zeta", "0.1:0.2:2", "--samples", "20", "--dva",
+      "1e308,1,0.1"], "--dva '1e308,1,0.1': M=1e+308"),
+    # "m//s" was read as m/s
+    (["design", "--m", "2 kg", "--k", "50 kN/m", "--c", "20 N*s/m", "--mu-s", "0.5", "--mu-k", "0.3",
+      "--load", "150 N", "--speed", "5 m//s", "--no-stick-slip-optimum", "--json"], "two operators"),
+])
+def test_values_simulate_refuses_are_refused_everywhere(args: list[str], needle: str, here: Path,
+                                                        capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, err = run_cli(args, capsys)
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and err.startswith("stickslip: error:") and needle in err, err
+    assert list(here.iterdir()) == []

@@ -145,6 +145,12 @@ def test_flags_that_replace_file_values_are_named(tmp_path: Path,
     warnings = json.loads(out)["warnings"]
     assert any(w.startswith("--m, --k replace the values of --config") and "c, " in w
                for w in warnings), warnings
+    # and on stderr, where every command warns (an audit found design's on stdout, after the
+    # report, and with --json nowhere but in the JSON)
+    assert "stickslip: warning: --m, --k replace the values of --config" in err
+    code, out, err = run_cli(["design", "--m", "2 kg", "--k", "50 kN/m", "--config", str(machine),
+                              "--no-stick-slip-optimum"], capsys)
+    assert code == 0 and "warning" not in out and err.startswith("stickslip: warning: --m, --k")
     code, out, err = run_cli(["design", "--config", str(machine), "--no-stick-slip-optimum",
                               "--json"], capsys)
     assert code == 0, err

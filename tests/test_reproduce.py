@@ -92,3 +92,22 @@ def test_reproduce_refuses_a_folder_it_did_not_write(tmp_path: Path, capsys: pyt
     with pytest.raises(Reached):
         run(["reproduce", "--out", str(out), "--quality", "tiny", "--overwrite"])
     assert (out / ".stickslip-reproduce").exists()
+
+
+def test_an_interrupted_reproduce_says_its_folder_is_incomplete(
+        tmp_path, monkeypatch, capsys) -> None:  # type: ignore[no-untyped-def]
+    """Ctrl-C part-way left nine figures beside an earlier report with only "aborted (Ctrl-C)"
+    (an independent audit): one line says the folder is incomplete, and the folder says so."""
+    import stickslip.reproduction.run as reproduction
+    from tests.cli_helpers import run_cli
+
+    def interrupted(out, quality, progress):  # type: ignore[no-untyped-def]
+        (out / "figures").mkdir(parents=True, exist_ok=True)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(reproduction, "reproduce", interrupted)
+    out = tmp_path / "results"
+    code, stdout, err = run_cli(["reproduce", "--out", str(out), "--quality", "tiny"], capsys)
+    assert code == 130 and stdout == ""
+    assert err.count("\n") == 1 and "aborted (Ctrl-C)" in err and "is incomplete" in err
+    assert "again" in (out / "INCOMPLETE.txt").read_text()

@@ -44,6 +44,10 @@ def test_quantities_convert_to_si(name: str, text: str | float, expected: float)
     ("2 kg**2**64", "power must be one number"),
     ("2 kg**99", "power must be one number"),
     ("2 kg*3", "one number followed by a unit"),
+    # pint read "m//s" as m/s: a typo was taken silently (independent audit, 2026-11-29)
+    ("2 kg//", "two operators in a row"),
+    ("2 kg/*g", "two operators in a row"),
+    ("2 kg*", "ends in one"),
 ])
 def test_misreadable_text_is_refused_with_one_line(text: str, reason: str) -> None:
     with pytest.raises(ValueError, match=reason) as info:
@@ -61,3 +65,10 @@ def test_toml_values_that_are_not_numbers_or_strings_are_refused(value: object) 
 def test_any_finite_number_round_trips_through_its_text(x: float) -> None:
     # property: repr of a float followed by its SI unit reads back exactly
     assert to_si("m", f"{x!r} kg") == x
+
+
+def test_a_doubled_operator_in_a_speed_is_refused() -> None:
+    """``"5 m//s"`` was computed as 5 m/s by design, simulate --config and --range."""
+    with pytest.raises(ValueError, match="two operators in a row"):
+        to_si("speed", "5 m//s")
+    assert to_si("speed", "5 m / s") == 5.0 and to_si("speed", "3 mm/s") == pytest.approx(3e-3)

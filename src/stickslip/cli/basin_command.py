@@ -13,6 +13,7 @@ from stickslip.cli.console import (
     BadInput,
     check_figure_path,
     check_output_path,
+    check_run_limits,
     parse_dva,
     parse_friction_option,
     print_json,
@@ -210,6 +211,7 @@ def basin(
         slider = Slider(lam, gamma=gamma, friction=parse_friction_option(friction))
         found = parse_dva(dva, zeta, k_scale)
         structure = chain_structure(zeta, () if found is None else (found,))
+    check_run_limits(slider.lam, slider.gamma)  # as simulate: 2 gamma lambda must not overflow
     options = EngineOptions(t_max=t_max)
     from stickslip.sweep.executors import check_backend
 

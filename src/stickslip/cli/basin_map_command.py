@@ -91,8 +91,12 @@ def basin_map_command(
     check_map_work(config.n_cells, samples)  # bounded before anything starts, like boundary
     random_seed(seed)
     intervals = parse_box(box) if box is not None else dict(DEFAULT_MAP_BOX)
+    try:  # the structures are built here first: a bad foundation is --dva's, not --box's
+        n_dof = config.structures.n_dof
+    except ValueError as exc:
+        raise BadInput(f"--dva {dva!r}: {exc}") from None
     try:
-        check_box(intervals, state_names(config.structures.n_dof))
+        check_box(intervals, state_names(n_dof))
     except ValueError as exc:
         raise BadInput(f"--box: {exc}") from None
     if out is not None:

@@ -7,7 +7,7 @@ from typing import Annotated, Any
 
 import typer
 
-from stickslip.cli.console import parse_dva, parse_friction_option, print_json
+from stickslip.cli.console import check_run_limits, parse_dva, parse_friction_option, print_json
 from stickslip.cli.options import DVA, FRICTION, GAMMA, JSON, K_SCALE
 
 
@@ -83,6 +83,7 @@ def cycles(
         slider = Slider(lam, gamma=gamma, friction=parse_friction_option(friction))
         found = parse_dva(dva, zeta, k_scale)
         structure = chain_structure(zeta, () if found is None else (found,))
+    check_run_limits(slider.lam, slider.gamma)  # as simulate: 2 gamma lambda must not overflow
     horizon = parse_t_max(t_max, None if run is None else run.reference.time_scale)
     options = EngineOptions() if horizon is None else EngineOptions(t_max=horizon)
     result = find_cycles(structure, slider, seeds=seeds, max_period=max_period, seed=seed,

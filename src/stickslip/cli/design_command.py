@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from stickslip.cli.console import BadInput, print_json
+from stickslip.cli.console import BadInput, print_json, warn
 from stickslip.cli.machine_config import collect_inputs, load_machine_file, out_of_scale
 from stickslip.cli.progress import DesignProgress
 from stickslip.model._validate import friction_range
@@ -227,6 +227,8 @@ def design(
     overridden = _overridden(flags, config)
     if overridden:
         payload["warnings"] = [*payload.get("warnings", []), overridden]
+    for warning in payload.get("warnings", []):  # on stderr, as every command's (and in --json)
+        warn(warning)
     if json:
         print_json(payload)
         return
@@ -476,7 +478,6 @@ def format_report(p: dict[str, Any]) -> str:
         lines.append("  (linear stability is local: the simulation rows' V_c and W_c are where a "
                      "start from rest stops sticking; between the two, steady sliding is stable "
                      "yet a start from rest ends in stick-slip)")
-    lines += [f"warning: {w}" for w in p.get("warnings", [])]
     return "\n".join(lines)
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 from typing import Annotated
 
@@ -11,6 +12,11 @@ from stickslip.cli.console import BadInput, print_json
 
 #: a file in every folder ``reproduce`` wrote: a later run may refresh that folder
 MARKER = ".stickslip-reproduce"
+#: a file in the folder while a run writes it, left there when the run is interrupted
+INCOMPLETE = "INCOMPLETE.txt"
+INCOMPLETE_TEXT = ("stickslip reproduce was interrupted while writing this folder: its figures, "
+                   "data and report may come from different runs. Run `stickslip reproduce --out "
+                   "{out}` again to complete it.\n")
 
 
 def reproduce(
@@ -32,6 +38,7 @@ def reproduce(
 
     Example: stickslip reproduce --out results --quality tiny
     """
+    from rich.console import Console
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
     from stickslip.reproduction.quality import quality as get_quality
@@ -53,13 +60,28 @@ def reproduce(
 
     columns = (TextColumn("{task.description}"), BarColumn(), TextColumn("{task.percentage:>3.0f}%"),
                TimeElapsedColumn())
-    with Progress(*columns, transient=False, disable=json) as bar:
-        task = bar.add_task("starting (the first run compiles the kernels, a few minutes)", total=1)
+    # on stderr, as every command's bar, and on a terminal only: stdout holds the summary (or
+    # the JSON) alone
+    incomplete = out / INCOMPLETE
+    incomplete.write_text(INCOMPLETE_TEXT.format(out=out), encoding="utf-8")
+    try:
+        with Progress(*columns, transient=False, disable=json or not sys.stderr.isatty(),
+                      console=Console(stderr=True)) as bar:
+            task = bar.add_task("starting (the first run compiles the kernels, a few minutes)", total=1)
 
-        def progress(step: str, done: int, total: int) -> None:
-            bar.update(task, description=step, completed=done, total=max(total, 1))
+            def progress(step: str, done: int, total: int) -> None:
+                bar.update(task, description=step, completed=done, total=max(total, 1))
 
-        report = run_reproduction(out, quality, progress)
+            report = run_reproduction(out, quality, progress)
+    except KeyboardInterrupt:
+        # the folder holds this run's first figures beside an earlier run's report: said here
+        # and in the folder (INCOMPLETE stays until a run completes)
+        from stickslip.cli.main import ABORTED, EXIT_INTERRUPTED
+
+        print(f"{ABORTED}: {str(out)!r} is incomplete; run the same command again to complete it",
+              file=sys.stderr, flush=True)
+        raise SystemExit(EXIT_INTERRUPTED) from None
+    incomplete.unlink(missing_ok=True)
     if json:
         print_json(report.to_dict())
         return

@@ -133,6 +133,11 @@ def _parse(flag: str, text: str, what: str) -> tuple[float, str]:
                             "not two numbers or arithmetic")
     if unit.startswith(("*", "/", "^", "+", "-")):
         raise arithmetic
+    operators = re.sub(r"\s+", "", unit).replace("**", "^")
+    if re.search(r"[*/^]{2}|[*/^]$", operators):
+        # pint reads "m//s" as m/s (floor division of units): a typo is refused, not guessed
+        raise ValueError(f"{flag} {text!r}: the unit has two operators in a row or ends in one "
+                         "(write e.g. 'm/s', 'N*s/m', 'm/s**2')")
     if not unit_powers_bounded(unit):
         raise ValueError(f"{flag} {text!r}: {POWER_RULE}")
     if re.search(r"\d", _POWER.sub("", unit)):
