@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import re
-import sys
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -17,6 +16,7 @@ from stickslip.cli.console import (
     parse_dva,
     parse_friction_option,
     print_json,
+    show_progress,
     typed_options,
 )
 from stickslip.cli.map_commands import WORKERS
@@ -264,7 +264,7 @@ def basin(
     from stickslip.sweep.execution import ExecutionOptions
     from stickslip.sweep.store import discard_store
 
-    enabled = not json and sys.stderr.isatty()
+    enabled = show_progress()
     store = None if out is None else out / "basin.parts"  # resume store, removed when done
     reach = scheduler_context(scheduler, scheduler_timeout)  # before any file is made
     undo = UndoOnRefusal([] if out is None else [out], [] if store is None else [store])
@@ -406,7 +406,7 @@ def _memory_basin(ctx: typer.Context, machine_file: Any, config: Path, *, sample
             y_v = 0.5 * system.schedule.first
             intervals = parse_box(box) if box is not None else {"v": (-y_v, y_v)}
             states = sample_memory_box(system, samples, intervals, seed)
-        enabled = not json and sys.stderr.isatty()
+        enabled = show_progress()
         with ProgressBar(enabled, f"basin {len(states)} starts (friction with memory)",
                          unit="samples") as bar:
             result = memory_basin(system, states, progress=bar)

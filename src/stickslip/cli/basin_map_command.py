@@ -8,7 +8,6 @@ stick-slip next to the start-up verdict of ``stickslip map`` on the same grid. T
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -21,6 +20,7 @@ from stickslip.cli.console import (
     check_output_path,
     print_json,
     save_plot,
+    show_progress,
     warn_fitted_range,
 )
 from stickslip.cli.map_commands import LAM_SPACING, LAM_SPEC, T_MAX, ZETA_SPACING, ZETA_SPEC
@@ -107,7 +107,7 @@ def basin_map_command(
         check_figure_path(plot, overwrite=overwrite)
     check_grid_memory(config.n_cells)
     warn_fitted_range(config.dva, config.zeta.values)  # every check passed
-    enabled = not json and sys.stderr.isatty()
+    enabled = show_progress()
     shape = config.shape
     undo = UndoOnRefusal([] if out is None else [out.parent])  # before anything is made
     if out is not None:

@@ -161,6 +161,18 @@ def check_grid_memory(n_cells: int, axes: str = "--lam/--zeta") -> None:
         )
 
 
+def show_progress() -> bool:
+    """Whether long work shows a progress bar: when stderr is a terminal, with or without
+    ``--json`` (the bar is on stderr, the JSON alone on stdout; a pipe or a file gets no bar).
+
+    Returns
+    -------
+    bool
+        ``sys.stderr.isatty()``.
+    """
+    return sys.stderr.isatty()
+
+
 def warn(message: str) -> None:
     """Print ``warning: message`` on stderr as one line (never on stdout: --json stays clean)."""
     line = " ".join(str(message).split())

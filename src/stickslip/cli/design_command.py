@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-import sys
 from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from stickslip.cli.console import BadInput, print_json, warn
+from stickslip.cli.console import BadInput, print_json, show_progress, warn
 from stickslip.cli.machine_config import collect_inputs, load_machine_file, out_of_scale
 from stickslip.cli.progress import DesignProgress
 from stickslip.model._validate import friction_range
@@ -83,7 +82,7 @@ def design_machine_file(flags: dict[str, Any], config: Path, *, stick_slip: bool
 SPEED_SCAN = 41
 
 
-def speed_changes(machine: Any, options: EngineOptions, show_progress: bool) -> dict[str, Any]:
+def speed_changes(machine: Any, options: EngineOptions, shown: bool) -> dict[str, Any]:
     """Every belt speed in ``[V / 10, 10 V]`` where the bare machine's start-up verdict changes.
 
     The search of ``boundary --config`` (:func:`~stickslip.analysis.contact.boundary.contact_boundary`
@@ -93,7 +92,7 @@ def speed_changes(machine: Any, options: EngineOptions, show_progress: bool) -> 
     from stickslip.analysis.contact.boundary import contact_boundary
     from stickslip.cli.progress import ProgressBar
 
-    with ProgressBar(show_progress, "verdict along the speed", "runs") as bar:
+    with ProgressBar(shown, "verdict along the speed", "runs") as bar:
         found = contact_boundary(machine, "speed", machine.speed / 10.0, machine.speed * 10.0,
                                  n_scan=SPEED_SCAN, rtol=1e-3, t_max=options.t_max,
                                  max_events=options.max_events, progress=bar)
@@ -193,14 +192,14 @@ def design(
         memory_design_command(config, given, json=json)
         return
     if config is not None and _has_structure(config):
-        with DesignProgress(not json and sys.stderr.isatty()) as bar:
+        with DesignProgress(show_progress()) as bar:
             machine_report, reduction = design_machine_file(flags, config, stick_slip=stick_slip_optimum,
                                                             options=options, progress=bar)
         machine_payload = machine_report.to_dict()
         machine_payload["reduction"] = None if reduction is None else reduction.summary()
         if speed_scan:
             machine_payload["speed_scan"] = speed_changes(machine_report.machine, options,
-                                                          not json and sys.stderr.isatty())
+                                                          show_progress())
         if json:
             print_json(machine_payload)
             return
@@ -219,7 +218,7 @@ def design(
             raise BadInput(str(exc)) from None
         if not deflection > 0.0:
             raise BadInput(f"--max-foundation-deflection {max_foundation_deflection!r} must be positive")
-    with DesignProgress(not json and sys.stderr.isatty()) as bar:
+    with DesignProgress(show_progress()) as bar:
         report = design_foundation(system, stick_slip_optimum=stick_slip_optimum,
                                    max_foundation_deflection=deflection, options=options, progress=bar)
     payload = report.to_dict()
@@ -270,7 +269,7 @@ def memory_design_command(config: Path, given: list[str], *, json: bool) -> None
                        "law with memory: change the machine file (each run has simulate's "
                        "default horizon; simulate --config --t-max runs longer)")
     system = memory_system(machine_file)
-    with DesignProgress(not json and sys.stderr.isatty()) as bar:
+    with DesignProgress(show_progress()) as bar:
         bar("linearisation, two runs", 0)
         report = memory_design(system)
     payload = report.to_dict()

@@ -8,7 +8,6 @@ output is written. ``boundary`` finds every critical lambda at each zeta.
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -26,6 +25,7 @@ from stickslip.cli.console import (
     parse_friction_option,
     print_json,
     save_plot,
+    show_progress,
     warn_fitted_range,
 )
 from stickslip.cli.options import (
@@ -266,7 +266,7 @@ def map_command(
         if reused:
             result = OccurrenceMap.from_netcdf(out)
         else:
-            enabled = not json and sys.stderr.isatty()
+            enabled = show_progress()
             if config.dva.kind == "optimal-exact":
                 _tune_exact_foundations(config.zeta.values, enabled)
             with ProgressBar(enabled, f"map {config.shape[0]}x{config.shape[1]}") as bar:
@@ -555,7 +555,7 @@ def operating_map_command(config: Path, speed: str | None, load: str | None, *, 
         if reused:
             result = OperatingMap.from_netcdf(out)
         else:
-            enabled = not json and sys.stderr.isatty()
+            enabled = show_progress()
             with ProgressBar(enabled, f"map {len(axes[0])}x{len(axes[1])} (V, W)") as bar:
                 try:
                     result = operating_map(machine, axes[0], axes[1], options=options,

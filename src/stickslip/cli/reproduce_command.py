@@ -8,7 +8,7 @@ from typing import Annotated
 
 import typer
 
-from stickslip.cli.console import BadInput, print_json
+from stickslip.cli.console import BadInput, print_json, show_progress
 
 #: a file in every folder ``reproduce`` wrote: a later run may refresh that folder
 MARKER = ".stickslip-reproduce"
@@ -65,7 +65,7 @@ def reproduce(
     incomplete = out / INCOMPLETE
     incomplete.write_text(INCOMPLETE_TEXT.format(out=out), encoding="utf-8")
     try:
-        with Progress(*columns, transient=False, disable=json or not sys.stderr.isatty(),
+        with Progress(*columns, transient=False, disable=not show_progress(),
                       console=Console(stderr=True)) as bar:
             task = bar.add_task("starting (the first run compiles the kernels, a few minutes)", total=1)
 

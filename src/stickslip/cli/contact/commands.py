@@ -9,14 +9,13 @@ repeated to 1e-9), not proven; every answer says so.
 from __future__ import annotations
 
 import math
-import sys
 from pathlib import Path
 from typing import Any
 
 import typer
 
 from stickslip.analysis.contact.pool import DEFAULT_WORKERS
-from stickslip.cli.console import BadInput, print_json, typed_options
+from stickslip.cli.console import BadInput, print_json, show_progress, typed_options
 
 __all__ = ["DEFAULT_WORKERS", "progress_bar", "refuse_options"]
 
@@ -36,7 +35,7 @@ def progress_bar(json: bool, label: str, unit: str = "runs", shorten: str | None
     (:class:`ProgressBar`)."""
     from stickslip.cli.progress import DEFAULT_SHORTEN, ProgressBar
 
-    return ProgressBar(not json and sys.stderr.isatty(), label, unit=unit,
+    return ProgressBar(show_progress(), label, unit=unit,
                        shorten=DEFAULT_SHORTEN if shorten is None else shorten)
 
 

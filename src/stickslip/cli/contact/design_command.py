@@ -9,13 +9,12 @@ complex-eigenvalue analysis is given too (``stickslip stability``'s).
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 from typing import Any
 
 import typer
 
-from stickslip.cli.console import BadInput, print_json
+from stickslip.cli.console import BadInput, print_json, show_progress
 
 #: The sentence the report gives for a [structure] file's [absorber].
 NO_ABSORBER = ("the [absorber] is not tuned with a contact in this version (its H-infinity and "
@@ -76,7 +75,7 @@ def contact_design_command(config: Path, machine_file: Any, given: list[str], *,
                        "[contact]: change the machine file")
     systems, notes, foundation = contact_variants(config, machine_file)
     stability = _stability(config, machine_file)
-    with DesignProgress(not json and sys.stderr.isatty()) as bar:
+    with DesignProgress(show_progress()) as bar:
         report = design_contact(systems, notes=tuple(notes), progress=bar)
     payload = report.to_dict()
     payload.update({"config": str(config), "machine": machine_file.label,

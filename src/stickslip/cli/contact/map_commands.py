@@ -14,7 +14,6 @@ start-up verdict changes (:mod:`stickslip.analysis.contact.boundary`).
 from __future__ import annotations
 
 import math
-import sys
 from pathlib import Path
 from typing import Any
 
@@ -23,6 +22,7 @@ import typer
 from stickslip.cli.console import (
     BadInput,
     print_json,
+    show_progress,
     typed_options,
 )
 from stickslip.cli.options import check_map_outputs
@@ -116,7 +116,7 @@ def contact_map_command(ctx: typer.Context, config: Path, machine_file: MachineF
     check_map_outputs(out, csv, plot, overwrite)
     from stickslip.cli.progress import ProgressBar
 
-    enabled = not json and sys.stderr.isatty()
+    enabled = show_progress()
     out.parent.mkdir(parents=True, exist_ok=True)  # every check passed: writing starts
     with output_lock(out):
         with ProgressBar(enabled, f"contact map {axes[0].size}x{axes[1].size} (V, W)",
@@ -186,7 +186,7 @@ def contact_boundary_command(ctx: typer.Context, config: Path, *, param: str | N
     lo, hi = decade_range(range_text, param, system.speed if param == "speed" else system.load)
     from stickslip.cli.progress import ProgressBar
 
-    enabled = not json and sys.stderr.isatty()
+    enabled = show_progress()
     with ProgressBar(enabled, f"contact boundary along {param}", "runs") as bar:
         result = contact_boundary(system, param, lo, hi, n_scan=scan, rtol=rtol,
                                   workers=n_workers, t_max=horizon, progress=bar)

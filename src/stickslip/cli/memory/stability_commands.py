@@ -9,13 +9,12 @@ No simulation runs, so neither takes a horizon.
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 from typing import Any
 
 import typer
 
-from stickslip.cli.console import BadInput, print_json
+from stickslip.cli.console import BadInput, print_json, show_progress
 from stickslip.cli.options import check_map_outputs
 from stickslip.io.machine_file import MachineFile
 
@@ -80,7 +79,7 @@ def memory_map_command(machine_file: Any, config: Path, speeds: Any, loads: Any,
                        f"{MAX_MAP_CELLS:,}; use fewer points")
     system = memory_system(machine_file)
     check_map_outputs(out, csv, plot, overwrite)
-    enabled = not json and sys.stderr.isatty()
+    enabled = show_progress()
     with ProgressBar(enabled, f"stability map {len(speeds)}x{len(loads)} (V, W)", "loads") as bar:
         result = memory_stability_map(system, speeds, loads, progress=bar)
     out.parent.mkdir(parents=True, exist_ok=True)
