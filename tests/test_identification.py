@@ -341,3 +341,15 @@ def test_a_force_in_the_wrong_units_is_refused_before_any_fit(scale: float) -> N
     rig = _rig()
     with pytest.raises(RecordError, match=r"times the normal load .*check the force's units"):
         identify(MeasuredRecord(rig.t, F=scale * rig.F), KNOWN)
+
+
+def test_a_bootstrap_reports_its_progress() -> None:
+    """``identify --bootstrap 500`` ran 15 s and more without a word (an independent audit):
+    each refit is reported, so the command line shows a bar on a terminal."""
+    rng = np.random.default_rng(5)
+    rig = _rig(t_end=0.73)
+    rec = MeasuredRecord(rig.t, F=noisy(rig.F, 0.005, rng), x=noisy(rig.x, 0.005, rng))
+    calls: list[tuple[int, int]] = []
+    result = identify(rec, KNOWN, bootstrap=3, progress=lambda done, total: calls.append((done, total)))
+    assert calls == [(0, 3), (1, 3), (2, 3), (3, 3)]
+    assert result.parameters["k"].interval is not None

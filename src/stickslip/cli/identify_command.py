@@ -179,8 +179,13 @@ def identify(
         spec = read_columns_toml(columns) if is_file else parse_columns(columns)
     data = read_record(record, spec)
     fit_offset = None if offset == "auto" else offset == "fit"
-    result = run_identify(data, known, law=law, bootstrap=bootstrap, fit_offset=fit_offset,
-                          table_speeds=knots)
+    from stickslip.cli.console import show_progress
+    from stickslip.cli.progress import ProgressBar
+
+    with ProgressBar(show_progress() and bootstrap > 0, "bootstrap refits", "fits",
+                     shorten="--bootstrap sets fewer refits (Ctrl-C stops it)") as bar:
+        result = run_identify(data, known, law=law, bootstrap=bootstrap, fit_offset=fit_offset,
+                              table_speeds=knots, progress=bar if bootstrap > 0 else None)
     payload = result.to_dict()
     for warning in result.warnings:
         typer.echo(f"stickslip: warning: {warning}", err=True)

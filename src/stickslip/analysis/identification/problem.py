@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -369,8 +369,9 @@ def solve_fit(problem: FitProblem, z0: FloatArray, weights: FloatArray | None = 
                          gtol=TOLERANCE, max_nfev=max_nfev, kwargs={"weights": weights})
 
 
-def bootstrap_intervals(problem: FitProblem, res: Any, n_boot: int,
-                        seed: int) -> dict[str, tuple[float, float]]:
+def bootstrap_intervals(problem: FitProblem, res: Any, n_boot: int, seed: int,
+                        progress: Callable[[int, int], None] | None = None
+                        ) -> dict[str, tuple[float, float]]:
     """95 % percentile intervals of the reported parameters over cycles drawn with replacement.
 
     Each refit weighs every segment (cycle) by how often it was drawn and starts from the
@@ -386,6 +387,8 @@ def bootstrap_intervals(problem: FitProblem, res: Any, n_boot: int,
         Resamples.
     seed : int
         Seed of the draws.
+    progress : callable, optional
+        ``progress(done, n_boot)`` after each refit.
 
     Returns
     -------
@@ -396,7 +399,9 @@ def bootstrap_intervals(problem: FitProblem, res: Any, n_boot: int,
     n = problem.record.t.size
     n_ch = len(problem.record.channels)
     samples: list[dict[str, float]] = []
-    for _ in range(n_boot):
+    for done in range(n_boot):
+        if progress is not None:
+            progress(done, n_boot)
         draw = rng.integers(0, len(problem.segments), len(problem.segments))
         counts = np.bincount(draw, minlength=len(problem.segments)).astype(np.float64)
         w = np.empty(n)
@@ -404,6 +409,8 @@ def bootstrap_intervals(problem: FitProblem, res: Any, n_boot: int,
             w[seg.start:seg.stop] = math.sqrt(count)
         refit = solve_fit(problem, res.x, weights=np.tile(w, n_ch), max_nfev=60)
         samples.append(problem.values(refit.x))
+    if progress is not None:
+        progress(n_boot, n_boot)
     out: dict[str, tuple[float, float]] = {}
     for name in samples[0] if samples else []:
         vals = np.array([s[name] for s in samples])

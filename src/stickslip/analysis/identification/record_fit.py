@@ -38,7 +38,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -250,7 +250,8 @@ def _check_table_speeds(table_speeds: Sequence[float]) -> tuple[float, ...]:
 def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulomb", *,
              bootstrap: int = 0, seed: int = 0, fit_offset: bool | None = None,
              table_speeds: Sequence[float] | None = None,
-             blas_threads: int | None = BLAS_THREADS) -> IdentificationResult:
+             blas_threads: int | None = BLAS_THREADS,
+             progress: Callable[[int, int], None] | None = None) -> IdentificationResult:
     """Fit stiffness, damping and a friction law to a measured stick-slip record.
 
     Parameters
@@ -283,6 +284,8 @@ def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulo
         BLAS threads while fitting (``threadpoolctl``); ``None`` leaves the process's setting.
         One by default (:data:`BLAS_THREADS`): the fit runs inside thread and process pools
         on small machines, where more BLAS threads oversubscribe the cores.
+    progress : callable, optional
+        ``progress(done, total)`` after each bootstrap refit (a bar for long bootstraps).
 
     Returns
     -------
@@ -327,7 +330,8 @@ def identify(record: MeasuredRecord, known: Mapping[str, Any], law: str = "coulo
         with blas_limited(blas_threads):
             used, window = fit_window(record, estimate(record, mass=mass, load=load, speed=speed))
             return _identify(used, known, law, mass=mass, load=load, speed=speed, bootstrap=bootstrap,
-                             seed=seed, fit_offset=fit_offset, knots=knots, window=window)
+                             seed=seed, fit_offset=fit_offset, knots=knots, window=window,
+                             progress=progress)
     except RecordError as exc:  # a refusal names the record it refuses
         text = str(exc)
         named = text if text.startswith("record ") else f"record {record.source}: {text}"
@@ -427,7 +431,8 @@ def check_known(known: Mapping[str, Any], law: str) -> None:
 
 def _identify(record: MeasuredRecord, known: Mapping[str, float], law: str, *, mass: float, load: float,
               speed: float, bootstrap: int, seed: int, fit_offset: bool,
-              knots: tuple[float, ...] | None, window: str = "") -> IdentificationResult:
+              knots: tuple[float, ...] | None, window: str = "",
+              progress: Callable[[int, int], None] | None = None) -> IdentificationResult:
     """:func:`identify` after its arguments are checked: the Coulomb fit that starts the others,
     the law(s) asked for, the result."""
     est = estimate(record, mass=mass, load=load, speed=speed)
@@ -450,7 +455,7 @@ def _identify(record: MeasuredRecord, known: Mapping[str, float], law: str, *, m
         raise
     return _result(record, est, fits, chosen=min(fits, key=lambda n: _bic(*fits[n])) if law == "auto"
                    else law, bootstrap=bootstrap, seed=seed, known=known, mass=mass, load=load,
-                   speed=speed, fit_offset=fit_offset, window=window)
+                   speed=speed, fit_offset=fit_offset, window=window, progress=progress)
 
 
 def _fit_laws(record: MeasuredRecord, est: RecordEstimates, known: Mapping[str, float], law: str,
@@ -515,7 +520,8 @@ def _bic(problem: FitProblem, res: Any) -> float:
 
 def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tuple[FitProblem, Any]],
             *, chosen: str, bootstrap: int, seed: int, known: Mapping[str, Any], mass: float,
-            load: float, speed: float, fit_offset: bool, window: str = "") -> IdentificationResult:
+            load: float, speed: float, fit_offset: bool, window: str = "",
+            progress: Callable[[int, int], None] | None = None) -> IdentificationResult:
     problem, res = fits[chosen]
     values = problem.values(res.x)
     jac = two_sided_jacobian(problem, res)
@@ -524,7 +530,7 @@ def _result(record: MeasuredRecord, est: RecordEstimates, fits: Mapping[str, tup
     stderr = np.sqrt(np.clip(np.diag(cov), 0.0, None))
     with np.errstate(divide="ignore", invalid="ignore"):
         corr = cov / np.outer(stderr, stderr)
-    intervals = bootstrap_intervals(problem, res, bootstrap, seed) if bootstrap > 0 else {}
+    intervals = bootstrap_intervals(problem, res, bootstrap, seed, progress) if bootstrap > 0 else {}
     model = problem.simulate_record(res.x)
     knot_names = [f"table_mu_{i}" for i in range(len(problem.table_v))]
     visited = visited_knots(problem.table_v, float(np.max(speed - model["v"]))) if knot_names else []
