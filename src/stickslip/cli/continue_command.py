@@ -118,8 +118,16 @@ def continue_branches(
             system.with_value(param, bound).build()
         except ValueError as exc:
             raise BadInput(f"--range {range_!r}: {param} = {bound:g} makes no valid system: {exc}") from None
-    result = continue_cycles(system, param, (lo, hi), max_period=max_period, seeds=seeds,
-                             max_steps=max_steps)
+    from stickslip.cli.console import show_progress
+    from stickslip.cli.progress import DesignProgress
+
+    # a spinner and the time (the branches' steps are open-ended), so that a long trace is
+    # seen to work (an independent audit: 45 s and more without a sign)
+    with DesignProgress(show_progress(), "continue", counted=False) as bar:
+        bar(f"{param} over [{lo:g}, {hi:g}], cycles up to {max_period} stick phases, {seeds} seeds "
+            "(Ctrl-C stops it)", 0)
+        result = continue_cycles(system, param, (lo, hi), max_period=max_period, seeds=seeds,
+                                 max_steps=max_steps)
     payload = result.to_dict()
     payload.update({"dataset": None, "plot": None})
     if out is not None:

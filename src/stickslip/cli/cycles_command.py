@@ -86,8 +86,16 @@ def cycles(
     check_run_limits(slider.lam, slider.gamma)  # as simulate: 2 gamma lambda must not overflow
     horizon = parse_t_max(t_max, None if run is None else run.reference.time_scale)
     options = EngineOptions() if horizon is None else EngineOptions(t_max=horizon)
-    result = find_cycles(structure, slider, seeds=seeds, max_period=max_period, seed=seed,
-                         options=options, slip_oscillations=True)
+    from stickslip.cli.console import show_progress
+    from stickslip.cli.progress import DesignProgress
+
+    # a spinner and the time: the seeds' runs and Newton's iterations report no count (an
+    # independent audit: --seeds 400 ran minutes without a sign)
+    with DesignProgress(show_progress(), "cycles", counted=False) as bar:
+        bar(f"{seeds} seeds, periods up to {max_period} stick phases (--seeds, --max-period "
+            "bound it; Ctrl-C stops it)", 0)
+        result = find_cycles(structure, slider, seeds=seeds, max_period=max_period, seed=seed,
+                             options=options, slip_oscillations=True)
     payload = result.to_dict()
     if run is not None:
         # seconds and metres: tau = omega_n t (Eq. 17), displacements in V / omega_n (Eqs. 15-16)

@@ -98,15 +98,18 @@ class ProgressBar:
 
 
 class DesignProgress:
-    """The design procedure's progress on stderr: its stage, the simulations made, the time spent.
+    """The design procedure's progress on stderr: its stage, the simulations made, the time spent
+    (``label``: another open-ended search's, e.g. ``cycles``; ``counted=False``: without runs).
 
     Drawn with rich as the map command's bar is, and only on a terminal; the stage count is
     open-ended (each search stops when it has bracketed its onset), so it shows runs, not a
     fraction.
     """
 
-    def __init__(self, enabled: bool) -> None:
+    def __init__(self, enabled: bool, label: str = "design", counted: bool = True) -> None:
         self.enabled = enabled
+        self._label = label
+        self._counted = counted  # False: the work reports no runs, the spinner and time alone
         self._bar: Any = None
         self._task: Any = None
 
@@ -115,8 +118,9 @@ class DesignProgress:
             from rich.console import Console
             from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 
-            self._bar = Progress(SpinnerColumn(), TextColumn("design: {task.description}"),
-                                 TextColumn("{task.completed:.0f} runs"), TimeElapsedColumn(),
+            runs = [TextColumn("{task.completed:.0f} runs")] if self._counted else []
+            self._bar = Progress(SpinnerColumn(), TextColumn(f"{self._label}: {{task.description}}"),
+                                 *runs, TimeElapsedColumn(),
                                  console=Console(stderr=True), transient=True)
             self._bar.__enter__()
             self._task = self._bar.add_task("starting", total=None)
