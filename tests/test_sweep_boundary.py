@@ -107,3 +107,15 @@ def test_bad_arguments(kwargs: dict[str, object], needle: str) -> None:
     args.update(kwargs)
     with pytest.raises(ValueError, match=needle):
         stick_slip_boundary(**args)  # type: ignore[arg-type]
+
+
+def test_a_tabulated_laws_boundary_says_whose_rtol_it_is(capsys: pytest.CaptureFixture[str]) -> None:
+    """An independent audit: 2.7134704 "converged, rtol 1e-6" where the smooth law's boundary is
+    2.7131087 (1.3e-4 relative; 1.1e-6 at tol=1e-6): the bisection's tolerance is the
+    interpolant's, and the text says so; an exact law's has no such note."""
+    from tests.cli_helpers import run_cli
+
+    code, out, _ = run_cli(["boundary", "--zeta", "0.085", "--friction", "stribeck:vs=0.3,n=2"], capsys)
+    assert code == 0 and "rtol is the bisection's, for the law's piecewise-linear interpolant" in out
+    code, out, _ = run_cli(["boundary", "--zeta", "0.085"], capsys)
+    assert code == 0 and "interpolant" not in out

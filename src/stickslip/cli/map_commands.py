@@ -466,6 +466,11 @@ def _print_boundary_table(p: dict[str, Any]) -> None:
     if "eq37" in analytic and not str(p["dva"]).startswith("optimal"):
         lines.append("note        Eq. (37) is the paper's criterion for the optimally tuned "
                      "foundation; for this one it only carries its equivalent damping (Eq. 33)")
+    if "interpolant" in str(p["friction"]):
+        # rtol is the bisection's, on the interpolant: the law's own boundary moves with the
+        # law error (an independent audit: 1.3e-4 relative at tol=1e-4, 1.1e-6 at tol=1e-6)
+        lines.append("note        rtol is the bisection's, for the law's piecewise-linear interpolant; "
+                     "the law's own boundary moves with its tolerance (tol= in --friction)")
     lines.append(f"runs        {p['n_runs']} simulations in {p['elapsed_s']:.2f} s")
     if p.get("out"):
         lines.append(f"output      {p['out']}")
