@@ -64,7 +64,6 @@ def continue_branches(
         AnySystem,
         ContinuationSystem,
         MachineSystem,
-        continue_cycles,
     )
     from stickslip.cli.machine_config import configured_machine, refuse_mix
     from stickslip.model.friction_input import parse_friction
@@ -118,16 +117,7 @@ def continue_branches(
             system.with_value(param, bound).build()
         except ValueError as exc:
             raise BadInput(f"--range {range_!r}: {param} = {bound:g} makes no valid system: {exc}") from None
-    from stickslip.cli.console import show_progress
-    from stickslip.cli.progress import DesignProgress
-
-    # a spinner and the time (the branches' steps are open-ended), so that a long trace is
-    # seen to work (an independent audit: 45 s and more without a sign)
-    with DesignProgress(show_progress(), "continue", counted=False) as bar:
-        bar(f"{param} over [{lo:g}, {hi:g}], cycles up to {max_period} stick phases, {seeds} seeds "
-            "(Ctrl-C stops it)", 0)
-        result = continue_cycles(system, param, (lo, hi), max_period=max_period, seeds=seeds,
-                                 max_steps=max_steps)
+    result = _traced(system, param, lo, hi, max_period=max_period, seeds=seeds, max_steps=max_steps)
     payload = result.to_dict()
     payload.update({"dataset": None, "plot": None})
     if out is not None:
@@ -144,6 +134,23 @@ def continue_branches(
         print_json(payload)
         return
     _print(result.summary(), payload)
+
+
+
+def _traced(system: Any, param: str, lo: float, hi: float, *, max_period: int, seeds: int,
+            max_steps: int) -> Any:
+    """:func:`~stickslip.analysis.continuation.continue_cycles` with a spinner and the time on a
+    terminal (the branches' steps are open-ended), so that a long trace is seen to work (an
+    independent audit: 45 s and more without a sign)."""
+    from stickslip.analysis.continuation import continue_cycles
+    from stickslip.cli.console import show_progress
+    from stickslip.cli.progress import DesignProgress
+
+    with DesignProgress(show_progress(), "continue", counted=False) as bar:
+        bar(f"{param} over [{lo:g}, {hi:g}], cycles up to {max_period} stick phases, {seeds} seeds "
+            "(Ctrl-C stops it)", 0)
+        return continue_cycles(system, param, (lo, hi), max_period=max_period, seeds=seeds,
+                               max_steps=max_steps)
 
 
 def _contact_continuation(ctx: typer.Context, config: Path, machine_file: Any, param: str,
